@@ -1,0 +1,44 @@
+# Two entry points for a newcomer (see README.md); each installs what is missing first.
+#   make demo   - solve a real problem (Panda arm path) and print the timing
+#   make test   - build the library, run the C++ tests (ctest) and the Python tests (pytest)
+#   make bench  - peer comparison against toppra; writes bench/README.md's table
+SHELL := /bin/bash
+VENV := .venv
+PY := $(VENV)/bin/python
+export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
+JOBS ?= 2
+
+.PHONY: setup cpp python test test-cpp test-python test-packaging demo bench clean
+
+setup:
+	@bash scripts/setup.sh
+
+cpp: setup
+	@cmake -S . -B build/cpp -G Ninja -DCMAKE_BUILD_TYPE=Release -DPATHPACE_BUILD_TESTS=ON >/dev/null
+	@cmake --build build/cpp -j $(JOBS)
+
+python: setup
+	@$(PY) -m pip install -q --no-build-isolation .
+
+test-cpp: cpp
+	@cd build/cpp && ctest --output-on-failure -j $(JOBS)
+
+test-packaging: cpp
+	@cmake --install build/cpp --prefix build/install >/dev/null
+	@cmake -S tests/packaging -B build/packaging -G Ninja -DCMAKE_PREFIX_PATH=$(CURDIR)/build/install >/dev/null
+	@cmake --build build/packaging >/dev/null
+	@./build/packaging/consumer
+
+test-python: python
+	@$(PY) -m pytest -q tests/python
+
+test: test-cpp test-packaging test-python
+
+demo: python
+	@$(PY) examples/demo.py
+
+bench: python
+	@$(PY) bench/run.py
+
+clean:
+	rm -rf build

@@ -1,0 +1,13 @@
+"""pathpace: time-optimal timing of robot paths under velocity, acceleration, torque and contact limits."""
+
+from importlib.metadata import PackageNotFoundError, version as _version
+
+from . import _core
+from ._core import Error, InvalidInputError
+
+try:
+    __version__ = _version("pathpace")
+except PackageNotFoundError:  # running from a source tree
+    __version__ = "0.0.0"
+
+__all__ = ["Error", "InvalidInputError", "__version__"]

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs what pathpace needs on a fresh Debian machine, idempotently:
+# Debian build dependencies (when missing) and a .venv with the Python tools and test oracles.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+APT_PACKAGES=(g++ make libeigen3-dev liburdfdom-dev libglpk-dev libgtest-dev)
+missing=()
+for p in "${APT_PACKAGES[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+PY=${PYTHON:-python3}
+if [ ! -x .venv/bin/python ]; then
+  echo "setup: creating .venv"
+  "$PY" -m venv .venv
+fi
+
+# Re-install Python requirements only when this list changes.
+REQS="numpy scipy pytest pybind11>=2.12 scikit-build-core>=0.10 cmake ninja pin example-robot-data toppra cvxpy clarabel matplotlib"
+STAMP=.venv/.pathpace-requirements
+if [ ! -f "$STAMP" ] || [ "$(cat "$STAMP")" != "$REQS" ]; then
+  echo "setup: installing Python packages into .venv"
+  .venv/bin/python -m pip install -q --upgrade pip
+  # shellcheck disable=SC2086
+  .venv/bin/python -m pip install -q $REQS
+  echo "$REQS" > "$STAMP"
+fi
