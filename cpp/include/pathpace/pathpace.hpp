@@ -2,5 +2,15 @@
 /// @file pathpace.hpp
 /// Umbrella header: everything a user of pathpace needs.
 
+#include "pathpace/constraints/acceleration_limits.hpp"
+#include "pathpace/constraints/constraint.hpp"
+#include "pathpace/constraints/linear_constraint.hpp"
+#include "pathpace/constraints/velocity_limits.hpp"
 #include "pathpace/errors.hpp"
+#include "pathpace/feasible_set.hpp"
 #include "pathpace/path.hpp"
+#include "pathpace/path_samples.hpp"
+#include "pathpace/result.hpp"
+#include "pathpace/solver_options.hpp"
+#include "pathpace/time_scaling_problem.hpp"
+#include "pathpace/trajectory.hpp"

@@ -1,0 +1,28 @@
+#pragma once
+/// @file acceleration_limits.hpp
+/// Joint acceleration limits a_L <= p''(s)·ṡ² + p'(s)·s̈ <= a_U (eq. 14).
+
+#include <Eigen/Core>
+
+#include "pathpace/constraints/constraint.hpp"
+
+namespace pathpace {
+
+/// Asymmetric joint acceleration limits: two rows per joint, p''_j x + p'_j u <= a_U,j and
+/// -p''_j x - p'_j u <= -a_L,j. Infinite limits give inactive rows.
+class AccelerationLimits : public Constraint {
+ public:
+  /// amin[j] <= amax[j]; amin[j] may be -inf, amax[j] +inf. No NaN.
+  AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax);
+
+  std::string name() const override { return "acceleration limits"; }
+  ConstraintRows evaluate(const PathSamples& samples) const override;
+
+  const Eigen::VectorXd& amin() const { return amin_; }
+  const Eigen::VectorXd& amax() const { return amax_; }
+
+ private:
+  Eigen::VectorXd amin_, amax_;
+};
+
+}  // namespace pathpace

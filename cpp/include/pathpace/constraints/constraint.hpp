@@ -1,0 +1,50 @@
+#pragma once
+/// @file constraint.hpp
+/// A constraint on the timing, written at each grid point as half-planes a·x + b·u <= c in
+/// x = ṡ² and u = s̈ (the paper's eq. 9).
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pathpace/path_samples.hpp"
+
+namespace pathpace {
+
+/// Half-planes of one constraint at every grid point. Row j at grid point k reads
+///   a(k, j)·x + b(k, j)·u <= c(k, j).
+/// A row with c = +inf is inactive at that grid point (a limit that is absent, or padding when the
+/// number of half-planes varies along the path). labels[j] names row j for infeasibility reports,
+/// e.g. "acceleration joint 3 upper".
+struct ConstraintRows {
+  Eigen::MatrixXd a;  ///< (N+1, r)
+  Eigen::MatrixXd b;  ///< (N+1, r)
+  Eigen::MatrixXd c;  ///< (N+1, r)
+  std::vector<std::string> labels;  ///< r names
+
+  void resize(Eigen::Index points, Eigen::Index rows) {
+    a.setZero(points, rows);
+    b.setZero(points, rows);
+    c.setConstant(points, rows, std::numeric_limits<double>::infinity());
+    labels.assign(static_cast<size_t>(rows), std::string());
+  }
+  Eigen::Index rows() const { return a.cols(); }
+};
+
+/// Interface of every constraint. Implementations are immutable after construction, so one instance
+/// can serve several problems and threads; evaluate() keeps its scratch space local.
+class Constraint {
+ public:
+  virtual ~Constraint() = default;
+
+  /// A short name for messages, e.g. "velocity limits".
+  virtual std::string name() const = 0;
+
+  /// The half-planes at every grid point of `samples`. Throws InvalidInput when the constraint does
+  /// not fit the path (e.g. a dimension mismatch), naming what does not fit.
+  virtual ConstraintRows evaluate(const PathSamples& samples) const = 0;
+};
+
+}  // namespace pathpace

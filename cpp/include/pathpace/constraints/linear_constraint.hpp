@@ -1,0 +1,30 @@
+#pragma once
+/// @file linear_constraint.hpp
+/// Any constraint linear in (x, u) given per grid point: lo <= A·x + B·u + C <= hi.
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "pathpace/constraints/constraint.hpp"
+
+namespace pathpace {
+
+/// Generic linear constraint, given on the problem's grid as arrays of shape (N+1, r): row k holds the
+/// r coefficients at s_k. This is how torques from any dynamics source and user-defined Cartesian limits
+/// enter. lo may be -inf and hi +inf (one-sided); lo == hi makes an equality.
+class LinearConstraint : public Constraint {
+ public:
+  LinearConstraint(Eigen::MatrixXd A, Eigen::MatrixXd B, Eigen::MatrixXd C, Eigen::MatrixXd lo,
+                   Eigen::MatrixXd hi, std::string label = "linear");
+
+  std::string name() const override { return label_; }
+  /// Throws InvalidInput if the arrays do not have N+1 rows for the samples' grid.
+  ConstraintRows evaluate(const PathSamples& samples) const override;
+
+ private:
+  Eigen::MatrixXd A_, B_, C_, lo_, hi_;
+  std::string label_;
+};
+
+}  // namespace pathpace

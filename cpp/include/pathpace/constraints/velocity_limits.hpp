@@ -1,0 +1,29 @@
+#pragma once
+/// @file velocity_limits.hpp
+/// Joint velocity limits v_L <= p'(s)·ṡ <= v_U (eq. 13), as the squared-rate bound of eq. (16).
+
+#include <Eigen/Core>
+
+#include "pathpace/constraints/constraint.hpp"
+
+namespace pathpace {
+
+/// Asymmetric joint velocity limits. Since ṡ >= 0, joint j bounds x = ṡ² by (v_U,j / p'_j)² where
+/// p'_j > 0 and by (v_L,j / p'_j)² where p'_j < 0; a joint with p'_j = 0 imposes nothing.
+/// One row per joint, a = 1, b = 0 (a pure bound on x).
+class VelocityLimits : public Constraint {
+ public:
+  /// vmin[j] <= 0 <= vmax[j]; vmin[j] may be -inf and vmax[j] +inf (no limit). No NaN.
+  VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax);
+
+  std::string name() const override { return "velocity limits"; }
+  ConstraintRows evaluate(const PathSamples& samples) const override;
+
+  const Eigen::VectorXd& vmin() const { return vmin_; }
+  const Eigen::VectorXd& vmax() const { return vmax_; }
+
+ private:
+  Eigen::VectorXd vmin_, vmax_;
+};
+
+}  // namespace pathpace

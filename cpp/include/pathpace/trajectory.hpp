@@ -1,0 +1,45 @@
+#pragma once
+/// @file trajectory.hpp
+/// q(t) = p(s(t)) with s(t) piecewise quadratic (eq. 24) through the grid.
+
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "pathpace/path.hpp"
+
+namespace pathpace {
+
+class Trajectory {
+ public:
+  /// grid s_0..s_N, speeds ṡ_k >= 0 with ṡ_k + ṡ_{k+1} > 0 on every interval.
+  Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot);
+
+  double duration() const { return times_[times_.size() - 1]; }
+  const Eigen::VectorXd& times() const { return times_; }
+  const Eigen::VectorXd& grid() const { return s_; }
+  const Eigen::VectorXd& sdot_grid() const { return sdot_; }
+  const std::shared_ptr<const Path>& path() const { return path_; }
+
+  /// s(t), ṡ(t), s̈(t) at each t (clamped to [0, T]). s̈ is taken on the interval to the right of t
+  /// (to the left at t = T).
+  void evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::VectorXd& sd,
+                  Eigen::VectorXd& sdd) const;
+
+  /// q, q̇ = p'ṡ, q̈ = p''ṡ² + p's̈ at each t: shapes (len(t), n).
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::MatrixXd& q, Eigen::MatrixXd& qd,
+                Eigen::MatrixXd& qdd) const;
+  Eigen::MatrixXd q(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+  Eigen::MatrixXd qd(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+  Eigen::MatrixXd qdd(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+
+  /// Uniform times 0, dt, 2dt, ..., with T appended if it is not a multiple of dt.
+  Eigen::VectorXd sample_times(double dt) const;
+
+ private:
+  Eigen::Index interval(double t) const;
+  std::shared_ptr<const Path> path_;
+  Eigen::VectorXd s_, sdot_, times_, sddot_;
+};
+
+}  // namespace pathpace

@@ -1,0 +1,55 @@
+#include "pathpace/constraints/acceleration_limits.hpp"
+
+#include <cmath>
+
+#include "detail/validate.hpp"
+
+namespace pathpace {
+
+AccelerationLimits::AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax)
+    : amin_(std::move(amin)), amax_(std::move(amax)) {
+  detail::require_size("amin", amin_.size(), amax_.size(), "one entry per joint, as amax");
+  detail::require_not_nan("amin", amin_);
+  detail::require_not_nan("amax", amax_);
+  for (Eigen::Index j = 0; j < amax_.size(); ++j) {
+    if (amax_[j] == -std::numeric_limits<double>::infinity())
+      detail::fail(detail::at("amax", j) + " = -inf must be > -inf");
+    if (amin_[j] == std::numeric_limits<double>::infinity())
+      detail::fail(detail::at("amin", j) + " = inf must be < inf");
+    if (!(amin_[j] <= amax_[j]))
+      detail::fail(detail::at("amin", j) + " = " + detail::fmt(amin_[j]) + " must be <= " + detail::at("amax", j) +
+                   " = " + detail::fmt(amax_[j]));
+  }
+}
+
+ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
+  const Eigen::Index n = amax_.size();
+  if (samples.dof() != n)
+    detail::fail("acceleration limits have " + std::to_string(n) + " entries, the path has " +
+                 std::to_string(samples.dof()) + " coordinates");
+  ConstraintRows rows;
+  rows.resize(samples.size(), 2 * n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    rows.labels[static_cast<size_t>(2 * j)] = "acceleration joint " + std::to_string(j) + " upper";
+    rows.labels[static_cast<size_t>(2 * j + 1)] = "acceleration joint " + std::to_string(j) + " lower";
+  }
+  for (Eigen::Index k = 0; k < samples.size(); ++k) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double pp = samples.ddq(k, j), p = samples.dq(k, j);
+      // eq. (14): q̈_j = p''_j ṡ² + p'_j s̈
+      if (std::isfinite(amax_[j])) {
+        rows.a(k, 2 * j) = pp;
+        rows.b(k, 2 * j) = p;
+        rows.c(k, 2 * j) = amax_[j];
+      }
+      if (std::isfinite(amin_[j])) {
+        rows.a(k, 2 * j + 1) = -pp;
+        rows.b(k, 2 * j + 1) = -p;
+        rows.c(k, 2 * j + 1) = -amin_[j];
+      }
+    }
+  }
+  return rows;
+}
+
+}  // namespace pathpace

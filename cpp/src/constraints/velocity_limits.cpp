@@ -1,0 +1,43 @@
+#include "pathpace/constraints/velocity_limits.hpp"
+
+#include <cmath>
+
+#include "detail/validate.hpp"
+
+namespace pathpace {
+
+VelocityLimits::VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax)
+    : vmin_(std::move(vmin)), vmax_(std::move(vmax)) {
+  detail::require_size("vmin", vmin_.size(), vmax_.size(), "one entry per joint, as vmax");
+  detail::require_not_nan("vmin", vmin_);
+  detail::require_not_nan("vmax", vmax_);
+  for (Eigen::Index j = 0; j < vmax_.size(); ++j) {
+    // ṡ = 0 (rest at the ends) must be admissible, so each interval has to contain 0.
+    if (!(vmax_[j] >= 0.0)) detail::fail(detail::at("vmax", j) + " = " + detail::fmt(vmax_[j]) + " must be >= 0");
+    if (!(vmin_[j] <= 0.0)) detail::fail(detail::at("vmin", j) + " = " + detail::fmt(vmin_[j]) + " must be <= 0");
+  }
+}
+
+ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
+  const Eigen::Index n = vmax_.size();
+  if (samples.dof() != n)
+    detail::fail("velocity limits have " + std::to_string(n) + " entries, the path has " +
+                 std::to_string(samples.dof()) + " coordinates");
+  ConstraintRows rows;
+  rows.resize(samples.size(), n);
+  for (Eigen::Index j = 0; j < n; ++j) rows.labels[static_cast<size_t>(j)] = "velocity joint " + std::to_string(j);
+  for (Eigen::Index k = 0; k < samples.size(); ++k) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double d = samples.dq(k, j);
+      if (d == 0.0) continue;  // the joint does not move here: no bound (eq. 16 skips it)
+      const double v = d > 0.0 ? vmax_[j] : vmin_[j];
+      if (std::isinf(v)) continue;
+      const double r = v / d;
+      rows.a(k, j) = 1.0;
+      rows.c(k, j) = r * r;
+    }
+  }
+  return rows;
+}
+
+}  // namespace pathpace

@@ -1,0 +1,137 @@
+#include "detail/glpk_lp.hpp"
+
+#include <csetjmp>
+
+#include <glpk.h>
+
+namespace pathpace::detail {
+
+namespace {
+
+struct HookState {
+  std::jmp_buf env;
+};
+
+extern "C" void pathpace_glpk_error_hook(void* info) {
+  // Called by glp_error before GLPK would abort: jump back to the guarded call instead.
+  std::longjmp(static_cast<HookState*>(info)->env, 1);
+}
+
+// Runs GLPK calls under the error hook. `f` must only call GLPK and touch plain data: a longjmp out of
+// it skips destructors. On a GLPK error the environment is freed (GLPK requires it), which also frees
+// `lp`; the caller then drops its pointer.
+template <typename F>
+bool guarded(F&& f) {
+  HookState state;
+  glp_error_hook(pathpace_glpk_error_hook, &state);
+  if (setjmp(state.env)) {
+    glp_error_hook(nullptr, nullptr);
+    glp_free_env();
+    return false;
+  }
+  f();
+  glp_error_hook(nullptr, nullptr);
+  return true;
+}
+
+}  // namespace
+
+GlpkLp::GlpkLp() = default;
+
+GlpkLp::~GlpkLp() {
+  if (lp_) glp_delete_prob(lp_);
+}
+
+void GlpkLp::reset(int cols) {
+  if (lp_) glp_delete_prob(lp_);
+  lp_ = nullptr;
+  cols_ = cols;
+  basis_ready_ = false;
+  ia_.assign(1, 0);  // GLPK arrays are 1-based
+  ja_.assign(1, 0);
+  ar_.assign(1, 0.0);
+  row_ub_.clear();
+  iterations_ = 0;
+}
+
+int GlpkLp::add_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub) {
+  const int row = static_cast<int>(row_ub_.size()) + 1;
+  for (size_t i = 0; i < idx.size(); ++i) {
+    ia_.push_back(row);
+    ja_.push_back(idx[i] + 1);
+    ar_.push_back(val[i]);
+  }
+  row_ub_.push_back(ub);
+  return row - 1;
+}
+
+bool GlpkLp::load() {
+  glp_term_out(GLP_OFF);  // never print
+  glp_prob* lp = nullptr;
+  const int rows = static_cast<int>(row_ub_.size());
+  const bool ok = guarded([&] {
+    lp = glp_create_prob();
+    glp_set_obj_dir(lp, GLP_MIN);
+    if (rows > 0) glp_add_rows(lp, rows);
+    glp_add_cols(lp, cols_);
+    for (int i = 0; i < rows; ++i) glp_set_row_bnds(lp, i + 1, GLP_UP, 0.0, row_ub_[static_cast<size_t>(i)]);
+    for (int j = 0; j < cols_; ++j) glp_set_col_bnds(lp, j + 1, GLP_LO, 0.0, 0.0);
+    glp_load_matrix(lp, static_cast<int>(ar_.size()) - 1, ia_.data(), ja_.data(), ar_.data());
+    // Rows differ in scale by 1/(2Δs); GLPK's equilibration keeps the simplex well conditioned.
+    glp_scale_prob(lp, GLP_SF_AUTO);
+  });
+  lp_ = ok ? lp : nullptr;
+  return ok;
+}
+
+void GlpkLp::set_objective(const std::vector<double>& c) {
+  for (int j = 0; j < cols_; ++j) glp_set_obj_coef(lp_, j + 1, c[static_cast<size_t>(j)]);
+}
+
+void GlpkLp::set_bounds(int col, double lo, double hi) {
+  glp_set_col_bnds(lp_, col + 1, lo < hi ? GLP_DB : GLP_FX, lo, lo < hi ? hi : lo);
+}
+
+GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
+  if (!lp_) return Outcome::Failed;
+  glp_term_out(GLP_OFF);
+  int ret = 0, status = 0, iters_before = 0, iters_after = 0;
+  glp_prob* lp = lp_;
+  bool first = !basis_ready_;
+  const bool ok = guarded([&] {
+    if (first) glp_adv_basis(lp, 0);
+    glp_smcp parm;
+    glp_init_smcp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    parm.meth = GLP_DUALP;  // bounds and costs both change between SLP steps; dual simplex restarts well
+    parm.presolve = GLP_OFF;  // presolve would discard the warm-start basis
+    parm.tol_bnd = tol_bnd;
+    iters_before = glp_get_it_cnt(lp);
+    ret = glp_simplex(lp, &parm);
+    if (ret != 0) {
+      // A singular or ill-conditioned basis: rebuild one and retry once.
+      glp_adv_basis(lp, 0);
+      ret = glp_simplex(lp, &parm);
+    }
+    iters_after = glp_get_it_cnt(lp);
+    status = glp_get_status(lp);
+  });
+  if (!ok) {
+    lp_ = nullptr;  // freed with the environment
+    return Outcome::Failed;
+  }
+  basis_ready_ = true;
+  iterations_ += iters_after - iters_before;
+  if (ret != 0) return Outcome::Failed;
+  if (status == GLP_OPT) return Outcome::Optimal;
+  if (status == GLP_NOFEAS) return Outcome::Infeasible;
+  if (status == GLP_UNBND) return Outcome::Unbounded;
+  return Outcome::Failed;
+}
+
+void GlpkLp::column_values(std::vector<double>& x) const {
+  x.resize(static_cast<size_t>(cols_));
+  for (int j = 0; j < cols_; ++j) x[static_cast<size_t>(j)] = glp_get_col_prim(lp_, j + 1);
+}
+
+}  // namespace pathpace::detail

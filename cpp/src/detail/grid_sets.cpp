@@ -1,0 +1,78 @@
+#include "detail/grid_sets.hpp"
+
+#include <cmath>
+
+namespace pathpace::detail {
+
+std::string GridSets::label(int id) const {
+  if (id >= 0 && static_cast<size_t>(id) < labels.size()) return labels[static_cast<size_t>(id)];
+  switch (id) {
+    case kBoxXLow: return "sdot^2 >= 0";
+    default: return "no limit on sdot";
+  }
+}
+
+PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon) {
+  PointSet ps;
+  int offset = 0;
+  std::vector<Line> lines;
+  lines.reserve(16);
+  for (const ConstraintRows& cr : constraints) {
+    for (Eigen::Index j = 0; j < cr.rows(); ++j) {
+      const int id = offset + static_cast<int>(j);
+      const double a = cr.a(k, j), b = cr.b(k, j), c = cr.c(k, j);
+      if (c == std::numeric_limits<double>::infinity()) continue;  // inactive here
+      if (b == 0.0) {
+        // A bound on x alone (eq. 16, or p'_j = 0 in eq. 14): fold it into the x range.
+        if (a > 0.0) {
+          if (c / a < ps.x_hi) { ps.x_hi = c / a; ps.x_hi_id = id; }
+        } else if (a < 0.0) {
+          if (c / a > ps.x_lo) { ps.x_lo = c / a; ps.x_lo_id = id; }
+        } else if (c < -1e-12) {
+          ps.empty = true;  // 0 <= c fails whatever the timing
+          ps.certificate = {id};
+          return ps;
+        }
+        continue;
+      }
+      const double norm = std::hypot(a, b);
+      lines.push_back({a / norm, b / norm, c / norm, id});
+    }
+    offset += static_cast<int>(cr.rows());
+  }
+  if (ps.x_lo > ps.x_hi * (1 + 1e-12) + 1e-300) {
+    ps.empty = true;
+    ps.certificate = {ps.x_lo_id, ps.x_hi_id};
+    return ps;
+  }
+  if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
+  polygon.reset(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap);
+  for (const Line& l : lines) {
+    polygon.clip(l);
+    if (polygon.empty()) {
+      ps.empty = true;
+      ps.certificate = {polygon.emptied_by().id, polygon.certificate_edge(0).id, polygon.certificate_edge(1).id};
+      return ps;
+    }
+  }
+  for (const Line& e : polygon.edges())
+    if (e.id >= 0) ps.rows.push_back(e);
+  return ps;
+}
+
+GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints) {
+  GridSets gs;
+  for (const ConstraintRows& cr : constraints) gs.labels.insert(gs.labels.end(), cr.labels.begin(), cr.labels.end());
+  const Eigen::Index n_points = samples.size();
+  gs.points.resize(static_cast<size_t>(n_points));
+  Polygon2d polygon;
+  size_t total = 0;
+  for (Eigen::Index k = 0; k < n_points; ++k) {
+    gs.points[static_cast<size_t>(k)] = build_point_set(constraints, k, polygon);
+    total += gs.points[static_cast<size_t>(k)].rows.size();
+  }
+  gs.average_rows = n_points ? static_cast<double>(total) / static_cast<double>(n_points) : 0.0;
+  return gs;
+}
+
+}  // namespace pathpace::detail

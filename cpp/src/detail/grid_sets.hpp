@@ -1,0 +1,40 @@
+#pragma once
+// Per-grid-point feasible polygons (sec. IV.A): all constraint rows at s_k, bounds on x alone folded
+// into [x_lo, x_hi], the rest pruned to the supporting half-planes.
+
+#include <string>
+#include <vector>
+
+#include "detail/polygon2d.hpp"
+#include "pathpace/constraints/constraint.hpp"
+#include "pathpace/path_samples.hpp"
+
+namespace pathpace::detail {
+
+/// Stand-ins for "no limit": box sides far outside any physical ṡ² or s̈. Vertices on them are exact
+/// (Polygon2d intersects original lines), so their size costs no precision.
+inline constexpr double kInfinityCap = 1e15;
+
+struct PointSet {
+  double x_lo = 0.0, x_hi = kInfinityCap;  // x_hi = kInfinityCap when nothing bounds x alone
+  int x_lo_id = -1, x_hi_id = -1;          // row ids giving the bounds (-1: ṡ² >= 0 / none)
+  std::vector<Line> rows;                  // supporting half-planes with b != 0, (a, b) of unit norm
+  bool empty = false;
+  std::vector<int> certificate;            // when empty: row ids that together are infeasible
+};
+
+struct GridSets {
+  std::vector<PointSet> points;
+  std::vector<std::string> labels;  // row id -> label ("velocity joint 3", ...)
+  double average_rows = 0.0;
+  /// Label for an id, including the implicit ones (negative ids).
+  std::string label(int id) const;
+};
+
+/// Builds every grid point's set. Row ids number the rows of all constraints consecutively.
+GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints);
+
+/// One grid point's set; `polygon` is left holding its polygon (cut at kInfinityCap).
+PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon);
+
+}  // namespace pathpace::detail

@@ -1,0 +1,70 @@
+#pragma once
+// Convex polygons cut out of a box by half-planes a·x + b·y <= c, kept as a cycle of edge lines.
+//
+// Every vertex is the intersection of two *original* lines (Cramer's rule), never an interpolation of
+// earlier vertices, so vertices keep full relative precision even when the box is huge (an absent
+// limit is a box side at 1e15). This is what lets the per-grid-point feasible sets (sec. IV.A) and the
+// per-interval controllable-set LPs of the reachability pass be exact to rounding.
+
+#include <vector>
+
+namespace pathpace::detail {
+
+struct Line {
+  double a = 0, b = 0, c = 0;
+  int id = -1;  // caller's row id; box sides get negative ids (kBoxXLow, ...)
+};
+
+inline constexpr int kBoxXLow = -1;
+inline constexpr int kBoxXHigh = -2;
+inline constexpr int kBoxYLow = -3;
+inline constexpr int kBoxYHigh = -4;
+
+struct Vertex {
+  double x = 0, y = 0;
+};
+
+class Polygon2d {
+ public:
+  /// Relative tolerance of the inside test: a vertex with a·x + b·y - c <= tol·(|a x| + |b y| + |c|)
+  /// is on the inner side.
+  static constexpr double kTol = 1e-12;
+
+  /// Starts from the box [x_lo, x_hi] x [y_lo, y_hi] (finite, x_lo <= x_hi, y_lo <= y_hi).
+  void reset(double x_lo, double x_hi, double y_lo, double y_hi);
+
+  /// Intersects with a·x + b·y <= c. Returns true if the line now supports an edge of the polygon
+  /// (it cut something off), false if it was redundant. After an intersection that empties the polygon,
+  /// empty() is true and the line that emptied it is recorded in emptied_by().
+  bool clip(const Line& line);
+
+  bool empty() const { return empty_; }
+  const std::vector<Line>& edges() const { return edges_; }
+  /// vertices()[j] is the end of edges()[j] (= edges()[j] ∩ edges()[j+1]), counter-clockwise.
+  const std::vector<Vertex>& vertices() const { return vertices_; }
+
+  /// Largest and smallest x over the polygon; index of the vertex attaining it.
+  int argmax_x() const;
+  int argmin_x() const;
+
+  /// After empty(): the line that emptied the polygon and the two edges meeting at the vertex that
+  /// violated it least. Those three half-planes alone are infeasible (a 2-D Helly certificate).
+  const Line& emptied_by() const { return emptied_by_; }
+  const Line& certificate_edge(int i) const { return certificate_[i]; }
+
+ private:
+  static bool intersect(const Line& l1, const Line& l2, Vertex& v);
+  void remove_degenerate_edges();
+
+  std::vector<Line> edges_;
+  std::vector<Vertex> vertices_;
+  std::vector<Line> new_edges_;     // scratch, kept to avoid reallocation
+  std::vector<Vertex> new_vertices_;
+  std::vector<double> dist_;
+  std::vector<char> inside_;
+  bool empty_ = false;
+  Line emptied_by_;
+  Line certificate_[2];
+};
+
+}  // namespace pathpace::detail

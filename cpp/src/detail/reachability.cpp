@@ -1,0 +1,197 @@
+#include "detail/reachability.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pathpace::detail {
+
+Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
+  Chain ch;
+  const Eigen::Index n_pts = s.size(), n = n_pts - 1;
+  ch.ds = s.tail(n) - s.head(n);
+  ch.rows.resize(static_cast<size_t>(n));
+  ch.x_lo.resize(n_pts);
+  ch.x_hi.resize(n_pts);
+  ch.x_lo_id.resize(static_cast<size_t>(n_pts));
+  ch.x_hi_id.resize(static_cast<size_t>(n_pts));
+  for (Eigen::Index k = 0; k < n_pts; ++k) {
+    const PointSet& p = sets.points[static_cast<size_t>(k)];
+    ch.x_lo[k] = p.x_lo;
+    ch.x_hi[k] = p.x_hi;
+    ch.x_lo_id[static_cast<size_t>(k)] = p.x_lo_id;
+    ch.x_hi_id[static_cast<size_t>(k)] = p.x_hi_id;
+  }
+  auto same_sign_positive = [](double al, double be) {
+    const double tol = 1e-12 * (std::abs(al) + std::abs(be));
+    return al > tol && be > tol;
+  };
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double h = 1.0 / (2.0 * ch.ds[k]);
+    auto& rows = ch.rows[static_cast<size_t>(k)];
+    const auto& fwd = sets.points[static_cast<size_t>(k)].rows;
+    const auto& bwd = sets.points[static_cast<size_t>(k + 1)].rows;
+    rows.reserve(fwd.size() + bwd.size());
+    // eq. (26), forward row at s_k: a θ_k + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
+    for (const Line& l : fwd) rows.push_back({l.a - l.b * h, l.b * h, l.c, l.id});
+    // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
+    for (const Line& l : bwd) rows.push_back({-l.b * h, l.a + l.b * h, l.c, l.id});
+    for (const IntervalRow& r : rows)
+      if (same_sign_positive(r.alpha, r.beta)) ch.lattice = false;
+  }
+  return ch;
+}
+
+namespace {
+
+// Interval of θ_{k+1} admissible with θ_k = x fixed: rows give β y <= c - α x.
+struct YRange {
+  double lo, hi;
+  int lo_id, hi_id;
+};
+
+YRange y_range(const std::vector<IntervalRow>& rows, double x, double y_lo, double y_hi) {
+  YRange r{y_lo, y_hi, -1, -1};
+  for (const IntervalRow& row : rows) {
+    const double rhs = row.c - row.alpha * x;
+    if (row.beta > 0.0) {
+      const double v = rhs / row.beta;
+      if (v < r.hi) { r.hi = v; r.hi_id = row.id; }
+    } else if (row.beta < 0.0) {
+      const double v = rhs / row.beta;
+      if (v > r.lo) { r.lo = v; r.lo_id = row.id; }
+    }
+  }
+  return r;
+}
+
+void clip_rows(Polygon2d& poly, const std::vector<IntervalRow>& rows) {
+  for (const IntervalRow& r : rows) {
+    poly.clip({r.alpha, r.beta, r.c, r.id});
+    if (poly.empty()) return;
+  }
+}
+
+void push_unique(std::vector<int>& v, int id) {
+  if (id >= 0 && std::find(v.begin(), v.end(), id) == v.end()) v.push_back(id);
+}
+
+}  // namespace
+
+Eigen::VectorXd forward_pass(const Chain& chain, const Eigen::VectorXd& k_lo, const Eigen::VectorXd& k_hi,
+                             double theta_begin, const Eigen::VectorXd* caps) {
+  const Eigen::Index n = chain.ds.size();
+  Eigen::VectorXd theta(n + 1);
+  theta[0] = theta_begin;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const YRange r = y_range(chain.rows[static_cast<size_t>(k)], theta[k], k_lo[k + 1], k_hi[k + 1]);
+    double y = r.hi;
+    if (caps) y = std::min(y, (*caps)[k + 1]);
+    // θ_k lies in K_k, so [lo, hi] is non-empty up to rounding; never step below lo.
+    theta[k + 1] = std::max(y, r.lo);
+  }
+  return theta;
+}
+
+Reachability reachability(const Chain& chain, double theta_begin, double theta_end) {
+  Reachability out;
+  const Eigen::Index n = chain.ds.size();
+  out.k_lo.resize(n + 1);
+  out.k_hi.resize(n + 1);
+  auto fail_at = [&](Eigen::Index k, const std::string& reason) {
+    out.outcome = Reachability::Outcome::Infeasible;
+    out.failed_index = k;
+    out.reason = reason;
+  };
+  if (theta_end < chain.x_lo[n] * (1 - 1e-12) || theta_end > chain.x_hi[n] * (1 + 1e-12)) {
+    fail_at(n, "the end speed is outside the feasible speeds at s_N");
+    push_unique(out.binding, theta_end > chain.x_hi[n] ? chain.x_hi_id[static_cast<size_t>(n)]
+                                                       : chain.x_lo_id[static_cast<size_t>(n)]);
+    return out;
+  }
+  out.k_lo[n] = out.k_hi[n] = theta_end;
+
+  // Backward pass: K_k = {θ_k : ∃ θ_{k+1} ∈ K_{k+1} with (θ_k, θ_{k+1}) on interval k's polygon}.
+  Polygon2d poly;
+  for (Eigen::Index k = n - 1; k >= 0; --k) {
+    poly.reset(chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1]);
+    clip_rows(poly, chain.rows[static_cast<size_t>(k)]);
+    if (poly.empty()) {
+      fail_at(k, "no speed at this grid point can reach the end of the path");
+      push_unique(out.binding, poly.emptied_by().id);
+      push_unique(out.binding, poly.certificate_edge(0).id);
+      push_unique(out.binding, poly.certificate_edge(1).id);
+      return out;
+    }
+    out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
+    out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
+    if (out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
+      out.outcome = Reachability::Outcome::Unbounded;
+      out.failed_index = k;
+      out.reason = "nothing bounds the speed here";
+      return out;
+    }
+  }
+
+  const double tol0 = 1e-12 * std::max(1.0, out.k_hi[0]);
+  if (theta_begin < out.k_lo[0] - tol0 || theta_begin > out.k_hi[0] + tol0) {
+    // The start speed is not controllable. Locate the failure: the first grid point whose forward-
+    // reachable interval R_k misses K_k, with the rows that limit R_k there.
+    double r_lo = theta_begin, r_hi = theta_begin;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      poly.reset(r_lo, r_hi, chain.x_lo[k + 1], chain.x_hi[k + 1]);
+      clip_rows(poly, chain.rows[static_cast<size_t>(k)]);
+      if (poly.empty()) {
+        fail_at(k + 1, "no admissible speed here from the start speed");
+        push_unique(out.binding, poly.emptied_by().id);
+        push_unique(out.binding, poly.certificate_edge(0).id);
+        push_unique(out.binding, poly.certificate_edge(1).id);
+        return out;
+      }
+      // Range of θ_{k+1}: extremes of y over the polygon.
+      const auto& vs = poly.vertices();
+      size_t imax = 0, imin = 0;
+      for (size_t j = 1; j < vs.size(); ++j) {
+        if (vs[j].y > vs[imax].y) imax = j;
+        if (vs[j].y < vs[imin].y) imin = j;
+      }
+      r_lo = vs[imin].y;
+      r_hi = vs[imax].y;
+      const double tol = 1e-12 * std::max(1.0, out.k_hi[k + 1]);
+      const bool too_slow = r_hi < out.k_lo[k + 1] - tol;
+      const bool too_fast = r_lo > out.k_hi[k + 1] + tol;
+      if (too_slow || too_fast) {
+        fail_at(k + 1, too_slow ? "the speed needed here to reach the end cannot be reached from the start"
+                                : "the path cannot slow down enough here to reach the end");
+        const size_t v = too_slow ? imax : imin;
+        const auto& es = poly.edges();
+        push_unique(out.binding, es[v].id);
+        push_unique(out.binding, es[(v + 1) % es.size()].id);
+        return out;
+      }
+    }
+    fail_at(0, "the start speed is outside the controllable set");
+    return out;
+  }
+  out.theta = forward_pass(chain, out.k_lo, out.k_hi, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
+  out.theta[0] = theta_begin;
+  return out;
+}
+
+double max_violation(const Chain& chain, const Eigen::VectorXd& theta) {
+  double worst = 0.0;
+  const Eigen::Index n = chain.ds.size();
+  for (Eigen::Index k = 0; k <= n; ++k) {
+    const double scale = std::max(1.0, std::abs(chain.x_hi[k]) < kInfinityCap ? std::abs(chain.x_hi[k]) : 1.0);
+    worst = std::max(worst, (chain.x_lo[k] - theta[k]) / scale);
+    if (chain.x_hi[k] < kInfinityCap) worst = std::max(worst, (theta[k] - chain.x_hi[k]) / scale);
+  }
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (const IntervalRow& r : chain.rows[static_cast<size_t>(k)]) {
+      const double lhs = r.alpha * theta[k] + r.beta * theta[k + 1];
+      const double scale = std::max({1.0, std::abs(r.c), std::abs(r.alpha * theta[k]), std::abs(r.beta * theta[k + 1])});
+      worst = std::max(worst, (lhs - r.c) / scale);
+    }
+  return worst;
+}
+
+}  // namespace pathpace::detail

@@ -1,0 +1,58 @@
+#pragma once
+// Reachability analysis on the chain of intervals (sec. V with the rows of eq. 26).
+//
+// On interval k the unknowns are θ_k and θ_{k+1}; s̈ = (θ_{k+1} - θ_k) / (2Δs_k) is constant, and it must
+// satisfy the half-planes of grid point k (forward rows) and of grid point k+1 (backward rows). Both
+// become rows α θ_k + β θ_{k+1} <= c. Backward controllable intervals K_k (all θ_k from which s_N can be
+// reached) come from one exact 2-D LP per interval; a forward greedy pass inside them yields a feasible θ.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "detail/grid_sets.hpp"
+#include "detail/polygon2d.hpp"
+
+namespace pathpace::detail {
+
+struct IntervalRow {
+  double alpha, beta, c;
+  int id;  // constraint row id (labels)
+};
+
+struct Chain {
+  Eigen::VectorXd ds;                          // Δs_k, N
+  std::vector<std::vector<IntervalRow>> rows;  // per interval
+  Eigen::VectorXd x_lo, x_hi;                  // per grid point bounds on θ_k
+  std::vector<int> x_lo_id, x_hi_id;
+  /// True if no row has α > 0 and β > 0: then the feasible set of θ is closed under the componentwise
+  /// max (for α, β of opposite signs or either <= 0, max(θ, θ') satisfies every row that θ and θ' do),
+  /// so it has a greatest element, which the greedy forward pass finds and which minimises T.
+  bool lattice = true;
+};
+
+Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets);
+
+struct Reachability {
+  enum class Outcome { Feasible, Infeasible, Unbounded };
+  Outcome outcome = Outcome::Feasible;
+  Eigen::VectorXd k_lo, k_hi;  // controllable intervals
+  Eigen::VectorXd theta;       // greedy forward profile (when feasible)
+  Eigen::Index failed_index = -1;
+  std::vector<int> binding;    // row ids (labels) that bind where it fails
+  std::string reason;
+};
+
+/// Controllable sets and the greedy forward profile for θ_0 = theta_begin, θ_N = theta_end.
+Reachability reachability(const Chain& chain, double theta_begin, double theta_end);
+
+/// The greedy forward pass below caps: θ_{k+1} = clamp(cap_{k+1}) into the admissible interval given θ_k
+/// and K_{k+1}. With caps = +inf this is the greedy maximum; with caps = an SLP iterate it repairs the
+/// iterate's rounding-level infeasibility (the output satisfies every row exactly to rounding).
+Eigen::VectorXd forward_pass(const Chain& chain, const Eigen::VectorXd& k_lo, const Eigen::VectorXd& k_hi,
+                             double theta_begin, const Eigen::VectorXd* caps);
+
+/// Largest violation of the chain's rows and bounds by θ, relative to max(1, |c|) per row.
+double max_violation(const Chain& chain, const Eigen::VectorXd& theta);
+
+}  // namespace pathpace::detail

@@ -1,0 +1,26 @@
+#include "pathpace/result.hpp"
+
+#include "pathpace/errors.hpp"
+#include "pathpace/trajectory.hpp"
+
+namespace pathpace {
+
+const char* to_string(Status status) {
+  switch (status) {
+    case Status::Optimal: return "optimal";
+    case Status::Infeasible: return "infeasible";
+    case Status::IterationLimit: return "iteration_limit";
+    case Status::NumericalError: return "numerical_error";
+    case Status::Unbounded: return "unbounded";
+  }
+  return "unknown";
+}
+
+Trajectory Result::trajectory() const {
+  if (!ok() || sdot.size() < 2 || !path)
+    throw Error(std::string("no trajectory: the solve ended with status ") + to_string(status) +
+                (message.empty() ? "" : " (" + message + ")"));
+  return Trajectory(path, s, sdot);
+}
+
+}  // namespace pathpace

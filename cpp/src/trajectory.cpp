@@ -1,0 +1,100 @@
+#include "pathpace/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "detail/validate.hpp"
+
+namespace pathpace {
+
+Trajectory::Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot)
+    : path_(std::move(path)), s_(std::move(s)), sdot_(std::move(sdot)) {
+  if (!path_) detail::fail("path must not be None");
+  if (s_.size() < 2) detail::fail("grid has " + std::to_string(s_.size()) + " points, expected at least 2");
+  detail::require_size("sdot", sdot_.size(), s_.size(), "one speed per grid point");
+  detail::require_finite("grid", s_);
+  detail::require_finite("sdot", sdot_);
+  detail::require_increasing("grid", s_);
+  const Eigen::Index n = s_.size() - 1;
+  times_.resize(n + 1);
+  sddot_.resize(n);
+  times_[0] = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (sdot_[k] < 0.0) detail::fail(detail::at("sdot", k) + " = " + detail::fmt(sdot_[k]) + " must be >= 0");
+    const double w = sdot_[k] + sdot_[k + 1];
+    if (!(w > 0.0))
+      detail::fail("sdot[" + std::to_string(k) + "] + sdot[" + std::to_string(k + 1) +
+                   "] = 0 must be > 0 (the interval would take forever)");
+    const double ds = s_[k + 1] - s_[k];
+    times_[k + 1] = times_[k] + 2.0 * ds / w;                                        // eq. (25)
+    sddot_[k] = (sdot_[k + 1] * sdot_[k + 1] - sdot_[k] * sdot_[k]) / (2.0 * ds);  // constant on the interval
+  }
+}
+
+Eigen::Index Trajectory::interval(double t) const {
+  const Eigen::Index n = s_.size() - 1;
+  const auto it = std::upper_bound(times_.data(), times_.data() + n + 1, t);
+  Eigen::Index k = static_cast<Eigen::Index>(it - times_.data()) - 1;
+  return std::clamp<Eigen::Index>(k, 0, n - 1);
+}
+
+void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::VectorXd& sd,
+                            Eigen::VectorXd& sdd) const {
+  s.resize(t.size());
+  sd.resize(t.size());
+  sdd.resize(t.size());
+  const double T = duration();
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    if (std::isnan(t[i])) detail::fail(detail::at("t", i) + " = nan must be a number");
+    const double ti = std::clamp(t[i], 0.0, T);
+    const Eigen::Index k = interval(ti);
+    const double tau = ti - times_[k];
+    // eq. (24): s(t) = s̈_k τ²/2 + ṡ_k τ + s_k on interval k
+    s[i] = std::min(s_[k] + sdot_[k] * tau + 0.5 * sddot_[k] * tau * tau, s_[k + 1]);
+    sd[i] = std::max(sdot_[k] + sddot_[k] * tau, 0.0);
+    sdd[i] = sddot_[k];
+  }
+}
+
+void Trajectory::evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::MatrixXd& q, Eigen::MatrixXd& qd,
+                          Eigen::MatrixXd& qdd) const {
+  Eigen::VectorXd s, sd, sdd;
+  evaluate_s(t, s, sd, sdd);
+  Eigen::MatrixXd dq, ddq;
+  path_->evaluate(s, q, dq, ddq);
+  qd = dq.array().colwise() * sd.array();                                             // eq. (10)
+  qdd = ddq.array().colwise() * (sd.array() * sd.array()) + dq.array().colwise() * sdd.array();  // eq. (11)
+}
+
+Eigen::MatrixXd Trajectory::q(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return q;
+}
+
+Eigen::MatrixXd Trajectory::qd(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return qd;
+}
+
+Eigen::MatrixXd Trajectory::qdd(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return qdd;
+}
+
+Eigen::VectorXd Trajectory::sample_times(double dt) const {
+  if (!(dt > 0.0) || !std::isfinite(dt)) detail::fail("dt = " + detail::fmt(dt) + " must be > 0 and finite");
+  const double T = duration();
+  const double count = std::floor(T / dt);
+  if (count > 1e8) detail::fail("dt = " + detail::fmt(dt) + " gives more than 1e8 samples for T = " + detail::fmt(T));
+  const Eigen::Index m = static_cast<Eigen::Index>(count) + 1;
+  const bool append = T - static_cast<double>(m - 1) * dt > 1e-12 * std::max(1.0, T);
+  Eigen::VectorXd t(m + (append ? 1 : 0));
+  for (Eigen::Index i = 0; i < m; ++i) t[i] = static_cast<double>(i) * dt;
+  if (append) t[m] = T;
+  return t;
+}
+
+}  // namespace pathpace

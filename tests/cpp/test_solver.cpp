@@ -1,0 +1,140 @@
+// Solver contracts on problems with known optima.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "detail/polygon2d.hpp"
+#include "pathpace/pathpace.hpp"
+
+using namespace pathpace;
+
+namespace {
+
+// q(s) = q0 + s (q1 - q0), s in [0, 1]: p' constant, p'' = 0.
+class LinePath : public Path {
+ public:
+  LinePath(Eigen::VectorXd q0, Eigen::VectorXd q1) : q0_(std::move(q0)), q1_(std::move(q1)) {}
+  int dof() const override { return static_cast<int>(q0_.size()); }
+  double s_begin() const override { return 0.0; }
+  double s_end() const override { return 1.0; }
+  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
+                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+    s = std::clamp(s, 0.0, 1.0);
+    q = q0_ + s * (q1_ - q0_);
+    dq = q1_ - q0_;
+    ddq.setZero();
+  }
+
+ private:
+  Eigen::VectorXd q0_, q1_;
+};
+
+// q(s) = (cos 2πs, sin 2πs): a circle, p'' != 0.
+class CirclePath : public Path {
+ public:
+  int dof() const override { return 2; }
+  double s_begin() const override { return 0.0; }
+  double s_end() const override { return 1.0; }
+  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
+                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+    const double w = 2 * M_PI;
+    q << std::cos(w * s), std::sin(w * s);
+    dq << -w * std::sin(w * s), w * std::cos(w * s);
+    ddq << -w * w * std::cos(w * s), -w * w * std::sin(w * s);
+  }
+};
+
+std::shared_ptr<Path> line1d(double length) {
+  return std::make_shared<LinePath>(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, length));
+}
+
+}  // namespace
+
+TEST(Polygon, BoxCutByDiagonalKeepsExactVertices) {
+  detail::Polygon2d p;
+  p.reset(0, 1e15, -1e15, 1e15);
+  EXPECT_TRUE(p.clip({1.0, 1.0, 1.0, 7}));     // x + y <= 1
+  EXPECT_TRUE(p.clip({1.0, -1.0, 1.0, 8}));    // x - y <= 1
+  EXPECT_FALSE(p.clip({1.0, 0.0, 5.0, 9}));    // x <= 5: redundant
+  EXPECT_EQ(p.vertices()[p.argmax_x()].x, 1.0);  // exactly, despite the 1e15 box
+  EXPECT_EQ(p.vertices()[p.argmin_x()].x, 0.0);
+  EXPECT_EQ(p.edges().size(), 3u);  // left side, and the two diagonals
+}
+
+TEST(Polygon, EmptyGivesThreeLineCertificate) {
+  detail::Polygon2d p;
+  p.reset(0, 10, -10, 10);
+  p.clip({1.0, 1.0, 1.0, 1});
+  p.clip({1.0, -1.0, 1.0, 2});
+  p.clip({-1.0, 0.0, -2.0, 3});  // x >= 2 contradicts x <= 1 - |y|
+  ASSERT_TRUE(p.empty());
+  EXPECT_EQ(p.emptied_by().id, 3);
+  EXPECT_EQ(std::min(p.certificate_edge(0).id, p.certificate_edge(1).id), 1);
+  EXPECT_EQ(std::max(p.certificate_edge(0).id, p.certificate_edge(1).id), 2);
+}
+
+TEST(Polygon, SegmentFromEqualityKeepsItsEnds) {
+  detail::Polygon2d p;
+  p.reset(0, 10, -10, 10);
+  p.clip({0.0, 1.0, 1.0, 1});   // y <= 1
+  p.clip({0.0, -1.0, -1.0, 2});  // y >= 1
+  p.clip({1.0, 1.0, 4.0, 3});    // x + y <= 4 -> x <= 3
+  ASSERT_FALSE(p.empty());
+  EXPECT_NEAR(p.vertices()[p.argmax_x()].x, 3.0, 1e-12);
+  EXPECT_NEAR(p.vertices()[p.argmin_x()].x, 0.0, 1e-12);
+}
+
+TEST(Solver, LineUnderVelocityAndAccelerationLimitsApproachesFourSeconds) {
+  // 0 -> 3 with |v|, |a| <= 1: accelerate 1 s, cruise 1 s, decelerate 1 s... T = 4 s exactly in
+  // continuous time (1 + 2 + 1: the cruise covers 2 of the 3 units).
+  for (int N : {16, 64, 256, 1024}) {
+    TimeScalingProblem prob(line1d(3.0), N);
+    prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+    prob.add_acceleration_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+    const Result r = prob.solve();
+    ASSERT_EQ(r.status, Status::Optimal) << r.message;
+    EXPECT_TRUE(r.stats.greatest_element);
+    EXPECT_GE(r.duration, 4.0 - 1e-12);
+    if (N == 1024) EXPECT_LT(r.duration - 4.0, 1e-4);
+  }
+}
+
+TEST(Solver, SlpMatchesGreatestElementOnLatticeProblem) {
+  TimeScalingProblem prob(std::make_shared<CirclePath>(), 200);
+  prob.add_velocity_limits(Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, 2));
+  prob.add_acceleration_limits(Eigen::Vector2d(-3, -3), Eigen::Vector2d(3, 3));
+  const Result fast = prob.solve();
+  SolverOptions o;
+  o.method = Method::Slp;
+  const Result slow = prob.solve(o);
+  ASSERT_EQ(fast.status, Status::Optimal) << fast.message;
+  ASSERT_EQ(slow.status, Status::Optimal) << slow.message;
+  EXPECT_GT(slow.stats.lp_solves, 0);
+  EXPECT_NEAR(slow.duration, fast.duration, 1e-9 * fast.duration);
+}
+
+TEST(Solver, InfeasibleReportsIndexAndRows) {
+  // A linear row that demands s̈ >= 1 at rest at s = 1 while the end speed must be 0 and x <= 0.25...
+  TimeScalingProblem prob(line1d(1.0), 10);
+  prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(11, 1), B = Eigen::MatrixXd::Ones(11, 1), C = Eigen::MatrixXd::Zero(11, 1);
+  Eigen::MatrixXd lo = Eigen::MatrixXd::Constant(11, 1, 1.0), hi = Eigen::MatrixXd::Constant(11, 1, 2.0);
+  prob.add_linear_constraint(A, B, C, lo, hi, "push");
+  const Result r = prob.solve();
+  EXPECT_EQ(r.status, Status::Infeasible);
+  EXPECT_GE(r.infeasibility.grid_index, 0);
+  EXPECT_FALSE(r.infeasibility.constraints.empty());
+  EXPECT_NE(r.message.find("grid index"), std::string::npos) << r.message;
+}
+
+TEST(Solver, BadInputNamesArgument) {
+  EXPECT_THROW(TimeScalingProblem(line1d(1.0), 0), InvalidInput);
+  TimeScalingProblem prob(line1d(1.0), 4);
+  try {
+    prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, -2));
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "vmax[0] = -2 must be >= 0");
+  }
+}
