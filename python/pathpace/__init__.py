@@ -3,11 +3,36 @@
 from importlib.metadata import PackageNotFoundError, version as _version
 
 from . import _core
-from ._core import Error, InvalidInputError
+from ._core import (
+    AccelerationLimits,
+    Constraint,
+    Error,
+    FeasibleSet,
+    InvalidInputError,
+    LinearConstraint,
+    Result,
+    Status,
+    TimeScalingProblem,
+    Trajectory,
+    VelocityLimits,
+)
 
 try:
     __version__ = _version("pathpace")
 except PackageNotFoundError:  # running from a source tree
     __version__ = "0.0.0"
 
-__all__ = ["Error", "InvalidInputError", "__version__"]
+__all__ = [
+    "AccelerationLimits",
+    "Constraint",
+    "Error",
+    "FeasibleSet",
+    "InvalidInputError",
+    "LinearConstraint",
+    "Result",
+    "Status",
+    "TimeScalingProblem",
+    "Trajectory",
+    "VelocityLimits",
+    "__version__",
+]

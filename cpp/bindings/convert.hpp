@@ -1,0 +1,51 @@
+#pragma once
+// numpy -> Eigen with house-style errors: a wrong shape or dtype raises InvalidInputError naming the
+// argument instead of pybind11's generic TypeError.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "pathpace/errors.hpp"
+
+namespace pathpace::python {
+
+namespace py = pybind11;
+
+inline py::array_t<double, py::array::c_style | py::array::forcecast> as_float_array(py::handle obj,
+                                                                                     const std::string& name) {
+  if (obj.is_none()) throw InvalidInput(name + " must be an array, got None");
+  try {
+    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+  } catch (const py::error_already_set&) {
+  }
+  throw InvalidInput(name + " must be an array of numbers");
+}
+
+inline std::string shape_str(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+/// A 1-D array (or a scalar when allow_scalar) as an Eigen vector.
+inline Eigen::VectorXd to_vector(py::handle obj, const std::string& name) {
+  auto a = as_float_array(obj, name);
+  if (!a) throw InvalidInput(name + " must be an array of numbers");
+  if (a.ndim() == 0) return Eigen::VectorXd::Constant(1, *a.data());
+  if (a.ndim() != 1) throw InvalidInput(name + " has shape " + shape_str(a) + ", expected a 1-D array");
+  return Eigen::Map<const Eigen::VectorXd>(a.data(), a.shape(0));
+}
+
+/// A 2-D array as an Eigen matrix; a 1-D array of length m becomes (m, 1) when one_d_as_column.
+inline Eigen::MatrixXd to_matrix(py::handle obj, const std::string& name, bool one_d_as_column = false) {
+  auto a = as_float_array(obj, name);
+  if (!a) throw InvalidInput(name + " must be an array of numbers");
+  if (a.ndim() == 1 && one_d_as_column) return Eigen::Map<const Eigen::VectorXd>(a.data(), a.shape(0));
+  if (a.ndim() != 2) throw InvalidInput(name + " has shape " + shape_str(a) + ", expected a 2-D array");
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  return Eigen::Map<const RowMajor>(a.data(), a.shape(0), a.shape(1));
+}
+
+}  // namespace pathpace::python
