@@ -19,7 +19,7 @@ struct SolverOptions {
   int max_iterations = 200;        ///< SLP iterations
   double objective_tolerance = 1e-12;  ///< stop when the relative decrease of T and the LP's predicted one are below it
   double initial_trust_region = 0.5;   ///< trust-region half-width, relative to max θ of the start
-  double lp_feasibility_tolerance = 1e-10;  ///< GLPK primal feasibility tolerance (tol_bnd)
+  double lp_feasibility_tolerance = 1e-9;  ///< GLPK primal feasibility tolerance (tol_bnd)
 };
 
 }  // namespace pathpace

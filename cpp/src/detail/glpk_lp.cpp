@@ -1,6 +1,8 @@
 #include "detail/glpk_lp.hpp"
 
 #include <csetjmp>
+#include <limits>
+#include <cstdlib>
 
 #include <glpk.h>
 
@@ -75,7 +77,7 @@ bool GlpkLp::load() {
     if (rows > 0) glp_add_rows(lp, rows);
     glp_add_cols(lp, cols_);
     for (int i = 0; i < rows; ++i) glp_set_row_bnds(lp, i + 1, GLP_UP, 0.0, row_ub_[static_cast<size_t>(i)]);
-    for (int j = 0; j < cols_; ++j) glp_set_col_bnds(lp, j + 1, GLP_LO, 0.0, 0.0);
+    for (int j = 0; j < cols_; ++j) glp_set_col_bnds(lp, j + 1, GLP_FR, 0.0, 0.0);
     glp_load_matrix(lp, static_cast<int>(ar_.size()) - 1, ia_.data(), ja_.data(), ar_.data());
     // Rows differ in scale by 1/(2Δs); GLPK's equilibration keeps the simplex well conditioned.
     glp_scale_prob(lp, GLP_SF_AUTO);
@@ -88,8 +90,9 @@ void GlpkLp::set_objective(const std::vector<double>& c) {
   for (int j = 0; j < cols_; ++j) glp_set_obj_coef(lp_, j + 1, c[static_cast<size_t>(j)]);
 }
 
-void GlpkLp::set_bounds(int col, double lo, double hi) {
-  glp_set_col_bnds(lp_, col + 1, lo < hi ? GLP_DB : GLP_FX, lo, lo < hi ? hi : lo);
+void GlpkLp::set_row_upper(int row, double ub) {
+  if (ub == std::numeric_limits<double>::infinity()) glp_set_row_bnds(lp_, row + 1, GLP_FR, 0.0, 0.0);
+  else glp_set_row_bnds(lp_, row + 1, GLP_UP, 0.0, ub);
 }
 
 GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
@@ -99,18 +102,22 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
   glp_prob* lp = lp_;
   bool first = !basis_ready_;
   const bool ok = guarded([&] {
-    if (first) glp_adv_basis(lp, 0);
+    if (first) glp_std_basis(lp);
     glp_smcp parm;
     glp_init_smcp(&parm);
     parm.msg_lev = GLP_MSG_OFF;
-    parm.meth = GLP_DUALP;  // bounds and costs both change between SLP steps; dual simplex restarts well
+    // Primal simplex: the SLP's LPs always contain d = 0, so the slack basis is feasible at the start and
+    // the previous basis is close to feasible later. (The dual simplex from an advanced basis was seen to
+    // declare such LPs infeasible when rows of very different scales meet GLPK's scaling.)
+    parm.meth = GLP_PRIMAL;
     parm.presolve = GLP_OFF;  // presolve would discard the warm-start basis
     parm.tol_bnd = tol_bnd;
     iters_before = glp_get_it_cnt(lp);
     ret = glp_simplex(lp, &parm);
-    if (ret != 0) {
-      // A singular or ill-conditioned basis: rebuild one and retry once.
-      glp_adv_basis(lp, 0);
+    if (ret != 0 || glp_get_status(lp) != GLP_OPT) {
+      // The warm basis led astray (singular, or lost feasibility): restart from the slack basis, which
+      // is feasible by construction.
+      glp_std_basis(lp);
       ret = glp_simplex(lp, &parm);
     }
     iters_after = glp_get_it_cnt(lp);

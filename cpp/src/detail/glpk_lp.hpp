@@ -20,7 +20,10 @@ class GlpkLp {
   GlpkLp(const GlpkLp&) = delete;
   GlpkLp& operator=(const GlpkLp&) = delete;
 
-  /// Minimisation problem with `cols` columns; rows are added as sparse upper-bounded rows.
+  /// Minimisation problem with `cols` free columns; rows are added as sparse upper-bounded rows.
+  /// The first solve starts from the slack basis (all columns nonbasic at 0), which is primal feasible
+  /// whenever every row's bound is >= 0: the SLP writes its LPs in the step d = θ' - θ from a feasible θ
+  /// so that this holds and the simplex never needs a phase 1.
   void reset(int cols);
   /// Adds sum_i val[i] * x[idx[i]] <= ub (idx 0-based). Returns the row index.
   int add_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub);
@@ -28,7 +31,8 @@ class GlpkLp {
   bool load();
 
   void set_objective(const std::vector<double>& c);
-  void set_bounds(int col, double lo, double hi);
+  /// Row `row` <= ub; ub = +inf frees the row.
+  void set_row_upper(int row, double ub);
 
   /// Simplex from the current basis (the previous solve's, so a warm start). `tol_bnd` is GLPK's
   /// primal feasibility tolerance.

@@ -5,6 +5,17 @@
 
 namespace pathpace::detail {
 
+namespace {
+
+// p + q where the two nearly cancel is rounding noise, not a coefficient: a 1e-16 entry next to 1 wrecks
+// GLPK's row scaling and, divided into a bound, gives an arbitrary number. Exact zero instead.
+double cancel(double p, double q) {
+  const double r = p + q;
+  return std::abs(r) <= 1e-13 * (std::abs(p) + std::abs(q)) ? 0.0 : r;
+}
+
+}  // namespace
+
 Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
   Chain ch;
   const Eigen::Index n_pts = s.size(), n = n_pts - 1;
@@ -32,9 +43,9 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
     const auto& bwd = sets.points[static_cast<size_t>(k + 1)].rows;
     rows.reserve(fwd.size() + bwd.size());
     // eq. (26), forward row at s_k: a θ_k + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
-    for (const Line& l : fwd) rows.push_back({l.a - l.b * h, l.b * h, l.c, l.id});
+    for (const Line& l : fwd) rows.push_back({cancel(l.a, -l.b * h), l.b * h, l.c, l.id});
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
-    for (const Line& l : bwd) rows.push_back({-l.b * h, l.a + l.b * h, l.c, l.id});
+    for (const Line& l : bwd) rows.push_back({-l.b * h, cancel(l.a, l.b * h), l.c, l.id});
     for (const IntervalRow& r : rows)
       if (same_sign_positive(r.alpha, r.beta)) ch.lattice = false;
   }
@@ -52,6 +63,9 @@ struct YRange {
 YRange y_range(const std::vector<IntervalRow>& rows, double x, double y_lo, double y_hi) {
   YRange r{y_lo, y_hi, -1, -1};
   for (const IntervalRow& row : rows) {
+    // A row whose β is rounding noise next to α bounds θ_k alone; θ_k ∈ K_k satisfies it already, and
+    // dividing by that β would turn the rounding of α θ_k - c into an arbitrary bound on θ_{k+1}.
+    if (std::abs(row.beta) <= 1e-12 * std::abs(row.alpha)) continue;
     const double rhs = row.c - row.alpha * x;
     if (row.beta > 0.0) {
       const double v = rhs / row.beta;

@@ -56,6 +56,15 @@ SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const Sol
   const double scale = std::max(theta_start.maxCoeff(), 1e-300);
   const double floor = 1e-24 * scale * scale + 1e-300;
 
+  // The LP is written in the step d = θ' - θ (columns free): each row α θ'_k + β θ'_{k+1} <= c becomes
+  // α d_k + β d_{k+1} <= c - α θ_k - β θ_{k+1} >= 0, and the trust region and the bounds on θ are rows
+  // d_j <= ub_j, -d_j <= lb_j with ub_j, lb_j >= 0. So d = 0 is always feasible and the slack basis is a
+  // primal-feasible start (the "first basis built from the feasible start").
+  struct LpRow {
+    Eigen::Index k;
+    double alpha, beta, c;
+  };
+  std::vector<LpRow> rows;
   GlpkLp lp;
   lp.reset(cols);
   std::vector<int> idx;
@@ -64,15 +73,17 @@ SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const Sol
     for (const IntervalRow& r : chain.rows[static_cast<size_t>(k)]) {
       idx.clear();
       val.clear();
-      double ub = r.c;
-      // Columns are θ_1..θ_{N-1} at 0-based index k-1; θ_0 and θ_N are constants.
-      if (k == 0) ub -= r.alpha * theta_start[0];
-      else if (r.alpha != 0.0) { idx.push_back(static_cast<int>(k) - 1); val.push_back(r.alpha); }
-      if (k + 1 == n) ub -= r.beta * theta_start[n];
-      else if (r.beta != 0.0) { idx.push_back(static_cast<int>(k)); val.push_back(r.beta); }
-      if (idx.empty()) continue;
-      lp.add_row_upper(idx, val, ub);
+      if (k > 0 && r.alpha != 0.0) { idx.push_back(static_cast<int>(k) - 1); val.push_back(r.alpha); }
+      if (k + 1 < n && r.beta != 0.0) { idx.push_back(static_cast<int>(k)); val.push_back(r.beta); }
+      if (idx.empty()) continue;  // both ends fixed: nothing to decide
+      lp.add_row_upper(idx, val, 0.0);
+      rows.push_back({k, r.alpha, r.beta, r.c});
     }
+  }
+  const int first_box_row = static_cast<int>(rows.size());
+  for (int j = 0; j < cols; ++j) {
+    lp.add_row_upper({j}, {1.0}, 0.0);
+    lp.add_row_upper({j}, {-1.0}, 0.0);
   }
   if (!lp.load()) {
     out.status = SlpOutcome::Status::LpFailed;
@@ -84,44 +95,46 @@ SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const Sol
   double T = duration(chain.ds, theta);
   double rho = options.initial_trust_region * scale;
 
-  auto solve_lp = [&](double radius, Eigen::VectorXd& target) -> bool {
+  // Minimises g·d over the step LP around θ with trust-region radius `radius` (inf: the whole set).
+  auto solve_lp = [&](double radius, Eigen::VectorXd& step) -> bool {
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const LpRow& r = rows[i];
+      const double slack = r.c - r.alpha * theta[r.k] - r.beta * theta[r.k + 1];
+      // θ is feasible up to rounding; a -1e-17 slack must not make d = 0 infeasible.
+      lp.set_row_upper(static_cast<int>(i), std::max(slack, 0.0));
+    }
     for (int j = 0; j < cols; ++j) {
       const Eigen::Index k = j + 1;
-      double lo = chain.x_lo[k], hi = chain.x_hi[k];
-      if (radius < std::numeric_limits<double>::infinity()) {
-        lo = std::max(lo, theta[k] - radius);
-        hi = std::min(hi, theta[k] + radius);
-      }
-      lp.set_bounds(j, lo, std::max(lo, hi));
+      const double up = std::min(radius, chain.x_hi[k] - theta[k]);
+      const double down = std::min(radius, theta[k] - chain.x_lo[k]);
+      lp.set_row_upper(first_box_row + 2 * j, std::max(up, 0.0));
+      lp.set_row_upper(first_box_row + 2 * j + 1, std::max(down, 0.0));
     }
     ++out.lp_solves;
     if (lp.solve(options.lp_feasibility_tolerance) != GlpkLp::Outcome::Optimal) return false;
     lp.column_values(x);
-    target = theta;
-    for (int j = 0; j < cols; ++j) target[j + 1] = x[static_cast<size_t>(j)];
+    step.setZero(n + 1);
+    for (int j = 0; j < cols; ++j) step[j + 1] = x[static_cast<size_t>(j)];
     return true;
   };
 
-  Eigen::VectorXd target;
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
     gradient(chain.ds, theta, floor, g);
     for (int j = 0; j < cols; ++j) cost[static_cast<size_t>(j)] = g[j + 1];
     lp.set_objective(cost);
 
-    if (!solve_lp(rho, target)) {
+    if (!solve_lp(rho, d)) {
       out.status = SlpOutcome::Status::LpFailed;
       break;
     }
-    d = target - theta;
     double predicted = -g.dot(d);
     bool frank_wolfe = false;
     if (predicted <= options.objective_tolerance * T || rho <= 1e-13 * scale) {
       // The trust-region step promises nothing more: check optimality over the whole feasible set.
-      if (!solve_lp(std::numeric_limits<double>::infinity(), target)) {
+      if (!solve_lp(std::numeric_limits<double>::infinity(), d)) {
         out.status = SlpOutcome::Status::LpFailed;
         break;
       }
-      d = target - theta;
       out.gap = -g.dot(d);
       if (out.gap <= options.objective_tolerance * T) {
         out.status = SlpOutcome::Status::Converged;
