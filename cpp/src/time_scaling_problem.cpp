@@ -202,7 +202,8 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     res.stats.lp_solves = out.lp_solves;
     // The LP's vertices satisfy rows only to GLPK's tolerance; a capped greedy pass returns the nearest
     // point below the SLP iterate that satisfies every row to rounding.
-    theta = detail::forward_pass(chain, reach.k_lo, reach.k_hi, th0, &out.theta);
+    theta = detail::forward_pass(reach, th0, &out.theta);
+
     theta[n] = std::min(theta[n], thN);
     switch (out.status) {
       case detail::SlpOutcome::Status::Converged: break;

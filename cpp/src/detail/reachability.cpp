@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pathpace::detail {
 
@@ -54,28 +55,33 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
 
 namespace {
 
-// Interval of θ_{k+1} admissible with θ_k = x fixed: rows give β y <= c - α x.
-struct YRange {
-  double lo, hi;
-  int lo_id, hi_id;
-};
-
-YRange y_range(const std::vector<IntervalRow>& rows, double x, double y_lo, double y_hi) {
-  YRange r{y_lo, y_hi, -1, -1};
-  for (const IntervalRow& row : rows) {
-    // A row whose β is rounding noise next to α bounds θ_k alone; θ_k ∈ K_k satisfies it already, and
-    // dividing by that β would turn the rounding of α θ_k - c into an arbitrary bound on θ_{k+1}.
-    if (std::abs(row.beta) <= 1e-12 * std::abs(row.alpha)) continue;
-    const double rhs = row.c - row.alpha * x;
-    if (row.beta > 0.0) {
-      const double v = rhs / row.beta;
-      if (v < r.hi) { r.hi = v; r.hi_id = row.id; }
-    } else if (row.beta < 0.0) {
-      const double v = rhs / row.beta;
-      if (v > r.lo) { r.lo = v; r.lo_id = row.id; }
-    }
+// Range of y on the polygon's slice at x (x clamped into the polygon's x-range).
+void slice(const Vertex* v, size_t m, double x, double& y_lo, double& y_hi) {
+  double x_min = v[0].x, x_max = v[0].x;
+  for (size_t i = 1; i < m; ++i) {
+    x_min = std::min(x_min, v[i].x);
+    x_max = std::max(x_max, v[i].x);
   }
-  return r;
+  x = std::clamp(x, x_min, x_max);
+  // An edge whose ends differ in x by rounding only is vertical: at such x the whole edge is the slice.
+  // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.)
+  const double tol = 1e-12 * std::max({std::abs(x_min), std::abs(x_max), 1e-300});
+  y_lo = std::numeric_limits<double>::infinity();
+  y_hi = -y_lo;
+  for (size_t i = 0; i < m; ++i) {
+    const Vertex& p = v[i];
+    const Vertex& q = v[(i + 1) % m];
+    if (x < std::min(p.x, q.x) - tol || x > std::max(p.x, q.x) + tol) continue;  // the edge does not reach x
+    if (std::abs(q.x - p.x) <= tol) {
+      y_lo = std::min({y_lo, p.y, q.y});
+      y_hi = std::max({y_hi, p.y, q.y});
+      continue;
+    }
+    const double t = std::clamp((x - p.x) / (q.x - p.x), 0.0, 1.0);
+    const double y = std::clamp(p.y + t * (q.y - p.y), std::min(p.y, q.y), std::max(p.y, q.y));
+    y_lo = std::min(y_lo, y);
+    y_hi = std::max(y_hi, y);
+  }
 }
 
 void clip_rows(Polygon2d& poly, const std::vector<IntervalRow>& rows) {
@@ -91,17 +97,15 @@ void push_unique(std::vector<int>& v, int id) {
 
 }  // namespace
 
-Eigen::VectorXd forward_pass(const Chain& chain, const Eigen::VectorXd& k_lo, const Eigen::VectorXd& k_hi,
-                             double theta_begin, const Eigen::VectorXd* caps) {
-  const Eigen::Index n = chain.ds.size();
+Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps) {
+  const Eigen::Index n = static_cast<Eigen::Index>(reach.offset.size()) - 1;
   Eigen::VectorXd theta(n + 1);
   theta[0] = theta_begin;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const YRange r = y_range(chain.rows[static_cast<size_t>(k)], theta[k], k_lo[k + 1], k_hi[k + 1]);
-    double y = r.hi;
-    if (caps) y = std::min(y, (*caps)[k + 1]);
-    // θ_k lies in K_k, so [lo, hi] is non-empty up to rounding; never step below lo.
-    theta[k + 1] = std::max(y, r.lo);
+    const size_t o = reach.offset[static_cast<size_t>(k)], m = reach.offset[static_cast<size_t>(k) + 1] - o;
+    double lo, hi;
+    slice(reach.vertices.data() + o, m, theta[k], lo, hi);
+    theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
 }
@@ -126,6 +130,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
 
   // Backward pass: K_k = {θ_k : ∃ θ_{k+1} ∈ K_{k+1} with (θ_k, θ_{k+1}) on interval k's polygon}.
   Polygon2d poly;
+  std::vector<std::vector<Vertex>> polys(static_cast<size_t>(n));
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     poly.reset(chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1]);
     clip_rows(poly, chain.rows[static_cast<size_t>(k)]);
@@ -136,6 +141,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
       push_unique(out.binding, poly.certificate_edge(1).id);
       return out;
     }
+    polys[static_cast<size_t>(k)] = poly.vertices();
     out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
     out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
     if (out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
@@ -186,7 +192,12 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     fail_at(0, "the start speed is outside the controllable set");
     return out;
   }
-  out.theta = forward_pass(chain, out.k_lo, out.k_hi, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
+  out.offset.assign(1, 0);
+  for (const auto& p : polys) {
+    out.vertices.insert(out.vertices.end(), p.begin(), p.end());
+    out.offset.push_back(out.vertices.size());
+  }
+  out.theta = forward_pass(out, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
   out.theta[0] = theta_begin;
   return out;
 }

@@ -37,6 +37,9 @@ struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
   Outcome outcome = Outcome::Feasible;
   Eigen::VectorXd k_lo, k_hi;  // controllable intervals
+  // Interval k's polygon in (θ_k, θ_{k+1}) with θ_{k+1} ∈ K_{k+1}: vertices [offset[k], offset[k+1]).
+  std::vector<Vertex> vertices;
+  std::vector<size_t> offset;
   Eigen::VectorXd theta;       // greedy forward profile (when feasible)
   Eigen::Index failed_index = -1;
   std::vector<int> binding;    // row ids (labels) that bind where it fails
@@ -46,11 +49,12 @@ struct Reachability {
 /// Controllable sets and the greedy forward profile for θ_0 = theta_begin, θ_N = theta_end.
 Reachability reachability(const Chain& chain, double theta_begin, double theta_end);
 
-/// The greedy forward pass below caps: θ_{k+1} = clamp(cap_{k+1}) into the admissible interval given θ_k
-/// and K_{k+1}. With caps = +inf this is the greedy maximum; with caps = an SLP iterate it repairs the
-/// iterate's rounding-level infeasibility (the output satisfies every row exactly to rounding).
-Eigen::VectorXd forward_pass(const Chain& chain, const Eigen::VectorXd& k_lo, const Eigen::VectorXd& k_hi,
-                             double theta_begin, const Eigen::VectorXd* caps);
+/// The greedy forward pass below caps: θ_{k+1} = cap_{k+1} clamped into the slice of interval k's
+/// polygon at θ_k. With caps = nullptr this is the greedy maximum; with caps = an SLP iterate it repairs
+/// the iterate's LP-tolerance infeasibility. Each θ_{k+1} is read off an edge between two polygon
+/// vertices, so (θ_k, θ_{k+1}) is a convex combination of points that satisfy every row to rounding:
+/// no row with a small coefficient can amplify an error along the chain.
+Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps);
 
 /// Largest violation of the chain's rows and bounds by θ, relative to max(1, |c|) per row.
 double max_violation(const Chain& chain, const Eigen::VectorXd& theta);
