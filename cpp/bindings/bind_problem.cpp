@@ -45,7 +45,7 @@ py::object at_times(const Trajectory& tr, py::handle t, int which) {
 
 py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
-                  "greatest_element"_a = s.greatest_element, "average_halfplanes"_a = s.average_halfplanes,
+                  "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
                   "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
                   "time_slp"_a = s.time_slp);
 }
@@ -204,17 +204,17 @@ void bind_problem(py::module_& m) {
       })
       .def("feasible_set", &TimeScalingProblem::feasible_set, "k"_a)
       .def("solve", [](const TimeScalingProblem& p, const std::string& method, int max_iterations,
-                       double objective_tolerance, double initial_trust_region, double lp_feasibility_tolerance) {
+                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance) {
         SolverOptions o;
         o.method = parse_method(method);
         o.max_iterations = max_iterations;
-        o.objective_tolerance = objective_tolerance;
+        o.tolerance = tolerance;
         o.initial_trust_region = initial_trust_region;
         o.lp_feasibility_tolerance = lp_feasibility_tolerance;
         py::gil_scoped_release release;
         return p.solve(o);
       }, "method"_a = "auto", "max_iterations"_a = SolverOptions().max_iterations,
-         "objective_tolerance"_a = SolverOptions().objective_tolerance,
+         "tolerance"_a = SolverOptions().tolerance,
          "initial_trust_region"_a = SolverOptions().initial_trust_region,
          "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance);
 }

@@ -135,8 +135,8 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
 Result TimeScalingProblem::solve(const SolverOptions& options) const {
   if (options.max_iterations < 0)
     detail::fail("max_iterations = " + std::to_string(options.max_iterations) + " must be >= 0");
-  if (!(options.objective_tolerance > 0.0))
-    detail::fail("objective_tolerance = " + detail::fmt(options.objective_tolerance) + " must be > 0");
+  if (!(options.tolerance > 0.0 && options.tolerance < 1.0))
+    detail::fail("tolerance = " + detail::fmt(options.tolerance) + " must be in (0, 1)");
   if (!(options.initial_trust_region > 0.0) || !std::isfinite(options.initial_trust_region))
     detail::fail("initial_trust_region = " + detail::fmt(options.initial_trust_region) + " must be > 0 and finite");
   if (!(options.lp_feasibility_tolerance > 0.0 && options.lp_feasibility_tolerance < 1e-3))
@@ -191,14 +191,40 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
                     "the constraints force the speed to zero on an interval (the path cannot be traversed)");
 
   res.status = Status::Optimal;
-  if (chain.lattice && options.method == Method::Auto) {
-    // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
-    res.stats.greatest_element = true;
-  } else {
+  bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
+  if (options.method == Method::Auto) {
+    if (chain.lattice) {
+      // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
+      proven = true;
+      res.stats.greatest_element = true;
+    } else {
+      // Rows coupling θ_k and θ_{k+1} positively appear wherever p'_j is small against p''_j (near a
+      // joint's reversal). Dropping them gives a max-closed relaxation whose greatest element θ' has
+      // T(θ') <= T*, while the greedy θ is feasible: T* lies in [T(θ'), T(θ)]. If θ' satisfies the
+      // dropped rows it is the optimum; if the bracket is within the tolerance, θ is optimal to it.
+      t0 = std::chrono::steady_clock::now();
+      const detail::Chain relaxed = detail::lattice_relaxation(chain);
+      const detail::Reachability r2 = detail::reachability(relaxed, th0, thN);
+      if (r2.outcome == detail::Reachability::Outcome::Feasible) {
+        const double lower = detail::duration(chain.ds, r2.theta), upper = detail::duration(chain.ds, theta);
+        if (detail::coupled_violation(chain, r2.theta) <= 1e-12) {
+          theta = r2.theta;
+          proven = true;
+          res.stats.greatest_element = true;
+        } else if (upper - lower <= options.tolerance * lower) {
+          res.stats.gap = (upper - lower) / lower;
+          proven = true;
+        }
+      }
+      res.stats.time_reachability += seconds_since(t0);
+    }
+  }
+  if (!proven) {
     t0 = std::chrono::steady_clock::now();
     const detail::SlpOutcome out = detail::slp(chain, theta, options);
     res.stats.time_slp = seconds_since(t0);
     res.stats.slp_iterations = out.iterations;
+    res.stats.gap = out.gap;
     res.stats.lp_solves = out.lp_solves;
     // The LP's vertices satisfy rows only to GLPK's tolerance; a capped greedy pass returns the nearest
     // point below the SLP iterate that satisfies every row to rounding.
@@ -210,8 +236,8 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
       case detail::SlpOutcome::Status::IterationLimit:
         res.status = Status::IterationLimit;
         res.message = "SLP stopped after " + std::to_string(out.iterations) +
-                      " iterations; the timing is feasible, T exceeds the optimum by at most the last gap " +
-                      detail::fmt(out.gap);
+                      " iterations; the timing is feasible, T exceeds the optimum by at most " +
+                      detail::fmt(out.gap) + " (relative)";
         break;
       case detail::SlpOutcome::Status::LpFailed:
         res.status = Status::NumericalError;

@@ -35,7 +35,8 @@ struct Infeasibility {
 struct SolverStats {
   int slp_iterations = 0;
   int lp_solves = 0;
-  bool greatest_element = false;  ///< the forward profile was proven optimal (no SLP needed)
+  bool greatest_element = false;  ///< the optimum is a max-closed set's greatest element (exact, no SLP)
+  double gap = 0.0;               ///< certified bound on (T - T*) / T* (0 when exact)
   double average_halfplanes = 0;  ///< supporting half-planes per grid point after pruning
   double time_constraints = 0;    ///< seconds: path samples and constraint rows
   double time_feasible_sets = 0;  ///< seconds: polygons and pruning

@@ -33,10 +33,6 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
     ch.x_lo_id[static_cast<size_t>(k)] = p.x_lo_id;
     ch.x_hi_id[static_cast<size_t>(k)] = p.x_hi_id;
   }
-  auto same_sign_positive = [](double al, double be) {
-    const double tol = 1e-12 * (std::abs(al) + std::abs(be));
-    return al > tol && be > tol;
-  };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
     auto& rows = ch.rows[static_cast<size_t>(k)];
@@ -48,9 +44,40 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
     for (const Line& l : bwd) rows.push_back({-l.b * h, cancel(l.a, l.b * h), l.c, l.id});
     for (const IntervalRow& r : rows)
-      if (same_sign_positive(r.alpha, r.beta)) ch.lattice = false;
+      if (couples_positively(r)) ch.lattice = false;
   }
   return ch;
+}
+
+bool couples_positively(const IntervalRow& r) {
+  const double tol = 1e-12 * (std::abs(r.alpha) + std::abs(r.beta));
+  return r.alpha > tol && r.beta > tol;
+}
+
+Chain lattice_relaxation(const Chain& chain) {
+  Chain relaxed = chain;
+  for (auto& rows : relaxed.rows)
+    rows.erase(std::remove_if(rows.begin(), rows.end(), couples_positively), rows.end());
+  relaxed.lattice = true;
+  return relaxed;
+}
+
+namespace {
+
+double row_violation(const IntervalRow& r, double x, double y) {
+  const double ax = r.alpha * x, by = r.beta * y;
+  return (ax + by - r.c) / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)});
+}
+
+}  // namespace
+
+double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
+  double worst = 0.0;
+  for (size_t k = 0; k < chain.rows.size(); ++k)
+    for (const IntervalRow& r : chain.rows[k])
+      if (couples_positively(r))
+        worst = std::max(worst, row_violation(r, theta[static_cast<Eigen::Index>(k)], theta[static_cast<Eigen::Index>(k) + 1]));
+  return worst;
 }
 
 namespace {

@@ -33,6 +33,17 @@ struct Chain {
 
 Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets);
 
+/// True for a row with α > 0 and β > 0 (beyond rounding): the only kind that breaks max-closure.
+bool couples_positively(const IntervalRow& r);
+
+/// The chain without its positively coupling rows: a relaxation whose feasible set is max-closed.
+/// Its greatest element θ' bounds the optimum from below (T(θ') <= T*), and if θ' also satisfies the
+/// dropped rows it is the optimum of the full problem (it is feasible and no feasible point is faster).
+Chain lattice_relaxation(const Chain& chain);
+
+/// Largest violation of the positively coupling rows by θ, relative as in max_violation.
+double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta);
+
 struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
   Outcome outcome = Outcome::Feasible;

@@ -129,19 +129,18 @@ SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const Sol
     }
     double predicted = -g.dot(d);
     bool frank_wolfe = false;
-    if (predicted <= options.objective_tolerance * T || rho <= 1e-13 * scale) {
+    if (predicted <= options.tolerance * T || rho <= 1e-13 * scale) {
       // The trust-region step promises nothing more: check optimality over the whole feasible set.
       if (!solve_lp(std::numeric_limits<double>::infinity(), d)) {
         out.status = SlpOutcome::Status::LpFailed;
         break;
       }
-      out.gap = -g.dot(d);
-      if (out.gap <= options.objective_tolerance * T) {
+      out.gap = -g.dot(d) / T;
+      if (out.gap <= options.tolerance) {
         out.status = SlpOutcome::Status::Converged;
         out.theta = theta;
         return out;
       }
-      predicted = out.gap;
       frank_wolfe = true;
     }
     // Exact line search on the convex 1-D restriction: bisection on the sign of the slope.

@@ -16,7 +16,7 @@ struct SlpOutcome {
   Eigen::VectorXd theta;
   int iterations = 0;
   int lp_solves = 0;
-  double gap = 0.0;  // last Frank-Wolfe gap (upper bound on T - T*)
+  double gap = 0.0;  // last Frank-Wolfe gap over T (bound on (T - T*) / T)
 };
 
 /// T(θ) = Σ 2Δs_k / (√θ_k + √θ_{k+1}) (eq. 27); +inf if some interval has θ_k = θ_{k+1} = 0.
