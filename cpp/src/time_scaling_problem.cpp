@@ -177,48 +177,50 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   t0 = std::chrono::steady_clock::now();
   const detail::Chain chain = detail::build_chain(samples_.s, sets);
   const double th0 = sdot_begin_ * sdot_begin_, thN = sdot_end_ * sdot_end_;
-  detail::Reachability reach = detail::reachability(chain, th0, thN);
+  res.status = Status::Optimal;
+  bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
+  Eigen::VectorXd theta;
+  double lower = 0.0;  // T of the lattice relaxation's greatest element: a lower bound on T*
+  if (!chain.lattice && options.method == Method::Auto) {
+    // Rows coupling θ_k and θ_{k+1} positively appear wherever p'_j is small against p''_j (near a
+    // joint's reversal). Without them the feasible set is max-closed and its greatest element θ' has
+    // T(θ') <= T*. Often θ' satisfies them anyway, and is then the optimum with no LP.
+    const detail::Reachability relaxed = detail::reachability(chain, th0, thN, /*relax=*/true);
+    if (relaxed.outcome == detail::Reachability::Outcome::Feasible) {
+      lower = detail::duration(chain.ds, relaxed.theta);
+      if (detail::coupled_violation(chain, relaxed.theta) <= 1e-12) {
+        theta = relaxed.theta;
+        proven = true;
+      }
+    }
+  }
+  detail::Reachability reach;
+  if (!proven) {
+    reach = detail::reachability(chain, th0, thN);
+    if (reach.outcome == detail::Reachability::Outcome::Infeasible)
+      return report(Status::Infeasible, reach.failed_index, reach.binding, reach.reason);
+    if (reach.outcome == detail::Reachability::Outcome::Unbounded)
+      return report(Status::Unbounded, reach.failed_index, reach.binding, reach.reason);
+    theta = reach.theta;
+    if (chain.lattice && options.method == Method::Auto) {
+      // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
+      proven = true;
+    } else if (lower > 0.0) {
+      // The greedy θ is feasible: T* lies in [lower, T(θ)]. Within the tolerance, no SLP is needed.
+      const double upper = detail::duration(chain.ds, theta);
+      if (upper - lower <= options.tolerance * lower) {
+        res.stats.gap = (upper - lower) / lower;
+        proven = true;
+      }
+    }
+  }
+  res.stats.greatest_element = proven && res.stats.gap == 0.0;
   res.stats.time_reachability = seconds_since(t0);
-  if (reach.outcome == detail::Reachability::Outcome::Infeasible)
-    return report(Status::Infeasible, reach.failed_index, reach.binding, reach.reason);
-  if (reach.outcome == detail::Reachability::Outcome::Unbounded)
-    return report(Status::Unbounded, reach.failed_index, reach.binding, reach.reason);
-
-  Eigen::VectorXd theta = reach.theta;
   for (Eigen::Index k = 0; k < n; ++k)
     if (theta[k] + theta[k + 1] <= 0.0)
       return report(Status::Infeasible, theta[k] <= 0.0 && k > 0 ? k : k + 1, {},
                     "the constraints force the speed to zero on an interval (the path cannot be traversed)");
 
-  res.status = Status::Optimal;
-  bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
-  if (options.method == Method::Auto) {
-    if (chain.lattice) {
-      // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
-      proven = true;
-      res.stats.greatest_element = true;
-    } else {
-      // Rows coupling θ_k and θ_{k+1} positively appear wherever p'_j is small against p''_j (near a
-      // joint's reversal). Dropping them gives a max-closed relaxation whose greatest element θ' has
-      // T(θ') <= T*, while the greedy θ is feasible: T* lies in [T(θ'), T(θ)]. If θ' satisfies the
-      // dropped rows it is the optimum; if the bracket is within the tolerance, θ is optimal to it.
-      t0 = std::chrono::steady_clock::now();
-      const detail::Chain relaxed = detail::lattice_relaxation(chain);
-      const detail::Reachability r2 = detail::reachability(relaxed, th0, thN);
-      if (r2.outcome == detail::Reachability::Outcome::Feasible) {
-        const double lower = detail::duration(chain.ds, r2.theta), upper = detail::duration(chain.ds, theta);
-        if (detail::coupled_violation(chain, r2.theta) <= 1e-12) {
-          theta = r2.theta;
-          proven = true;
-          res.stats.greatest_element = true;
-        } else if (upper - lower <= options.tolerance * lower) {
-          res.stats.gap = (upper - lower) / lower;
-          proven = true;
-        }
-      }
-      res.stats.time_reachability += seconds_since(t0);
-    }
-  }
   if (!proven) {
     t0 = std::chrono::steady_clock::now();
     const detail::SlpOutcome out = detail::slp(chain, theta, options);
@@ -229,8 +231,6 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     // The LP's vertices satisfy rows only to GLPK's tolerance; a capped greedy pass returns the nearest
     // point below the SLP iterate that satisfies every row to rounding.
     theta = detail::forward_pass(reach, th0, &out.theta);
-
-    theta[n] = std::min(theta[n], thN);
     switch (out.status) {
       case detail::SlpOutcome::Status::Converged: break;
       case detail::SlpOutcome::Status::IterationLimit:

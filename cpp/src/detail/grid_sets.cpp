@@ -13,10 +13,15 @@ std::string GridSets::label(int id) const {
 }
 
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon) {
+  std::vector<Line> lines;
+  return build_point_set(constraints, k, polygon, lines);
+}
+
+PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
+                         std::vector<Line>& lines) {
   PointSet ps;
   int offset = 0;
-  std::vector<Line> lines;
-  lines.reserve(16);
+  lines.clear();
   for (const ConstraintRows& cr : constraints) {
     for (Eigen::Index j = 0; j < cr.rows(); ++j) {
       const int id = offset + static_cast<int>(j);
@@ -66,9 +71,10 @@ GridSets build_grid_sets(const PathSamples& samples, const std::vector<Constrain
   const Eigen::Index n_points = samples.size();
   gs.points.resize(static_cast<size_t>(n_points));
   Polygon2d polygon;
+  std::vector<Line> lines;
   size_t total = 0;
   for (Eigen::Index k = 0; k < n_points; ++k) {
-    gs.points[static_cast<size_t>(k)] = build_point_set(constraints, k, polygon);
+    gs.points[static_cast<size_t>(k)] = build_point_set(constraints, k, polygon, lines);
     total += gs.points[static_cast<size_t>(k)].rows.size();
   }
   gs.average_rows = n_points ? static_cast<double>(total) / static_cast<double>(n_points) : 0.0;

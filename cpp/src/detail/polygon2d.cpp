@@ -1,5 +1,6 @@
 #include "detail/polygon2d.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pathpace::detail {
@@ -58,6 +59,7 @@ bool Polygon2d::clip(const Line& line) {
   // the half-plane, the new line's edge is inserted.
   new_edges_.clear();
   new_vertices_.clear();
+  size_t inserted = 0;
   for (size_t j = 0; j < m; ++j) {
     const size_t jp = (j + m - 1) % m;
     const bool start_in = inside_[jp], end_in = inside_[j];
@@ -74,6 +76,7 @@ bool Polygon2d::clip(const Line& line) {
         v.y = vertices_[jp].y + t * (vertices_[j].y - vertices_[jp].y);
       }
       new_vertices_.push_back(v);
+      inserted = new_edges_.size();
       new_edges_.push_back(line);
       // The line's edge ends where the walk re-enters: line ∩ (first edge whose end is inside).
       size_t k = (j + 1) % m;
@@ -92,39 +95,38 @@ bool Polygon2d::clip(const Line& line) {
   // loop (its end is inside), so the cycle is consistent.
   edges_.swap(new_edges_);
   vertices_.swap(new_vertices_);
-  remove_degenerate_edges();
+  remove_degenerate_edges(inserted);
   return true;
 }
 
-void Polygon2d::remove_degenerate_edges() {
+void Polygon2d::remove_degenerate_edges(size_t inserted) {
   // An edge whose two ends coincide (the new line passed through a vertex) supports nothing; dropping
-  // it keeps edges() equal to the set of supporting half-planes.
-  size_t m = edges_.size();
-  if (m <= 2) return;
-  bool changed = true;
-  while (changed && m > 2) {
-    changed = false;
-    for (size_t j = 0; j < m; ++j) {
-      const size_t jp = (j + m - 1) % m;
-      const Vertex& s = vertices_[jp];
-      const Vertex& e = vertices_[j];
-      const double scale = std::abs(s.x) + std::abs(s.y) + std::abs(e.x) + std::abs(e.y);
-      if (std::abs(s.x - e.x) + std::abs(s.y - e.y) > 1e-13 * scale + 1e-300) continue;
-      // A zero-length edge may still be needed: at the ends of a segment (equality rows) the two
-      // neighbours are antiparallel. It is redundant only if its neighbours' outward normals turn
-      // counter-clockwise by less than 180 degrees, so that they alone close the corner.
-      const Line& l1 = edges_[jp];
-      const Line& l3 = edges_[(j + 1) % m];
-      const double cross = l1.a * l3.b - l1.b * l3.a;
-      const double norms = std::hypot(l1.a, l1.b) * std::hypot(l3.a, l3.b);
-      if (cross > 1e-12 * norms) {
-        // Merge: the vertex before the edge stays, the edge and its end vertex go.
-        edges_.erase(edges_.begin() + static_cast<long>(j));
-        vertices_.erase(vertices_.begin() + static_cast<long>(j));
-        --m;
-        changed = true;
-        break;
-      }
+  // it keeps edges() equal to the set of supporting half-planes. Only the new edge and its two
+  // neighbours can have become degenerate; they are checked from the highest index down so that an
+  // erase does not shift the indices still to check.
+  const size_t m0 = edges_.size();
+  size_t cand[3] = {(inserted + m0 - 1) % m0, inserted, (inserted + 1) % m0};
+  std::sort(cand, cand + 3, [](size_t x, size_t y) { return x > y; });
+  for (int c = 0; c < 3; ++c) {
+    const size_t m = edges_.size();
+    const size_t j = cand[c];
+    if (m <= 2 || j >= m || (c > 0 && cand[c] == cand[c - 1])) continue;
+    const size_t jp = (j + m - 1) % m;
+    const Vertex& s = vertices_[jp];
+    const Vertex& e = vertices_[j];
+    const double scale = std::abs(s.x) + std::abs(s.y) + std::abs(e.x) + std::abs(e.y);
+    if (std::abs(s.x - e.x) + std::abs(s.y - e.y) > 1e-13 * scale + 1e-300) continue;
+    // A zero-length edge may still be needed: at the ends of a segment (equality rows) the two
+    // neighbours are antiparallel. It is redundant only if its neighbours' outward normals turn
+    // counter-clockwise by less than 180 degrees, so that they alone close the corner.
+    const Line& l1 = edges_[jp];
+    const Line& l3 = edges_[(j + 1) % m];
+    const double cross = l1.a * l3.b - l1.b * l3.a;
+    const double norms = std::hypot(l1.a, l1.b) * std::hypot(l3.a, l3.b);
+    if (cross > 1e-12 * norms) {
+      // Merge: the vertex before the edge stays, the edge and its end vertex go.
+      edges_.erase(edges_.begin() + static_cast<long>(j));
+      vertices_.erase(vertices_.begin() + static_cast<long>(j));
     }
   }
 }

@@ -6,6 +6,7 @@
 // limit is a box side at 1e15). This is what lets the per-grid-point feasible sets (sec. IV.A) and the
 // per-interval controllable-set LPs of the reachability pass be exact to rounding.
 
+#include <cstddef>
 #include <vector>
 
 namespace pathpace::detail {
@@ -54,7 +55,7 @@ class Polygon2d {
 
  private:
   static bool intersect(const Line& l1, const Line& l2, Vertex& v);
-  void remove_degenerate_edges();
+  void remove_degenerate_edges(std::size_t inserted);
 
   std::vector<Line> edges_;
   std::vector<Vertex> vertices_;

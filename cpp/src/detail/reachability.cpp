@@ -54,14 +54,6 @@ bool couples_positively(const IntervalRow& r) {
   return r.alpha > tol && r.beta > tol;
 }
 
-Chain lattice_relaxation(const Chain& chain) {
-  Chain relaxed = chain;
-  for (auto& rows : relaxed.rows)
-    rows.erase(std::remove_if(rows.begin(), rows.end(), couples_positively), rows.end());
-  relaxed.lattice = true;
-  return relaxed;
-}
-
 namespace {
 
 double row_violation(const IntervalRow& r, double x, double y) {
@@ -111,8 +103,9 @@ void slice(const Vertex* v, size_t m, double x, double& y_lo, double& y_hi) {
   }
 }
 
-void clip_rows(Polygon2d& poly, const std::vector<IntervalRow>& rows) {
+void clip_rows(Polygon2d& poly, const std::vector<IntervalRow>& rows, bool relax) {
   for (const IntervalRow& r : rows) {
+    if (relax && couples_positively(r)) continue;
     poly.clip({r.alpha, r.beta, r.c, r.id});
     if (poly.empty()) return;
   }
@@ -137,7 +130,7 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
   return theta;
 }
 
-Reachability reachability(const Chain& chain, double theta_begin, double theta_end) {
+Reachability reachability(const Chain& chain, double theta_begin, double theta_end, bool relax) {
   Reachability out;
   const Eigen::Index n = chain.ds.size();
   out.k_lo.resize(n + 1);
@@ -157,10 +150,13 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
 
   // Backward pass: K_k = {θ_k : ∃ θ_{k+1} ∈ K_{k+1} with (θ_k, θ_{k+1}) on interval k's polygon}.
   Polygon2d poly;
-  std::vector<std::vector<Vertex>> polys(static_cast<size_t>(n));
+  // Polygons are stored as they come (interval N-1 first) and put in order at the end.
+  std::vector<Vertex> rev;
+  std::vector<size_t> rev_size(static_cast<size_t>(n));
+  rev.reserve(static_cast<size_t>(n) * 6);
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     poly.reset(chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1]);
-    clip_rows(poly, chain.rows[static_cast<size_t>(k)]);
+    clip_rows(poly, chain.rows[static_cast<size_t>(k)], relax);
     if (poly.empty()) {
       fail_at(k, "no speed at this grid point can reach the end of the path");
       push_unique(out.binding, poly.emptied_by().id);
@@ -168,7 +164,8 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
       push_unique(out.binding, poly.certificate_edge(1).id);
       return out;
     }
-    polys[static_cast<size_t>(k)] = poly.vertices();
+    rev.insert(rev.end(), poly.vertices().begin(), poly.vertices().end());
+    rev_size[static_cast<size_t>(k)] = poly.vertices().size();
     out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
     out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
     if (out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
@@ -186,7 +183,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     double r_lo = theta_begin, r_hi = theta_begin;
     for (Eigen::Index k = 0; k < n; ++k) {
       poly.reset(r_lo, r_hi, chain.x_lo[k + 1], chain.x_hi[k + 1]);
-      clip_rows(poly, chain.rows[static_cast<size_t>(k)]);
+      clip_rows(poly, chain.rows[static_cast<size_t>(k)], relax);
       if (poly.empty()) {
         fail_at(k + 1, "no admissible speed here from the start speed");
         push_unique(out.binding, poly.emptied_by().id);
@@ -219,10 +216,15 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     fail_at(0, "the start speed is outside the controllable set");
     return out;
   }
-  out.offset.assign(1, 0);
-  for (const auto& p : polys) {
-    out.vertices.insert(out.vertices.end(), p.begin(), p.end());
-    out.offset.push_back(out.vertices.size());
+  out.offset.resize(static_cast<size_t>(n) + 1);
+  out.offset[0] = 0;
+  for (size_t k = 0; k < static_cast<size_t>(n); ++k) out.offset[k + 1] = out.offset[k] + rev_size[k];
+  out.vertices.resize(rev.size());
+  size_t pos = rev.size();  // interval k's block in `rev` ends where the blocks of k+1..N-1 begin
+  for (size_t k = 0; k < static_cast<size_t>(n); ++k) {
+    pos -= rev_size[k];
+    std::copy(rev.begin() + static_cast<long>(pos), rev.begin() + static_cast<long>(pos + rev_size[k]),
+              out.vertices.begin() + static_cast<long>(out.offset[k]));
   }
   out.theta = forward_pass(out, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
   out.theta[0] = theta_begin;

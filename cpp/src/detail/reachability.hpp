@@ -36,10 +36,6 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets);
 /// True for a row with α > 0 and β > 0 (beyond rounding): the only kind that breaks max-closure.
 bool couples_positively(const IntervalRow& r);
 
-/// The chain without its positively coupling rows: a relaxation whose feasible set is max-closed.
-/// Its greatest element θ' bounds the optimum from below (T(θ') <= T*), and if θ' also satisfies the
-/// dropped rows it is the optimum of the full problem (it is feasible and no feasible point is faster).
-Chain lattice_relaxation(const Chain& chain);
 
 /// Largest violation of the positively coupling rows by θ, relative as in max_violation.
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta);
@@ -58,7 +54,10 @@ struct Reachability {
 };
 
 /// Controllable sets and the greedy forward profile for θ_0 = theta_begin, θ_N = theta_end.
-Reachability reachability(const Chain& chain, double theta_begin, double theta_end);
+/// With relax = true the positively coupling rows are left out: the relaxation's feasible set is
+/// max-closed, so its greedy profile θ' is its greatest element and T(θ') <= T*; if θ' also satisfies the
+/// dropped rows it is the optimum of the full problem (it is feasible and no feasible point is faster).
+Reachability reachability(const Chain& chain, double theta_begin, double theta_end, bool relax = false);
 
 /// The greedy forward pass below caps: θ_{k+1} = cap_{k+1} clamped into the slice of interval k's
 /// polygon at θ_k. With caps = nullptr this is the greedy maximum; with caps = an SLP iterate it repairs

@@ -19,9 +19,11 @@ namespace pathpace {
 /// number of half-planes varies along the path). labels[j] names row j for infeasibility reports,
 /// e.g. "acceleration joint 3 upper".
 struct ConstraintRows {
-  Eigen::MatrixXd a;  ///< (N+1, r)
-  Eigen::MatrixXd b;  ///< (N+1, r)
-  Eigen::MatrixXd c;  ///< (N+1, r)
+  /// Row-major: the r rows of one grid point are contiguous, as the per-point polygons read them.
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  Matrix a;  ///< (N+1, r)
+  Matrix b;  ///< (N+1, r)
+  Matrix c;  ///< (N+1, r)
   std::vector<std::string> labels;  ///< r names
 
   void resize(Eigen::Index points, Eigen::Index rows) {
