@@ -1,0 +1,57 @@
+#pragma once
+/// @file cubic_spline_path.hpp
+/// A C2 cubic spline through waypoints.
+
+#include <Eigen/Core>
+
+#include "pathpace/path.hpp"
+#include "pathpace/piecewise_polynomial_path.hpp"
+
+namespace pathpace {
+
+/// How the knots s_i of the waypoints are placed on [s_begin, s_end].
+enum class KnotSpacing {
+  Uniform,      ///< equally spaced
+  ChordLength,  ///< proportional to the cumulative Euclidean distance between waypoints
+};
+
+/// End conditions; they match scipy.interpolate.CubicSpline's bc_type of the same names.
+enum class SplineBoundary {
+  NotAKnot,  ///< p''' continuous at the second and second-last knots (2 waypoints: a line; 3: a parabola)
+  Natural,   ///< p'' = 0 at both ends
+  Clamped,   ///< p' given at both ends
+};
+
+class CubicSplinePath : public Path {
+ public:
+  /// waypoints (K, n), K >= 2, knots placed by `spacing` on [s_begin, s_end].
+  CubicSplinePath(const Eigen::MatrixXd& waypoints, KnotSpacing spacing = KnotSpacing::Uniform,
+                  SplineBoundary boundary = SplineBoundary::NotAKnot, double s_begin = 0.0, double s_end = 1.0,
+                  const Eigen::VectorXd& start_derivative = Eigen::VectorXd(),
+                  const Eigen::VectorXd& end_derivative = Eigen::VectorXd());
+  /// Explicit knots (K, strictly increasing); the domain is [knots[0], knots[K-1]].
+  CubicSplinePath(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
+                  SplineBoundary boundary = SplineBoundary::NotAKnot,
+                  const Eigen::VectorXd& start_derivative = Eigen::VectorXd(),
+                  const Eigen::VectorXd& end_derivative = Eigen::VectorXd());
+
+  int dof() const override { return pieces_.dof(); }
+  double s_begin() const override { return pieces_.s_begin(); }
+  double s_end() const override { return pieces_.s_end(); }
+  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
+                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+    pieces_.evaluate(s, q, dq, ddq);
+  }
+  using Path::evaluate;
+
+  const Eigen::VectorXd& knots() const { return pieces_.breakpoints(); }
+  const Eigen::MatrixXd& waypoints() const { return waypoints_; }
+
+ private:
+  static PiecewisePolynomialPath build(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
+                                       SplineBoundary boundary, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1);
+  Eigen::MatrixXd waypoints_;
+  PiecewisePolynomialPath pieces_;
+};
+
+}  // namespace pathpace

@@ -1,0 +1,77 @@
+"""Export of results and trajectories: dicts (JSON-ready), CSV, and waypoint CSV input."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._core import Result, Trajectory
+
+
+def result_to_dict(res: Result) -> dict[str, Any]:
+    """Everything a result holds, as plain Python types (JSON-serialisable)."""
+    finite = lambda v: None if v is None or (isinstance(v, float) and not math.isfinite(v)) else v  # noqa: E731
+    return {
+        "status": res.status.name.lower(),
+        "ok": res.ok,
+        "message": res.message,
+        "duration": finite(float(res.duration)),
+        "s": res.s.tolist(),
+        "sdot": res.sdot.tolist(),
+        "times": res.times.tolist(),
+        "sddot": res.sddot.tolist(),
+        "infeasible_index": int(res.infeasible_index),
+        "infeasible_s": finite(float(res.infeasible_s)),
+        "binding_constraints": list(res.binding_constraints),
+        "stats": dict(res.stats),
+    }
+
+
+def save_result_json(res: Result, path: str | Path) -> None:
+    Path(path).write_text(json.dumps(result_to_dict(res), indent=1))
+
+
+def trajectory_to_dict(traj: Trajectory, dt: float) -> dict[str, Any]:
+    """Uniform resampling at dt: t (m,), q, qd, qdd (m, n) as nested lists."""
+    smp = traj.sample(dt)
+    return {key: np.asarray(val).tolist() for key, val in smp.items()} | {"duration": traj.duration}
+
+
+def save_trajectory_csv(traj: Trajectory, path: str | Path, dt: float, joint_names: list[str] | None = None) -> None:
+    """CSV with columns t, q_<j>..., qd_<j>..., qdd_<j>... sampled every dt (and at T)."""
+    smp = traj.sample(dt)
+    n = smp["q"].shape[1]
+    names = joint_names if joint_names is not None else [str(j) for j in range(n)]
+    if len(names) != n:
+        from ._core import InvalidInputError
+
+        raise InvalidInputError(f"joint_names has {len(names)} entries, the trajectory has {n} coordinates")
+    header = ["t"] + [f"q_{a}" for a in names] + [f"qd_{a}" for a in names] + [f"qdd_{a}" for a in names]
+    data = np.column_stack([smp["t"], smp["q"], smp["qd"], smp["qdd"]])
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows(data.tolist())
+
+
+def load_waypoints_csv(path: str | Path) -> np.ndarray:
+    """A (K, n) array from a CSV of waypoints, one per row; a header row of names is skipped."""
+    rows = []
+    with open(path, newline="") as f:
+        for i, row in enumerate(csv.reader(f)):
+            if not row:
+                continue
+            try:
+                rows.append([float(x) for x in row])
+            except ValueError:
+                if i == 0:
+                    continue  # header
+                from ._core import InvalidInputError
+
+                raise InvalidInputError(f"{path}: row {i + 1} is not numeric: {row}") from None
+    return np.asarray(rows, dtype=float)

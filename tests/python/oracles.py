@@ -1,0 +1,88 @@
+"""Independent reference computations for the tests: plain numpy and cvxpy, no pathpace numerics."""
+
+import numpy as np
+
+
+def kinematic_rows(dq, ddq, vmin, vmax, amin, amax):
+    """Rows a·x + b·u <= c at each grid point from velocity (eq. 16) and acceleration (eq. 14) limits.
+
+    Returns A, B, C of shape (N+1, r) (velocity rows have b = 0) -- written from the paper, not from
+    pathpace's code.
+    """
+    m, n = dq.shape
+    A, B, C = [], [], []
+    with np.errstate(divide="ignore"):
+        lim = np.where(dq > 0, vmax / dq, np.where(dq < 0, vmin / dq, np.inf))
+    A.append(np.ones((m, n)))
+    B.append(np.zeros((m, n)))
+    C.append(np.where(np.isfinite(lim), lim**2, np.inf))
+    A += [ddq, -ddq]
+    B += [dq, -dq]
+    C += [np.broadcast_to(amax, (m, n)), np.broadcast_to(-np.asarray(amin), (m, n))]
+    return np.hstack(A), np.hstack(B), np.hstack(C).astype(float)
+
+
+def max_violation(s, sdot, A, B, C):
+    """Largest relative violation of a·ṡ² + b·s̈ <= c at every grid point, with s̈ of the interval on
+    each side of the point (eq. 26), relative to max(1, |c|)."""
+    theta = sdot**2
+    ds = np.diff(s)
+    u = (theta[1:] - theta[:-1]) / (2 * ds)
+    worst = 0.0
+    for side, ks, us in (("fwd", np.arange(len(ds)), u), ("bwd", np.arange(1, len(s)), u)):
+        a, b, c = A[ks], B[ks], C[ks]
+        lhs = a * theta[ks, None] + b * us[:, None]
+        finite = np.isfinite(c)
+        scale = np.maximum(1.0, np.abs(np.where(finite, c, 0.0)))
+        viol = np.where(finite, (lhs - np.where(finite, c, 0.0)) / scale, -np.inf)
+        worst = max(worst, float(np.max(viol)))
+    return worst
+
+
+def cvxpy_optimum(s, A, B, C, theta_begin=0.0, theta_end=0.0):
+    """The optimum of eq. (26)-(27) by cvxpy + Clarabel, each term written as 2Δs·inv_pos(w_k + w_{k+1})
+    with w_k <= sqrt(θ_k)."""
+    import cvxpy as cp
+
+    N = len(s) - 1
+    ds = np.diff(s)
+    theta = cp.Variable(N + 1)
+    w = cp.Variable(N + 1)
+    finite = np.isfinite(C)
+    Cf = np.where(finite, C, 0.0)
+    Af = np.where(finite, A, 0.0)
+    Bf = np.where(finite, B, 0.0)
+    cons = [theta >= 0, w >= 0, w <= cp.sqrt(theta), theta[0] == theta_begin, theta[N] == theta_end]
+    # Velocity rows (b = 0) as bounds; the rest as rows on both sides of each grid point.
+    u = cp.multiply(theta[1:] - theta[:-1], 1.0 / (2 * ds))
+    for j in range(A.shape[1]):
+        fk = finite[:-1, j]
+        bk = finite[1:, j]
+        if fk.any():
+            expr = cp.multiply(Af[:-1, j], theta[:-1]) + cp.multiply(Bf[:-1, j], u)
+            cons.append(expr[np.flatnonzero(fk)] <= Cf[:-1, j][fk])
+        if bk.any():
+            expr = cp.multiply(Af[1:, j], theta[1:]) + cp.multiply(Bf[1:, j], u)
+            cons.append(expr[np.flatnonzero(bk)] <= Cf[1:, j][bk])
+    obj = cp.Minimize(cp.sum(cp.multiply(2 * ds, cp.inv_pos(w[:-1] + w[1:]))))
+    prob = cp.Problem(obj, cons)
+    # √θ at θ = 0 (rest at the ends) makes the cone program badly conditioned; Clarabel sometimes stops
+    # at "optimal_inaccurate" with its defaults. Settings are tried in turn until one reports OPTIMAL.
+    for settings in ({}, {"max_iter": 1000}, {"equilibrate_enable": False}, {"tol_gap_abs": 1e-7, "tol_gap_rel": 1e-7}):
+        prob.solve(solver=cp.CLARABEL, **settings)
+        if prob.status == cp.OPTIMAL:
+            break
+    assert prob.status == cp.OPTIMAL, prob.status
+    # prob.value is T at w, and w <= sqrt(θ) holds only to the solver's tolerance, which lets the value
+    # undercut the true T by ~1e-6; T recomputed from the returned θ is the honest number.
+    # The same holds at the ends: θ_N = 0 is met to ~1e-9 only, and √θ_N ~ 3e-5 there shortens the last
+    # interval visibly. The ends are set to their exact values.
+    th = np.maximum(np.asarray(theta.value), 0.0)
+    th[0], th[N] = theta_begin, theta_end
+    return duration(s, th), th
+
+
+def duration(s, theta):
+    """T of eq. (27) for squared speeds θ at the grid s."""
+    w = np.sqrt(np.maximum(theta, 0.0))
+    return float(np.sum(2 * np.diff(s) / (w[:-1] + w[1:])))
