@@ -60,8 +60,7 @@ bool Polygon2d::clip(const Line& line) {
   new_edges_.clear();
   new_vertices_.clear();
   size_t inserted = 0;
-  for (size_t j = 0; j < m; ++j) {
-    const size_t jp = (j + m - 1) % m;
+  for (size_t j = 0, jp = m - 1; j < m; jp = j++) {
     const bool start_in = inside_[jp], end_in = inside_[j];
     if (!start_in && !end_in) continue;
     new_edges_.push_back(edges_[j]);
@@ -79,11 +78,11 @@ bool Polygon2d::clip(const Line& line) {
       inserted = new_edges_.size();
       new_edges_.push_back(line);
       // The line's edge ends where the walk re-enters: line ∩ (first edge whose end is inside).
-      size_t k = (j + 1) % m;
-      while (!inside_[k]) k = (k + 1) % m;
+      size_t k = j + 1 == m ? 0 : j + 1;
+      while (!inside_[k]) k = k + 1 == m ? 0 : k + 1;
       Vertex w;
       if (!intersect(line, edges_[k], w)) {
-        const size_t kp = (k + m - 1) % m;
+        const size_t kp = k == 0 ? m - 1 : k - 1;
         const double t = dist_[kp] / (dist_[kp] - dist_[k]);
         w.x = vertices_[kp].x + t * (vertices_[k].x - vertices_[kp].x);
         w.y = vertices_[kp].y + t * (vertices_[k].y - vertices_[kp].y);
@@ -105,13 +104,16 @@ void Polygon2d::remove_degenerate_edges(size_t inserted) {
   // neighbours can have become degenerate; they are checked from the highest index down so that an
   // erase does not shift the indices still to check.
   const size_t m0 = edges_.size();
-  size_t cand[3] = {(inserted + m0 - 1) % m0, inserted, (inserted + 1) % m0};
-  std::sort(cand, cand + 3, [](size_t x, size_t y) { return x > y; });
+  size_t cand[3] = {inserted + 1 == m0 ? 0 : inserted + 1, inserted, inserted == 0 ? m0 - 1 : inserted - 1};
+  // Descending order (the wrapped ones may be out of place); three elements, sorted by hand.
+  if (cand[0] < cand[1]) std::swap(cand[0], cand[1]);
+  if (cand[1] < cand[2]) std::swap(cand[1], cand[2]);
+  if (cand[0] < cand[1]) std::swap(cand[0], cand[1]);
   for (int c = 0; c < 3; ++c) {
     const size_t m = edges_.size();
     const size_t j = cand[c];
     if (m <= 2 || j >= m || (c > 0 && cand[c] == cand[c - 1])) continue;
-    const size_t jp = (j + m - 1) % m;
+    const size_t jp = j == 0 ? m - 1 : j - 1;
     const Vertex& s = vertices_[jp];
     const Vertex& e = vertices_[j];
     const double scale = std::abs(s.x) + std::abs(s.y) + std::abs(e.x) + std::abs(e.y);
@@ -120,9 +122,9 @@ void Polygon2d::remove_degenerate_edges(size_t inserted) {
     // neighbours are antiparallel. It is redundant only if its neighbours' outward normals turn
     // counter-clockwise by less than 180 degrees, so that they alone close the corner.
     const Line& l1 = edges_[jp];
-    const Line& l3 = edges_[(j + 1) % m];
+    const Line& l3 = edges_[j + 1 == m ? 0 : j + 1];
     const double cross = l1.a * l3.b - l1.b * l3.a;
-    const double norms = std::hypot(l1.a, l1.b) * std::hypot(l3.a, l3.b);
+    const double norms = std::sqrt((l1.a * l1.a + l1.b * l1.b) * (l3.a * l3.a + l3.b * l3.b));
     if (cross > 1e-12 * norms) {
       // Merge: the vertex before the edge stays, the edge and its end vertex go.
       edges_.erase(edges_.begin() + static_cast<long>(j));
