@@ -217,9 +217,15 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   res.stats.greatest_element = proven && res.stats.gap == 0.0;
   res.stats.time_reachability = seconds_since(t0);
   for (Eigen::Index k = 0; k < n; ++k)
-    if (theta[k] + theta[k + 1] <= 0.0)
-      return report(Status::Infeasible, theta[k] <= 0.0 && k > 0 ? k : k + 1, {},
+    if (theta[k] + theta[k + 1] <= 0.0) {
+      // Name the bound that pins the speed to zero, if one does (e.g. a zero velocity limit on a joint
+      // that the path moves).
+      const Eigen::Index at = (theta[k] <= 0.0 && k > 0) ? k : k + 1;
+      std::vector<int> ids;
+      if (chain.x_hi[at] <= 0.0) ids.push_back(chain.x_hi_id[static_cast<size_t>(at)]);
+      return report(Status::Infeasible, at, ids,
                     "the constraints force the speed to zero on an interval (the path cannot be traversed)");
+    }
 
   if (!proven) {
     t0 = std::chrono::steady_clock::now();

@@ -305,3 +305,13 @@ def test_bad_grid(grid, message):
 def test_invalid_input_error_is_a_value_error():
     assert issubclass(pp.InvalidInputError, ValueError)
     assert issubclass(pp.InvalidInputError, pp.Error)
+
+
+def test_zero_velocity_limit_on_a_moving_joint_is_named():
+    path = random_spline(2)
+    prob = pp.TimeScalingProblem(path, grid=50)
+    prob.add_velocity_limits([-1, 0, -1], [1, 0, 1])
+    res = prob.solve()
+    assert res.status == pp.Status.INFEASIBLE
+    assert res.binding_constraints == ["velocity joint 1"]
+    assert res.infeasible_index == 1
