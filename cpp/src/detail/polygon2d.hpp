@@ -5,6 +5,9 @@
 // earlier vertices, so vertices keep full relative precision even when the box is huge (an absent
 // limit is a box side at 1e15). This is what lets the per-grid-point feasible sets (sec. IV.A) and the
 // per-interval controllable-set LPs of the reachability pass be exact to rounding.
+//
+// This is the innermost loop of every solve (one polygon per grid point and two per interval), so the
+// storage is two flat buffers swapped on each cut, with no allocation once warm.
 
 #include <cstddef>
 #include <vector>
@@ -25,6 +28,18 @@ struct Vertex {
   double x = 0, y = 0;
 };
 
+/// A read-only view of a contiguous range (edges or vertices).
+template <typename T>
+struct View {
+  const T* ptr = nullptr;
+  std::size_t n = 0;
+  const T* begin() const { return ptr; }
+  const T* end() const { return ptr + n; }
+  std::size_t size() const { return n; }
+  bool empty() const { return n == 0; }
+  const T& operator[](std::size_t i) const { return ptr[i]; }
+};
+
 class Polygon2d {
  public:
   /// Relative tolerance of the inside test: a vertex with a·x + b·y - c <= tol·(|a x| + |b y| + |c|)
@@ -40,11 +55,11 @@ class Polygon2d {
   bool clip(const Line& line);
 
   bool empty() const { return empty_; }
-  const std::vector<Line>& edges() const { return edges_; }
+  View<Line> edges() const { return {edges_[cur_].data(), m_}; }
   /// vertices()[j] is the end of edges()[j] (= edges()[j] ∩ edges()[j+1]), counter-clockwise.
-  const std::vector<Vertex>& vertices() const { return vertices_; }
+  View<Vertex> vertices() const { return {vertices_[cur_].data(), m_}; }
 
-  /// Largest and smallest x over the polygon; index of the vertex attaining it.
+  /// Index of the vertex with the largest / smallest x.
   int argmax_x() const;
   int argmin_x() const;
 
@@ -55,14 +70,14 @@ class Polygon2d {
 
  private:
   static bool intersect(const Line& l1, const Line& l2, Vertex& v);
-  void remove_degenerate_edges(std::size_t inserted);
+  bool degenerate(std::size_t j) const;
+  void erase(std::size_t j);
 
-  std::vector<Line> edges_;
-  std::vector<Vertex> vertices_;
-  std::vector<Line> new_edges_;     // scratch, kept to avoid reallocation
-  std::vector<Vertex> new_vertices_;
+  std::vector<Line> edges_[2];
+  std::vector<Vertex> vertices_[2];
   std::vector<double> dist_;
-  std::vector<char> inside_;
+  int cur_ = 0;
+  std::size_t m_ = 0;
   bool empty_ = false;
   Line emptied_by_;
   Line certificate_[2];
