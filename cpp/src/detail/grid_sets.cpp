@@ -40,7 +40,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
         }
         continue;
       }
-      const double norm = std::hypot(a, b);
+      const double norm = std::sqrt(a * a + b * b);
       lines.push_back({a / norm, b / norm, c / norm, id});
     }
     offset += static_cast<int>(cr.rows());

@@ -21,7 +21,6 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
   Chain ch;
   const Eigen::Index n_pts = s.size(), n = n_pts - 1;
   ch.ds = s.tail(n) - s.head(n);
-  ch.rows.resize(static_cast<size_t>(n));
   ch.x_lo.resize(n_pts);
   ch.x_hi.resize(n_pts);
   ch.x_lo_id.resize(static_cast<size_t>(n_pts));
@@ -33,18 +32,25 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
     ch.x_lo_id[static_cast<size_t>(k)] = p.x_lo_id;
     ch.x_hi_id[static_cast<size_t>(k)] = p.x_hi_id;
   }
+  ch.row_offset.resize(static_cast<size_t>(n) + 1);
+  ch.row_offset[0] = 0;
+  size_t total = 0;
+  for (Eigen::Index k = 0; k < n; ++k)
+    total += sets.points[static_cast<size_t>(k)].rows.size() + sets.points[static_cast<size_t>(k + 1)].rows.size();
+  ch.row_data.reserve(total);
+  auto push = [&ch](double alpha, double beta, double c, int id) {
+    IntervalRow r{alpha, beta, c, id, false};
+    r.coupled = couples_positively(r);
+    if (r.coupled) ch.lattice = false;
+    ch.row_data.push_back(r);
+  };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
-    auto& rows = ch.rows[static_cast<size_t>(k)];
-    const auto& fwd = sets.points[static_cast<size_t>(k)].rows;
-    const auto& bwd = sets.points[static_cast<size_t>(k + 1)].rows;
-    rows.reserve(fwd.size() + bwd.size());
     // eq. (26), forward row at s_k: a θ_k + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
-    for (const Line& l : fwd) rows.push_back({cancel(l.a, -l.b * h), l.b * h, l.c, l.id});
+    for (const Line& l : sets.points[static_cast<size_t>(k)].rows) push(cancel(l.a, -l.b * h), l.b * h, l.c, l.id);
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
-    for (const Line& l : bwd) rows.push_back({-l.b * h, cancel(l.a, l.b * h), l.c, l.id});
-    for (const IntervalRow& r : rows)
-      if (couples_positively(r)) ch.lattice = false;
+    for (const Line& l : sets.points[static_cast<size_t>(k + 1)].rows) push(-l.b * h, cancel(l.a, l.b * h), l.c, l.id);
+    ch.row_offset[static_cast<size_t>(k) + 1] = ch.row_data.size();
   }
   return ch;
 }
@@ -65,10 +71,10 @@ double row_violation(const IntervalRow& r, double x, double y) {
 
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   double worst = 0.0;
-  for (size_t k = 0; k < chain.rows.size(); ++k)
-    for (const IntervalRow& r : chain.rows[k])
-      if (couples_positively(r))
-        worst = std::max(worst, row_violation(r, theta[static_cast<Eigen::Index>(k)], theta[static_cast<Eigen::Index>(k) + 1]));
+  for (Eigen::Index k = 0; k < chain.intervals(); ++k)
+    for (const IntervalRow& r : chain.rows(k))
+      if (r.coupled)
+        worst = std::max(worst, row_violation(r, theta[k], theta[k + 1]));
   return worst;
 }
 
@@ -103,9 +109,9 @@ void slice(const Vertex* v, size_t m, double x, double& y_lo, double& y_hi) {
   }
 }
 
-void clip_rows(Polygon2d& poly, const std::vector<IntervalRow>& rows, bool relax) {
+void clip_rows(Polygon2d& poly, View<IntervalRow> rows, bool relax) {
   for (const IntervalRow& r : rows) {
-    if (relax && couples_positively(r)) continue;
+    if (relax && r.coupled) continue;
     poly.clip({r.alpha, r.beta, r.c, r.id});
     if (poly.empty()) return;
   }
@@ -156,7 +162,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
   rev.reserve(static_cast<size_t>(n) * 6);
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     poly.reset(chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1]);
-    clip_rows(poly, chain.rows[static_cast<size_t>(k)], relax);
+    clip_rows(poly, chain.rows(k), relax);
     if (poly.empty()) {
       fail_at(k, "no speed at this grid point can reach the end of the path");
       push_unique(out.binding, poly.emptied_by().id);
@@ -183,7 +189,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     double r_lo = theta_begin, r_hi = theta_begin;
     for (Eigen::Index k = 0; k < n; ++k) {
       poly.reset(r_lo, r_hi, chain.x_lo[k + 1], chain.x_hi[k + 1]);
-      clip_rows(poly, chain.rows[static_cast<size_t>(k)], relax);
+      clip_rows(poly, chain.rows(k), relax);
       if (poly.empty()) {
         fail_at(k + 1, "no admissible speed here from the start speed");
         push_unique(out.binding, poly.emptied_by().id);
@@ -240,7 +246,7 @@ double max_violation(const Chain& chain, const Eigen::VectorXd& theta) {
     if (chain.x_hi[k] < kInfinityCap) worst = std::max(worst, (theta[k] - chain.x_hi[k]) / scale);
   }
   for (Eigen::Index k = 0; k < n; ++k)
-    for (const IntervalRow& r : chain.rows[static_cast<size_t>(k)]) {
+    for (const IntervalRow& r : chain.rows(k)) {
       const double lhs = r.alpha * theta[k] + r.beta * theta[k + 1];
       const double scale = std::max({1.0, std::abs(r.c), std::abs(r.alpha * theta[k]), std::abs(r.beta * theta[k + 1])});
       worst = std::max(worst, (lhs - r.c) / scale);

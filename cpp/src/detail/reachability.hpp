@@ -17,12 +17,19 @@ namespace pathpace::detail {
 
 struct IntervalRow {
   double alpha, beta, c;
-  int id;  // constraint row id (labels)
+  int id;        // constraint row id (labels)
+  bool coupled;  // α > 0 and β > 0: the only kind of row that breaks max-closure
 };
 
 struct Chain {
-  Eigen::VectorXd ds;                          // Δs_k, N
-  std::vector<std::vector<IntervalRow>> rows;  // per interval
+  Eigen::VectorXd ds;                 // Δs_k, N
+  std::vector<IntervalRow> row_data;  // all intervals' rows, interval k at [offset[k], offset[k+1])
+  std::vector<std::size_t> row_offset;
+  Eigen::Index intervals() const { return ds.size(); }
+  View<IntervalRow> rows(Eigen::Index k) const {
+    const std::size_t o = row_offset[static_cast<std::size_t>(k)];
+    return {row_data.data() + o, row_offset[static_cast<std::size_t>(k) + 1] - o};
+  }
   Eigen::VectorXd x_lo, x_hi;                  // per grid point bounds on θ_k
   std::vector<int> x_lo_id, x_hi_id;
   /// True if no row has α > 0 and β > 0: then the feasible set of θ is closed under the componentwise

@@ -70,7 +70,7 @@ SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const Sol
   std::vector<int> idx;
   std::vector<double> val;
   for (Eigen::Index k = 0; k < n; ++k) {
-    for (const IntervalRow& r : chain.rows[static_cast<size_t>(k)]) {
+    for (const IntervalRow& r : chain.rows(k)) {
       idx.clear();
       val.clear();
       if (k > 0 && r.alpha != 0.0) { idx.push_back(static_cast<int>(k) - 1); val.push_back(r.alpha); }
