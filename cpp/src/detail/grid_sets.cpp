@@ -1,5 +1,6 @@
 #include "detail/grid_sets.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pathpace::detail {
@@ -18,7 +19,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
 }
 
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
-                         std::vector<Line>& lines) {
+                         std::vector<Line>& lines, const std::vector<Line>* hint) {
   PointSet ps;
   int offset = 0;
   lines.clear();
@@ -51,6 +52,16 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
     return ps;
   }
   if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
+  if (hint && !hint->empty()) {
+    // The rows that supported the previous grid point's polygon most likely support this one too.
+    // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
+    // the cheap inside test instead of rebuilding it.
+    std::stable_partition(lines.begin(), lines.end(), [hint](const Line& l) {
+      for (const Line& h : *hint)
+        if (h.id == l.id) return true;
+      return false;
+    });
+  }
   polygon.reset(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap);
   for (const Line& l : lines) {
     polygon.clip(l);
@@ -74,7 +85,8 @@ GridSets build_grid_sets(const PathSamples& samples, const std::vector<Constrain
   std::vector<Line> lines;
   size_t total = 0;
   for (Eigen::Index k = 0; k < n_points; ++k) {
-    gs.points[static_cast<size_t>(k)] = build_point_set(constraints, k, polygon, lines);
+    gs.points[static_cast<size_t>(k)] =
+        build_point_set(constraints, k, polygon, lines, k > 0 ? &gs.points[static_cast<size_t>(k - 1)].rows : nullptr);
     total += gs.points[static_cast<size_t>(k)].rows.size();
   }
   gs.average_rows = n_points ? static_cast<double>(total) / static_cast<double>(n_points) : 0.0;

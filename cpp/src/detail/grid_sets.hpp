@@ -36,8 +36,9 @@ GridSets build_grid_sets(const PathSamples& samples, const std::vector<Constrain
 
 /// One grid point's set; `polygon` is left holding its polygon (cut at kInfinityCap).
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon);
-/// Same, with a caller-owned scratch vector (no allocation per grid point in a loop).
+/// Same, with a caller-owned scratch vector (no allocation per grid point in a loop) and optionally the
+/// neighbouring point's supporting rows, which are clipped first (same result, less work).
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
-                         std::vector<Line>& scratch);
+                         std::vector<Line>& scratch, const std::vector<Line>* hint = nullptr);
 
 }  // namespace pathpace::detail
