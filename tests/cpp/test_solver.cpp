@@ -138,3 +138,66 @@ TEST(Solver, BadInputNamesArgument) {
     EXPECT_STREQ(e.what(), "vmax[0] = -2 must be >= 0");
   }
 }
+
+TEST(Paths, CubicSplineThroughWaypointsWithNaturalEnds) {
+  Eigen::MatrixXd w(4, 2);
+  w << 0, 0, 1, 2, 3, 1, 4, 4;
+  CubicSplinePath p(w, KnotSpacing::Uniform, SplineBoundary::Natural);
+  Eigen::VectorXd q(2), dq(2), ddq(2);
+  for (int i = 0; i < 4; ++i) {
+    p.evaluate(i / 3.0, q, dq, ddq);
+    EXPECT_NEAR((q - w.row(i).transpose()).norm(), 0.0, 1e-14);
+  }
+  p.evaluate(0.0, q, dq, ddq);
+  EXPECT_NEAR(ddq.norm(), 0.0, 1e-12);
+  p.evaluate(1.0, q, dq, ddq);
+  EXPECT_NEAR(ddq.norm(), 0.0, 1e-12);
+  // Derivatives against central differences in the middle of a piece.
+  const double s = 0.41, h = 1e-5;
+  Eigen::VectorXd qp(2), qm(2), t1(2), t2(2);
+  p.evaluate(s + h, qp, t1, t2);
+  p.evaluate(s - h, qm, t1, t2);
+  p.evaluate(s, q, dq, ddq);
+  EXPECT_NEAR((dq - (qp - qm) / (2 * h)).norm(), 0.0, 1e-8);
+}
+
+TEST(Paths, SampledPathReproducesAQuinticExactly) {
+  // q(s) = s^5 - 2 s^3 + s: the quintic Hermite interpolant of its own samples is itself.
+  auto f = [](double s) { return std::pow(s, 5) - 2 * std::pow(s, 3) + s; };
+  auto df = [](double s) { return 5 * std::pow(s, 4) - 6 * s * s + 1; };
+  auto ddf = [](double s) { return 20 * std::pow(s, 3) - 12 * s; };
+  Eigen::VectorXd s(3);
+  s << 0.0, 0.4, 1.0;
+  Eigen::MatrixXd q(3, 1), dq(3, 1), ddq(3, 1);
+  for (int i = 0; i < 3; ++i) {
+    q(i, 0) = f(s[i]);
+    dq(i, 0) = df(s[i]);
+    ddq(i, 0) = ddf(s[i]);
+  }
+  SampledPath p(s, q, dq, ddq);
+  Eigen::VectorXd a(1), b(1), c(1);
+  for (double x : {0.1, 0.33, 0.5, 0.77, 0.99}) {
+    p.evaluate(x, a, b, c);
+    EXPECT_NEAR(a[0], f(x), 1e-13);
+    EXPECT_NEAR(b[0], df(x), 1e-12);
+    EXPECT_NEAR(c[0], ddf(x), 1e-11);
+  }
+}
+
+TEST(Trajectory, TimesFollowEquation25AndEndsAtRest) {
+  TimeScalingProblem prob(line1d(3.0), 300);
+  prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+  prob.add_acceleration_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+  const Result r = prob.solve();
+  const Trajectory t = r.trajectory();
+  EXPECT_DOUBLE_EQ(t.duration(), r.duration);
+  Eigen::VectorXd ts(3);
+  ts << 0.0, 0.5 * r.duration, r.duration;
+  const Eigen::MatrixXd q = t.q(ts), qd = t.qd(ts);
+  EXPECT_NEAR(q(0, 0), 0.0, 1e-15);
+  EXPECT_NEAR(q(2, 0), 3.0, 1e-12);
+  EXPECT_NEAR(qd(0, 0), 0.0, 1e-15);
+  EXPECT_NEAR(qd(1, 0), 1.0, 1e-9);  // cruising at the velocity limit
+  EXPECT_NEAR(qd(2, 0), 0.0, 1e-12);
+  EXPECT_THROW(t.sample_times(0.0), InvalidInput);
+}
