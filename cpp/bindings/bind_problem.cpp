@@ -6,6 +6,7 @@
 #include "convert.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
+#include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/time_scaling_problem.hpp"
@@ -187,6 +188,15 @@ void bind_problem(py::module_& m) {
         p.add_linear_constraint(rows_arg(A, "A"), rows_arg(B, "B"), rows_arg(C, "C"), rows_arg(lo, "lo"),
                                 rows_arg(hi, "hi"), label);
       }, "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear")
+      .def("add_torque_limits", [](TimeScalingProblem& p, std::shared_ptr<RobotModel> robot, py::object tau_min,
+                                   py::object tau_max, double scale, double margin) {
+        Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
+        Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
+        auto c = std::make_shared<TorqueLimits>(std::move(robot), lo, hi, scale, margin);
+        py::gil_scoped_release release;
+        p.add_constraint(std::move(c));
+      }, "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0,
+         "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
       .def("add_constraint", [](TimeScalingProblem& p, std::shared_ptr<Constraint> c) {
         py::gil_scoped_release release;
         p.add_constraint(std::move(c));

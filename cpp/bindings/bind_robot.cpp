@@ -1,7 +1,107 @@
+// The robot model and torque limits.
+#include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "convert.hpp"
+#include "pathpace/constraints/torque_limits.hpp"
+#include "pathpace/robot_model.hpp"
+#include "pathpace/robot_workspace.hpp"
 
 namespace py = pybind11;
+using namespace pybind11::literals;
 
 namespace pathpace::python {
-void bind_robot(py::module_& m) { (void)m; }
+
+namespace {
+
+RobotModelOptions options(bool floating_base, py::object locked, py::handle gravity) {
+  RobotModelOptions o;
+  o.floating_base = floating_base;
+  if (!locked.is_none()) {
+    if (!py::isinstance<py::dict>(locked)) throw InvalidInput("locked_joints must be a dict {joint name: value}");
+    for (auto item : locked.cast<py::dict>()) o.locked_joints[item.first.cast<std::string>()] = item.second.cast<double>();
+  }
+  const Eigen::VectorXd g = to_vector(gravity, "gravity");
+  if (g.size() != 3) throw InvalidInput("gravity has size " + std::to_string(g.size()) + ", expected 3");
+  o.gravity = g;
+  return o;
+}
+
+Eigen::VectorXd qvec(const RobotModel& r, py::handle h, const char* name) {
+  Eigen::VectorXd v = to_vector(h, name);
+  if (v.size() != r.nq())
+    throw InvalidInput(std::string(name) + " has size " + std::to_string(v.size()) + ", robot '" + r.name() + "' has " +
+                       std::to_string(r.nq()) + " joints");
+  return v;
+}
+
+}  // namespace
+
+void bind_robot(py::module_& m) {
+  py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", "A rigid-body tree from a URDF (immutable).")
+      .def_static("from_urdf", [](const std::string& path, bool floating_base, py::object locked_joints, py::handle gravity) {
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path, options(floating_base, locked_joints, gravity)));
+      }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def_static("from_urdf_string", [](const std::string& xml, bool floating_base, py::object locked_joints, py::handle gravity) {
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_string(xml, options(floating_base, locked_joints, gravity)));
+      }, "xml"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def_property_readonly("nq", &RobotModel::nq)
+      .def_property_readonly("name", &RobotModel::name)
+      .def_property_readonly("joint_names", &RobotModel::joint_names)
+      .def_property_readonly("link_names", &RobotModel::link_names)
+      .def_property_readonly("velocity_limits", &RobotModel::velocity_limits)
+      .def_property_readonly("effort_limits", &RobotModel::effort_limits)
+      .def_property_readonly("position_limits", [](const RobotModel& r) {
+        Eigen::MatrixXd l(2, r.nq());
+        l.row(0) = r.lower_position_limits().transpose();
+        l.row(1) = r.upper_position_limits().transpose();
+        return l;
+      }, "(2, nq): lower and upper")
+      .def_property_readonly("gravity", &RobotModel::gravity)
+      .def("inverse_dynamics", [](const RobotModel& r, py::handle q, py::handle qd, py::handle qdd) {
+        return r.inverse_dynamics(qvec(r, q, "q"), qvec(r, qd, "qd"), qvec(r, qdd, "qdd"));
+      }, "q"_a, "qd"_a, "qdd"_a, "τ = M(q) q̈ + C(q, q̇) q̇ + g(q)")
+      .def("mass_matrix", [](const RobotModel& r, py::handle q) { return r.mass_matrix(qvec(r, q, "q")); }, "q"_a)
+      .def("gravity_torques", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a)
+      .def("frame_placement", [](const RobotModel& r, py::handle q, const std::string& link) {
+        return r.frame_placement(qvec(r, q, "q"), link);
+      }, "q"_a, "link"_a, "4x4 world placement of the link frame")
+      .def("point_jacobian", [](const RobotModel& r, py::handle q, const std::string& link, py::handle point) {
+        const Eigen::VectorXd p = to_vector(point, "point");
+        if (p.size() != 3) throw InvalidInput("point has size " + std::to_string(p.size()) + ", expected 3");
+        return r.point_jacobian(qvec(r, q, "q"), link, p);
+      }, "q"_a, "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), "(3, nq) world-frame Jacobian of a point fixed in the link")
+      .def("path_torque_coefficients", [](const RobotModel& r, py::handle q, py::handle dq, py::handle ddq) {
+        const Eigen::MatrixXd Q = to_matrix(q, "q"), D = to_matrix(dq, "dq"), DD = to_matrix(ddq, "ddq");
+        if (Q.cols() != r.nq()) throw InvalidInput("q has " + std::to_string(Q.cols()) + " columns, robot has " + std::to_string(r.nq()) + " joints");
+        if (D.rows() != Q.rows() || D.cols() != Q.cols() || DD.rows() != Q.rows() || DD.cols() != Q.cols())
+          throw InvalidInput("q, dq and ddq must have the same shape (m, nq)");
+        Eigen::MatrixXd A(Q.rows(), Q.cols()), B(Q.rows(), Q.cols()), C(Q.rows(), Q.cols());
+        {
+          py::gil_scoped_release release;
+          RobotWorkspace ws(r);
+          Eigen::VectorXd a(r.nq()), b(r.nq()), c(r.nq());
+          for (Eigen::Index k = 0; k < Q.rows(); ++k) {
+            r.path_torque_coefficients(ws, Q.row(k).transpose(), D.row(k).transpose(), DD.row(k).transpose(), a, b, c);
+            A.row(k) = a.transpose();
+            B.row(k) = b.transpose();
+            C.row(k) = c.transpose();
+          }
+        }
+        return py::make_tuple(A, B, C);
+      }, "q"_a, "dq"_a, "ddq"_a, "eq. (12): τ = a ṡ² + b s̈ + c at each row; arrays (m, nq)")
+      .def("__repr__", [](const RobotModel& r) { return "<RobotModel '" + r.name() + "' nq=" + std::to_string(r.nq()) + ">"; });
+
+  py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits")
+      .def(py::init([](std::shared_ptr<RobotModel> robot, py::object tau_min, py::object tau_max, double scale, double margin) {
+             Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
+             Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
+             return std::make_shared<TorqueLimits>(std::move(robot), lo, hi, scale, margin);
+           }),
+           "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0)
+      .def_property_readonly("tau_min", &TorqueLimits::tau_min)
+      .def_property_readonly("tau_max", &TorqueLimits::tau_max);
+}
+
 }  // namespace pathpace::python

@@ -1,0 +1,36 @@
+#pragma once
+/// @file torque_limits.hpp
+/// Joint torque limits τ_L <= τ <= τ_U along the path through inverse dynamics (eq. 12, 15).
+
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "pathpace/constraints/constraint.hpp"
+#include "pathpace/robot_model.hpp"
+
+namespace pathpace {
+
+/// At each grid point τ = a·x + b·u + c (RobotModel::path_torque_coefficients); two rows per joint,
+/// a x + b u <= τ_U - c and -a x - b u <= c - τ_L. The limits are scale·[τ_L, τ_U] shrunk by `margin`
+/// newton-metres on each side: the safety margins of sec. V.D. A joint with τ_L = τ_U = 0 (a floating
+/// base) gives an equality pair: without contact forces such a path can generally not be timed.
+class TorqueLimits : public Constraint {
+ public:
+  /// tau_min / tau_max of size nq; empty means ∓ the URDF effort limits.
+  TorqueLimits(std::shared_ptr<const RobotModel> robot, Eigen::VectorXd tau_min = Eigen::VectorXd(),
+               Eigen::VectorXd tau_max = Eigen::VectorXd(), double scale = 1.0, double margin = 0.0);
+
+  std::string name() const override { return "torque limits"; }
+  ConstraintRows evaluate(const PathSamples& samples) const override;
+
+  const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
+  const Eigen::VectorXd& tau_max() const { return tau_max_; }
+  const std::shared_ptr<const RobotModel>& robot() const { return robot_; }
+
+ private:
+  std::shared_ptr<const RobotModel> robot_;
+  Eigen::VectorXd tau_min_, tau_max_;
+};
+
+}  // namespace pathpace

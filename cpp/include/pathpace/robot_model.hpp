@@ -1,0 +1,96 @@
+#pragma once
+/// @file robot_model.hpp
+/// A rigid-body tree from a URDF, immutable after loading, with our own Eigen dynamics (RNEA).
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace pathpace {
+
+class RobotWorkspace;
+
+/// Options of RobotModel::from_urdf_file / from_urdf_string.
+struct RobotModelOptions {
+  /// Six virtual joints in front of the root link: translations along world x, y, z, then rotations
+  /// about z, y, x (the paper's "6 generalized coordinates"), so the root pose is
+  /// Trans(x, y, z) · Rz(a) · Ry(b) · Rx(c). They come first in q, have no velocity or acceleration
+  /// limit and zero effort (unactuated). Names: "floating_x", "floating_y", "floating_z",
+  /// "floating_rz", "floating_ry", "floating_rx".
+  bool floating_base = false;
+  /// Joints held at a value and removed from q (e.g. gripper fingers).
+  std::map<std::string, double> locked_joints;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+};
+
+/// The kinematic tree: one body per movable joint (fixed joints merged into their parent, inertias
+/// combined), in depth-first order from the root with children in urdfdom's order, which is also
+/// pinocchio's. Immutable and shareable across threads; scratch space lives in RobotWorkspace.
+class RobotModel {
+ public:
+  enum class JointType { Revolute, Prismatic };
+
+  static RobotModel from_urdf_file(const std::string& path, const RobotModelOptions& options = {});
+  static RobotModel from_urdf_string(const std::string& xml, const RobotModelOptions& options = {});
+
+  int nq() const { return static_cast<int>(joint_names_.size()); }
+  const std::string& name() const { return name_; }
+  const std::vector<std::string>& joint_names() const { return joint_names_; }
+  const std::vector<std::string>& link_names() const { return link_names_; }
+  const Eigen::VectorXd& lower_position_limits() const { return q_lo_; }
+  const Eigen::VectorXd& upper_position_limits() const { return q_hi_; }
+  const Eigen::VectorXd& velocity_limits() const { return v_max_; }
+  const Eigen::VectorXd& effort_limits() const { return effort_; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+
+  /// τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by the recursive Newton-Euler algorithm.
+  Eigen::VectorXd inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) const;
+  void inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                        const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::Ref<const Eigen::VectorXd>& qdd,
+                        bool with_gravity, Eigen::Ref<Eigen::VectorXd> tau) const;
+  Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q) const;
+  Eigen::VectorXd gravity_torques(const Eigen::VectorXd& q) const;
+
+  /// The torque coefficients of eq. (12) on a path: τ = a·ṡ² + b·s̈ + c with a = M p'' + C(q, p') p',
+  /// b = M p', c = g(q), at q = p(s).
+  void path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                const Eigen::Ref<const Eigen::VectorXd>& dq, const Eigen::Ref<const Eigen::VectorXd>& ddq,
+                                Eigen::Ref<Eigen::VectorXd> a, Eigen::Ref<Eigen::VectorXd> b,
+                                Eigen::Ref<Eigen::VectorXd> c) const;
+
+  /// World placement of a link's frame (4x4 homogeneous).
+  Eigen::Matrix4d frame_placement(const Eigen::VectorXd& q, const std::string& link) const;
+  /// World-frame linear Jacobian (3 x nq) of a point fixed in a link (coordinates in the link frame).
+  Eigen::MatrixXd point_jacobian(const Eigen::VectorXd& q, const std::string& link, const Eigen::Vector3d& point) const;
+
+  /// Body index of a link (merged links map to the body that carries them) and the link's fixed
+  /// placement in that body's frame. Throws InvalidInput for an unknown name.
+  int body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const;
+
+  // Internal structure, read by RobotWorkspace users (dynamics of the contact issue).
+  struct Body {
+    int parent = -1;            // body index, -1 for the world
+    JointType type = JointType::Revolute;
+    Eigen::Vector3d axis;       // joint axis in the joint (= body) frame
+    Eigen::Matrix3d E_tree;     // Featherstone: parent coordinates -> joint frame, rotation
+    Eigen::Vector3d r_tree;     //   and origin of the joint frame in parent coordinates
+    Eigen::Matrix<double, 6, 6> inertia;  // spatial inertia in body coordinates (angular first)
+  };
+  const std::vector<Body>& bodies() const { return bodies_; }
+
+ private:
+  friend class RobotWorkspace;
+  void check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char* name) const;
+  std::string name_;
+  std::vector<Body> bodies_;
+  std::vector<std::string> joint_names_, link_names_;
+  std::map<std::string, std::pair<int, Eigen::Isometry3d>> links_;  // link -> (body, placement in body)
+  Eigen::VectorXd q_lo_, q_hi_, v_max_, effort_;
+  Eigen::Vector3d gravity_;
+};
+
+}  // namespace pathpace

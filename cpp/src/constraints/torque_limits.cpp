@@ -1,0 +1,70 @@
+#include "pathpace/constraints/torque_limits.hpp"
+
+#include <cmath>
+
+#include "detail/validate.hpp"
+#include "pathpace/robot_workspace.hpp"
+
+namespace pathpace {
+
+TorqueLimits::TorqueLimits(std::shared_ptr<const RobotModel> robot, Eigen::VectorXd tau_min, Eigen::VectorXd tau_max,
+                           double scale, double margin)
+    : robot_(std::move(robot)) {
+  if (!robot_) detail::fail("robot must not be None");
+  const int n = robot_->nq();
+  if (tau_max.size() == 0) tau_max = robot_->effort_limits();
+  if (tau_min.size() == 0) tau_min = -robot_->effort_limits();
+  detail::require_size("tau_min", tau_min.size(), n, "one per joint of robot '" + robot_->name() + "'");
+  detail::require_size("tau_max", tau_max.size(), n, "one per joint of robot '" + robot_->name() + "'");
+  detail::require_not_nan("tau_min", tau_min);
+  detail::require_not_nan("tau_max", tau_max);
+  if (!(scale > 0.0) || !std::isfinite(scale)) detail::fail("scale = " + detail::fmt(scale) + " must be > 0 and finite");
+  if (!(margin >= 0.0) || !std::isfinite(margin)) detail::fail("margin = " + detail::fmt(margin) + " must be >= 0 and finite");
+  for (int j = 0; j < n; ++j)
+    if (!(tau_min[j] <= tau_max[j]))
+      detail::fail(detail::at("tau_min", j) + " = " + detail::fmt(tau_min[j]) + " must be <= " + detail::at("tau_max", j) +
+                   " = " + detail::fmt(tau_max[j]));
+  tau_min_ = scale * tau_min.array() + margin;
+  tau_max_ = scale * tau_max.array() - margin;
+  for (int j = 0; j < n; ++j)
+    if (tau_min_[j] > tau_max_[j])
+      detail::fail("margin = " + detail::fmt(margin) + " closes the torque range of joint '" + robot_->joint_names()[j] +
+                   "' ([" + detail::fmt(scale * tau_min[j]) + ", " + detail::fmt(scale * tau_max[j]) + "])");
+}
+
+ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
+  const int n = robot_->nq();
+  if (samples.dof() != n)
+    detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
+                 std::to_string(n) + " joints");
+  ConstraintRows rows;
+  rows.resize(samples.size(), 2 * n);
+  for (int j = 0; j < n; ++j) {
+    rows.labels[static_cast<size_t>(2 * j)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " upper";
+    rows.labels[static_cast<size_t>(2 * j + 1)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " lower";
+  }
+  RobotWorkspace ws(*robot_);
+  Eigen::VectorXd a(n), b(n), c(n), q(n), dq(n), ddq(n);
+  for (Eigen::Index k = 0; k < samples.size(); ++k) {
+    q = samples.q.row(k).transpose();
+    dq = samples.dq.row(k).transpose();
+    ddq = samples.ddq.row(k).transpose();
+    robot_->path_torque_coefficients(ws, q, dq, ddq, a, b, c);
+    for (int j = 0; j < n; ++j) {
+      // eq. (15): τ_L <= a x + b u + c <= τ_U
+      if (std::isfinite(tau_max_[j])) {
+        rows.a(k, 2 * j) = a[j];
+        rows.b(k, 2 * j) = b[j];
+        rows.c(k, 2 * j) = tau_max_[j] - c[j];
+      }
+      if (std::isfinite(tau_min_[j])) {
+        rows.a(k, 2 * j + 1) = -a[j];
+        rows.b(k, 2 * j + 1) = -b[j];
+        rows.c(k, 2 * j + 1) = c[j] - tau_min_[j];
+      }
+    }
+  }
+  return rows;
+}
+
+}  // namespace pathpace

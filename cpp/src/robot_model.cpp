@@ -1,0 +1,354 @@
+#include "pathpace/robot_model.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <Eigen/Geometry>
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "detail/validate.hpp"
+#include "pathpace/robot_workspace.hpp"
+
+namespace pathpace {
+
+namespace {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+Eigen::Isometry3d to_isometry(const urdf::Pose& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).normalized().toRotationMatrix();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  return t;
+}
+
+// Spatial inertia (angular first) about the body origin of mass m, centre of mass c and rotational
+// inertia Ic about c, all in body coordinates.
+Matrix6 spatial_inertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic) {
+  const Eigen::Matrix3d C = skew(c);
+  Matrix6 I;
+  I.topLeftCorner<3, 3>() = Ic + m * C * C.transpose();
+  I.topRightCorner<3, 3>() = m * C;
+  I.bottomLeftCorner<3, 3>() = m * C.transpose();
+  I.bottomRightCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
+  return I;
+}
+
+struct Builder {
+  const RobotModelOptions& options;
+  std::vector<RobotModel::Body>& bodies;
+  std::vector<std::string>& joint_names;
+  std::vector<std::string>& link_names;
+  std::map<std::string, std::pair<int, Eigen::Isometry3d>>& links;
+  std::vector<double> q_lo, q_hi, v_max, effort;
+  std::map<std::string, bool> locked_used;
+
+  int add_body(int parent, RobotModel::JointType type, const Eigen::Vector3d& axis, const Eigen::Isometry3d& tree,
+               const std::string& name, double lo, double hi, double vel, double eff) {
+    RobotModel::Body b;
+    b.parent = parent;
+    b.type = type;
+    b.axis = axis.normalized();
+    b.E_tree = tree.linear().transpose();
+    b.r_tree = tree.translation();
+    b.inertia.setZero();
+    bodies.push_back(b);
+    joint_names.push_back(name);
+    q_lo.push_back(lo);
+    q_hi.push_back(hi);
+    v_max.push_back(vel);
+    effort.push_back(eff);
+    return static_cast<int>(bodies.size()) - 1;
+  }
+
+  // `placement`: the link frame in the coordinates of body `body` (-1: the world).
+  void add_link(const urdf::LinkConstSharedPtr& link, int body, const Eigen::Isometry3d& placement) {
+    links[link->name] = {body, placement};
+    link_names.push_back(link->name);
+    if (link->inertial && body >= 0) {
+      const urdf::Inertial& in = *link->inertial;
+      const Eigen::Isometry3d frame = placement * to_isometry(in.origin);
+      Eigen::Matrix3d I;
+      I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+      const Eigen::Matrix3d Ic = frame.linear() * I * frame.linear().transpose();
+      bodies[static_cast<size_t>(body)].inertia += spatial_inertia(in.mass, frame.translation(), Ic);
+    }
+    for (const urdf::JointSharedPtr& joint : link->child_joints) {
+      urdf::LinkConstSharedPtr child_link;
+      for (const auto& cl : link->child_links)
+        if (cl->name == joint->child_link_name) child_link = cl;
+      if (!child_link) detail::fail("joint '" + joint->name + "' has no child link '" + joint->child_link_name + "'");
+      const Eigen::Isometry3d origin = placement * to_isometry(joint->parent_to_joint_origin_transform);
+      const Eigen::Vector3d axis(joint->axis.x, joint->axis.y, joint->axis.z);
+      const bool movable = joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::CONTINUOUS ||
+                           joint->type == urdf::Joint::PRISMATIC;
+      const bool prismatic = joint->type == urdf::Joint::PRISMATIC;
+      if (joint->type != urdf::Joint::FIXED && !movable)
+        detail::fail("joint '" + joint->name + "' has a type that is not supported (planar or floating); only revolute, "
+                     "continuous, prismatic and fixed joints are");
+      auto locked = options.locked_joints.find(joint->name);
+      if (!movable || locked != options.locked_joints.end()) {
+        Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+        if (movable) {
+          locked_used[joint->name] = true;
+          const double value = locked->second;
+          if (prismatic) motion.translation() = axis.normalized() * value;
+          else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
+        }
+        add_link(child_link, body, origin * motion);
+        continue;
+      }
+      if (joint->mimic)
+        detail::fail("joint '" + joint->name + "' mimics '" + joint->mimic->joint_name +
+                     "': mimic joints are not supported (lock it with locked_joints, or remove the mimic tag)");
+      if (!(axis.norm() > 0.0)) detail::fail("joint '" + joint->name + "' has a zero axis");
+      const double inf = std::numeric_limits<double>::infinity();
+      double lo = -inf, hi = inf, vel = inf, eff = inf;
+      if (joint->limits) {
+        if (joint->type != urdf::Joint::CONTINUOUS) {
+          lo = joint->limits->lower;
+          hi = joint->limits->upper;
+        }
+        vel = joint->limits->velocity;
+        eff = joint->limits->effort;
+      }
+      const int b = add_body(body, prismatic ? RobotModel::JointType::Prismatic : RobotModel::JointType::Revolute, axis,
+                             origin, joint->name, lo, hi, vel, eff);
+      add_link(child_link, b, Eigen::Isometry3d::Identity());
+    }
+  }
+};
+
+}  // namespace
+
+RobotModel RobotModel::from_urdf_file(const std::string& path, const RobotModelOptions& options) {
+  std::ifstream in(path);
+  if (!in) detail::fail("urdf file '" + path + "' cannot be read");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return from_urdf_string(ss.str(), options);
+}
+
+RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModelOptions& options) {
+  detail::require_finite("gravity", options.gravity);
+  for (const auto& [name, value] : options.locked_joints)
+    if (!std::isfinite(value)) detail::fail("locked_joints['" + name + "'] = " + detail::fmt(value) + " must be finite");
+  // urdfdom reports parse errors through console_bridge on stderr; the error is ours to report.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
+  if (!urdf || !urdf->getRoot()) detail::fail("urdf: the XML is not a valid URDF robot (urdfdom could not parse it)");
+
+  RobotModel m;
+  m.name_ = urdf->getName();
+  m.gravity_ = options.gravity;
+  Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}};
+  int root_body = -1;
+  if (options.floating_base) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const char* names[6] = {"floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx"};
+    const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
+                                     Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
+    for (int i = 0; i < 6; ++i)
+      root_body = b.add_body(root_body, i < 3 ? JointType::Prismatic : JointType::Revolute, axes[i],
+                             Eigen::Isometry3d::Identity(), names[i], -inf, inf, inf, 0.0);
+  }
+  b.add_link(urdf->getRoot(), root_body, Eigen::Isometry3d::Identity());
+  for (const auto& [name, value] : options.locked_joints)
+    if (!b.locked_used.count(name))
+      detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
+  auto vec = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
+  m.q_lo_ = vec(b.q_lo);
+  m.q_hi_ = vec(b.q_hi);
+  m.v_max_ = vec(b.v_max);
+  m.effort_ = vec(b.effort);
+  return m;
+}
+
+void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char* name) const {
+  if (v.size() != nq())
+    detail::fail(std::string(name) + " has size " + std::to_string(v.size()) + ", robot '" + name_ + "' has " +
+                 std::to_string(nq()) + " joints");
+}
+
+void RobotModel::inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                  const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::Ref<const Eigen::VectorXd>& qdd,
+                                  bool with_gravity, Eigen::Ref<Eigen::VectorXd> tau) const {
+  const size_t nb = bodies_.size();
+  // Featherstone's RNEA with motion vectors [ω; v] in body coordinates. Gravity enters as a fictitious
+  // upward acceleration of the base.
+  Vector6 a0 = Vector6::Zero();
+  if (with_gravity) a0.tail<3>() = -gravity_;
+  for (size_t i = 0; i < nb; ++i) {
+    const Body& b = bodies_[i];
+    const double qi = q[static_cast<Eigen::Index>(i)];
+    Eigen::Matrix3d EJ;
+    Eigen::Vector3d rJ = Eigen::Vector3d::Zero();
+    Vector6& S = ws.S[i];
+    if (b.type == JointType::Revolute) {
+      EJ = Eigen::AngleAxisd(qi, b.axis).toRotationMatrix().transpose();
+      S << b.axis, Eigen::Vector3d::Zero();
+    } else {
+      EJ.setIdentity();
+      rJ = b.axis * qi;
+      S << Eigen::Vector3d::Zero(), b.axis;
+    }
+    // ^iX_λ = X_J X_tree: E = E_J E_tree, r = r_tree + E_tree^T r_J.
+    ws.E[i] = EJ * b.E_tree;
+    ws.r[i] = b.r_tree + b.E_tree.transpose() * rJ;
+    const Eigen::Matrix3d& E = ws.E[i];
+    const Eigen::Vector3d& r = ws.r[i];
+    auto xform = [&](const Vector6& m) {
+      Vector6 out;
+      out.head<3>() = E * m.head<3>();
+      out.tail<3>() = E * (m.tail<3>() - r.cross(m.head<3>()));
+      return out;
+    };
+    const Vector6 vJ = S * qd[static_cast<Eigen::Index>(i)];
+    const Vector6 vp = b.parent >= 0 ? ws.v[static_cast<size_t>(b.parent)] : Vector6::Zero();
+    const Vector6 ap = b.parent >= 0 ? ws.a[static_cast<size_t>(b.parent)] : a0;
+    Vector6& v = ws.v[i];
+    Vector6& a = ws.a[i];
+    v = xform(vp) + vJ;
+    // a = X a_λ + S q̈ + v × vJ (crm)
+    Vector6 cross;
+    cross.head<3>() = v.head<3>().cross(vJ.head<3>());
+    cross.tail<3>() = v.head<3>().cross(vJ.tail<3>()) + v.tail<3>().cross(vJ.head<3>());
+    a = xform(ap) + S * qdd[static_cast<Eigen::Index>(i)] + cross;
+    // f = I a + v ×* I v (crf)
+    const Vector6 Iv = b.inertia * v;
+    Vector6& f = ws.f[i];
+    f = b.inertia * a;
+    f.head<3>() += v.head<3>().cross(Iv.head<3>()) + v.tail<3>().cross(Iv.tail<3>());
+    f.tail<3>() += v.head<3>().cross(Iv.tail<3>());
+  }
+  for (size_t i = nb; i-- > 0;) {
+    const Body& b = bodies_[i];
+    const Vector6& f = ws.f[i];
+    tau[static_cast<Eigen::Index>(i)] = ws.S[i].dot(f);
+    if (b.parent >= 0) {
+      // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f
+      const Eigen::Matrix3d& E = ws.E[i];
+      const Eigen::Vector3d fl = E.transpose() * f.tail<3>();
+      Vector6& fp = ws.f[static_cast<size_t>(b.parent)];
+      fp.head<3>() += E.transpose() * f.head<3>() + ws.r[i].cross(fl);
+      fp.tail<3>() += fl;
+    }
+  }
+}
+
+Eigen::VectorXd RobotModel::inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                             const Eigen::VectorXd& qdd) const {
+  check_q(q, "q");
+  check_q(qd, "qd");
+  check_q(qdd, "qdd");
+  detail::require_finite("q", q);
+  detail::require_finite("qd", qd);
+  detail::require_finite("qdd", qdd);
+  RobotWorkspace ws(*this);
+  Eigen::VectorXd tau(nq());
+  inverse_dynamics(ws, q, qd, qdd, true, tau);
+  return tau;
+}
+
+Eigen::VectorXd RobotModel::gravity_torques(const Eigen::VectorXd& q) const {
+  const Eigen::VectorXd z = Eigen::VectorXd::Zero(nq());
+  return inverse_dynamics(q, z, z);
+}
+
+Eigen::MatrixXd RobotModel::mass_matrix(const Eigen::VectorXd& q) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  RobotWorkspace ws(*this);
+  const int n = nq();
+  Eigen::MatrixXd M(n, n);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n), e = Eigen::VectorXd::Zero(n), col(n);
+  // Column j is RNEA(q, 0, e_j) without gravity: n passes, O(n²) in all.
+  for (int j = 0; j < n; ++j) {
+    e[j] = 1.0;
+    inverse_dynamics(ws, q, z, e, false, col);
+    M.col(j) = col;
+    e[j] = 0.0;
+  }
+  return 0.5 * (M + M.transpose());
+}
+
+void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                          const Eigen::Ref<const Eigen::VectorXd>& dq,
+                                          const Eigen::Ref<const Eigen::VectorXd>& ddq, Eigen::Ref<Eigen::VectorXd> a,
+                                          Eigen::Ref<Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> c) const {
+  // eq. (12): τ = M (p'' ṡ² + p' s̈) + C(q, p' ṡ) p' ṡ + g, and C is quadratic in the velocity, so
+  // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
+  // gravity, c = g(q).
+  ws.tmp.setZero(nq());
+  inverse_dynamics(ws, q, dq, ddq, false, a);
+  inverse_dynamics(ws, q, ws.tmp, dq, false, b);
+  inverse_dynamics(ws, q, ws.tmp, ws.tmp, true, c);
+}
+
+int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const {
+  auto it = links_.find(link);
+  if (it == links_.end()) detail::fail("link '" + link + "' is not a link of robot '" + name_ + "'");
+  in_body = it->second.second;
+  return it->second.first;
+}
+
+namespace {
+
+// World poses of all bodies.
+std::vector<Eigen::Isometry3d> body_poses(const RobotModel& m, const Eigen::VectorXd& q) {
+  std::vector<Eigen::Isometry3d> T(m.bodies().size());
+  for (size_t i = 0; i < T.size(); ++i) {
+    const RobotModel::Body& b = m.bodies()[i];
+    Eigen::Isometry3d tree = Eigen::Isometry3d::Identity();
+    tree.linear() = b.E_tree.transpose();
+    tree.translation() = b.r_tree;
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    const double qi = q[static_cast<Eigen::Index>(i)];
+    if (b.type == RobotModel::JointType::Revolute) motion.linear() = Eigen::AngleAxisd(qi, b.axis).toRotationMatrix();
+    else motion.translation() = b.axis * qi;
+    T[i] = (b.parent >= 0 ? T[static_cast<size_t>(b.parent)] : Eigen::Isometry3d::Identity()) * tree * motion;
+  }
+  return T;
+}
+
+}  // namespace
+
+Eigen::Matrix4d RobotModel::frame_placement(const Eigen::VectorXd& q, const std::string& link) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  Eigen::Isometry3d in_body;
+  const int body = body_of_link(link, in_body);
+  const auto T = body_poses(*this, q);
+  return ((body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity()) * in_body).matrix();
+}
+
+Eigen::MatrixXd RobotModel::point_jacobian(const Eigen::VectorXd& q, const std::string& link,
+                                           const Eigen::Vector3d& point) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  detail::require_finite("point", point);
+  Eigen::Isometry3d in_body;
+  const int body = body_of_link(link, in_body);
+  const auto T = body_poses(*this, q);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, nq());
+  if (body < 0) return J;
+  const Eigen::Vector3d p = T[static_cast<size_t>(body)] * (in_body * point);
+  for (int i = body; i >= 0; i = bodies_[static_cast<size_t>(i)].parent) {
+    const Body& b = bodies_[static_cast<size_t>(i)];
+    // The joint frame is the body frame: its axis is fixed in the body, its origin is the body origin.
+    const Eigen::Vector3d z = T[static_cast<size_t>(i)].linear() * b.axis;
+    J.col(i) = b.type == JointType::Revolute ? Eigen::Vector3d(z.cross(p - T[static_cast<size_t>(i)].translation())) : z;
+  }
+  return J;
+}
+
+}  // namespace pathpace
