@@ -7,6 +7,7 @@
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
+#include "pathpace/robot_model.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/time_scaling_problem.hpp"
@@ -140,7 +141,19 @@ void bind_problem(py::module_& m) {
         }
         return py::dict("t"_a = t, "q"_a = q, "qd"_a = qd, "qdd"_a = qdd);
       }, "dt"_a, "uniform resampling: dict of t (m,), q, qd, qdd (m, n)")
-      .def("sample_times", &Trajectory::sample_times, "dt"_a);
+      .def("sample_times", &Trajectory::sample_times, "dt"_a)
+      .def("torques", [](const Trajectory& tr, py::handle t, std::shared_ptr<RobotModel> robot) -> py::object {
+        const RobotModel* r = robot ? robot.get() : tr.robot().get();
+        if (!r) throw InvalidInput("robot: this trajectory was not shaped by torque limits; pass robot=");
+        const Eigen::VectorXd tv = to_vector(t, "t");
+        Eigen::MatrixXd tau;
+        {
+          py::gil_scoped_release release;
+          tau = tr.torques(tv, *r);
+        }
+        if (is_scalar(t)) return py::cast(Eigen::VectorXd(tau.row(0).transpose()));
+        return py::cast(tau);
+      }, "t"_a, "robot"_a = nullptr, "τ(t) by inverse dynamics (the problem's robot unless one is given)");
 
   py::class_<Result>(m, "Result")
       .def_readonly("status", &Result::status)

@@ -20,7 +20,9 @@ Trajectory Result::trajectory() const {
   if (!ok() || sdot.size() < 2 || !path)
     throw Error(std::string("no trajectory: the solve ended with status ") + to_string(status) +
                 (message.empty() ? "" : " (" + message + ")"));
-  return Trajectory(path, s, sdot);
+  Trajectory t(path, s, sdot);
+  t.set_robot(robot);
+  return t;
 }
 
 }  // namespace pathpace

@@ -10,6 +10,7 @@
 #include "detail/validate.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
+#include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
 
 namespace pathpace {
@@ -145,6 +146,8 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
 
   Result res;
   res.path = path_;
+  for (const auto& c : constraints_)
+    if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(c)) res.robot = torque->robot();
   res.s = samples_.s;
   const Eigen::Index n = intervals();
 

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "detail/validate.hpp"
+#include "pathpace/robot_model.hpp"
+#include "pathpace/robot_workspace.hpp"
 
 namespace pathpace {
 
@@ -82,6 +84,22 @@ Eigen::MatrixXd Trajectory::qdd(const Eigen::Ref<const Eigen::VectorXd>& t) cons
   Eigen::MatrixXd q, qd, qdd;
   evaluate(t, q, qd, qdd);
   return qdd;
+}
+
+Eigen::MatrixXd Trajectory::torques(const Eigen::Ref<const Eigen::VectorXd>& t, const RobotModel& robot) const {
+  if (robot.nq() != path_->dof())
+    detail::fail("robot '" + robot.name() + "' has " + std::to_string(robot.nq()) + " joints, the path has " +
+                 std::to_string(path_->dof()) + " coordinates");
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  RobotWorkspace ws(robot);
+  Eigen::MatrixXd tau(t.size(), robot.nq());
+  Eigen::VectorXd out(robot.nq());
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    robot.inverse_dynamics(ws, q.row(i).transpose(), qd.row(i).transpose(), qdd.row(i).transpose(), true, out);
+    tau.row(i) = out.transpose();
+  }
+  return tau;
 }
 
 Eigen::VectorXd Trajectory::sample_times(double dt) const {

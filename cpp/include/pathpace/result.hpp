@@ -14,6 +14,7 @@
 namespace pathpace {
 
 class Trajectory;
+class RobotModel;
 
 enum class Status {
   Optimal,         ///< the optimum of the discretised problem (eq. 26-27)
@@ -56,6 +57,7 @@ class Result {
   Infeasibility infeasibility;
   SolverStats stats;
   std::shared_ptr<const Path> path;
+  std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits, if any
 
   /// True for Optimal (and for IterationLimit, whose timing is feasible).
   bool ok() const { return status == Status::Optimal || status == Status::IterationLimit; }

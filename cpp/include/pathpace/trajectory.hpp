@@ -10,6 +10,8 @@
 
 namespace pathpace {
 
+class RobotModel;
+
 class Trajectory {
  public:
   /// grid s_0..s_N, speeds ṡ_k >= 0 with ṡ_k + ṡ_{k+1} > 0 on every interval.
@@ -33,12 +35,21 @@ class Trajectory {
   Eigen::MatrixXd qd(const Eigen::Ref<const Eigen::VectorXd>& t) const;
   Eigen::MatrixXd qdd(const Eigen::Ref<const Eigen::VectorXd>& t) const;
 
+  /// Joint torques τ(t) = RNEA(q, q̇, q̈) of `robot` at each t: shape (len(t), nq), so that usage can be
+  /// plotted against the limits.
+  Eigen::MatrixXd torques(const Eigen::Ref<const Eigen::VectorXd>& t, const RobotModel& robot) const;
+
+  /// The robot whose torque limits shaped this trajectory (null if none did).
+  const std::shared_ptr<const RobotModel>& robot() const { return robot_; }
+  void set_robot(std::shared_ptr<const RobotModel> robot) { robot_ = std::move(robot); }
+
   /// Uniform times 0, dt, 2dt, ..., with T appended if it is not a multiple of dt.
   Eigen::VectorXd sample_times(double dt) const;
 
  private:
   Eigen::Index interval(double t) const;
   std::shared_ptr<const Path> path_;
+  std::shared_ptr<const RobotModel> robot_;
   Eigen::VectorXd s_, sdot_, times_, sddot_;
 };
 
