@@ -14,3 +14,16 @@ def test_demo_solves_the_panda_path_and_reports_the_locked_joint(capsys):
     assert "N = 1000: OPTIMAL" in out
     assert "INFEASIBLE" in out and "binding: velocity joint 3" in out
     assert (EXAMPLES / "output" / "panda_trajectory.csv").is_file()
+
+
+def test_pendulum_swing_up_torque_aware_timing_is_tracked_and_the_others_are_not():
+    ns = runpy.run_path(str(EXAMPLES / "pendulum_swing_up.py"))
+    rows, res_tau, res_acc, res_mono = ns["main"](plot=False, N=400)
+    by = {(r["timing"], r["controller"]): r for r in rows}
+    assert by[("optimal, torque limits", "PD+g+ff")]["max_tracking_error"] < 1e-3
+    assert by[("optimal, 0.9 x torque", "PD+g")]["max_tracking_error"] < 0.1
+    assert by[("optimal, |qdd| <= 5.6", "PD+g+ff")]["max_tracking_error"] > 0.3
+    for T in (4, 5, 9):
+        assert by[(f"uniform, {T} s", "PD+g")]["final_error"] > 0.5  # never reaches upright
+    assert res_tau.duration < res_acc.duration
+    assert res_mono.status.name == "INFEASIBLE"
