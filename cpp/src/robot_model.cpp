@@ -179,59 +179,69 @@ void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char*
                  std::to_string(nq()) + " joints");
 }
 
-void RobotModel::inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
-                                  const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::Ref<const Eigen::VectorXd>& qdd,
-                                  bool with_gravity, Eigen::Ref<Eigen::VectorXd> tau) const {
-  const size_t nb = bodies_.size();
-  // Featherstone's RNEA with motion vectors [ω; v] in body coordinates. Gravity enters as a fictitious
-  // upward acceleration of the base.
-  Vector6 a0 = Vector6::Zero();
-  if (with_gravity) a0.tail<3>() = -gravity_;
-  for (size_t i = 0; i < nb; ++i) {
-    const Body& b = bodies_[i];
+namespace {
+
+// Joint transforms ^iX_λ = X_J(q_i) X_tree and motion subspaces, shared by every pass at one q.
+void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const RobotModel::Body& b = bodies[i];
     const double qi = q[static_cast<Eigen::Index>(i)];
-    Eigen::Matrix3d EJ;
-    Eigen::Vector3d rJ = Eigen::Vector3d::Zero();
     Vector6& S = ws.S[i];
-    if (b.type == JointType::Revolute) {
-      EJ = Eigen::AngleAxisd(qi, b.axis).toRotationMatrix().transpose();
+    if (b.type == RobotModel::JointType::Revolute) {
+      // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree.
+      ws.E[i].noalias() = Eigen::AngleAxisd(-qi, b.axis).toRotationMatrix() * b.E_tree;
+      ws.r[i] = b.r_tree;
       S << b.axis, Eigen::Vector3d::Zero();
     } else {
-      EJ.setIdentity();
-      rJ = b.axis * qi;
+      // E = E_tree; r = r_tree + E_tree^T (axis q).
+      ws.E[i] = b.E_tree;
+      ws.r[i] = b.r_tree + b.E_tree.transpose() * (b.axis * qi);
       S << Eigen::Vector3d::Zero(), b.axis;
     }
-    // ^iX_λ = X_J X_tree: E = E_J E_tree, r = r_tree + E_tree^T r_J.
-    ws.E[i] = EJ * b.E_tree;
-    ws.r[i] = b.r_tree + b.E_tree.transpose() * rJ;
+  }
+}
+
+// One RNEA pass over the transforms in ws (Featherstone, motion vectors [ω; v] in body coordinates;
+// gravity enters as a fictitious upward acceleration of the base). qd == nullptr means q̇ = 0, which
+// drops every velocity product.
+void rnea_pass(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, const Eigen::VectorXd* qd,
+               const Eigen::Ref<const Eigen::VectorXd>& qdd, const Eigen::Vector3d* gravity, Eigen::Ref<Eigen::VectorXd> tau) {
+  const size_t nb = bodies.size();
+  Vector6 a0 = Vector6::Zero();
+  if (gravity) a0.tail<3>() = -*gravity;
+  for (size_t i = 0; i < nb; ++i) {
+    const RobotModel::Body& b = bodies[i];
     const Eigen::Matrix3d& E = ws.E[i];
     const Eigen::Vector3d& r = ws.r[i];
+    const Vector6& S = ws.S[i];
     auto xform = [&](const Vector6& m) {
       Vector6 out;
-      out.head<3>() = E * m.head<3>();
-      out.tail<3>() = E * (m.tail<3>() - r.cross(m.head<3>()));
+      out.head<3>().noalias() = E * m.head<3>();
+      out.tail<3>().noalias() = E * (m.tail<3>() - r.cross(m.head<3>()));
       return out;
     };
-    const Vector6 vJ = S * qd[static_cast<Eigen::Index>(i)];
-    const Vector6 vp = b.parent >= 0 ? ws.v[static_cast<size_t>(b.parent)] : Vector6::Zero();
     const Vector6 ap = b.parent >= 0 ? ws.a[static_cast<size_t>(b.parent)] : a0;
-    Vector6& v = ws.v[i];
     Vector6& a = ws.a[i];
-    v = xform(vp) + vJ;
-    // a = X a_λ + S q̈ + v × vJ (crm)
-    Vector6 cross;
-    cross.head<3>() = v.head<3>().cross(vJ.head<3>());
-    cross.tail<3>() = v.head<3>().cross(vJ.tail<3>()) + v.tail<3>().cross(vJ.head<3>());
-    a = xform(ap) + S * qdd[static_cast<Eigen::Index>(i)] + cross;
-    // f = I a + v ×* I v (crf)
-    const Vector6 Iv = b.inertia * v;
     Vector6& f = ws.f[i];
-    f = b.inertia * a;
-    f.head<3>() += v.head<3>().cross(Iv.head<3>()) + v.tail<3>().cross(Iv.tail<3>());
-    f.tail<3>() += v.head<3>().cross(Iv.tail<3>());
+    a = xform(ap) + S * qdd[static_cast<Eigen::Index>(i)];
+    if (qd) {
+      const Vector6 vJ = S * (*qd)[static_cast<Eigen::Index>(i)];
+      Vector6& v = ws.v[i];
+      v = (b.parent >= 0 ? xform(ws.v[static_cast<size_t>(b.parent)]) : Vector6::Zero()) + vJ;
+      // a += v × vJ (crm)
+      a.head<3>() += v.head<3>().cross(vJ.head<3>());
+      a.tail<3>() += v.head<3>().cross(vJ.tail<3>()) + v.tail<3>().cross(vJ.head<3>());
+      // f = I a + v ×* I v (crf)
+      const Vector6 Iv = b.inertia * v;
+      f.noalias() = b.inertia * a;
+      f.head<3>() += v.head<3>().cross(Iv.head<3>()) + v.tail<3>().cross(Iv.tail<3>());
+      f.tail<3>() += v.head<3>().cross(Iv.tail<3>());
+    } else {
+      f.noalias() = b.inertia * a;
+    }
   }
   for (size_t i = nb; i-- > 0;) {
-    const Body& b = bodies_[i];
+    const RobotModel::Body& b = bodies[i];
     const Vector6& f = ws.f[i];
     tau[static_cast<Eigen::Index>(i)] = ws.S[i].dot(f);
     if (b.parent >= 0) {
@@ -243,6 +253,16 @@ void RobotModel::inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eig
       fp.tail<3>() += fl;
     }
   }
+}
+
+}  // namespace
+
+void RobotModel::inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                  const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::Ref<const Eigen::VectorXd>& qdd,
+                                  bool with_gravity, Eigen::Ref<Eigen::VectorXd> tau) const {
+  kinematics(bodies_, ws, q);
+  ws.tmp = qd;
+  rnea_pass(bodies_, ws, &ws.tmp, qdd, with_gravity ? &gravity_ : nullptr, tau);
 }
 
 Eigen::VectorXd RobotModel::inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -287,11 +307,12 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
                                           Eigen::Ref<Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> c) const {
   // eq. (12): τ = M (p'' ṡ² + p' s̈) + C(q, p' ṡ) p' ṡ + g, and C is quadratic in the velocity, so
   // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
-  // gravity, c = g(q).
-  ws.tmp.setZero(nq());
-  inverse_dynamics(ws, q, dq, ddq, false, a);
-  inverse_dynamics(ws, q, ws.tmp, dq, false, b);
-  inverse_dynamics(ws, q, ws.tmp, ws.tmp, true, c);
+  // gravity, c = g(q). The three passes share one set of joint transforms.
+  kinematics(bodies_, ws, q);
+  ws.tmp = dq;
+  rnea_pass(bodies_, ws, &ws.tmp, ddq, nullptr, a);
+  rnea_pass(bodies_, ws, nullptr, dq, nullptr, b);
+  rnea_pass(bodies_, ws, nullptr, ws.zero, &gravity_, c);
 }
 
 int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const {

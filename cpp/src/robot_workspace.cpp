@@ -13,6 +13,7 @@ RobotWorkspace::RobotWorkspace(const RobotModel& model) {
   f.resize(nb);
   S.resize(nb);
   tmp.setZero(model.nq());
+  zero.setZero(model.nq());
 }
 
 }  // namespace pathpace

@@ -21,6 +21,7 @@ class RobotWorkspace {
   std::vector<Vector6> v, a, f;     // spatial velocity, acceleration, force (body coordinates)
   std::vector<Vector6> S;           // joint motion subspace
   Eigen::VectorXd tmp;              // nq scratch
+  Eigen::VectorXd zero;             // nq zeros
 };
 
 }  // namespace pathpace
