@@ -1,0 +1,126 @@
+// RobotModel: analytic pendulum, structural properties of the dynamics, finite-difference Jacobians.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+
+#include "pathpace/pathpace.hpp"
+
+using namespace pathpace;
+
+namespace {
+
+const char* kPendulum = R"(<robot name="pendulum">
+  <link name="base"/>
+  <link name="arm"><inertial><origin xyz="0 0 -1"/><mass value="1"/>
+    <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+  <joint name="hinge" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 1 0"/>
+    <limit effort="5.6" velocity="100"/></joint>
+</robot>)";
+
+// Two revolute links and a prismatic one, with a fixed tool link merged into the last body.
+const char* kArm = R"(<robot name="arm">
+  <link name="base"/>
+  <link name="l1"><inertial><origin xyz="0.1 0 0.2" rpy="0.1 0.2 0.3"/><mass value="2"/>
+    <inertia ixx="0.1" ixy="0.01" ixz="0" iyy="0.2" iyz="0.02" izz="0.15"/></inertial></link>
+  <link name="l2"><inertial><origin xyz="0 0.3 0"/><mass value="1.5"/>
+    <inertia ixx="0.05" ixy="0" ixz="0.01" iyy="0.04" iyz="0" izz="0.06"/></inertial></link>
+  <link name="l3"><inertial><origin xyz="0 0 0.1"/><mass value="0.5"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="tool"><inertial><mass value="0.3"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="50" velocity="2"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.4" rpy="0.3 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="40" velocity="2"/></joint>
+  <joint name="j3" type="prismatic"><parent link="l2"/><child link="l3"/><origin xyz="0 0.5 0"/>
+    <axis xyz="0.6 0 0.8"/><limit lower="0" upper="0.3" effort="100" velocity="0.5"/></joint>
+  <joint name="tool_joint" type="fixed"><parent link="l3"/><child link="tool"/><origin xyz="0.05 0 0.2"/></joint>
+</robot>)";
+
+}  // namespace
+
+TEST(RobotModel, PendulumMatchesTheTextbook) {
+  const RobotModel r = RobotModel::from_urdf_string(kPendulum);
+  ASSERT_EQ(r.nq(), 1);
+  for (double q : {0.0, 0.4, 2.0}) {
+    const Eigen::VectorXd tau = r.inverse_dynamics(Eigen::VectorXd::Constant(1, q), Eigen::VectorXd::Constant(1, 1.3),
+                                                   Eigen::VectorXd::Constant(1, -0.7));
+    EXPECT_NEAR(tau[0], -0.7 + 9.81 * std::sin(q), 1e-12);  // m l² q̈ + m g l sin q
+  }
+  EXPECT_EQ(r.effort_limits()[0], 5.6);
+}
+
+TEST(RobotModel, DynamicsAreConsistent) {
+  const RobotModel r = RobotModel::from_urdf_string(kArm);
+  ASSERT_EQ(r.nq(), 3);
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd q(3), qd(3), qdd(3);
+    for (int j = 0; j < 3; ++j) {
+      q[j] = U(gen);
+      qd[j] = U(gen);
+      qdd[j] = U(gen);
+    }
+    const Eigen::MatrixXd M = r.mass_matrix(q);
+    EXPECT_NEAR((M - M.transpose()).norm(), 0.0, 1e-12);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues().minCoeff(), 0.0);
+    const Eigen::VectorXd z = Eigen::VectorXd::Zero(3);
+    // RNEA(q, q̇, q̈) = M q̈ + RNEA(q, q̇, 0) and RNEA(q, 0, 0) = g(q)
+    EXPECT_NEAR((r.inverse_dynamics(q, qd, qdd) - (M * qdd + r.inverse_dynamics(q, qd, z))).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((r.inverse_dynamics(q, z, z) - r.gravity_torques(q)).norm(), 0.0, 1e-14);
+    // eq. (12) coefficients reproduce RNEA at (q, p' ṡ, p'' ṡ² + p' s̈)
+    RobotWorkspace ws(r);
+    Eigen::VectorXd a(3), b(3), c(3);
+    r.path_torque_coefficients(ws, q, qd, qdd, a, b, c);
+    const double sd = 1.7, sdd = -0.4;
+    EXPECT_NEAR((a * sd * sd + b * sdd + c - r.inverse_dynamics(q, qd * sd, qdd * sd * sd + qd * sdd)).norm(), 0.0, 1e-11);
+    // Point Jacobian of a point on the merged tool link against central differences.
+    const Eigen::Vector3d p(0.02, -0.01, 0.03);
+    const Eigen::MatrixXd J = r.point_jacobian(q, "tool", p);
+    const double h = 1e-6;
+    for (int j = 0; j < 3; ++j) {
+      Eigen::VectorXd qp = q, qm = q;
+      qp[j] += h;
+      qm[j] -= h;
+      const Eigen::Vector3d xp = (r.frame_placement(qp, "tool") * p.homogeneous()).head<3>();
+      const Eigen::Vector3d xm = (r.frame_placement(qm, "tool") * p.homogeneous()).head<3>();
+      EXPECT_NEAR((J.col(j) - (xp - xm) / (2 * h)).norm(), 0.0, 1e-8);
+    }
+  }
+}
+
+TEST(RobotModel, ValidationNamesWhatIsWrong) {
+  try {
+    RobotModel::from_urdf_string("<robot");
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("not a valid URDF"), std::string::npos);
+  }
+  RobotModelOptions o;
+  o.locked_joints["nope"] = 0.0;
+  try {
+    RobotModel::from_urdf_string(kArm, o);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "locked_joints: 'nope' is not a movable joint of robot 'arm'");
+  }
+  const RobotModel r = RobotModel::from_urdf_string(kArm);
+  EXPECT_THROW(r.frame_placement(Eigen::VectorXd::Zero(2), "tool"), InvalidInput);
+  EXPECT_THROW(r.frame_placement(Eigen::VectorXd::Zero(3), "hand"), InvalidInput);
+}
+
+TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
+  RobotModelOptions o;
+  o.locked_joints["j3"] = 0.1;
+  o.floating_base = true;
+  const auto r = std::make_shared<RobotModel>(RobotModel::from_urdf_string(kArm, o));
+  ASSERT_EQ(r->nq(), 8);  // six virtual joints, j1, j2
+  EXPECT_EQ(r->joint_names()[0], "floating_x");
+  EXPECT_EQ(r->effort_limits()[0], 0.0);  // unactuated
+  TorqueLimits t(r);
+  EXPECT_EQ(t.tau_min()[0], 0.0);
+  EXPECT_EQ(t.tau_max()[7], 40.0);
+}
