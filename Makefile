@@ -37,8 +37,10 @@ test: test-cpp test-packaging test-python
 demo: python
 	@$(PY) examples/demo.py
 
-bench: python
+bench: python cpp
 	@$(PY) bench/run.py
+	@$(PY) bench/torque.py
+	@bash bench/rnea_cpp.sh
 
 clean:
 	rm -rf build
