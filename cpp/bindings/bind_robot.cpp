@@ -58,12 +58,13 @@ void bind_robot(py::module_& m) {
         l.row(1) = r.upper_position_limits().transpose();
         return l;
       }, "(2, nq): lower and upper")
-      .def_property_readonly("gravity", &RobotModel::gravity)
+      .def_property_readonly("gravity_vector", &RobotModel::gravity, "the gravity acceleration in the world frame")
       .def("inverse_dynamics", [](const RobotModel& r, py::handle q, py::handle qd, py::handle qdd) {
         return r.inverse_dynamics(qvec(r, q, "q"), qvec(r, qd, "qd"), qvec(r, qdd, "qdd"));
       }, "q"_a, "qd"_a, "qdd"_a, "τ = M(q) q̈ + C(q, q̇) q̇ + g(q)")
       .def("mass_matrix", [](const RobotModel& r, py::handle q) { return r.mass_matrix(qvec(r, q, "q")); }, "q"_a)
-      .def("gravity_torques", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a)
+      .def("gravity", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a,
+           "g(q): the joint torques that hold the robot still at q")
       .def("frame_placement", [](const RobotModel& r, py::handle q, const std::string& link) {
         return r.frame_placement(qvec(r, q, "q"), link);
       }, "q"_a, "link"_a, "4x4 world placement of the link frame")

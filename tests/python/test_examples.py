@@ -27,3 +27,4 @@ def test_pendulum_swing_up_torque_aware_timing_is_tracked_and_the_others_are_not
         assert by[(f"uniform, {T} s", "PD+g")]["final_error"] > 0.5  # never reaches upright
     assert res_tau.duration < res_acc.duration
     assert res_mono.status.name == "INFEASIBLE"
+    assert 0.0 <= by[("dense torque excess", "-")]["max_tracking_error"] < 1e-3  # N·m at N = 400

@@ -99,7 +99,7 @@ def test_dynamics_match_pinocchio(name):
         M = np.triu(M) + np.triu(M, 1).T
         np.testing.assert_allclose(ours.mass_matrix(q), M, rtol=1e-9, atol=1e-9 * np.abs(M).max())
         g = pin.computeGeneralizedGravity(theirs, data, q)
-        np.testing.assert_allclose(ours.gravity_torques(q), g, rtol=1e-9, atol=1e-9 * max(1.0, np.abs(g).max()))
+        np.testing.assert_allclose(ours.gravity(q), g, rtol=1e-9, atol=1e-9 * max(1.0, np.abs(g).max()))
         pin.forwardKinematics(theirs, data, q)
         pin.updateFramePlacements(theirs, data)
         np.testing.assert_allclose(ours.frame_placement(q, link), data.oMf[fid].homogeneous, atol=1e-12)
@@ -177,3 +177,17 @@ def test_torque_limits_need_matching_path_dimension():
     prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.zeros((2, 2)) + [[0, 0], [1, 1]]), grid=10)
     with pytest.raises(pp.InvalidInputError, match=r"path has 2 coordinates, robot 'pendulum' has 1 joints"):
         prob.add_torque_limits(r)
+
+
+def test_floating_base_without_contacts_cannot_be_timed_and_says_so():
+    """Six unactuated coordinates make equality rows; nothing can hold the body up without contact."""
+    robot = pp.RobotModel.from_urdf_string(PENDULUM, floating_base=True)
+    assert robot.nq == 7 and list(robot.effort_limits[:6]) == [0.0] * 6
+    wp = np.zeros((3, 7))
+    wp[:, 6] = [0.0, 0.5, 1.0]
+    prob = pp.TimeScalingProblem(pp.CubicSplinePath(wp), grid=50)
+    prob.add_torque_limits(robot)
+    res = prob.solve()
+    assert res.status == pp.Status.INFEASIBLE
+    assert any(c.startswith("torque floating_") for c in res.binding_constraints)
+    np.testing.assert_allclose(robot.gravity_vector, [0, 0, -9.81])
