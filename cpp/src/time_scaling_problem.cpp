@@ -184,38 +184,39 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
   Eigen::VectorXd theta;
   double lower = 0.0;  // T of the lattice relaxation's greatest element: a lower bound on T*
+  detail::Reachability reach;
+  bool have_full = false;
   if (!chain.lattice && options.method == Method::Auto) {
     // Rows coupling θ_k and θ_{k+1} positively appear wherever p'_j is small against p''_j (near a
     // joint's reversal). Without them the feasible set is max-closed and its greatest element θ' has
-    // T(θ') <= T*. Often θ' satisfies them anyway, and is then the optimum with no LP.
-    const detail::Reachability relaxed = detail::reachability(chain, th0, thN, /*relax=*/true);
-    if (relaxed.outcome == detail::Reachability::Outcome::Feasible) {
+    // T(θ') <= T* (a lower bound); the full greedy θ is feasible (an upper bound). If θ' satisfies the
+    // coupling rows it is the optimum; if the bracket is within the tolerance, θ is optimal to it.
+    detail::Reachability relaxed;
+    if (detail::reachability_pair(chain, th0, thN, relaxed, reach)) {
+      have_full = true;
       lower = detail::duration(chain.ds, relaxed.theta);
       if (detail::coupled_violation(chain, relaxed.theta) <= 1e-12) {
         theta = relaxed.theta;
         proven = true;
+      } else {
+        theta = reach.theta;
+        const double upper = detail::duration(chain.ds, theta);
+        if (upper - lower <= options.tolerance * lower) {
+          res.stats.gap = std::max(0.0, upper - lower) / lower;
+          proven = true;
+        }
       }
     }
   }
-  detail::Reachability reach;
-  if (!proven) {
+  if (!have_full) {
     reach = detail::reachability(chain, th0, thN);
     if (reach.outcome == detail::Reachability::Outcome::Infeasible)
       return report(Status::Infeasible, reach.failed_index, reach.binding, reach.reason);
     if (reach.outcome == detail::Reachability::Outcome::Unbounded)
       return report(Status::Unbounded, reach.failed_index, reach.binding, reach.reason);
     theta = reach.theta;
-    if (chain.lattice && options.method == Method::Auto) {
-      // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
-      proven = true;
-    } else if (lower > 0.0) {
-      // The greedy θ is feasible: T* lies in [lower, T(θ)]. Within the tolerance, no SLP is needed.
-      const double upper = detail::duration(chain.ds, theta);
-      if (upper - lower <= options.tolerance * lower) {
-        res.stats.gap = (upper - lower) / lower;
-        proven = true;
-      }
-    }
+    // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
+    if (chain.lattice && options.method == Method::Auto) proven = true;
   }
   res.stats.greatest_element = proven && res.stats.gap == 0.0;
   res.stats.time_reachability = seconds_since(t0);

@@ -29,6 +29,27 @@ void Polygon2d::reset(double x_lo, double x_hi, double y_lo, double y_hi) {
   v[3] = {x_lo, y_lo};
 }
 
+void Polygon2d::assign(const Polygon2d& other) {
+  empty_ = other.empty_;
+  emptied_by_ = other.emptied_by_;
+  certificate_[0] = other.certificate_[0];
+  certificate_[1] = other.certificate_[1];
+  m_ = other.m_;
+  cur_ = 0;
+  if (edges_[0].size() < m_ + 2) {
+    edges_[0].resize(2 * m_ + 2);
+    vertices_[0].resize(2 * m_ + 2);
+  }
+  if (edges_[1].size() < 16) {
+    edges_[1].resize(16);
+    vertices_[1].resize(16);
+  }
+  if (dist_.size() < 16) dist_.resize(16);
+  std::copy(other.edges_[other.cur_].begin(), other.edges_[other.cur_].begin() + static_cast<long>(m_), edges_[0].begin());
+  std::copy(other.vertices_[other.cur_].begin(), other.vertices_[other.cur_].begin() + static_cast<long>(m_),
+            vertices_[0].begin());
+}
+
 bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {
   const double det = l1.a * l2.b - l2.a * l1.b;
   const double scale = std::abs(l1.a * l2.b) + std::abs(l2.a * l1.b);

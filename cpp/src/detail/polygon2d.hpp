@@ -49,6 +49,9 @@ class Polygon2d {
   /// Starts from the box [x_lo, x_hi] x [y_lo, y_hi] (finite, x_lo <= x_hi, y_lo <= y_hi).
   void reset(double x_lo, double x_hi, double y_lo, double y_hi);
 
+  /// Becomes a copy of `other` (no allocation once warm).
+  void assign(const Polygon2d& other);
+
   /// Intersects with a·x + b·y <= c. Returns true if the line now supports an edge of the polygon
   /// (it cut something off), false if it was redundant. After an intersection that empties the polygon,
   /// empty() is true and the line that emptied it is recorded in emptied_by().

@@ -136,6 +136,25 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
   return theta;
 }
 
+namespace {
+
+// Polygons come in from interval N-1 down to 0; this puts them in interval order.
+void store_in_order(Reachability& out, const std::vector<Vertex>& rev, const std::vector<size_t>& rev_size) {
+  const size_t n = rev_size.size();
+  out.offset.resize(n + 1);
+  out.offset[0] = 0;
+  for (size_t k = 0; k < n; ++k) out.offset[k + 1] = out.offset[k] + rev_size[k];
+  out.vertices.resize(rev.size());
+  size_t pos = rev.size();  // interval k's block in `rev` ends where the blocks of k+1..N-1 begin
+  for (size_t k = 0; k < n; ++k) {
+    pos -= rev_size[k];
+    std::copy(rev.begin() + static_cast<long>(pos), rev.begin() + static_cast<long>(pos + rev_size[k]),
+              out.vertices.begin() + static_cast<long>(out.offset[k]));
+  }
+}
+
+}  // namespace
+
 Reachability reachability(const Chain& chain, double theta_begin, double theta_end, bool relax) {
   Reachability out;
   const Eigen::Index n = chain.ds.size();
@@ -222,19 +241,64 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     fail_at(0, "the start speed is outside the controllable set");
     return out;
   }
-  out.offset.resize(static_cast<size_t>(n) + 1);
-  out.offset[0] = 0;
-  for (size_t k = 0; k < static_cast<size_t>(n); ++k) out.offset[k + 1] = out.offset[k] + rev_size[k];
-  out.vertices.resize(rev.size());
-  size_t pos = rev.size();  // interval k's block in `rev` ends where the blocks of k+1..N-1 begin
-  for (size_t k = 0; k < static_cast<size_t>(n); ++k) {
-    pos -= rev_size[k];
-    std::copy(rev.begin() + static_cast<long>(pos), rev.begin() + static_cast<long>(pos + rev_size[k]),
-              out.vertices.begin() + static_cast<long>(out.offset[k]));
-  }
+  store_in_order(out, rev, rev_size);
   out.theta = forward_pass(out, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
   out.theta[0] = theta_begin;
   return out;
+}
+
+bool reachability_pair(const Chain& chain, double theta_begin, double theta_end, Reachability& relaxed,
+                       Reachability& full) {
+  const Eigen::Index n = chain.ds.size();
+  if (theta_end < chain.x_lo[n] * (1 - 1e-12) || theta_end > chain.x_hi[n] * (1 + 1e-12)) return false;
+  Reachability* outs[2] = {&relaxed, &full};
+  for (Reachability* o : outs) {
+    o->outcome = Reachability::Outcome::Feasible;
+    o->k_lo.resize(n + 1);
+    o->k_hi.resize(n + 1);
+    o->k_lo[n] = o->k_hi[n] = theta_end;
+  }
+  Polygon2d pr, pf;
+  std::vector<Vertex> rev_r, rev_f;
+  std::vector<size_t> size_r(static_cast<size_t>(n)), size_f(static_cast<size_t>(n));
+  rev_r.reserve(static_cast<size_t>(n) * 6);
+  rev_f.reserve(static_cast<size_t>(n) * 6);
+  for (Eigen::Index k = n - 1; k >= 0; --k) {
+    const View<IntervalRow> rows = chain.rows(k);
+    pr.reset(chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1]);
+    clip_rows(pr, rows, true);
+    if (pr.empty()) return false;
+    if (full.k_lo[k + 1] == relaxed.k_lo[k + 1] && full.k_hi[k + 1] == relaxed.k_hi[k + 1]) {
+      // Same box: the full polygon is the relaxed one cut by the coupling rows.
+      pf.assign(pr);
+      for (const IntervalRow& r : rows)
+        if (r.coupled && pf.clip({r.alpha, r.beta, r.c, r.id}) && pf.empty()) return false;
+    } else {
+      pf.reset(chain.x_lo[k], chain.x_hi[k], full.k_lo[k + 1], full.k_hi[k + 1]);
+      clip_rows(pf, rows, false);
+      if (pf.empty()) return false;
+    }
+    const Polygon2d* polys[2] = {&pr, &pf};
+    std::vector<Vertex>* revs[2] = {&rev_r, &rev_f};
+    std::vector<size_t>* sizes[2] = {&size_r, &size_f};
+    for (int i = 0; i < 2; ++i) {
+      const Polygon2d& p = *polys[i];
+      revs[i]->insert(revs[i]->end(), p.vertices().begin(), p.vertices().end());
+      (*sizes[i])[static_cast<size_t>(k)] = p.vertices().size();
+      outs[i]->k_lo[k] = p.vertices()[static_cast<size_t>(p.argmin_x())].x;
+      outs[i]->k_hi[k] = p.vertices()[static_cast<size_t>(p.argmax_x())].x;
+      if (outs[i]->k_hi[k] >= kInfinityCap * (1 - 1e-9)) return false;
+    }
+  }
+  for (int i = 0; i < 2; ++i) {
+    Reachability& o = *outs[i];
+    const double tol0 = 1e-12 * std::max(1.0, o.k_hi[0]);
+    if (theta_begin < o.k_lo[0] - tol0 || theta_begin > o.k_hi[0] + tol0) return false;
+    store_in_order(o, i == 0 ? rev_r : rev_f, i == 0 ? size_r : size_f);
+    o.theta = forward_pass(o, std::clamp(theta_begin, o.k_lo[0], o.k_hi[0]), nullptr);
+    o.theta[0] = theta_begin;
+  }
+  return true;
 }
 
 double max_violation(const Chain& chain, const Eigen::VectorXd& theta) {

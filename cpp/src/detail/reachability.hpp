@@ -66,6 +66,13 @@ struct Reachability {
 /// dropped rows it is the optimum of the full problem (it is feasible and no feasible point is faster).
 Reachability reachability(const Chain& chain, double theta_begin, double theta_end, bool relax = false);
 
+/// The relaxed (relax = true) and the full analysis together. Their backward passes usually meet the
+/// same box (K_{k+1} alike) and then share the polygon of the rows both have, the full one adding only
+/// the coupling rows, which rarely cut. Returns false, with nothing reliable in the outputs, if either
+/// analysis does not end feasible: call reachability() for the report then.
+bool reachability_pair(const Chain& chain, double theta_begin, double theta_end, Reachability& relaxed,
+                       Reachability& full);
+
 /// The greedy forward pass below caps: θ_{k+1} = cap_{k+1} clamped into the slice of interval k's
 /// polygon at θ_k. With caps = nullptr this is the greedy maximum; with caps = an SLP iterate it repairs
 /// the iterate's LP-tolerance infeasibility. Each θ_{k+1} is read off an edge between two polygon
