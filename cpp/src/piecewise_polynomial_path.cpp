@@ -49,4 +49,35 @@ void PiecewisePolynomialPath::evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, 
   }
 }
 
+void PiecewisePolynomialPath::evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q,
+                                       Eigen::MatrixXd& dq, Eigen::MatrixXd& ddq) const {
+  // The grid is sorted in the common case: walk the pieces forward and fall back to bisection.
+  const Eigen::Index m = s.size(), n = dof_, pieces = breakpoints_.size() - 1;
+  q.resize(m, n);
+  dq.resize(m, n);
+  ddq.resize(m, n);
+  Eigen::Index i = 0;
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const double x = std::clamp(s[r], s_begin(), s_end());
+    if (x < breakpoints_[i] || (i + 1 < pieces && x >= breakpoints_[i + 1])) {
+      if (i + 1 < pieces && x >= breakpoints_[i + 1] && (i + 2 >= pieces + 1 || x < breakpoints_[i + 2])) ++i;
+      else i = piece(x);
+    }
+    const Eigen::MatrixXd& c = coefficients_[static_cast<size_t>(i)];
+    const double t = x - breakpoints_[i];
+    const Eigen::Index d = c.rows() - 1;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      double p = c(d, j), dp = 0.0, ddp = 0.0;
+      for (Eigen::Index k = d - 1; k >= 0; --k) {
+        ddp = ddp * t + 2.0 * dp;
+        dp = dp * t + p;
+        p = p * t + c(k, j);
+      }
+      q(r, j) = p;
+      dq(r, j) = dp;
+      ddq(r, j) = ddp;
+    }
+  }
+}
+
 }  // namespace pathpace

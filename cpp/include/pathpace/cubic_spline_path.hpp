@@ -42,7 +42,10 @@ class CubicSplinePath : public Path {
                 Eigen::Ref<Eigen::VectorXd> ddq) const override {
     pieces_.evaluate(s, q, dq, ddq);
   }
-  using Path::evaluate;
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
+                Eigen::MatrixXd& ddq) const override {
+    pieces_.evaluate(s, q, dq, ddq);
+  }
 
   const Eigen::VectorXd& knots() const { return pieces_.breakpoints(); }
   const Eigen::MatrixXd& waypoints() const { return waypoints_; }

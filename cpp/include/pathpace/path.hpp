@@ -23,7 +23,8 @@ class Path {
                         Eigen::Ref<Eigen::VectorXd> ddq) const = 0;
 
   /// Batch evaluation: row i of each matrix is p, p', p'' at s[i]. Shapes (len(s), dof()).
-  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
+  /// The default calls the single-point evaluate; paths can do better.
+  virtual void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
                 Eigen::MatrixXd& ddq) const;
 
   /// p(s) at each s: shape (len(s), dof()).

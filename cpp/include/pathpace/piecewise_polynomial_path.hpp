@@ -22,7 +22,8 @@ class PiecewisePolynomialPath : public Path {
   double s_end() const override { return breakpoints_[breakpoints_.size() - 1]; }
   void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
                 Eigen::Ref<Eigen::VectorXd> ddq) const override;
-  using Path::evaluate;
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
+                Eigen::MatrixXd& ddq) const override;
 
   const Eigen::VectorXd& breakpoints() const { return breakpoints_; }
   const std::vector<Eigen::MatrixXd>& coefficients() const { return coefficients_; }

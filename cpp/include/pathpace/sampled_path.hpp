@@ -24,7 +24,10 @@ class SampledPath : public Path {
                 Eigen::Ref<Eigen::VectorXd> ddq) const override {
     pieces_.evaluate(s, q, dq, ddq);
   }
-  using Path::evaluate;
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
+                Eigen::MatrixXd& ddq) const override {
+    pieces_.evaluate(s, q, dq, ddq);
+  }
 
   const Eigen::VectorXd& samples() const { return pieces_.breakpoints(); }
 
