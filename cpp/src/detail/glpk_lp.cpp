@@ -1,5 +1,7 @@
 #include "detail/glpk_lp.hpp"
 
+#include "detail/glpk_guard.hpp"
+
 #include <csetjmp>
 #include <limits>
 #include <cstdlib>
@@ -8,23 +10,19 @@
 
 namespace pathpace::detail {
 
-namespace {
-
-struct HookState {
-  std::jmp_buf env;
-};
-
 extern "C" void pathpace_glpk_error_hook(void* info) {
   // Called by glp_error before GLPK would abort: jump back to the guarded call instead.
-  std::longjmp(static_cast<HookState*>(info)->env, 1);
+  std::longjmp(static_cast<GlpkHookState*>(info)->env, 1);
 }
+
+namespace {
 
 // Runs GLPK calls under the error hook. `f` must only call GLPK and touch plain data: a longjmp out of
 // it skips destructors. On a GLPK error the environment is freed (GLPK requires it), which also frees
 // `lp`; the caller then drops its pointer.
 template <typename F>
 bool guarded(F&& f) {
-  HookState state;
+  GlpkHookState state;
   glp_error_hook(pathpace_glpk_error_hook, &state);
   if (setjmp(state.env)) {
     glp_error_hook(nullptr, nullptr);

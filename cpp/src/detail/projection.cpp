@@ -1,0 +1,153 @@
+#include "detail/projection.hpp"
+
+#include "detail/glpk_guard.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <glpk.h>
+
+namespace pathpace::detail {
+
+namespace {
+
+void set_bounds(glp_prob* lp, bool row, int i, double lo, double hi) {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  const int type = has_lo && has_hi ? (lo == hi ? GLP_FX : GLP_DB) : has_lo ? GLP_LO : has_hi ? GLP_UP : GLP_FR;
+  (row ? glp_set_row_bnds : glp_set_col_bnds)(lp, i, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
+}
+
+}  // namespace
+
+Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps) {
+  Projection out;
+  const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
+  glp_term_out(GLP_OFF);
+  GlpkHookState state;
+  glp_prob* lp = nullptr;
+  glp_error_hook(pathpace_glpk_error_hook, &state);
+  if (setjmp(state.env)) {  // GLPK misuse: the environment is gone, and with it `lp`
+    glp_error_hook(nullptr, nullptr);
+    glp_free_env();
+    out.outcome = Projection::Outcome::Failed;
+    return out;
+  }
+  lp = glp_create_prob();
+  glp_set_obj_dir(lp, GLP_MAX);
+  glp_add_rows(lp, rows);
+  glp_add_cols(lp, cols);
+  std::vector<int> ia(1), ja(1);
+  std::vector<double> ar(1);
+  for (int i = 0; i < rows; ++i) {
+    set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
+    for (int j = 0; j < cols; ++j)
+      if (in.A(i, j) != 0.0) {
+        ia.push_back(i + 1);
+        ja.push_back(j + 1);
+        ar.push_back(in.A(i, j));
+      }
+  }
+  for (int j = 0; j < cols; ++j) set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
+  glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
+  glp_scale_prob(lp, GLP_SF_AUTO);
+  glp_adv_basis(lp, 0);
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.presolve = GLP_OFF;
+
+  // eq. (19): max v·(x, u) over the polytope; false if infeasible (or the solver fails).
+  auto extremize = [&](double vx, double vu, Vertex& p) -> int {
+    glp_set_obj_coef(lp, 1, vx);
+    glp_set_obj_coef(lp, 2, vu);
+    ++out.lp_solves;
+    int ret = glp_simplex(lp, &parm);
+    if (ret != 0) {
+      glp_adv_basis(lp, 0);
+      ret = glp_simplex(lp, &parm);
+    }
+    if (ret != 0) return -1;
+    const int st = glp_get_status(lp);
+    if (st == GLP_NOFEAS) return 0;
+    if (st != GLP_OPT) return -1;
+    p = {glp_get_col_prim(lp, 1), glp_get_col_prim(lp, 2)};
+    return 1;
+  };
+
+  // Initial directions: the vertices of an equilateral triangle (sec. IV.C).
+  std::vector<Vertex> poly;
+  std::vector<double> normal_angle;  // direction that produced each vertex
+  for (int i = 0; i < 3; ++i) {
+    const double ang = 2.0 * M_PI * i / 3.0;
+    Vertex p;
+    const int r = extremize(std::cos(ang), std::sin(ang), p);
+    if (r <= 0) {
+      glp_delete_prob(lp);
+      glp_error_hook(nullptr, nullptr);
+      out.outcome = r == 0 ? Projection::Outcome::Empty : Projection::Outcome::Failed;
+      return out;
+    }
+    poly.push_back(p);
+  }
+  // Expansion: edge (p_i, p_{i+1}) counter-clockwise; its outward normal is (dy, -dx).
+  std::vector<char> final_edge(3, 0);
+  double size = 0.0;
+  for (const Vertex& p : poly) size = std::max(size, std::abs(p.x) + std::abs(p.y));
+  size = std::max(size, 1e-12);
+  size_t i = 0;
+  while (out.lp_solves < max_lps) {
+    // Find an edge still to expand.
+    size_t e = poly.size();
+    for (size_t t = 0; t < poly.size(); ++t)
+      if (!final_edge[(i + t) % poly.size()]) {
+        e = (i + t) % poly.size();
+        break;
+      }
+    if (e == poly.size()) break;
+    const Vertex& a = poly[e];
+    const Vertex& b = poly[(e + 1) % poly.size()];
+    double nx = b.y - a.y, nu = -(b.x - a.x);
+    const double len = std::hypot(nx, nu);
+    if (len <= 1e-14 * size) {  // coincident vertices: nothing to expand
+      final_edge[e] = 1;
+      continue;
+    }
+    nx /= len;
+    nu /= len;
+    Vertex q;
+    if (extremize(nx, nu, q) != 1) {
+      glp_delete_prob(lp);
+      glp_error_hook(nullptr, nullptr);
+      out.outcome = Projection::Outcome::Failed;
+      return out;
+    }
+    const double gain = nx * (q.x - a.x) + nu * (q.y - a.y);
+    if (gain <= relative_tolerance * size) {
+      final_edge[e] = 1;
+    } else {
+      poly.insert(poly.begin() + static_cast<long>(e) + 1, q);
+      final_edge.insert(final_edge.begin() + static_cast<long>(e) + 1, 0);
+      final_edge[e] = 0;
+      size = std::max(size, std::abs(q.x) + std::abs(q.y));
+    }
+    i = e;
+  }
+  glp_delete_prob(lp);
+  glp_error_hook(nullptr, nullptr);
+  // Half-planes from the edges (dropping zero-length ones).
+  for (size_t e = 0; e < poly.size(); ++e) {
+    const Vertex& a = poly[e];
+    const Vertex& b = poly[(e + 1) % poly.size()];
+    double nx = b.y - a.y, nu = -(b.x - a.x);
+    const double len = std::hypot(nx, nu);
+    if (len <= 1e-14 * size) continue;
+    nx /= len;
+    nu /= len;
+    out.halfplanes.push_back({nx, nu, nx * a.x + nu * a.y, static_cast<int>(out.halfplanes.size())});
+    out.vertices.push_back(a);
+  }
+  out.outcome = Projection::Outcome::Polygon;
+  return out;
+}
+
+}  // namespace pathpace::detail
