@@ -6,6 +6,7 @@
 #include "convert.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
@@ -210,6 +211,30 @@ void bind_problem(py::module_& m) {
         p.add_constraint(std::move(c));
       }, "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0,
          "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
+      .def("add_contacts", [](TimeScalingProblem& p, std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts,
+                              int cone_edges, double friction_margin, double min_normal_force, double torque_scale,
+                              double torque_margin, double drift_tolerance) {
+        ContactOptions o;
+        o.cone_edges = cone_edges;
+        o.friction_margin = friction_margin;
+        o.min_normal_force = min_normal_force;
+        o.torque_scale = torque_scale;
+        o.torque_margin = torque_margin;
+        auto c = std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o);
+        int which = -1;
+        const double drift = c->max_drift(p.samples(), &which);
+        if (drift > drift_tolerance) {
+          // The path must keep every contact in place (c(p(s)) = d); say which one it does not.
+          const std::string msg = "contact " + std::to_string(which) + " (link '" + c->contacts()[static_cast<size_t>(which)].link +
+                                  "') moves by " + std::to_string(drift) + " m along the path: the path does not keep it in place";
+          py::module_::import("warnings").attr("warn")(msg, py::module_::import("builtins").attr("UserWarning"), 2);
+        }
+        py::gil_scoped_release release;
+        p.add_constraint(std::move(c));
+      }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
+         "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6,
+         "Torque limits with frictional contact forces (eq. 18), projected to (sdot^2, sddot) per grid point. "
+         "Includes the torque limits: do not also add_torque_limits.")
       .def("add_constraint", [](TimeScalingProblem& p, std::shared_ptr<Constraint> c) {
         py::gil_scoped_release release;
         p.add_constraint(std::move(c));

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/robot_workspace.hpp"
@@ -103,6 +104,40 @@ void bind_robot(py::module_& m) {
            "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0)
       .def_property_readonly("tau_min", &TorqueLimits::tau_min)
       .def_property_readonly("tau_max", &TorqueLimits::tau_max);
+
+  py::class_<Contact>(m, "Contact", "A point fixed in a link touching the world; normal in world coordinates.")
+      .def(py::init([](const std::string& link, py::handle point, py::handle normal, double friction) {
+             Contact c;
+             c.link = link;
+             const Eigen::VectorXd p = to_vector(point, "point"), nrm = to_vector(normal, "normal");
+             if (p.size() != 3) throw InvalidInput("point has size " + std::to_string(p.size()) + ", expected 3");
+             if (nrm.size() != 3) throw InvalidInput("normal has size " + std::to_string(nrm.size()) + ", expected 3");
+             c.point = p;
+             c.normal = nrm;
+             c.friction = friction;
+             return c;
+           }),
+           "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), "normal"_a = py::make_tuple(0.0, 0.0, 1.0), "friction"_a = 0.5)
+      .def_readonly("link", &Contact::link)
+      .def_readonly("point", &Contact::point)
+      .def_readonly("normal", &Contact::normal)
+      .def_readonly("friction", &Contact::friction)
+      .def("__repr__", [](const Contact& c) { return "<Contact link='" + c.link + "' friction=" + std::to_string(c.friction) + ">"; });
+
+  py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
+      .def(py::init([](std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts, int cone_edges, double friction_margin,
+                       double min_normal_force, double torque_scale, double torque_margin) {
+             ContactOptions o;
+             o.cone_edges = cone_edges;
+             o.friction_margin = friction_margin;
+             o.min_normal_force = min_normal_force;
+             o.torque_scale = torque_scale;
+             o.torque_margin = torque_margin;
+             return std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o);
+           }),
+           "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
+           "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)
+      .def_property_readonly("contacts", &ContactConstraint::contacts);
 }
 
 }  // namespace pathpace::python

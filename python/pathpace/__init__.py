@@ -6,6 +6,8 @@ from . import _core
 from ._core import (
     AccelerationLimits,
     Constraint,
+    Contact,
+    ContactConstraint,
     CubicSplinePath,
     Error,
     FeasibleSet,
@@ -31,6 +33,8 @@ except PackageNotFoundError:  # running from a source tree
 __all__ = [
     "AccelerationLimits",
     "Constraint",
+    "Contact",
+    "ContactConstraint",
     "CubicSplinePath",
     "Error",
     "FeasibleSet",

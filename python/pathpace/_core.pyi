@@ -84,6 +84,24 @@ class TorqueLimits(Constraint):
     @property
     def tau_max(self) -> Array: ...
 
+class Contact:
+    def __init__(self, link: str, point: ArrayLike = (0.0, 0.0, 0.0), normal: ArrayLike = (0.0, 0.0, 1.0),
+                 friction: float = 0.5) -> None: ...
+    @property
+    def link(self) -> str: ...
+    @property
+    def point(self) -> Array: ...
+    @property
+    def normal(self) -> Array: ...
+    @property
+    def friction(self) -> float: ...
+
+class ContactConstraint(Constraint):
+    def __init__(self, robot: RobotModel, contacts: list[Contact], cone_edges: int = 8, friction_margin: float = 0.0,
+                 min_normal_force: float = 0.0, torque_scale: float = 1.0, torque_margin: float = 0.0) -> None: ...
+    @property
+    def contacts(self) -> list[Contact]: ...
+
 class RobotModel:
     @staticmethod
     def from_urdf(
@@ -193,6 +211,17 @@ class TimeScalingProblem:
         tau_max: ArrayLike | None = None,
         scale: float = 1.0,
         margin: float = 0.0,
+    ) -> None: ...
+    def add_contacts(
+        self,
+        robot: RobotModel,
+        contacts: list[Contact],
+        cone_edges: int = 8,
+        friction_margin: float = 0.0,
+        min_normal_force: float = 0.0,
+        torque_scale: float = 1.0,
+        torque_margin: float = 0.0,
+        drift_tolerance: float = 1e-6,
     ) -> None: ...
     def add_constraint(self, constraint: Constraint) -> None: ...
     def set_boundary_speeds(self, sdot_begin: float = 0.0, sdot_end: float = 0.0) -> None: ...

@@ -4,6 +4,8 @@
 
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/constraint.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/contact.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"

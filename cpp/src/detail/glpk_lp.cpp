@@ -110,6 +110,7 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
     parm.meth = GLP_PRIMAL;
     parm.presolve = GLP_OFF;  // presolve would discard the warm-start basis
     parm.tol_bnd = tol_bnd;
+    parm.it_lim = 100 * (glp_get_num_rows(lp) + glp_get_num_cols(lp)) + 1000;  // never a hang
     iters_before = glp_get_it_cnt(lp);
     ret = glp_simplex(lp, &parm);
     if (ret != 0 || glp_get_status(lp) != GLP_OPT) {

@@ -49,12 +49,14 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
   }
   for (int j = 0; j < cols; ++j) set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
-  glp_scale_prob(lp, GLP_SF_AUTO);
+  // No scaling: GLPK's automatic scaling was seen to make the primal simplex declare small, plainly
+  // feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
   glp_adv_basis(lp, 0);
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
   parm.presolve = GLP_OFF;
+  parm.it_lim = 100 * (rows + cols) + 1000;  // never a hang: a cycling simplex ends as a failure
 
   // eq. (19): max v·(x, u) over the polytope; false if infeasible (or the solver fails).
   auto extremize = [&](double vx, double vu, Vertex& p) -> int {
@@ -67,8 +69,14 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
       ret = glp_simplex(lp, &parm);
     }
     if (ret != 0) return -1;
-    const int st = glp_get_status(lp);
-    if (st == GLP_NOFEAS) return 0;
+    int st = glp_get_status(lp);
+    if (st == GLP_NOFEAS) {
+      // "Empty" is a claim about the robot (no contact forces balance it): confirm it in exact arithmetic.
+      glp_std_basis(lp);
+      if (glp_exact(lp, &parm) != 0) return -1;
+      st = glp_get_status(lp);
+      if (st == GLP_NOFEAS) return 0;
+    }
     if (st != GLP_OPT) return -1;
     p = {glp_get_col_prim(lp, 1), glp_get_col_prim(lp, 2)};
     return 1;

@@ -1,0 +1,99 @@
+"""Frictional contact: the rod of sec. IV.E against its analytic feasible sets (eq. 20-23)."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import linprog
+
+import pathpace as pp
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+G, MU, TAU = 9.81, 0.5, 2.0
+
+
+def rod_path(thetas):
+    """q = (x, z, angle) with the rod's lower end on the origin: x = -sin θ, z = cos θ, angle = -θ (a
+    positive rotation about y tilts the rod's axis toward +x). θ'(s) = 1, θ'' = 0."""
+    th = np.asarray(thetas, dtype=float)
+    q = np.column_stack([-np.sin(th), np.cos(th), -th])
+    dq = np.column_stack([-np.cos(th), -np.sin(th), -np.ones_like(th)])
+    ddq = np.column_stack([np.sin(th), -np.cos(th), np.zeros_like(th)])
+    return pp.SampledPath(th, q, dq, ddq)
+
+
+def analytic_rows(theta):
+    """eq. (21)-(23) with m = L = 1, H = 1/3, as rows a·X + b·U <= c in X = ṡ², U = s̈."""
+    x, y = -np.sin(theta), np.cos(theta)
+    fx = np.array([-x, -y, 0.0])  # fx = -m x X - m y U   (coefficients of X, U, and constant)
+    fy = np.array([-y, x, G])     # fy = -m y X + m x U + m g
+    tau = np.array([0.0, 4.0 / 3.0, x * G])  # τ = (H + m L²) U + m x g
+    rows = [
+        [tau[0], tau[1], TAU - tau[2]],
+        [-tau[0], -tau[1], TAU + tau[2]],
+        [-(fx[0] + MU * fy[0]), -(fx[1] + MU * fy[1]), fx[2] + MU * fy[2]],  # fx + μ fy >= 0
+        [fx[0] - MU * fy[0], fx[1] - MU * fy[1], -fx[2] + MU * fy[2]],        # -fx + μ fy >= 0
+        [-1.0, 0.0, 0.0],                                                   # X >= 0
+    ]
+    return np.array(rows)
+
+
+def support(rows, d):
+    r = linprog(-np.asarray(d), A_ub=rows[:, :2], b_ub=rows[:, 2], bounds=[(0, 1e4), (-1e4, 1e4)], method="highs")
+    assert r.status == 0
+    return -r.fun
+
+
+@pytest.fixture(scope="module")
+def rod_problem():
+    robot = pp.RobotModel.from_urdf(str(DATA / "rod.urdf"))
+    thetas = np.linspace(-0.4, 0.4, 17)
+    path = rod_path(thetas)
+    prob = pp.TimeScalingProblem(path, grid=thetas)
+    prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, -1], normal=[0, 0, 1], friction=MU)], cone_edges=4)
+    return prob, thetas
+
+
+def test_rod_projected_sets_match_the_analytic_constraints(rod_problem):
+    prob, thetas = rod_problem
+    for k in (0, 4, 8, 11, 16):
+        fs = prob.feasible_set(k)
+        assert not fs.empty
+        rows = analytic_rows(thetas[k])
+        for ang in np.linspace(0, 2 * np.pi, 64, endpoint=False):
+            d = np.array([np.cos(ang), np.sin(ang)])
+            ref = support(rows, d)
+            if ref > 1e3:  # a direction in which the set is unbounded (only X >= 0 side)
+                continue
+            mine = np.max(fs.vertices @ d)
+            assert mine == pytest.approx(ref, rel=1e-6, abs=1e-6), (k, ang)
+
+
+def test_rod_observations_of_the_paper(rod_problem):
+    prob, thetas = rod_problem
+    upright = prob.feasible_set(8)  # θ = 0
+    # No feasible speed beyond X = g (friction), and diagonal (friction) bounds above X = g - 2·1.5 ≈ 7.
+    assert np.max(upright.vertices[:, 0]) == pytest.approx(G, rel=1e-6)
+    on_diagonal = [v for v in upright.vertices if v[0] > 7.0]
+    assert on_diagonal  # the top of the set is bounded by the friction diagonals
+    # Away from the vertical the rod can only fall: s̈ = 0 is not attainable at rest at θ = 0.4.
+    tilted = prob.feasible_set(16)
+    assert not tilted.contains(0.0, 0.0)
+    assert upright.contains(0.0, 0.0)
+
+
+def test_contact_validation_and_drift_warning():
+    robot = pp.RobotModel.from_urdf(str(DATA / "rod.urdf"))
+    path = rod_path(np.linspace(-0.2, 0.2, 5))
+    prob = pp.TimeScalingProblem(path, grid=np.linspace(-0.2, 0.2, 5))
+    with pytest.raises(pp.InvalidInputError, match=r"link 'foot' is not a link of robot 'rod'"):
+        prob.add_contacts(robot, [pp.Contact("foot")])
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[0\].normal = \(0, 0, 0\) must be nonzero"):
+        prob.add_contacts(robot, [pp.Contact("rod", normal=[0, 0, 0])])
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[0\].friction = 0 must be > 0"):
+        prob.add_contacts(robot, [pp.Contact("rod", friction=0.0)])
+    with pytest.raises(pp.InvalidInputError, match=r"cone_edges = 2 must be >= 3"):
+        prob.add_contacts(robot, [pp.Contact("rod")], cone_edges=2)
+    # The rod's centre moves along the path: a contact there does not stay in place.
+    with pytest.warns(UserWarning, match=r"contact 0 \(link 'rod'\) moves by"):
+        prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])])
