@@ -15,11 +15,6 @@ namespace pathpace::python {
 
 namespace {
 
-bool scalar(py::handle s) {
-  return py::isinstance<py::float_>(s) || py::isinstance<py::int_>(s) ||
-         (py::isinstance<py::array>(s) && py::array(py::reinterpret_borrow<py::object>(s)).ndim() == 0);
-}
-
 // p, p' or p'' at scalar or array s: a scalar gives shape (n,), an array (m, n).
 py::object eval(const Path& p, py::handle s, int which) {
   const Eigen::VectorXd sv = to_vector(s, "s");
@@ -31,7 +26,7 @@ py::object eval(const Path& p, py::handle s, int which) {
     p.evaluate(sv, q, dq, ddq);
   }
   const Eigen::MatrixXd& out = which == 0 ? q : (which == 1 ? dq : ddq);
-  if (scalar(s)) return py::cast(Eigen::VectorXd(out.row(0).transpose()));
+  if (is_scalar(s)) return py::cast(Eigen::VectorXd(out.row(0).transpose()));
   return py::cast(out);
 }
 
@@ -79,7 +74,7 @@ void bind_paths(py::module_& m) {
         return "<PiecewisePolynomialPath pieces=" + std::to_string(p.coefficients().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
 
-  py::class_<CubicSplinePath, Path, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath")
+  py::class_<CubicSplinePath, PiecewisePolynomialPath, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath")
       .def(py::init([](py::handle waypoints, py::object knots, const std::string& boundary, py::handle start_derivative,
                        py::handle end_derivative, double s_begin, double s_end) {
              const Eigen::MatrixXd w = to_matrix(waypoints, "waypoints");
@@ -105,7 +100,7 @@ void bind_paths(py::module_& m) {
         return "<CubicSplinePath waypoints=" + std::to_string(p.waypoints().rows()) + " dof=" + std::to_string(p.dof()) + ">";
       });
 
-  py::class_<SampledPath, Path, std::shared_ptr<SampledPath>>(m, "SampledPath")
+  py::class_<SampledPath, PiecewisePolynomialPath, std::shared_ptr<SampledPath>>(m, "SampledPath")
       .def(py::init([](py::handle s, py::handle q, py::handle dq, py::handle ddq) {
              return std::make_shared<SampledPath>(to_vector(s, "s"), to_matrix(q, "q", true), to_matrix(dq, "dq", true),
                                                   to_matrix(ddq, "ddq", true));

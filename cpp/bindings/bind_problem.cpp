@@ -30,9 +30,6 @@ Method parse_method(const std::string& m) {
 // 1-D arrays of length N+1 stand for one row per grid point.
 Eigen::MatrixXd rows_arg(py::handle h, const char* name) { return to_matrix(h, name, true); }
 
-bool is_scalar(py::handle t) { return py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t) ||
-                                       (py::isinstance<py::array>(t) && py::array(py::reinterpret_borrow<py::object>(t)).ndim() == 0); }
-
 // q, qd or qdd at scalar or array t; a scalar gives a 1-D row.
 py::object at_times(const Trajectory& tr, py::handle t, int which) {
   const Eigen::VectorXd tv = to_vector(t, "t");
@@ -214,13 +211,9 @@ void bind_problem(py::module_& m) {
       .def("add_contacts", [](TimeScalingProblem& p, std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts,
                               int cone_edges, double friction_margin, double min_normal_force, double torque_scale,
                               double torque_margin, double drift_tolerance) {
-        ContactOptions o;
-        o.cone_edges = cone_edges;
-        o.friction_margin = friction_margin;
-        o.min_normal_force = min_normal_force;
-        o.torque_scale = torque_scale;
-        o.torque_margin = torque_margin;
-        auto c = std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o);
+        auto c = std::make_shared<ContactConstraint>(
+            std::move(robot), std::move(contacts),
+            contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
         int which = -1;
         const double drift = c->max_drift(p.samples(), &which);
         if (drift > drift_tolerance) {

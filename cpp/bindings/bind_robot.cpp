@@ -127,13 +127,9 @@ void bind_robot(py::module_& m) {
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
       .def(py::init([](std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts, int cone_edges, double friction_margin,
                        double min_normal_force, double torque_scale, double torque_margin) {
-             ContactOptions o;
-             o.cone_edges = cone_edges;
-             o.friction_margin = friction_margin;
-             o.min_normal_force = min_normal_force;
-             o.torque_scale = torque_scale;
-             o.torque_margin = torque_margin;
-             return std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o);
+             return std::make_shared<ContactConstraint>(
+                 std::move(robot), std::move(contacts),
+                 contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
            "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/errors.hpp"
 
 namespace pathpace::python {
@@ -46,6 +47,23 @@ inline Eigen::MatrixXd to_matrix(py::handle obj, const std::string& name, bool o
   if (a.ndim() != 2) throw InvalidInput(name + " has shape " + shape_str(a) + ", expected a 2-D array");
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   return Eigen::Map<const RowMajor>(a.data(), a.shape(0), a.shape(1));
+}
+
+inline ContactOptions contact_options(int cone_edges, double friction_margin, double min_normal_force, double torque_scale,
+                                     double torque_margin) {
+  ContactOptions o;
+  o.cone_edges = cone_edges;
+  o.friction_margin = friction_margin;
+  o.min_normal_force = min_normal_force;
+  o.torque_scale = torque_scale;
+  o.torque_margin = torque_margin;
+  return o;
+}
+
+/// A Python scalar or 0-d array (functions of s or t then return one row instead of a matrix).
+inline bool is_scalar(py::handle h) {
+  return py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h) ||
+         (py::isinstance<py::array>(h) && py::array(py::reinterpret_borrow<py::object>(h)).ndim() == 0);
 }
 
 }  // namespace pathpace::python

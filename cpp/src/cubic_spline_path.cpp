@@ -41,13 +41,14 @@ Eigen::VectorXd place_knots(const Eigen::MatrixXd& w, KnotSpacing spacing, doubl
 
 CubicSplinePath::CubicSplinePath(const Eigen::MatrixXd& waypoints, KnotSpacing spacing, SplineBoundary boundary,
                                  double s_begin, double s_end, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1)
-    : waypoints_(waypoints),
-      pieces_((check_waypoints(waypoints),
-               build(waypoints, place_knots(waypoints, spacing, s_begin, s_end), boundary, d0, d1))) {}
+    : PiecewisePolynomialPath((check_waypoints(waypoints),
+                               build(waypoints, place_knots(waypoints, spacing, s_begin, s_end), boundary, d0, d1))),
+      waypoints_(waypoints) {}
 
 CubicSplinePath::CubicSplinePath(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
                                  SplineBoundary boundary, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1)
-    : waypoints_(waypoints), pieces_((check_waypoints(waypoints), build(waypoints, knots, boundary, d0, d1))) {}
+    : PiecewisePolynomialPath((check_waypoints(waypoints), build(waypoints, knots, boundary, d0, d1))),
+      waypoints_(waypoints) {}
 
 PiecewisePolynomialPath CubicSplinePath::build(const Eigen::MatrixXd& y, const Eigen::VectorXd& t,
                                                SplineBoundary boundary, const Eigen::VectorXd& d0,

@@ -6,7 +6,7 @@ namespace pathpace {
 
 SampledPath::SampledPath(const Eigen::VectorXd& s, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
                          const Eigen::MatrixXd& ddq)
-    : pieces_(build(s, q, dq, ddq)) {}
+    : PiecewisePolynomialPath(build(s, q, dq, ddq)) {}
 
 PiecewisePolynomialPath SampledPath::build(const Eigen::VectorXd& s, const Eigen::MatrixXd& q,
                                            const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq) {

@@ -28,7 +28,7 @@ class PiecewisePolynomialPath(Path):
     @property
     def breakpoints(self) -> Array: ...
 
-class CubicSplinePath(Path):
+class CubicSplinePath(PiecewisePolynomialPath):
     def __init__(
         self,
         waypoints: ArrayLike,
@@ -44,7 +44,7 @@ class CubicSplinePath(Path):
     @property
     def waypoints(self) -> Array: ...
 
-class SampledPath(Path):
+class SampledPath(PiecewisePolynomialPath):
     def __init__(self, s: ArrayLike, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike) -> None: ...
     @property
     def samples(self) -> Array: ...

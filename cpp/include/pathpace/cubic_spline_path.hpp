@@ -22,7 +22,8 @@ enum class SplineBoundary {
   Clamped,   ///< p' given at both ends
 };
 
-class CubicSplinePath : public Path {
+/// A cubic spline is a piecewise polynomial path whose pieces are computed from the waypoints.
+class CubicSplinePath : public PiecewisePolynomialPath {
  public:
   /// waypoints (K, n), K >= 2, knots placed by `spacing` on [s_begin, s_end].
   CubicSplinePath(const Eigen::MatrixXd& waypoints, KnotSpacing spacing = KnotSpacing::Uniform,
@@ -35,26 +36,13 @@ class CubicSplinePath : public Path {
                   const Eigen::VectorXd& start_derivative = Eigen::VectorXd(),
                   const Eigen::VectorXd& end_derivative = Eigen::VectorXd());
 
-  int dof() const override { return pieces_.dof(); }
-  double s_begin() const override { return pieces_.s_begin(); }
-  double s_end() const override { return pieces_.s_end(); }
-  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
-                Eigen::Ref<Eigen::VectorXd> ddq) const override {
-    pieces_.evaluate(s, q, dq, ddq);
-  }
-  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
-                Eigen::MatrixXd& ddq) const override {
-    pieces_.evaluate(s, q, dq, ddq);
-  }
-
-  const Eigen::VectorXd& knots() const { return pieces_.breakpoints(); }
+  const Eigen::VectorXd& knots() const { return breakpoints(); }
   const Eigen::MatrixXd& waypoints() const { return waypoints_; }
 
  private:
   static PiecewisePolynomialPath build(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
                                        SplineBoundary boundary, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1);
   Eigen::MatrixXd waypoints_;
-  PiecewisePolynomialPath pieces_;
 };
 
 }  // namespace pathpace
