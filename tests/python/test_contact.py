@@ -97,3 +97,4 @@ def test_contact_validation_and_drift_warning():
     # The rod's centre moves along the path: a contact there does not stay in place.
     with pytest.warns(UserWarning, match=r"contact 0 \(link 'rod'\) moves by"):
         prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])])
+

@@ -63,15 +63,17 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
     glp_set_obj_coef(lp, 1, vx);
     glp_set_obj_coef(lp, 2, vu);
     ++out.lp_solves;
+    // Warm start from the previous direction's basis; if the floating-point simplex stalls or fails,
+    // restart it from the slack basis, and as a last resort solve in exact rational arithmetic (these
+    // LPs are small: joints x (2 + contacts x cone edges)).
     int ret = glp_simplex(lp, &parm);
-    if (ret != 0) {
-      glp_adv_basis(lp, 0);
+    if (ret != 0 || (glp_get_status(lp) != GLP_OPT && glp_get_status(lp) != GLP_NOFEAS)) {
+      glp_std_basis(lp);
       ret = glp_simplex(lp, &parm);
     }
-    if (ret != 0) return -1;
     int st = glp_get_status(lp);
-    if (st == GLP_NOFEAS) {
-      // "Empty" is a claim about the robot (no contact forces balance it): confirm it in exact arithmetic.
+    if (ret != 0 || st == GLP_NOFEAS || (st != GLP_OPT)) {
+      // "Empty" is a claim about the robot (no contact forces balance it): confirm it exactly too.
       glp_std_basis(lp);
       if (glp_exact(lp, &parm) != 0) return -1;
       st = glp_get_status(lp);
@@ -129,8 +131,10 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
       out.outcome = Projection::Outcome::Failed;
       return out;
     }
+    // The gain is measured against the support value itself, not the polygon's size: vertices on the
+    // stand-in bounds (1e6) would otherwise make every real edge look final.
     const double gain = nx * (q.x - a.x) + nu * (q.y - a.y);
-    if (gain <= relative_tolerance * size) {
+    if (gain <= relative_tolerance * std::max(1.0, std::abs(nx * a.x + nu * a.y))) {
       final_edge[e] = 1;
     } else {
       poly.insert(poly.begin() + static_cast<long>(e) + 1, q);
