@@ -98,3 +98,77 @@ def test_contact_validation_and_drift_warning():
     with pytest.warns(UserWarning, match=r"contact 0 \(link 'rod'\) moves by"):
         prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])])
 
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_projection_matches_the_full_lp_solved_by_highs(seed):
+    """Random floating-base trees with random contacts: the projected polygon's support value in 64
+    directions equals the optimum of the full LP over (ṡ², s̈, cone weights) built from pinocchio's
+    dynamics and solved by scipy's HiGHS."""
+    pin = pytest.importorskip("pinocchio")
+    from test_robot_model import composite_floating_joint, random_tree_urdf
+
+    xml = random_tree_urdf(8, 100 + seed)
+    robot = pp.RobotModel.from_urdf_string(xml, floating_base=True)
+    model = pin.buildModelFromXML(xml, composite_floating_joint())
+    data = model.createData()
+    rng = np.random.default_rng(seed)
+    n = robot.nq
+    links = [f"l{i}" for i in rng.choice(np.arange(1, 9), 4, replace=False)]
+    contacts = []
+    for link in links:
+        normal = np.array([0.0, 0.0, 1.0]) + 0.3 * rng.normal(size=3)
+        contacts.append(pp.Contact(link, point=rng.uniform(-0.2, 0.2, 3), normal=normal, friction=rng.uniform(0.4, 1.0)))
+    q, dq, ddq = rng.uniform(-0.5, 0.5, (3, n))
+    dq *= 0.5
+    path = pp.SampledPath([0.0, 1.0], np.vstack([q, q]), np.vstack([dq, dq]), np.vstack([ddq, ddq]))
+    prob = pp.TimeScalingProblem(path, grid=1)
+    k_edges = 6
+    prob.add_contacts(robot, contacts, cone_edges=k_edges, min_normal_force=1.0, drift_tolerance=np.inf)
+    fs = prob.feasible_set(0)
+
+    # The full LP from pinocchio: τ = a x + b u + c - Σ J_iᵀ G_i λ_i within the limits (base: = 0).
+    c = pin.computeGeneralizedGravity(model, data, q)
+    a = pin.rnea(model, data, q, dq, ddq) - c
+    b = pin.rnea(model, data, q, np.zeros(n), dq) - c
+    pin.forwardKinematics(model, data, q)
+    pin.updateFramePlacements(model, data)
+    cols = [a[:, None], b[:, None]]
+    for con in contacts:
+        fid = model.getFrameId(con.link)
+        J6 = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL)
+        R = data.oMf[fid].rotation
+        J = R @ (J6[:3] - np.cross(con.point, J6[3:].T).T)  # world-frame Jacobian of the contact point
+        nrm = np.asarray(con.normal) / np.linalg.norm(con.normal)
+        e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
+        t1 = np.cross(nrm, e)
+        t1 /= np.linalg.norm(t1)
+        t2 = np.cross(nrm, t1)
+        phis = 2 * np.pi * np.arange(k_edges) / k_edges
+        G = nrm[:, None] + con.friction * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
+        cols.append(-J.T @ G)
+    A = np.hstack(cols)
+    eff = robot.effort_limits
+    m = len(contacts)
+    A_eq, b_eq = A[:6], -c[:6]
+    A_ub = np.vstack([A[6:], -A[6:], np.hstack([np.zeros((m, 2)), -np.kron(np.eye(m), np.ones(k_edges))])])
+    b_ub = np.concatenate([eff[6:] - c[6:], eff[6:] + c[6:], -np.ones(m)])
+    bounds = [(0, 1e4), (-1e4, 1e4)] + [(0, None)] * (m * k_edges)
+    probe = linprog(np.zeros(A.shape[1]), A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq, bounds=bounds, method="highs")
+    if probe.status == 2:  # infeasible: no contact forces hold this configuration
+        assert fs.empty
+        return
+    assert not fs.empty
+    checked = 0
+    for ang in np.linspace(0, 2 * np.pi, 64, endpoint=False):
+        d = np.array([np.cos(ang), np.sin(ang)])
+        obj = np.zeros(A.shape[1])
+        obj[:2] = -d
+        r = linprog(obj, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq, bounds=bounds, method="highs")
+        assert r.status == 0
+        if np.max(np.abs(r.x[:2])) > 1e3:  # on the stand-in bounds: a direction without a limit
+            continue
+        ref = -r.fun
+        assert np.max(fs.vertices @ d) == pytest.approx(ref, rel=1e-6, abs=1e-6 * max(1.0, abs(ref)))
+        checked += 1
+    assert checked >= 16

@@ -119,8 +119,8 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     const Eigen::VectorXd q = samples.q.row(p).transpose();
     robot_->path_torque_coefficients(ws, q, samples.dq.row(p).transpose(), samples.ddq.row(p).transpose(), a, b, c);
     // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
-    lp.A.col(0) = a;
-    lp.A.col(1) = b;
+    lp.A.col(0).head(n) = a;  // the min-normal-force rows below n keep zeros in x and u
+    lp.A.col(1).head(n) = b;
     for (int i = 0; i < m; ++i) {
       const Eigen::MatrixXd J = robot_->point_jacobian(q, contacts_[static_cast<size_t>(i)].link,
                                                        contacts_[static_cast<size_t>(i)].point);
