@@ -268,16 +268,14 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     pr.reset(chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1]);
     clip_rows(pr, rows, true);
     if (pr.empty()) return false;
-    if (full.k_lo[k + 1] == relaxed.k_lo[k + 1] && full.k_hi[k + 1] == relaxed.k_hi[k + 1]) {
-      // Same box: the full polygon is the relaxed one cut by the coupling rows.
-      pf.assign(pr);
-      for (const IntervalRow& r : rows)
-        if (r.coupled && pf.clip({r.alpha, r.beta, r.c, r.id}) && pf.empty()) return false;
-    } else {
-      pf.reset(chain.x_lo[k], chain.x_hi[k], full.k_lo[k + 1], full.k_hi[k + 1]);
-      clip_rows(pf, rows, false);
-      if (pf.empty()) return false;
-    }
+    // K_full ⊆ K_relaxed, so the full polygon is the relaxed one cut to θ_{k+1} ∈ K_full,k+1 and by
+    // the coupling rows: one clipping pass serves both analyses.
+    pf.assign(pr);
+    if (full.k_hi[k + 1] < relaxed.k_hi[k + 1]) pf.clip({0.0, 1.0, full.k_hi[k + 1], kBoxYHigh});
+    if (full.k_lo[k + 1] > relaxed.k_lo[k + 1] && !pf.empty()) pf.clip({0.0, -1.0, -full.k_lo[k + 1], kBoxYLow});
+    for (const IntervalRow& r : rows)
+      if (r.coupled && !pf.empty()) pf.clip({r.alpha, r.beta, r.c, r.id});
+    if (pf.empty()) return false;
     const Polygon2d* polys[2] = {&pr, &pf};
     std::vector<Vertex>* revs[2] = {&rev_r, &rev_f};
     std::vector<size_t>* sizes[2] = {&size_r, &size_f};
