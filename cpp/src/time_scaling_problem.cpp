@@ -78,8 +78,9 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   if (rows.a.rows() != samples_.size() || rows.b.rows() != samples_.size() || rows.c.rows() != samples_.size() ||
       rows.b.cols() != r || rows.c.cols() != r || static_cast<Eigen::Index>(rows.labels.size()) != r)
     detail::fail("constraint '" + constraint->name() + "' returned rows of inconsistent shapes");
-  detail::require_finite(constraint->name() + " a", rows.a);
-  detail::require_finite(constraint->name() + " b", rows.b);
+  // The vectorised check first; the element-wise one (which names the entry) only if it fails.
+  if (!rows.a.allFinite()) detail::require_finite(constraint->name() + " a", rows.a);
+  if (!rows.b.allFinite()) detail::require_finite(constraint->name() + " b", rows.b);
   for (Eigen::Index j = 0; j < r; ++j)
     for (Eigen::Index k = 0; k < rows.c.rows(); ++k)
       if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())

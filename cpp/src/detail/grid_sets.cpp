@@ -56,7 +56,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
     // The rows that supported the previous grid point's polygon most likely support this one too.
     // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
     // the cheap inside test instead of rebuilding it.
-    std::stable_partition(lines.begin(), lines.end(), [hint](const Line& l) {
+    std::partition(lines.begin(), lines.end(), [hint](const Line& l) {
       for (const Line& h : *hint)
         if (h.id == l.id) return true;
       return false;
@@ -71,6 +71,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       return ps;
     }
   }
+  ps.rows.reserve(polygon.edges().size());
   for (const Line& e : polygon.edges())
     if (e.id >= 0) ps.rows.push_back(e);
   return ps;
