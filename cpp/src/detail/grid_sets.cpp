@@ -19,7 +19,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
 }
 
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
-                         std::vector<Line>& lines, const std::vector<Line>* hint) {
+                         std::vector<Line>& lines, View<Line> hint, std::vector<Line>* out_rows) {
   PointSet ps;
   int offset = 0;
   lines.clear();
@@ -52,12 +52,12 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
     return ps;
   }
   if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
-  if (hint && !hint->empty()) {
+  if (!hint.empty()) {
     // The rows that supported the previous grid point's polygon most likely support this one too.
     // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
     // the cheap inside test instead of rebuilding it.
     std::partition(lines.begin(), lines.end(), [hint](const Line& l) {
-      for (const Line& h : *hint)
+      for (const Line& h : hint)
         if (h.id == l.id) return true;
       return false;
     });
@@ -71,9 +71,9 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       return ps;
     }
   }
-  ps.rows.reserve(polygon.edges().size());
+  std::vector<Line>& out = out_rows ? *out_rows : ps.rows;
   for (const Line& e : polygon.edges())
-    if (e.id >= 0) ps.rows.push_back(e);
+    if (e.id >= 0) out.push_back(e);
   return ps;
 }
 
@@ -82,15 +82,17 @@ GridSets build_grid_sets(const PathSamples& samples, const std::vector<Constrain
   for (const ConstraintRows& cr : constraints) gs.labels.insert(gs.labels.end(), cr.labels.begin(), cr.labels.end());
   const Eigen::Index n_points = samples.size();
   gs.points.resize(static_cast<size_t>(n_points));
+  gs.row_offset.assign(static_cast<size_t>(n_points) + 1, 0);
+  gs.row_data.reserve(static_cast<size_t>(n_points) * 6);
   Polygon2d polygon;
   std::vector<Line> lines;
-  size_t total = 0;
   for (Eigen::Index k = 0; k < n_points; ++k) {
+    // The hint views row_data; build_point_set reads it only before appending to row_data.
     gs.points[static_cast<size_t>(k)] =
-        build_point_set(constraints, k, polygon, lines, k > 0 ? &gs.points[static_cast<size_t>(k - 1)].rows : nullptr);
-    total += gs.points[static_cast<size_t>(k)].rows.size();
+        build_point_set(constraints, k, polygon, lines, k > 0 ? gs.rows(k - 1) : View<Line>{}, &gs.row_data);
+    gs.row_offset[static_cast<size_t>(k) + 1] = gs.row_data.size();
   }
-  gs.average_rows = n_points ? static_cast<double>(total) / static_cast<double>(n_points) : 0.0;
+  gs.average_rows = n_points ? static_cast<double>(gs.row_data.size()) / static_cast<double>(n_points) : 0.0;
   return gs;
 }
 

@@ -24,7 +24,13 @@ struct PointSet {
 };
 
 struct GridSets {
-  std::vector<PointSet> points;
+  std::vector<PointSet> points;  // x bounds, emptiness; their `rows` stay empty: see rows(k)
+  std::vector<Line> row_data;    // supporting rows of all points, point k at [row_offset[k], row_offset[k+1])
+  std::vector<size_t> row_offset;
+  View<Line> rows(Eigen::Index k) const {
+    const size_t o = row_offset[static_cast<size_t>(k)];
+    return {row_data.data() + o, row_offset[static_cast<size_t>(k) + 1] - o};
+  }
   std::vector<std::string> labels;  // row id -> label ("velocity joint 3", ...)
   double average_rows = 0.0;
   /// Label for an id, including the implicit ones (negative ids).
@@ -32,13 +38,15 @@ struct GridSets {
 };
 
 /// Builds every grid point's set. Row ids number the rows of all constraints consecutively.
+/// The supporting rows go to the flat storage (GridSets::rows), not to PointSet::rows.
 GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints);
 
 /// One grid point's set; `polygon` is left holding its polygon (cut at kInfinityCap).
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon);
 /// Same, with a caller-owned scratch vector (no allocation per grid point in a loop) and optionally the
-/// neighbouring point's supporting rows, which are clipped first (same result, less work).
+/// neighbouring point's supporting rows, which are clipped first (same result, less work). With
+/// out_rows the supporting rows are appended there instead of to the returned PointSet::rows.
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
-                         std::vector<Line>& scratch, const std::vector<Line>* hint = nullptr);
+                         std::vector<Line>& scratch, View<Line> hint = {}, std::vector<Line>* out_rows = nullptr);
 
 }  // namespace pathpace::detail

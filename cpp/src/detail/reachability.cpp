@@ -36,7 +36,7 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
   ch.row_offset[0] = 0;
   size_t total = 0;
   for (Eigen::Index k = 0; k < n; ++k)
-    total += sets.points[static_cast<size_t>(k)].rows.size() + sets.points[static_cast<size_t>(k + 1)].rows.size();
+    total += sets.rows(k).size() + sets.rows(k + 1).size();
   ch.row_data.reserve(total);
   auto push = [&ch](double alpha, double beta, double c, int id) {
     IntervalRow r{alpha, beta, c, id, false};
@@ -47,9 +47,9 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
     // eq. (26), forward row at s_k: a θ_k + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
-    for (const Line& l : sets.points[static_cast<size_t>(k)].rows) push(cancel(l.a, -l.b * h), l.b * h, l.c, l.id);
+    for (const Line& l : sets.rows(k)) push(cancel(l.a, -l.b * h), l.b * h, l.c, l.id);
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
-    for (const Line& l : sets.points[static_cast<size_t>(k + 1)].rows) push(-l.b * h, cancel(l.a, l.b * h), l.c, l.id);
+    for (const Line& l : sets.rows(k + 1)) push(-l.b * h, cancel(l.a, l.b * h), l.c, l.id);
     ch.row_offset[static_cast<size_t>(k) + 1] = ch.row_data.size();
   }
   return ch;
