@@ -28,25 +28,23 @@ ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
     detail::fail("acceleration limits have " + std::to_string(n) + " entries, the path has " +
                  std::to_string(samples.dof()) + " coordinates");
   ConstraintRows rows;
-  rows.resize(samples.size(), 2 * n);
+  rows.allocate(samples.size(), 2 * n);  // every entry is written below
   for (Eigen::Index j = 0; j < n; ++j) {
     rows.labels[static_cast<size_t>(2 * j)] = "acceleration joint " + std::to_string(j) + " upper";
     rows.labels[static_cast<size_t>(2 * j + 1)] = "acceleration joint " + std::to_string(j) + " lower";
   }
+  const double inf = std::numeric_limits<double>::infinity();
   for (Eigen::Index k = 0; k < samples.size(); ++k) {
     for (Eigen::Index j = 0; j < n; ++j) {
       const double pp = samples.ddq(k, j), p = samples.dq(k, j);
-      // eq. (14): q̈_j = p''_j ṡ² + p'_j s̈
-      if (std::isfinite(amax_[j])) {
-        rows.a(k, 2 * j) = pp;
-        rows.b(k, 2 * j) = p;
-        rows.c(k, 2 * j) = amax_[j];
-      }
-      if (std::isfinite(amin_[j])) {
-        rows.a(k, 2 * j + 1) = -pp;
-        rows.b(k, 2 * j + 1) = -p;
-        rows.c(k, 2 * j + 1) = -amin_[j];
-      }
+      // eq. (14): q̈_j = p''_j ṡ² + p'_j s̈; an infinite limit leaves its row inactive (c = +inf).
+      const bool up = std::isfinite(amax_[j]), lo = std::isfinite(amin_[j]);
+      rows.a(k, 2 * j) = up ? pp : 0.0;
+      rows.b(k, 2 * j) = up ? p : 0.0;
+      rows.c(k, 2 * j) = up ? amax_[j] : inf;
+      rows.a(k, 2 * j + 1) = lo ? -pp : 0.0;
+      rows.b(k, 2 * j + 1) = lo ? -p : 0.0;
+      rows.c(k, 2 * j + 1) = lo ? -amin_[j] : inf;
     }
   }
   return rows;

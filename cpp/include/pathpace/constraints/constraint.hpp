@@ -32,6 +32,13 @@ struct ConstraintRows {
     c.setConstant(points, rows, std::numeric_limits<double>::infinity());
     labels.assign(static_cast<size_t>(rows), std::string());
   }
+  /// Sizes the arrays without initialising a, b, c (for constraints that write every entry).
+  void allocate(Eigen::Index points, Eigen::Index rows) {
+    a.resize(points, rows);
+    b.resize(points, rows);
+    c.resize(points, rows);
+    labels.assign(static_cast<size_t>(rows), std::string());
+  }
   Eigen::Index rows() const { return a.cols(); }
 };
 
