@@ -155,7 +155,7 @@ void store_in_order(Reachability& out, const std::vector<Vertex>& rev, const std
 
 }  // namespace
 
-Reachability reachability(const Chain& chain, double theta_begin, double theta_end, bool relax) {
+Reachability reachability(const Chain& chain, double theta_begin, double theta_end) {
   Reachability out;
   const Eigen::Index n = chain.ds.size();
   out.k_lo.resize(n + 1);
@@ -181,7 +181,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
   rev.reserve(static_cast<size_t>(n) * 6);
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     poly.reset(chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1]);
-    clip_rows(poly, chain.rows(k), relax);
+    clip_rows(poly, chain.rows(k), false);
     if (poly.empty()) {
       fail_at(k, "no speed at this grid point can reach the end of the path");
       push_unique(out.binding, poly.emptied_by().id);
@@ -208,7 +208,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     double r_lo = theta_begin, r_hi = theta_begin;
     for (Eigen::Index k = 0; k < n; ++k) {
       poly.reset(r_lo, r_hi, chain.x_lo[k + 1], chain.x_hi[k + 1]);
-      clip_rows(poly, chain.rows(k), relax);
+      clip_rows(poly, chain.rows(k), false);
       if (poly.empty()) {
         fail_at(k + 1, "no admissible speed here from the start speed");
         push_unique(out.binding, poly.emptied_by().id);
@@ -297,23 +297,6 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     o.theta[0] = theta_begin;
   }
   return true;
-}
-
-double max_violation(const Chain& chain, const Eigen::VectorXd& theta) {
-  double worst = 0.0;
-  const Eigen::Index n = chain.ds.size();
-  for (Eigen::Index k = 0; k <= n; ++k) {
-    const double scale = std::max(1.0, std::abs(chain.x_hi[k]) < kInfinityCap ? std::abs(chain.x_hi[k]) : 1.0);
-    worst = std::max(worst, (chain.x_lo[k] - theta[k]) / scale);
-    if (chain.x_hi[k] < kInfinityCap) worst = std::max(worst, (theta[k] - chain.x_hi[k]) / scale);
-  }
-  for (Eigen::Index k = 0; k < n; ++k)
-    for (const IntervalRow& r : chain.rows(k)) {
-      const double lhs = r.alpha * theta[k] + r.beta * theta[k + 1];
-      const double scale = std::max({1.0, std::abs(r.c), std::abs(r.alpha * theta[k]), std::abs(r.beta * theta[k + 1])});
-      worst = std::max(worst, (lhs - r.c) / scale);
-    }
-  return worst;
 }
 
 }  // namespace pathpace::detail

@@ -44,7 +44,7 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets);
 bool couples_positively(const IntervalRow& r);
 
 
-/// Largest violation of the positively coupling rows by θ, relative as in max_violation.
+/// Largest violation of the positively coupling rows by θ, relative to max(1, |c|, |α θ_k|, |β θ_{k+1}|).
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta);
 
 struct Reachability {
@@ -60,13 +60,13 @@ struct Reachability {
   std::string reason;
 };
 
-/// Controllable sets and the greedy forward profile for θ_0 = theta_begin, θ_N = theta_end.
-/// With relax = true the positively coupling rows are left out: the relaxation's feasible set is
-/// max-closed, so its greedy profile θ' is its greatest element and T(θ') <= T*; if θ' also satisfies the
-/// dropped rows it is the optimum of the full problem (it is feasible and no feasible point is faster).
-Reachability reachability(const Chain& chain, double theta_begin, double theta_end, bool relax = false);
+/// Controllable sets and the greedy forward profile for θ_0 = theta_begin, θ_N = theta_end; on failure
+/// the first grid index that fails and the rows that bind there.
+Reachability reachability(const Chain& chain, double theta_begin, double theta_end);
 
-/// The relaxed (relax = true) and the full analysis together. Their backward passes usually meet the
+/// The relaxed analysis (without the positively coupling rows: its feasible set is max-closed, so its
+/// greedy profile θ' is its greatest element and T(θ') <= T*; if θ' also satisfies the dropped rows it is
+/// the optimum of the full problem) and the full analysis together. Their backward passes usually meet the
 /// same box (K_{k+1} alike) and then share the polygon of the rows both have, the full one adding only
 /// the coupling rows, which rarely cut. Returns false, with nothing reliable in the outputs, if either
 /// analysis does not end feasible: call reachability() for the report then.
@@ -80,7 +80,6 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
 /// no row with a small coefficient can amplify an error along the chain.
 Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps);
 
-/// Largest violation of the chain's rows and bounds by θ, relative to max(1, |c|) per row.
-double max_violation(const Chain& chain, const Eigen::VectorXd& theta);
+
 
 }  // namespace pathpace::detail
