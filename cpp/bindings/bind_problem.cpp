@@ -123,6 +123,17 @@ void bind_problem(py::module_& m) {
         if (is_scalar(t)) return py::make_tuple(s[0], sd[0], sdd[0]);
         return py::make_tuple(s, sd, sdd);
       }, "t"_a, "(s, sdot, sddot) at each t")
+      .def("contact_forces", [](const Trajectory& tr, py::handle t) {
+        const Eigen::VectorXd tv = to_vector(t, "t");
+        std::vector<ContactForces> out;
+        {
+          py::gil_scoped_release release;
+          out = tr.contact_forces(tv);
+        }
+        return to_force_samples(out, static_cast<int>(tr.contacts()->contacts().size()), tr.contacts()->robot()->nq(),
+                                is_scalar(t));
+      }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces).")
+      .def_property_readonly("contacts", [](const Trajectory& tr) { return std::const_pointer_cast<ContactConstraint>(tr.contacts()); })
       .def("q", [](const Trajectory& tr, py::handle t) { return at_times(tr, t, 0); }, "t"_a,
            "q(t): shape (n,) for a scalar t, (len(t), n) for an array")
       .def("qd", [](const Trajectory& tr, py::handle t) { return at_times(tr, t, 1); }, "t"_a)

@@ -6,6 +6,8 @@
 #include "convert.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
+#include "pathpace/path.hpp"
+#include "pathpace/path_samples.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/robot_workspace.hpp"
 
@@ -47,6 +49,28 @@ void bind_robot(py::module_& m) {
       .def_static("from_urdf_string", [](const std::string& xml, bool floating_base, py::object locked_joints, py::handle gravity) {
         return std::make_shared<RobotModel>(RobotModel::from_urdf_string(xml, options(floating_base, locked_joints, gravity)));
       }, "xml"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def_static("combine", [](const std::vector<std::shared_ptr<RobotModel>>& parts, const std::string& name) {
+        std::vector<RobotModel> v;
+        for (size_t i = 0; i < parts.size(); ++i) {
+          if (!parts[i]) throw InvalidInput("parts[" + std::to_string(i) + "] must be a RobotModel, not None");
+          v.push_back(*parts[i]);
+        }
+        return std::make_shared<RobotModel>(RobotModel::combine(v, name));
+      }, "parts"_a, "name"_a = "",
+         "One model of several independent trees (robots and free objects, sec. III.b); q concatenates the parts'. "
+         "Link names must be unique; a joint name shared by parts becomes '<part>/<joint>'.")
+      .def_static("free_object", [](const std::string& name, double mass, py::handle com, py::handle inertia, py::handle gravity) {
+        const Eigen::VectorXd c = to_vector(com, "com"), g = to_vector(gravity, "gravity");
+        if (c.size() != 3) throw InvalidInput("com has size " + std::to_string(c.size()) + ", expected 3");
+        if (g.size() != 3) throw InvalidInput("gravity has size " + std::to_string(g.size()) + ", expected 3");
+        const Eigen::MatrixXd I = to_matrix(inertia, "inertia");
+        if (I.rows() != 3 || I.cols() != 3)
+          throw InvalidInput("inertia has shape (" + std::to_string(I.rows()) + ", " + std::to_string(I.cols()) + "), expected (3, 3)");
+        return std::make_shared<RobotModel>(RobotModel::free_object(name, mass, c, I, g));
+      }, "name"_a, "mass"_a, "com"_a = py::make_tuple(0.0, 0.0, 0.0),
+         "inertia"_a = Eigen::MatrixXd(Eigen::MatrixXd::Zero(3, 3)), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81),
+         "A free rigid body: one link `name` with six floating coordinates (x, y, z, rz, ry, rx) and zero effort; "
+         "inertia about the centre of mass `com`, in the link frame.")
       .def_property_readonly("nq", &RobotModel::nq)
       .def_property_readonly("name", &RobotModel::name)
       .def_property_readonly("joint_names", &RobotModel::joint_names)
@@ -105,10 +129,13 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("tau_min", &TorqueLimits::tau_min)
       .def_property_readonly("tau_max", &TorqueLimits::tau_max);
 
-  py::class_<Contact>(m, "Contact", "A point fixed in a link touching the world; normal in world coordinates.")
-      .def(py::init([](const std::string& link, py::handle point, py::handle normal, double friction) {
+  py::class_<Contact>(m, "Contact",
+                      "A point fixed in a link (link coordinates) touching the world, or `other_link` when given. The "
+                      "normal points into `link`: world coordinates for a world contact, other_link's frame otherwise.")
+      .def(py::init([](const std::string& link, py::handle point, py::handle normal, double friction, py::object other_link) {
              Contact c;
              c.link = link;
+             if (!other_link.is_none()) c.other_link = other_link.cast<std::string>();
              const Eigen::VectorXd p = to_vector(point, "point"), nrm = to_vector(normal, "normal");
              if (p.size() != 3) throw InvalidInput("point has size " + std::to_string(p.size()) + ", expected 3");
              if (nrm.size() != 3) throw InvalidInput("normal has size " + std::to_string(nrm.size()) + ", expected 3");
@@ -117,12 +144,36 @@ void bind_robot(py::module_& m) {
              c.friction = friction;
              return c;
            }),
-           "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), "normal"_a = py::make_tuple(0.0, 0.0, 1.0), "friction"_a = 0.5)
+           "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), "normal"_a = py::make_tuple(0.0, 0.0, 1.0), "friction"_a = 0.5,
+           "other_link"_a = py::none())
       .def_readonly("link", &Contact::link)
       .def_readonly("point", &Contact::point)
       .def_readonly("normal", &Contact::normal)
       .def_readonly("friction", &Contact::friction)
-      .def("__repr__", [](const Contact& c) { return "<Contact link='" + c.link + "' friction=" + std::to_string(c.friction) + ">"; });
+      .def_property_readonly("other_link", [](const Contact& c) -> py::object {
+        return c.other_link.empty() ? py::object(py::none()) : py::object(py::str(c.other_link));
+      })
+      .def("__repr__", [](const Contact& c) {
+        return "<Contact link='" + c.link + "'" + (c.other_link.empty() ? "" : " other_link='" + c.other_link + "'") +
+               " friction=" + std::to_string(c.friction) + ">";
+      });
+
+  py::class_<ForceSamples>(m, "ContactForces",
+                           "Force-distribution LP results: the most robust contact forces at each sample and their "
+                           "margin in N (>= 0: realisable within the cones; < 0: needs forces that do not exist).")
+      .def_property_readonly("feasible", [](const ForceSamples& f) -> py::object {
+        return f.scalar ? py::object(py::bool_(f.feasible.at(0))) : py::object(f.feasible);
+      }, "False where no forces of any sign meet the torque limits")
+      .def_property_readonly("margin", [](const ForceSamples& f) -> py::object {
+        return f.scalar ? py::object(py::float_(f.margin[0])) : py::cast(f.margin);
+      }, "δ in N: the smallest cone weight, or normal force beyond the minimum")
+      .def_property_readonly("forces", [](const ForceSamples& f) -> py::object {
+        if (!f.scalar) return f.forces;
+        return f.forces.attr("__getitem__")(0);
+      }, "(samples, contacts, 3) world-frame force on each contact's link")
+      .def_property_readonly("torques", [](const ForceSamples& f) -> py::object {
+        return f.scalar ? py::cast(Eigen::VectorXd(f.torques.row(0).transpose())) : py::cast(f.torques);
+      }, "(samples, nq) joint torques with these forces");
 
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
       .def(py::init([](std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts, int cone_edges, double friction_margin,
@@ -133,7 +184,38 @@ void bind_robot(py::module_& m) {
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
            "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)
-      .def_property_readonly("contacts", &ContactConstraint::contacts);
+      .def_property_readonly("contacts", &ContactConstraint::contacts)
+      .def_property_readonly("robot", [](const ContactConstraint& c) { return std::const_pointer_cast<RobotModel>(c.robot()); })
+      .def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd) {
+        const bool scalar = py::array(py::reinterpret_borrow<py::object>(q)).ndim() == 1;
+        auto rows = [&](py::handle h, const char* name) {
+          Eigen::MatrixXd a = to_matrix(h, name, true);
+          if (scalar) a.transposeInPlace();  // a single configuration: one row
+          return a;
+        };
+        const Eigen::MatrixXd Q = rows(q, "q"), QD = rows(qd, "qd"), QDD = rows(qdd, "qdd");
+        std::vector<ContactForces> out;
+        {
+          py::gil_scoped_release release;
+          out = c.force_distribution(Q, QD, QDD);
+        }
+        return to_force_samples(out, static_cast<int>(c.contacts().size()), c.robot()->nq(), scalar);
+      }, "q"_a, "qd"_a, "qdd"_a,
+         "The force-distribution LP at each row of q, qd, qdd (arrays (samples, nq), or one configuration): "
+         "how a timing is audited between grid points.")
+      .def("max_drift", [](const ContactConstraint& c, const std::shared_ptr<Path>& path, py::handle s) {
+        Eigen::MatrixXd q, dq, ddq;
+        const Eigen::VectorXd sv = to_vector(s, "s");
+        path->evaluate(sv, q, dq, ddq);
+        PathSamples ps;
+        ps.s = sv;
+        ps.q = q;
+        ps.dq = dq;
+        ps.ddq = ddq;
+        int which = -1;
+        const double d = c.max_drift(ps, &which);
+        return py::make_tuple(d, which);
+      }, "path"_a, "s"_a, "(largest distance a contact point moves along path at s, index of that contact)");
 }
 
 }  // namespace pathpace::python

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/contact_forces.hpp"
 #include "pathpace/errors.hpp"
 
 namespace pathpace::python {
@@ -64,6 +65,36 @@ inline ContactOptions contact_options(int cone_edges, double friction_margin, do
 inline bool is_scalar(py::handle h) {
   return py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h) ||
          (py::isinstance<py::array>(h) && py::array(py::reinterpret_borrow<py::object>(h)).ndim() == 0);
+}
+
+/// Force-distribution results over samples, as arrays (the Python ContactForces).
+struct ForceSamples {
+  py::array_t<bool> feasible;   // (S,)
+  Eigen::VectorXd margin;       // (S,)
+  py::array_t<double> forces;   // (S, m, 3)
+  Eigen::MatrixXd torques;      // (S, n)
+  bool scalar = false;          // one sample asked for as a scalar: drop the leading axis
+};
+
+inline ForceSamples to_force_samples(const std::vector<ContactForces>& v, int contacts, int joints, bool scalar) {
+  ForceSamples out;
+  const auto S = static_cast<py::ssize_t>(v.size());
+  out.feasible = py::array_t<bool>(S);
+  out.forces = py::array_t<double>({S, static_cast<py::ssize_t>(contacts), static_cast<py::ssize_t>(3)});
+  out.margin.resize(S);
+  out.torques.resize(S, joints);
+  auto fe = out.feasible.mutable_unchecked<1>();
+  auto fo = out.forces.mutable_unchecked<3>();
+  for (py::ssize_t s = 0; s < S; ++s) {
+    const ContactForces& c = v[static_cast<size_t>(s)];
+    fe(s) = c.feasible;
+    out.margin[s] = c.margin;
+    out.torques.row(s) = c.torques.transpose();
+    for (int i = 0; i < contacts; ++i)
+      for (int d = 0; d < 3; ++d) fo(s, i, d) = c.forces(i, d);
+  }
+  out.scalar = scalar;
+  return out;
 }
 
 }  // namespace pathpace::python

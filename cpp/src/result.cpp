@@ -22,6 +22,7 @@ Trajectory Result::trajectory() const {
                 (message.empty() ? "" : " (" + message + ")"));
   Trajectory t(path, s, sdot);
   t.set_robot(robot);
+  t.set_contacts(contacts);
   return t;
 }
 

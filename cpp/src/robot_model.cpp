@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
@@ -322,33 +323,39 @@ int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body
   return it->second.first;
 }
 
-namespace {
-
-// World poses of all bodies.
-std::vector<Eigen::Isometry3d> body_poses(const RobotModel& m, const Eigen::VectorXd& q) {
-  std::vector<Eigen::Isometry3d> T(m.bodies().size());
+void RobotModel::body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const {
+  T.resize(bodies_.size());
   for (size_t i = 0; i < T.size(); ++i) {
-    const RobotModel::Body& b = m.bodies()[i];
+    const Body& b = bodies_[i];
     Eigen::Isometry3d tree = Eigen::Isometry3d::Identity();
     tree.linear() = b.E_tree.transpose();
     tree.translation() = b.r_tree;
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
     const double qi = q[static_cast<Eigen::Index>(i)];
-    if (b.type == RobotModel::JointType::Revolute) motion.linear() = Eigen::AngleAxisd(qi, b.axis).toRotationMatrix();
+    if (b.type == JointType::Revolute) motion.linear() = Eigen::AngleAxisd(qi, b.axis).toRotationMatrix();
     else motion.translation() = b.axis * qi;
     T[i] = (b.parent >= 0 ? T[static_cast<size_t>(b.parent)] : Eigen::Isometry3d::Identity()) * tree * motion;
   }
-  return T;
 }
 
-}  // namespace
+void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p,
+                                    double sign, Eigen::Ref<Eigen::MatrixXd> J) const {
+  for (int i = body; i >= 0; i = bodies_[static_cast<size_t>(i)].parent) {
+    const Body& b = bodies_[static_cast<size_t>(i)];
+    // The joint frame is the body frame: its axis is fixed in the body, its origin is the body origin.
+    const Eigen::Vector3d z = T[static_cast<size_t>(i)].linear() * b.axis;
+    if (b.type == JointType::Revolute) J.col(i) += sign * z.cross(p - T[static_cast<size_t>(i)].translation());
+    else J.col(i) += sign * z;
+  }
+}
 
 Eigen::Matrix4d RobotModel::frame_placement(const Eigen::VectorXd& q, const std::string& link) const {
   check_q(q, "q");
   detail::require_finite("q", q);
   Eigen::Isometry3d in_body;
   const int body = body_of_link(link, in_body);
-  const auto T = body_poses(*this, q);
+  std::vector<Eigen::Isometry3d> T;
+  body_placements(q, T);
   return ((body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity()) * in_body).matrix();
 }
 
@@ -359,17 +366,99 @@ Eigen::MatrixXd RobotModel::point_jacobian(const Eigen::VectorXd& q, const std::
   detail::require_finite("point", point);
   Eigen::Isometry3d in_body;
   const int body = body_of_link(link, in_body);
-  const auto T = body_poses(*this, q);
+  std::vector<Eigen::Isometry3d> T;
+  body_placements(q, T);
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, nq());
   if (body < 0) return J;
-  const Eigen::Vector3d p = T[static_cast<size_t>(body)] * (in_body * point);
-  for (int i = body; i >= 0; i = bodies_[static_cast<size_t>(i)].parent) {
-    const Body& b = bodies_[static_cast<size_t>(i)];
-    // The joint frame is the body frame: its axis is fixed in the body, its origin is the body origin.
-    const Eigen::Vector3d z = T[static_cast<size_t>(i)].linear() * b.axis;
-    J.col(i) = b.type == JointType::Revolute ? Eigen::Vector3d(z.cross(p - T[static_cast<size_t>(i)].translation())) : z;
-  }
+  add_point_jacobian(T, body, T[static_cast<size_t>(body)] * (in_body * point), 1.0, J);
   return J;
+}
+
+RobotModel RobotModel::combine(const std::vector<RobotModel>& parts, const std::string& name) {
+  if (parts.empty()) detail::fail("parts is empty: expected at least one model");
+  RobotModel m;
+  m.gravity_ = parts[0].gravity_;
+  std::map<std::string, int> joint_count;
+  for (const RobotModel& p : parts)
+    for (const std::string& j : p.joint_names_) ++joint_count[j];
+  std::vector<double> lo, hi, vel, eff;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const RobotModel& p = parts[i];
+    if ((p.gravity_ - m.gravity_).norm() > 0.0)
+      detail::fail("parts[" + std::to_string(i) + "] ('" + p.name_ + "') has gravity (" + detail::fmt(p.gravity_.x()) + ", " +
+                   detail::fmt(p.gravity_.y()) + ", " + detail::fmt(p.gravity_.z()) + "), parts[0] has (" +
+                   detail::fmt(m.gravity_.x()) + ", " + detail::fmt(m.gravity_.y()) + ", " + detail::fmt(m.gravity_.z()) +
+                   "): they must agree");
+    const int offset = static_cast<int>(m.bodies_.size());
+    for (Body b : p.bodies_) {
+      if (b.parent >= 0) b.parent += offset;
+      m.bodies_.push_back(b);
+    }
+    for (const std::string& j : p.joint_names_) m.joint_names_.push_back(joint_count[j] > 1 ? p.name_ + "/" + j : j);
+    for (const std::string& l : p.link_names_) {
+      auto it = p.links_.find(l);
+      if (m.links_.count(l))
+        detail::fail("parts[" + std::to_string(i) + "] ('" + p.name_ + "') has a link '" + l +
+                     "' that an earlier part also has: link names must be unique");
+      m.links_[l] = {it->second.first >= 0 ? it->second.first + offset : -1, it->second.second};
+      m.link_names_.push_back(l);
+    }
+    m.name_ += (i ? "+" : "") + p.name_;
+    lo.insert(lo.end(), p.q_lo_.data(), p.q_lo_.data() + p.q_lo_.size());
+    hi.insert(hi.end(), p.q_hi_.data(), p.q_hi_.data() + p.q_hi_.size());
+    vel.insert(vel.end(), p.v_max_.data(), p.v_max_.data() + p.v_max_.size());
+    eff.insert(eff.end(), p.effort_.data(), p.effort_.data() + p.effort_.size());
+  }
+  std::map<std::string, int> seen;
+  for (const std::string& j : m.joint_names_)
+    if (seen[j]++) detail::fail("combined joint name '" + j + "' is not unique (two parts share a name and a joint)");
+  if (!name.empty()) m.name_ = name;
+  auto vec = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
+  m.q_lo_ = vec(lo);
+  m.q_hi_ = vec(hi);
+  m.v_max_ = vec(vel);
+  m.effort_ = vec(eff);
+  return m;
+}
+
+RobotModel RobotModel::free_object(const std::string& name, double mass, const Eigen::Vector3d& com,
+                                   const Eigen::Matrix3d& inertia, const Eigen::Vector3d& gravity) {
+  if (name.empty()) detail::fail("name must not be empty");
+  if (!(mass > 0.0) || !std::isfinite(mass)) detail::fail("mass = " + detail::fmt(mass) + " must be > 0 and finite");
+  detail::require_finite("com", com);
+  detail::require_finite("inertia", inertia);
+  if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, inertia.cwiseAbs().maxCoeff()))
+    detail::fail("inertia must be symmetric");
+  const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues().minCoeff();
+  if (min_eig < -1e-12 * std::max(1.0, inertia.cwiseAbs().maxCoeff()))
+    detail::fail("inertia has eigenvalue " + detail::fmt(min_eig) + ": it must be positive semi-definite");
+  RobotModel m;
+  m.name_ = name;
+  m.gravity_ = gravity;
+  detail::require_finite("gravity", gravity);
+  const double inf = std::numeric_limits<double>::infinity();
+  const char* names[6] = {"floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx"};
+  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
+                                   Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
+  for (int i = 0; i < 6; ++i) {
+    Body b;
+    b.parent = i - 1;
+    b.type = i < 3 ? JointType::Prismatic : JointType::Revolute;
+    b.axis = axes[i];
+    b.E_tree.setIdentity();
+    b.r_tree.setZero();
+    b.inertia.setZero();
+    m.bodies_.push_back(b);
+    m.joint_names_.push_back(names[i]);
+  }
+  m.bodies_.back().inertia = spatial_inertia(mass, com, inertia);
+  m.links_[name] = {5, Eigen::Isometry3d::Identity()};
+  m.link_names_.push_back(name);
+  m.q_lo_ = Eigen::VectorXd::Constant(6, -inf);
+  m.q_hi_ = Eigen::VectorXd::Constant(6, inf);
+  m.v_max_ = Eigen::VectorXd::Constant(6, inf);
+  m.effort_ = Eigen::VectorXd::Zero(6);
+  return m;
 }
 
 }  // namespace pathpace

@@ -10,6 +10,7 @@
 #include "detail/validate.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
 
@@ -149,6 +150,11 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   res.path = path_;
   for (const auto& c : constraints_)
     if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(c)) res.robot = torque->robot();
+  for (const auto& c : constraints_)
+    if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
+      res.robot = contact->robot();
+      res.contacts = contact;
+    }
   res.s = samples_.s;
   const Eigen::Index n = intervals();
 

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "detail/validate.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/errors.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/robot_workspace.hpp"
 
@@ -100,6 +102,13 @@ Eigen::MatrixXd Trajectory::torques(const Eigen::Ref<const Eigen::VectorXd>& t, 
     tau.row(i) = out.transpose();
   }
   return tau;
+}
+
+std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  if (!contacts_) throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return contacts_->force_distribution(q, qd, qdd);
 }
 
 Eigen::VectorXd Trajectory::sample_times(double dt) const {

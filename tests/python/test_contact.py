@@ -100,11 +100,13 @@ def test_contact_validation_and_drift_warning():
 
 
 
+@pytest.mark.parametrize("robot_robot", [False, True])
 @pytest.mark.parametrize("seed", range(4))
-def test_projection_matches_the_full_lp_solved_by_highs(seed):
+def test_projection_matches_the_full_lp_solved_by_highs(seed, robot_robot):
     """Random floating-base trees with random contacts: the projected polygon's support value in 64
     directions equals the optimum of the full LP over (ṡ², s̈, cone weights) built from pinocchio's
-    dynamics and solved by scipy's HiGHS."""
+    dynamics and solved by scipy's HiGHS. With robot_robot, each contact is between two links of the
+    tree, its normal turning with the second link, and the reaction acting on it."""
     pin = pytest.importorskip("pinocchio")
     from test_robot_model import composite_floating_joint, random_tree_urdf
 
@@ -115,10 +117,24 @@ def test_projection_matches_the_full_lp_solved_by_highs(seed):
     rng = np.random.default_rng(seed)
     n = robot.nq
     links = [f"l{i}" for i in rng.choice(np.arange(1, 9), 4, replace=False)]
+    others = [f"l{i}" for i in rng.choice(np.arange(0, 9), 4, replace=False)]
     contacts = []
-    for link in links:
+    for link, other in zip(links, others):
         normal = np.array([0.0, 0.0, 1.0]) + 0.3 * rng.normal(size=3)
-        contacts.append(pp.Contact(link, point=rng.uniform(-0.2, 0.2, 3), normal=normal, friction=rng.uniform(0.4, 1.0)))
+        point, mu = rng.uniform(-0.2, 0.2, 3), rng.uniform(0.4, 1.0)
+        if not robot_robot:
+            contacts.append(pp.Contact(link, point=point, normal=normal, friction=mu))
+            continue
+        # The first link from `other` on that is not welded to `link` (fixed joints merge links).
+        for cand in [other] + [f"l{i}" for i in range(9)]:
+            con = pp.Contact(link, point=point, normal=normal, friction=mu, other_link=cand)
+            try:
+                pp.ContactConstraint(robot, [con])
+            except pp.InvalidInputError:
+                continue
+            contacts.append(con)
+            break
+    assert len(contacts) == 4
     q, dq, ddq = rng.uniform(-0.5, 0.5, (3, n))
     dq *= 0.5
     path = pp.SampledPath([0.0, 1.0], np.vstack([q, q]), np.vstack([dq, dq]), np.vstack([ddq, ddq]))
@@ -134,11 +150,20 @@ def test_projection_matches_the_full_lp_solved_by_highs(seed):
     pin.forwardKinematics(model, data, q)
     pin.updateFramePlacements(model, data)
     cols = [a[:, None], b[:, None]]
-    for con in contacts:
-        fid = model.getFrameId(con.link)
+    def world_jacobian(frame, local_point):
+        fid = model.getFrameId(frame)
         J6 = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL)
-        R = data.oMf[fid].rotation
-        J = R @ (J6[:3] - np.cross(con.point, J6[3:].T).T)  # world-frame Jacobian of the contact point
+        return data.oMf[fid].rotation @ (J6[:3] - np.cross(local_point, J6[3:].T).T)
+
+    for con in contacts:
+        J = world_jacobian(con.link, con.point)  # world-frame Jacobian of the contact point
+        R_normal = np.eye(3)
+        if con.other_link is not None:
+            # The same world point, moving with the other link, which feels the reaction.
+            pose = data.oMf[model.getFrameId(con.other_link)]
+            p_world = data.oMf[model.getFrameId(con.link)].act(np.asarray(con.point))
+            J = J - world_jacobian(con.other_link, pose.actInv(p_world))
+            R_normal = pose.rotation
         nrm = np.asarray(con.normal) / np.linalg.norm(con.normal)
         e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
         t1 = np.cross(nrm, e)
@@ -146,7 +171,7 @@ def test_projection_matches_the_full_lp_solved_by_highs(seed):
         t2 = np.cross(nrm, t1)
         phis = 2 * np.pi * np.arange(k_edges) / k_edges
         G = nrm[:, None] + con.friction * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
-        cols.append(-J.T @ G)
+        cols.append(-J.T @ (R_normal @ G))
     A = np.hstack(cols)
     eff = robot.effort_limits
     m = len(contacts)

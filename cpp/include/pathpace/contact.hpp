@@ -1,6 +1,6 @@
 #pragma once
 /// @file contact.hpp
-/// A frictional point contact between a robot link and the world (sec. III.b).
+/// A frictional point contact of a robot link with the world or with another link (sec. III.b).
 
 #include <string>
 
@@ -8,14 +8,18 @@
 
 namespace pathpace {
 
-/// A point fixed in `link` (coordinates in the link frame) touching the world, with the contact normal
-/// in world coordinates pointing into the robot (the direction of the force the world can push with)
-/// and Coulomb friction coefficient `friction`. The normal is normalised on use (zero is rejected).
+/// A point fixed in `link` (coordinates in the link frame) touching the world, or touching
+/// `other_link` when that is set (robot–robot: two links of one model, e.g. a hand on a free object).
+/// `normal` points into `link`, the direction in which the other side can push it: in world coordinates
+/// for a world contact, in `other_link`'s frame for a robot–robot contact (it turns with that link).
+/// The other side feels the opposite force at the same point. `friction` is the Coulomb coefficient μ.
+/// The normal is normalised on use (zero is rejected).
 struct Contact {
   std::string link;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double friction = 0.5;
+  std::string other_link;  ///< empty: the world
 };
 
 }  // namespace pathpace

@@ -15,6 +15,7 @@ namespace pathpace {
 
 class Trajectory;
 class RobotModel;
+class ContactConstraint;
 
 enum class Status {
   Optimal,         ///< the optimum of the discretised problem (eq. 26-27)
@@ -57,7 +58,8 @@ class Result {
   Infeasibility infeasibility;
   SolverStats stats;
   std::shared_ptr<const Path> path;
-  std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits, if any
+  std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any
+  std::shared_ptr<const ContactConstraint> contacts;  ///< the problem's contact constraint, if any
 
   /// True for Optimal (and for IterationLimit, whose timing is feasible).
   bool ok() const { return status == Status::Optimal || status == Status::IterationLimit; }

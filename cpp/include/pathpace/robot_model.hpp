@@ -37,6 +37,19 @@ class RobotModel {
   static RobotModel from_urdf_file(const std::string& path, const RobotModelOptions& options = {});
   static RobotModel from_urdf_string(const std::string& xml, const RobotModelOptions& options = {});
 
+  /// One model of several independent trees (robots and free objects, sec. III.b): q is the parts'
+  /// coordinates in order. Link names must be unique across the parts (contacts refer to links); a
+  /// joint name that occurs in more than one part is qualified as "<part name>/<joint>" (e.g. the
+  /// floating_* coordinates of two floating parts). Gravity must agree.
+  static RobotModel combine(const std::vector<RobotModel>& parts, const std::string& name = "");
+
+  /// A free rigid body (sec. III.b): one link `name` with six floating coordinates (see
+  /// RobotModelOptions::floating_base) and zero effort. `com` and `inertia` (about the centre of mass,
+  /// symmetric positive semi-definite) are in the link frame.
+  static RobotModel free_object(const std::string& name, double mass, const Eigen::Vector3d& com = Eigen::Vector3d::Zero(),
+                                const Eigen::Matrix3d& inertia = Eigen::Matrix3d::Zero(),
+                                const Eigen::Vector3d& gravity = Eigen::Vector3d(0.0, 0.0, -9.81));
+
   int nq() const { return static_cast<int>(joint_names_.size()); }
   const std::string& name() const { return name_; }
   const std::vector<std::string>& joint_names() const { return joint_names_; }
@@ -70,6 +83,14 @@ class RobotModel {
   /// Body index of a link (merged links map to the body that carries them) and the link's fixed
   /// placement in that body's frame. Throws InvalidInput for an unknown name.
   int body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const;
+
+  /// World poses of every body at q (one pass), for callers that need several frames or Jacobians at
+  /// the same configuration; no argument checks.
+  void body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const;
+  /// Adds `sign` times the world-frame linear Jacobian of the world point `p` moving with body `body`
+  /// to J (3 x nq), given the body poses T from body_placements(). Nothing for body -1 (the world).
+  void add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p, double sign,
+                          Eigen::Ref<Eigen::MatrixXd> J) const;
 
   // Internal structure, read by RobotWorkspace users (dynamics of the contact issue).
   struct Body {

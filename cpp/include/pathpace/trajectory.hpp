@@ -3,14 +3,17 @@
 /// q(t) = p(s(t)) with s(t) piecewise quadratic (eq. 24) through the grid.
 
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
+#include "pathpace/contact_forces.hpp"
 #include "pathpace/path.hpp"
 
 namespace pathpace {
 
 class RobotModel;
+class ContactConstraint;
 
 class Trajectory {
  public:
@@ -43,6 +46,14 @@ class Trajectory {
   const std::shared_ptr<const RobotModel>& robot() const { return robot_; }
   void set_robot(std::shared_ptr<const RobotModel> robot) { robot_ = std::move(robot); }
 
+  /// The contact constraint that shaped this trajectory (null if none did).
+  const std::shared_ptr<const ContactConstraint>& contacts() const { return contacts_; }
+  void set_contacts(std::shared_ptr<const ContactConstraint> contacts) { contacts_ = std::move(contacts); }
+
+  /// The force-distribution LP at each t (see ContactForces): contact forces and their margin between
+  /// the grid points, where the solver did not look. Throws Error if no contact constraint shaped it.
+  std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+
   /// Uniform times 0, dt, 2dt, ..., with T appended if it is not a multiple of dt.
   Eigen::VectorXd sample_times(double dt) const;
 
@@ -50,6 +61,7 @@ class Trajectory {
   Eigen::Index interval(double t) const;
   std::shared_ptr<const Path> path_;
   std::shared_ptr<const RobotModel> robot_;
+  std::shared_ptr<const ContactConstraint> contacts_;
   Eigen::VectorXd s_, sdot_, times_, sddot_;
 };
 

@@ -1,7 +1,11 @@
 #include "pathpace/constraints/contact_constraint.hpp"
 
 #include <cmath>
+#include <limits>
 
+#include <glpk.h>
+
+#include "detail/glpk_guard.hpp"
 #include "detail/projection.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/errors.hpp"
@@ -39,6 +43,7 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     if (tau_min_[j] > tau_max_[j])
       detail::fail("tau_min[" + std::to_string(j) + "] = " + detail::fmt(tau_min_[j]) + " must be <= tau_max[" +
                    std::to_string(j) + "] = " + detail::fmt(tau_max_[j]) + " (after scale and margin)");
+  const int k = options_.cone_edges;
   for (size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
     const std::string name = "contacts[" + std::to_string(i) + "]";
@@ -52,18 +57,70 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     Eigen::Isometry3d in_body;
     body_.push_back(robot_->body_of_link(c.link, in_body));
     point_in_body_.push_back(in_body * c.point);
+    Eigen::Isometry3d other_in_body = Eigen::Isometry3d::Identity();
+    int other = -1;
+    if (!c.other_link.empty()) {
+      if (c.other_link == c.link)
+        detail::fail(name + ".other_link = '" + c.other_link + "' must differ from its link");
+      other = robot_->body_of_link(c.other_link, other_in_body);
+      if (other == body_.back())
+        detail::fail(name + ": links '" + c.link + "' and '" + c.other_link +
+                     "' are rigidly attached (one body): a force between them does nothing");
+    }
+    other_body_.push_back(other);
+    other_in_body_.push_back(other_in_body);
+    // Cone generators g_e = n + μ' (cos φ_e t1 + sin φ_e t2), inscribed in the cone of μ' = μ (1 -
+    // friction_margin) (sec. V.D), in the normal's own frame (the world, or other_link).
+    const Eigen::Vector3d& nrm = c.normal;
+    const Eigen::Vector3d e = std::abs(nrm.x()) > 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
+    const Eigen::Vector3d t1 = nrm.cross(e).normalized(), t2 = nrm.cross(t1);
+    const double mu = c.friction * (1.0 - options_.friction_margin);
+    Eigen::Matrix3Xd g(3, k);
+    for (int j = 0; j < k; ++j) {
+      const double phi = 2.0 * M_PI * j / k;
+      g.col(j) = nrm + mu * (std::cos(phi) * t1 + std::sin(phi) * t2);
+    }
+    local_generators_.push_back(g);
+  }
+}
+
+void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
+                                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen) const {
+  const int m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
+  robot_->body_placements(q, T);
+  J.setZero(3 * m, robot_->nq());
+  gen.resize(3, m * k);
+  auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
+  for (int i = 0; i < m; ++i) {
+    const size_t u = static_cast<size_t>(i);
+    const Eigen::Vector3d p = pose(body_[u]) * point_in_body_[u];
+    auto Ji = J.middleRows(3 * i, 3);
+    if (body_[u] >= 0) robot_->add_point_jacobian(T, body_[u], p, 1.0, Ji);
+    if (other_body_[u] >= 0) {
+      // The reaction acts on other_link at the same world point (eq. 17 with both bodies moving).
+      robot_->add_point_jacobian(T, other_body_[u], p, -1.0, Ji);
+      gen.middleCols(i * k, k) = pose(other_body_[u]).linear() * other_in_body_[u].linear() * local_generators_[u];
+    } else {
+      gen.middleCols(i * k, k) = local_generators_[u];
+    }
   }
 }
 
 double ContactConstraint::max_drift(const PathSamples& samples, int* which) const {
   double worst = 0.0;
-  for (size_t i = 0; i < contacts_.size(); ++i) {
-    const Eigen::Vector3d p0 =
-        (robot_->frame_placement(samples.q.row(0).transpose(), contacts_[i].link) * contacts_[i].point.homogeneous()).head<3>();
-    for (Eigen::Index k = 1; k < samples.size(); ++k) {
-      const Eigen::Vector3d pk =
-          (robot_->frame_placement(samples.q.row(k).transpose(), contacts_[i].link) * contacts_[i].point.homogeneous()).head<3>();
-      const double d = (pk - p0).norm();
+  std::vector<Eigen::Isometry3d> T;
+  std::vector<Eigen::Vector3d> first(contacts_.size());
+  for (Eigen::Index s = 0; s < samples.size(); ++s) {
+    robot_->body_placements(samples.q.row(s).transpose(), T);
+    auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
+    for (size_t i = 0; i < contacts_.size(); ++i) {
+      // Where the point is, in the frame that must keep it: the world, or the other body.
+      const Eigen::Vector3d p = pose(other_body_[i]).inverse() * (pose(body_[i]) * point_in_body_[i]);
+      if (s == 0) {
+        first[i] = p;
+        continue;
+      }
+      const double d = (p - first[i]).norm();
       if (d > worst) {
         worst = d;
         if (which) *which = static_cast<int>(i);
@@ -79,20 +136,6 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
                  std::to_string(n) + " joints");
   const int m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
-  // Cone generators in world coordinates, fixed along the path for robot-world contacts.
-  std::vector<Eigen::Matrix3Xd> gen(static_cast<size_t>(m));
-  for (int i = 0; i < m; ++i) {
-    const Eigen::Vector3d& nrm = contacts_[static_cast<size_t>(i)].normal;
-    Eigen::Vector3d e = Eigen::Vector3d::UnitX();
-    if (std::abs(nrm.x()) > 0.9) e = Eigen::Vector3d::UnitY();
-    const Eigen::Vector3d t1 = nrm.cross(e).normalized(), t2 = nrm.cross(t1);
-    const double mu = contacts_[static_cast<size_t>(i)].friction * (1.0 - options_.friction_margin);
-    gen[static_cast<size_t>(i)].resize(3, k);
-    for (int eidx = 0; eidx < k; ++eidx) {
-      const double phi = 2.0 * M_PI * eidx / k;
-      gen[static_cast<size_t>(i)].col(eidx) = nrm + mu * (std::cos(phi) * t1 + std::sin(phi) * t2);
-    }
-  }
   const int cols = 2 + m * k;
   const int rows = n + (options_.min_normal_force > 0.0 ? m : 0);
   detail::PolytopeLp lp;
@@ -112,6 +155,10 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
 
   RobotWorkspace ws(*robot_);
   Eigen::VectorXd a(n), b(n), c(n);
+  std::vector<Eigen::Isometry3d> T;
+  Eigen::MatrixXd J;
+  Eigen::Matrix3Xd gen;
+  detail::PolytopeProjector projector;  // one GLPK problem, warm-started from grid point to grid point
   std::vector<std::vector<detail::Line>> polys(static_cast<size_t>(samples.size()));
   std::vector<char> empty_point(static_cast<size_t>(samples.size()), 0);
   size_t widest = 0;
@@ -121,14 +168,12 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
     lp.A.col(0).head(n) = a;  // the min-normal-force rows below n keep zeros in x and u
     lp.A.col(1).head(n) = b;
-    for (int i = 0; i < m; ++i) {
-      const Eigen::MatrixXd J = robot_->point_jacobian(q, contacts_[static_cast<size_t>(i)].link,
-                                                       contacts_[static_cast<size_t>(i)].point);
-      lp.A.block(0, 2 + i * k, n, k) = -J.transpose() * gen[static_cast<size_t>(i)];
-    }
+    contact_jacobians(q, T, J, gen);
+    for (int i = 0; i < m; ++i)
+      lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
     lp.row_lo.head(n) = tau_min_ - c;
     lp.row_hi.head(n) = tau_max_ - c;
-    const detail::Projection pr = detail::project_polytope(lp);
+    const detail::Projection pr = projector.project(lp);
     if (pr.outcome == detail::Projection::Outcome::Failed)
       throw Error("contact projection failed at grid index " + std::to_string(p) + " (s = " + detail::fmt(samples.s[p]) +
                   "): the LP solver did not finish");
@@ -161,6 +206,125 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     if (empty_point[static_cast<size_t>(p)]) r.c(p, marker) = -1.0;
   }
   return r;
+}
+
+std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
+                                                                 const Eigen::MatrixXd& qdd) const {
+  const int n = robot_->nq(), m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
+  const std::pair<const Eigen::MatrixXd*, const char*> args[3] = {{&q, "q"}, {&qd, "qd"}, {&qdd, "qdd"}};
+  for (const auto& [arr, name] : args) {
+    if (arr->cols() != n)
+      detail::fail(std::string(name) + " has " + std::to_string(arr->cols()) + " columns, robot '" + robot_->name() +
+                   "' has " + std::to_string(n) + " joints");
+    if (arr->rows() != q.rows())
+      detail::fail(std::string(name) + " has " + std::to_string(arr->rows()) + " rows, q has " + std::to_string(q.rows()));
+    detail::require_finite(name, *arr);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  std::vector<ContactForces> out(static_cast<size_t>(q.rows()));
+  // Columns: μ_ie >= 0 (λ_ie = μ_ie + δ), then δ <= cap (free below). Rows: the n torque rows
+  //   τ_L - τ_id <= -Σ_i J_iᵀ G_i (μ_i + δ 1) <= τ_U - τ_id
+  // and per contact n·f_i - f_min >= δ, i.e. Σ_e μ_ie + (k - 1) δ >= f_min. Maximise δ.
+  const int cols = m * k + 1, rows = n + m;
+  RobotWorkspace ws(*robot_);
+  std::vector<Eigen::Isometry3d> T;
+  Eigen::MatrixXd J, A(rows, cols);
+  Eigen::Matrix3Xd gen;
+  Eigen::VectorXd tau(n);
+  std::vector<int> ia(1), ja(1);
+  std::vector<double> ar(1);
+  glp_term_out(GLP_OFF);
+  detail::GlpkHookState state;
+  glp_prob* lp = nullptr;
+  glp_error_hook(detail::pathpace_glpk_error_hook, &state);
+  if (setjmp(state.env)) {
+    glp_error_hook(nullptr, nullptr);
+    glp_free_env();
+    throw Error("force distribution: the LP solver failed (GLPK error)");
+  }
+  lp = glp_create_prob();
+  glp_set_obj_dir(lp, GLP_MAX);
+  glp_add_rows(lp, rows);
+  glp_add_cols(lp, cols);
+  for (int j = 0; j < m * k; ++j) glp_set_col_bnds(lp, j + 1, GLP_LO, 0.0, 0.0);
+  glp_set_col_bnds(lp, cols, GLP_UP, 0.0, options_.cap);
+  glp_set_obj_coef(lp, cols, 1.0);
+  for (int i = 0; i < m; ++i) glp_set_row_bnds(lp, n + i + 1, GLP_LO, options_.min_normal_force, 0.0);
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.it_lim = 100 * (rows + cols) + 1000;
+  bool first = true;
+  for (Eigen::Index s = 0; s < q.rows(); ++s) {
+    const Eigen::VectorXd qs = q.row(s).transpose();
+    robot_->inverse_dynamics(ws, qs, qd.row(s).transpose(), qdd.row(s).transpose(), true, tau);
+    contact_jacobians(qs, T, J, gen);
+    A.setZero();
+    for (int i = 0; i < m; ++i) {
+      A.block(0, i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
+      A.col(cols - 1).head(n) += A.block(0, i * k, n, k).rowwise().sum();
+      A.block(n + i, i * k, 1, k).setOnes();
+      A(n + i, cols - 1) = k - 1;
+    }
+    ia.resize(1);
+    ja.resize(1);
+    ar.resize(1);
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c)
+        if (A(r, c) != 0.0) {
+          ia.push_back(r + 1);
+          ja.push_back(c + 1);
+          ar.push_back(A(r, c));
+        }
+    glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
+    for (int j = 0; j < n; ++j) {
+      const double lo = tau_min_[j] - tau[j], hi = tau_max_[j] - tau[j];
+      const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+      const int type = has_lo && has_hi ? (lo == hi ? GLP_FX : GLP_DB) : has_lo ? GLP_LO : has_hi ? GLP_UP : GLP_FR;
+      glp_set_row_bnds(lp, j + 1, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
+    }
+    if (first) glp_adv_basis(lp, 0);
+    first = false;
+    int ret = glp_simplex(lp, &parm);
+    int st = glp_get_status(lp);
+    if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS)) {
+      glp_std_basis(lp);
+      ret = glp_simplex(lp, &parm);
+      st = glp_get_status(lp);
+    }
+    if (ret != 0 || st != GLP_OPT) {  // confirm "no forces" (or recover) in exact arithmetic
+      glp_std_basis(lp);
+      if (glp_exact(lp, &parm) != 0) {
+        glp_delete_prob(lp);
+        glp_error_hook(nullptr, nullptr);
+        throw Error("force distribution: the LP solver did not finish at sample " + std::to_string(s));
+      }
+      st = glp_get_status(lp);
+    }
+    ContactForces& f = out[static_cast<size_t>(s)];
+    f.forces.resize(m, 3);
+    if (st != GLP_OPT) {
+      f.feasible = false;
+      f.margin = -inf;
+      f.forces.setConstant(nan);
+      f.torques = Eigen::VectorXd::Constant(n, nan);
+      continue;
+    }
+    const double delta = glp_get_col_prim(lp, cols);
+    f.feasible = true;
+    f.margin = delta;
+    f.torques = tau;
+    for (int i = 0; i < m; ++i) {
+      Eigen::VectorXd lambda(k);
+      for (int e = 0; e < k; ++e) lambda[e] = glp_get_col_prim(lp, i * k + e + 1) + delta;
+      const Eigen::Vector3d fi = gen.middleCols(i * k, k) * lambda;
+      f.forces.row(i) = fi.transpose();
+      f.torques.noalias() -= J.middleRows(3 * i, 3).transpose() * fi;
+    }
+  }
+  glp_delete_prob(lp);
+  glp_error_hook(nullptr, nullptr);
+  return out;
 }
 
 }  // namespace pathpace

@@ -20,22 +20,43 @@ void set_bounds(glp_prob* lp, bool row, int i, double lo, double hi) {
 }  // namespace
 
 Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps) {
+  PolytopeProjector p;
+  return p.project(in, relative_tolerance, max_lps);
+}
+
+PolytopeProjector::~PolytopeProjector() { release(); }
+
+void PolytopeProjector::release() {
+  if (lp_) glp_delete_prob(lp_);
+  lp_ = nullptr;
+  rows_ = cols_ = -1;
+}
+
+Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps) {
   Projection out;
   const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
   glp_term_out(GLP_OFF);
   GlpkHookState state;
-  glp_prob* lp = nullptr;
   glp_error_hook(pathpace_glpk_error_hook, &state);
-  if (setjmp(state.env)) {  // GLPK misuse: the environment is gone, and with it `lp`
+  if (setjmp(state.env)) {  // GLPK misuse: the environment is gone, and with it our problem
     glp_error_hook(nullptr, nullptr);
     glp_free_env();
+    lp_ = nullptr;
+    rows_ = cols_ = -1;
     out.outcome = Projection::Outcome::Failed;
     return out;
   }
-  lp = glp_create_prob();
-  glp_set_obj_dir(lp, GLP_MAX);
-  glp_add_rows(lp, rows);
-  glp_add_cols(lp, cols);
+  const bool warm = lp_ && rows == rows_ && cols == cols_;
+  if (!warm) {
+    release();
+    lp_ = glp_create_prob();
+    glp_set_obj_dir(lp_, GLP_MAX);
+    glp_add_rows(lp_, rows);
+    glp_add_cols(lp_, cols);
+    rows_ = rows;
+    cols_ = cols;
+  }
+  glp_prob* lp = lp_;
   std::vector<int> ia(1), ja(1);
   std::vector<double> ar(1);
   for (int i = 0; i < rows; ++i) {
@@ -51,7 +72,8 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
   // No scaling: GLPK's automatic scaling was seen to make the primal simplex declare small, plainly
   // feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
-  glp_adv_basis(lp, 0);
+  // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
+  if (!warm) glp_adv_basis(lp, 0);
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
@@ -92,7 +114,6 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
     Vertex p;
     const int r = extremize(std::cos(ang), std::sin(ang), p);
     if (r <= 0) {
-      glp_delete_prob(lp);
       glp_error_hook(nullptr, nullptr);
       out.outcome = r == 0 ? Projection::Outcome::Empty : Projection::Outcome::Failed;
       return out;
@@ -126,7 +147,6 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
     nu /= len;
     Vertex q;
     if (extremize(nx, nu, q) != 1) {
-      glp_delete_prob(lp);
       glp_error_hook(nullptr, nullptr);
       out.outcome = Projection::Outcome::Failed;
       return out;
@@ -144,7 +164,6 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
     }
     i = e;
   }
-  glp_delete_prob(lp);
   glp_error_hook(nullptr, nullptr);
   // Half-planes from the edges (dropping zero-length ones).
   for (size_t e = 0; e < poly.size(); ++e) {

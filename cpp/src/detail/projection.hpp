@@ -11,6 +11,8 @@
 
 #include "detail/polygon2d.hpp"
 
+struct glp_prob;  // GLPK stays in the .cpp
+
 namespace pathpace::detail {
 
 struct PolytopeLp {
@@ -28,8 +30,26 @@ struct Projection {
   int lp_solves = 0;
 };
 
-/// `relative_tolerance`: an edge is final when the LP moves it outward by less than this times the
-/// polygon's size. `max_lps` bounds the work (the result is then an inner approximation).
+/// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
+/// is kept from one call to the next and each call starts from the previous call's final basis, which
+/// is nearly optimal for a neighbouring grid point (sec. IV.C's warm start, carried across points).
+/// `relative_tolerance`: an edge is final when the LP moves it outward by less than this times its
+/// support value (at least 1). `max_lps` bounds the work (the result is then an inner approximation).
+class PolytopeProjector {
+ public:
+  PolytopeProjector() = default;
+  PolytopeProjector(const PolytopeProjector&) = delete;
+  PolytopeProjector& operator=(const PolytopeProjector&) = delete;
+  ~PolytopeProjector();
+  Projection project(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 200);
+
+ private:
+  void release();
+  ::glp_prob* lp_ = nullptr;
+  int rows_ = -1, cols_ = -1;
+};
+
+/// One polytope, from a cold start.
 Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 200);
 
 }  // namespace pathpace::detail
