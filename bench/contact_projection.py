@@ -1,51 +1,50 @@
-"""Projection cost for a humanoid (baseline for the contact issue; not yet the issue's sway benchmark).
+"""Contact projection cost for a humanoid: the contact issue's benchmark.
 
-Talos (example-robot-data, floating base, gripper mimic joints locked) standing on both feet: four
-corner contacts per sole (8 contacts) or sixteen per sole (32), μ = 0.5 with 50 % friction margin,
-10 N minimum normal force. The path sways the base sideways by ±2 cm around the neutral posture with
-the joints fixed, so the feet do not stay exactly in place: this measures the projection only
-(drift check off), at N = 100.
+Talos (example-robot-data, floating base, gripper mimic joints locked) sways its pelvis ±7 cm over each
+foot with both soles flat (feet-fixed IK path of examples/talos_sway.py): four corner contacts per sole
+(8 contacts) or a 4 x 4 grid per sole (32), μ = 0.5 with a 50 % friction margin, 10 N minimum normal
+force, 8-edge cones, N = 100. Reports the projection time per grid point and in total, the polygon
+edges per grid point, LPs per grid point, and the whole solve (sets + reachability + SLP), median of
+--repeat runs on one core.
 
-    .venv/bin/python bench/contact_projection.py
+    .venv/bin/python bench/contact_projection.py [--repeat 5]
 """
 
+import argparse
+import statistics
+import sys
 import time
-import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 
-import pathpace as pp
-from pathpace.robots import example_robot_urdf
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+import pathpace as pp  # noqa: E402
+from talos_sway import CONTACT_OPTIONS, load_talos, sole_contacts, sway_path  # noqa: E402
 
-urdf = str(example_robot_urdf("talos_data/robots/talos_full_v2.urdf"))
-mimic = [j.get("name") for j in ET.parse(urdf).getroot().iter("joint") if j.find("mimic") is not None]
-robot = pp.RobotModel.from_urdf(urdf, floating_base=True, locked_joints={n: 0.0 for n in mimic})
-n = robot.nq
-q0 = np.zeros(n)
-q0[2] = 1.02  # base height with straight legs
-foot_z = robot.frame_placement(q0, "left_sole_link")[2, 3]
-q0[2] -= foot_z  # soles on the ground
-wp = np.tile(q0, (3, 1))
-wp[:, 1] += [-0.02, 0.02, -0.02]
-path = pp.CubicSplinePath(wp)
+ap = argparse.ArgumentParser()
+ap.add_argument("--repeat", type=int, default=5)
+ap.add_argument("--grid", type=int, default=100)
+args = ap.parse_args()
 
-
-def soles(per_side):
-    side = int(np.sqrt(per_side))
-    xs, ys = np.linspace(-0.1, 0.1, side), np.linspace(-0.05, 0.05, side)
-    pts = [(x, y, 0.0) for x in xs for y in ys]
-    return [pp.Contact(link, point=p, normal=[0, 0, 1], friction=0.5) for link in ("left_sole_link", "right_sole_link") for p in pts]
-
-
+robot = load_talos()
+path = sway_path(robot)
+N = args.grid
+print(f"Talos nq = {robot.nq}, sway path, N = {N}, median of {args.repeat}")
+print("| contacts | LP columns | projection total (ms) | per grid point (ms) | edges per point | solve (ms) | total (ms) | T (s) |")
+print("|---:|---:|---:|---:|---:|---:|---:|---:|")
 for per_side in (4, 16):
-    contacts = soles(per_side)
-    prob = pp.TimeScalingProblem(path, grid=100)
-    t0 = time.perf_counter()
-    prob.add_contacts(robot, contacts, cone_edges=8, friction_margin=0.5, min_normal_force=10.0, drift_tolerance=np.inf)
-    t_proj = time.perf_counter() - t0
-    edges = [prob.feasible_set(k).halfplanes.shape[0] for k in range(101)]
-    t0 = time.perf_counter()
-    res = prob.solve()
-    t_solve = time.perf_counter() - t0
-    print(f"{len(contacts)} contacts, nq = {n}, N = 100: projection {t_proj * 1e3:.1f} ms ({t_proj / 101 * 1e3:.2f} ms per grid point), "
-          f"{np.mean(edges):.1f} edges per point; solve {t_solve * 1e3:.1f} ms, {res.status.name}, T = {res.duration:.3f} s")
+    contacts = sole_contacts(per_side)
+    t_proj, t_solve = [], []
+    for _ in range(args.repeat):
+        prob = pp.TimeScalingProblem(path, grid=N)
+        t0 = time.perf_counter()
+        prob.add_contacts(robot, contacts, drift_tolerance=1e-4, **CONTACT_OPTIONS)
+        t_proj.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        res = prob.solve()
+        t_solve.append(time.perf_counter() - t0)
+    edges = [prob.feasible_set(k).halfplanes.shape[0] for k in range(N + 1)]
+    tp, ts = statistics.median(t_proj), statistics.median(t_solve)
+    print(f"| {len(contacts)} | {2 + len(contacts) * CONTACT_OPTIONS['cone_edges']} | {tp * 1e3:.1f} | {tp / (N + 1) * 1e3:.3f} | "
+          f"{np.mean(edges):.2f} | {ts * 1e3:.1f} | {(tp + ts) * 1e3:.1f} | {res.duration:.4f} ({res.status.name}) |")

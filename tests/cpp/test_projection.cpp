@@ -82,3 +82,24 @@ TEST(Projection, EmptyPolytopeIsReported) {
   lp.col_lo[2] = 2.0;  // y >= 2 contradicts |y| <= 1
   EXPECT_EQ(project_polytope(lp).outcome, Projection::Outcome::Empty);
 }
+
+TEST(Projection, WarmProjectorAlongASequenceMatchesColdProjections) {
+  // A family of rotated, scaled octahedra (one per "grid point"), projected with one warm projector
+  // and each from scratch: the same polygons.
+  PolytopeProjector warm;
+  for (int k = 0; k < 20; ++k) {
+    PolytopeLp lp = octahedron();
+    const double ang = 0.07 * k, scale = 1.0 + 0.1 * k;
+    Eigen::Matrix2d R;
+    R << std::cos(ang), -std::sin(ang), std::sin(ang), std::cos(ang);
+    lp.A.leftCols(2) = lp.A.leftCols(2) * R / scale;
+    const Projection a = warm.project(lp), b = project_polytope(lp);
+    ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
+    ASSERT_EQ(b.outcome, Projection::Outcome::Polygon);
+    for (int d = 0; d < 32; ++d) {
+      const double dx = std::cos(0.2 * d), du = std::sin(0.2 * d);
+      EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9);
+    }
+    EXPECT_NEAR(support(a, 1.0, 0.0), scale * std::max(std::abs(std::cos(ang)), std::abs(std::sin(ang))) , 1e-9);
+  }
+}

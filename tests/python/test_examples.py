@@ -28,3 +28,21 @@ def test_pendulum_swing_up_torque_aware_timing_is_tracked_and_the_others_are_not
     assert res_tau.duration < res_acc.duration
     assert res_mono.status.name == "INFEASIBLE"
     assert 0.0 <= by[("dense torque excess", "-")]["max_tracking_error"] < 1e-3  # N·m at N = 400
+
+
+def test_talos_sway_keeps_its_feet_and_the_kinematic_timing_does_not():
+    ns = runpy.run_path(str(EXAMPLES / "talos_sway.py"))
+    out = ns["main"](["--grid", "40"])
+    res, rows = out["result"], {r[0]: r for r in out["rows"]}
+    assert res.status.name == "OPTIMAL"
+    with_margins = rows["pathpace, contacts with margins"]
+    # With the margins the motion needs only forces that exist, between the grid points too; the
+    # solver's own (shrunk) cones are met up to the discretisation's small excess between points.
+    assert with_margins[3]["worst"] > 0.0 and with_margins[3]["bad"] == 0.0
+    assert with_margins[2]["worst"] > -1.0
+    # Without margins it is faster and, between grid points, at (or just beyond) the edge of physics.
+    no_margins = rows["pathpace, contacts, no margins"]
+    assert no_margins[1] < with_margins[1] and no_margins[3]["worst"] < 0.5
+    # Joint velocity and acceleration limits alone give a motion the feet cannot produce.
+    kin = rows["velocity + acceleration limits"]
+    assert kin[1] < no_margins[1] and kin[3]["bad"] > 0.5 and kin[3]["worst"] < -100.0

@@ -1,0 +1,112 @@
+// Contacts in C++: a free object carried by a robot through robot–robot contacts (closed-form optimum),
+// model combination and the force-distribution LP.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "pathpace/pathpace.hpp"
+
+using namespace pathpace;
+
+namespace {
+
+const char* kLifter = R"(<robot name="lifter">
+ <link name="base"/>
+ <link name="platform"><inertial><mass value="3"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial></link>
+ <joint name="slide" type="prismatic"><parent link="base"/><child link="platform"/><axis xyz="1 0 0"/><limit lower="-10" upper="10" velocity="100" effort="1000"/></joint>
+</robot>)";
+
+std::shared_ptr<RobotModel> lifter_with_box() {
+  const RobotModel lifter = RobotModel::from_urdf_string(kLifter);
+  const RobotModel box = RobotModel::free_object("box", 2.0, Eigen::Vector3d(0, 0, 0.05), 0.01 * Eigen::Matrix3d::Identity());
+  return std::make_shared<RobotModel>(RobotModel::combine({lifter, box}));
+}
+
+std::vector<Contact> corners(double mu) {
+  std::vector<Contact> out;
+  for (double x : {-0.1, 0.1})
+    for (double y : {-0.1, 0.1}) {
+      Contact c;
+      c.link = "box";
+      c.other_link = "platform";
+      c.point = Eigen::Vector3d(x, y, 0.0);
+      c.friction = mu;
+      out.push_back(c);
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
+  auto model = lifter_with_box();
+  ASSERT_EQ(model->nq(), 7);
+  const int N = 40;
+  PathSamples ps;
+  ps.s = Eigen::VectorXd::LinSpaced(N + 1, 0.0, 1.0);
+  ps.q = Eigen::MatrixXd::Zero(N + 1, 7);
+  ps.dq = Eigen::MatrixXd::Zero(N + 1, 7);
+  ps.ddq = Eigen::MatrixXd::Zero(N + 1, 7);
+  ps.q.col(0) = ps.q.col(1) = ps.s;  // the slide and the box's x
+  ps.dq.col(0).setOnes();
+  ps.dq.col(1).setOnes();
+  auto path = std::make_shared<SampledPath>(ps.s, ps.q, ps.dq, ps.ddq);
+  TimeScalingProblem prob(path, ps.s);
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  auto contact = std::make_shared<ContactConstraint>(model, corners(0.5), opt);
+  EXPECT_LT(contact->max_drift(ps), 1e-14);
+  prob.add_constraint(contact);
+  const Result res = prob.solve();
+  ASSERT_EQ(res.status, Status::Optimal);
+  const double a = 0.5 * 9.81;
+  EXPECT_NEAR(res.duration, 2.0 * std::sqrt(1.0 / a), 1e-9);
+  // Mid-acceleration: the four corners push the box with m a forward and m g up, margin >= 0.
+  const Trajectory traj = res.trajectory();
+  ASSERT_TRUE(traj.contacts());
+  Eigen::VectorXd t(1);
+  t << 0.25 * res.duration;
+  const ContactForces f = traj.contact_forces(t)[0];
+  ASSERT_TRUE(f.feasible);
+  EXPECT_GE(f.margin, -1e-8);
+  const Eigen::Vector3d total = f.forces.colwise().sum().transpose();
+  EXPECT_NEAR(total.x(), 2.0 * a, 1e-7);
+  EXPECT_NEAR(total.z(), 2.0 * 9.81, 1e-7);
+  EXPECT_NEAR(f.torques[0], 5.0 * a, 1e-7);  // platform and box
+}
+
+TEST(Contact, ForceDistributionReportsMissingForces) {
+  // The box at rest on the platform, asked to accelerate at 2 g sideways: friction cannot, and the
+  // margin says by how much (negative); with no contact at all the LP has no solution.
+  auto model = lifter_with_box();
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  ContactConstraint c(model, corners(0.5), opt);
+  Eigen::MatrixXd q = Eigen::MatrixXd::Zero(2, 7), qd = q, qdd = q;
+  qdd(0, 0) = qdd(0, 1) = 0.2 * 9.81;
+  qdd(1, 0) = qdd(1, 1) = 2.0 * 9.81;
+  const auto f = c.force_distribution(q, qd, qdd);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_TRUE(f[0].feasible && f[1].feasible);
+  EXPECT_GT(f[0].margin, 0.0);
+  EXPECT_LT(f[1].margin, -1.0);
+  ContactConstraint none(model, {}, opt);
+  const auto g = none.force_distribution(q, qd, qdd);
+  EXPECT_FALSE(g[0].feasible);
+  EXPECT_TRUE(std::isinf(g[0].margin));
+  EXPECT_TRUE(std::isnan(g[0].torques.sum()));
+  EXPECT_THROW(c.force_distribution(q.leftCols(3), qd, qdd), InvalidInput);
+}
+
+TEST(Contact, CombineRejectsDuplicateLinks) {
+  const RobotModel box = RobotModel::free_object("box", 1.0);
+  try {
+    RobotModel::combine({box, box});
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("has a link 'box' that an earlier part also has"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(RobotModel::combine({}), InvalidInput);
+  EXPECT_THROW(RobotModel::free_object("b", -1.0), InvalidInput);
+}
