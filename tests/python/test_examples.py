@@ -46,3 +46,11 @@ def test_talos_sway_keeps_its_feet_and_the_kinematic_timing_does_not():
     # Joint velocity and acceleration limits alone give a motion the feet cannot produce.
     kin = rows["velocity + acceleration limits"]
     assert kin[1] < no_margins[1] and kin[3]["bad"] > 0.5 and kin[3]["worst"] < -100.0
+
+
+def test_rod_example_reproduces_the_papers_observations(capsys):
+    sets = runpy.run_path(str(EXAMPLES / "rod_contact.py"))["main"]([])
+    upright = sets[0.0]
+    assert abs(upright.vertices[:, 0].max() - 9.81) < 1e-6  # no speed beyond ṡ² = g
+    assert upright.contains(0.0, 0.0) and not sets[0.4].contains(0.0, 0.0)  # it can only stand near the vertical
+    assert "0.00     4    9.810" in capsys.readouterr().out
