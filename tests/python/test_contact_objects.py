@@ -251,3 +251,21 @@ def test_force_distribution_margin_matches_highs():
         # The reported forces and torques are consistent: τ = τ_id - Σ J_iᵀ f_i.
         assert np.max(np.abs(out.torques[2:])) < 1e-8
     assert checked_negative and checked_positive
+
+
+def test_a_box_that_no_contact_can_hold_is_reported_where_and_why():
+    """The corners' normals point down (the platform would have to pull the box): no contact forces
+    balance the box at any speed, and the solver says so at the first grid point."""
+    model = lifter_with_box()
+    grid = np.linspace(0.0, 1.0, 11)
+    prob = pp.TimeScalingProblem(carried_path(grid, 0), grid=grid)
+    upside_down = [pp.Contact("box", point=c.point, normal=[0, 0, -1], friction=0.5, other_link="platform") for c in box_corners()]
+    prob.add_contacts(model, upside_down, cone_edges=4)
+    assert prob.feasible_set(5).empty
+    res = prob.solve()
+    assert res.status == pp.Status.INFEASIBLE and not res.ok
+    assert res.infeasible_index == 0 and res.infeasible_s == 0.0
+    assert "contact forces cannot balance the robot" in res.binding_constraints
+    assert "contact forces cannot balance the robot" in res.message
+    with pytest.raises(pp.Error, match=r"no trajectory: the solve ended with status infeasible"):
+        res.trajectory()
