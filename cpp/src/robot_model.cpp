@@ -189,8 +189,21 @@ void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws,
     const double qi = q[static_cast<Eigen::Index>(i)];
     Vector6& S = ws.S[i];
     if (b.type == RobotModel::JointType::Revolute) {
-      // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree.
-      ws.E[i].noalias() = Eigen::AngleAxisd(-qi, b.axis).toRotationMatrix() * b.E_tree;
+      // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree. About a coordinate axis (most URDF
+      // joints) E_J mixes two rows of E_tree only.
+      const Eigen::Vector3d& ax = b.axis;
+      const int unit = ax.x() == 1.0 ? 0 : ax.y() == 1.0 ? 1 : ax.z() == 1.0 ? 2 : -1;
+      if (unit >= 0) {
+        const double cq = std::cos(qi), sq = std::sin(qi);
+        const int i1 = (unit + 1) % 3, i2 = (unit + 2) % 3;
+        // Rot(e_unit, q)^T rows: e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2.
+        Eigen::Matrix3d& E = ws.E[i];
+        E.row(unit) = b.E_tree.row(unit);
+        E.row(i1) = cq * b.E_tree.row(i1) + sq * b.E_tree.row(i2);
+        E.row(i2) = cq * b.E_tree.row(i2) - sq * b.E_tree.row(i1);
+      } else {
+        ws.E[i].noalias() = Eigen::AngleAxisd(-qi, b.axis).toRotationMatrix() * b.E_tree;
+      }
       ws.r[i] = b.r_tree;
       S << b.axis, Eigen::Vector3d::Zero();
     } else {
@@ -310,10 +323,93 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
   // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
   // gravity, c = g(q). The three passes share one set of joint transforms.
   kinematics(bodies_, ws, q);
-  ws.tmp = dq;
-  rnea_pass(bodies_, ws, &ws.tmp, ddq, nullptr, a);
-  rnea_pass(bodies_, ws, nullptr, dq, nullptr, b);
-  rnea_pass(bodies_, ws, nullptr, ws.zero, &gravity_, c);
+  // One sweep for the three: channel 0 carries q̇ = p', q̈ = p'' (velocity products included), channel
+  // 1 q̇ = 0, q̈ = p', channel 2 only gravity; the transforms and inertias are loaded once for all.
+  // Angular and linear parts are kept as 3x3 blocks (a column per channel) so that every transform is a
+  // fixed-size 3x3 product, and the spatial inertia is applied through its parts (m, h = m c, Ī about
+  // the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
+  const size_t nb = bodies_.size();
+  auto skew = [](const Eigen::Vector3d& w) {
+    Eigen::Matrix3d S;
+    S << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+    return S;
+  };
+  Eigen::Matrix3d root_lin = Eigen::Matrix3d::Zero();
+  root_lin.col(2) = -gravity_;  // gravity as an upward acceleration of the base, channel 2 only
+  const Eigen::Matrix3d zero3 = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < nb; ++i) {
+    const Body& bd = bodies_[i];
+    const Eigen::Matrix3d& E = ws.E[i];
+    const Eigen::Vector3d& r = ws.r[i];
+    const bool has_parent = bd.parent >= 0;
+    const size_t p = has_parent ? static_cast<size_t>(bd.parent) : 0;
+    const Eigen::Matrix3d& PW = has_parent ? ws.AW[p] : zero3;
+    const Eigen::Matrix3d& PL = has_parent ? ws.AL[p] : root_lin;
+    Eigen::Matrix3d& AW = ws.AW[i];
+    Eigen::Matrix3d& AL = ws.AL[i];
+    // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
+    AW.noalias() = E * PW;
+    AL.noalias() = E * (PL - skew(r) * PW);
+    const Eigen::Index j = static_cast<Eigen::Index>(i);
+    const double qd = dq[j], qdd = ddq[j];
+    Vector6& v = ws.v[i];
+    if (has_parent) {
+      const Vector6& vp = ws.v[p];
+      v.head<3>().noalias() = E * vp.head<3>();
+      v.tail<3>().noalias() = E * (vp.tail<3>() - r.cross(vp.head<3>()));
+    } else {
+      v.setZero();
+    }
+    // Joint motion S q̇ and its products (crm(v) vJ) in channel 0.
+    Eigen::Vector3d vJw = Eigen::Vector3d::Zero(), vJl = Eigen::Vector3d::Zero();
+    if (bd.type == JointType::Revolute) {
+      vJw = bd.axis * qd;
+      AW.col(0) += bd.axis * qdd;
+      AW.col(1) += bd.axis * qd;
+    } else {
+      vJl = bd.axis * qd;
+      AL.col(0) += bd.axis * qdd;
+      AL.col(1) += bd.axis * qd;
+    }
+    v.head<3>() += vJw;
+    v.tail<3>() += vJl;
+    const Eigen::Vector3d w = v.head<3>(), vl = v.tail<3>();
+    AW.col(0) += w.cross(vJw);
+    AL.col(0) += w.cross(vJl) + vl.cross(vJw);
+    // f = I a (+ v ×* I v in channel 0)
+    const Eigen::Matrix<double, 6, 6>& I6 = bd.inertia;
+    const double m = I6(3, 3);
+    const Eigen::Vector3d h(I6(2, 4), I6(0, 5), I6(1, 3));
+    const Eigen::Matrix3d Hx = skew(h);
+    const Eigen::Matrix3d Ibar = I6.topLeftCorner<3, 3>();
+    Eigen::Matrix3d& FW = ws.FW[i];
+    Eigen::Matrix3d& FL = ws.FL[i];
+    FW.noalias() = Ibar * AW;
+    FW.noalias() += Hx * AL;
+    FL.noalias() = m * AL;
+    FL.noalias() -= Hx * AW;
+    const Eigen::Vector3d Iw = Ibar * w + h.cross(vl), Il = m * vl - h.cross(w);
+    FW.col(0) += w.cross(Iw) + vl.cross(Il);
+    FL.col(0) += w.cross(Il);
+  }
+  for (size_t i = nb; i-- > 0;) {
+    const Body& bd = bodies_[i];
+    const Eigen::Index j = static_cast<Eigen::Index>(i);
+    const Eigen::Matrix3d& F = bd.type == JointType::Revolute ? ws.FW[i] : ws.FL[i];
+    const Eigen::RowVector3d tau = bd.axis.transpose() * F;
+    a[j] = tau[0];
+    b[j] = tau[1];
+    c[j] = tau[2];
+    if (bd.parent >= 0) {
+      // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f
+      const Eigen::Matrix3d& E = ws.E[i];
+      const size_t p = static_cast<size_t>(bd.parent);
+      const Eigen::Matrix3d fl = E.transpose() * ws.FL[i];
+      ws.FW[p].noalias() += E.transpose() * ws.FW[i];
+      ws.FW[p].noalias() += skew(ws.r[i]) * fl;
+      ws.FL[p] += fl;
+    }
+  }
 }
 
 int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const {

@@ -12,6 +12,10 @@ RobotWorkspace::RobotWorkspace(const RobotModel& model) {
   a.resize(nb);
   f.resize(nb);
   S.resize(nb);
+  AW.resize(nb);
+  AL.resize(nb);
+  FW.resize(nb);
+  FL.resize(nb);
   tmp.setZero(model.nq());
   zero.setZero(model.nq());
 }

@@ -20,6 +20,8 @@ class RobotWorkspace {
   std::vector<Eigen::Vector3d> r;   // body i: its origin in parent coordinates
   std::vector<Vector6> v, a, f;     // spatial velocity, acceleration, force (body coordinates)
   std::vector<Vector6> S;           // joint motion subspace
+  // Three RNEA channels at once (eq. 12's a, b, c): angular and linear parts, one column per channel.
+  std::vector<Eigen::Matrix3d> AW, AL, FW, FL;
   Eigen::VectorXd tmp;              // nq scratch
   Eigen::VectorXd zero;             // nq zeros
 };

@@ -52,23 +52,27 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
     return ps;
   }
   if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
-  if (!hint.empty()) {
-    // The rows that supported the previous grid point's polygon most likely support this one too.
-    // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
-    // the cheap inside test instead of rebuilding it.
-    std::partition(lines.begin(), lines.end(), [hint](const Line& l) {
-      for (const Line& h : hint)
-        if (h.id == l.id) return true;
-      return false;
-    });
-  }
-  polygon.reset(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap);
-  for (const Line& l : lines) {
-    polygon.clip(l);
-    if (polygon.empty()) {
-      ps.empty = true;
-      ps.certificate = {polygon.emptied_by().id, polygon.certificate_edge(0).id, polygon.certificate_edge(1).id};
-      return ps;
+  // One pass over the envelopes; clipping row by row only when that declines (empty or degenerate
+  // sets: clipping also names the rows that empty it).
+  if (!polygon.build(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap, lines.data(), lines.size())) {
+    if (!hint.empty()) {
+      // The rows that supported the previous grid point's polygon most likely support this one too.
+      // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
+      // the cheap inside test instead of rebuilding it.
+      std::partition(lines.begin(), lines.end(), [hint](const Line& l) {
+        for (const Line& h : hint)
+          if (h.id == l.id) return true;
+        return false;
+      });
+    }
+    polygon.reset(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap);
+    for (const Line& l : lines) {
+      polygon.clip(l);
+      if (polygon.empty()) {
+        ps.empty = true;
+        ps.certificate = {polygon.emptied_by().id, polygon.certificate_edge(0).id, polygon.certificate_edge(1).id};
+        return ps;
+      }
     }
   }
   std::vector<Line>& out = out_rows ? *out_rows : ps.rows;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pathpace::detail {
 
@@ -50,6 +51,164 @@ void Polygon2d::assign(const Polygon2d& other) {
             vertices_[0].begin());
 }
 
+bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n) {
+  empty_ = false;
+  scratch_.clear();
+  up_.clear();
+  low_.clear();
+  Line left{-1.0, 0.0, -x_lo, kBoxXLow}, right{1.0, 0.0, x_hi, kBoxXHigh};
+  scratch_.push_back({0.0, -1.0, -y_lo, kBoxYLow});
+  scratch_.push_back({0.0, 1.0, y_hi, kBoxYHigh});
+  for (std::size_t i = 0; i < n; ++i) {
+    const Line& l = lines[i];
+    if (l.b == 0.0) {
+      // A bound on x alone tightens the box (keeping its id, as clipping would).
+      if (l.a > 0.0) {
+        if (l.c / l.a < x_hi) {
+          x_hi = l.c / l.a;
+          right = l;
+        }
+      } else if (l.a < 0.0) {
+        if (l.c / l.a > x_lo) {
+          x_lo = l.c / l.a;
+          left = l;
+        }
+      } else if (l.c < 0.0) {
+        return false;  // 0 <= c fails: empty
+      }
+      continue;
+    }
+    scratch_.push_back(l);
+  }
+  if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
+  const std::size_t m = scratch_.size();
+  p_.resize(m);
+  q_.resize(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const Line& l = scratch_[i];
+    p_[i] = l.c / l.b;
+    q_[i] = -l.a / l.b;
+    (l.b > 0.0 ? up_ : low_).push_back(static_cast<int>(i));
+  }
+  // One envelope over [x_lo, x_hi]: the minimum of the upper bounds (sign = 1) or the maximum of the
+  // lower bounds (sign = -1). Pieces in increasing x; a switch at x' < x (rounding) happens at x.
+  auto envelope = [&](const std::vector<int>& ids, double sign, std::vector<Piece>& out) {
+    out.clear();
+    int cur = ids[0];
+    double best_v = sign * (p_[cur] + q_[cur] * x_lo);
+    for (std::size_t t = 1; t < ids.size(); ++t) {
+      const int i = ids[t];
+      const double v = sign * (p_[i] + q_[i] * x_lo);
+      // Ties: the one that stays extreme longer (smaller slope for the minimum, larger for the maximum).
+      if (v < best_v || (v == best_v && sign * q_[i] < sign * q_[cur])) {
+        cur = i;
+        best_v = v;
+      }
+    }
+    double x = x_lo;
+    for (std::size_t guard = 0; guard <= ids.size(); ++guard) {
+      int next = -1;
+      double next_x = x_hi;
+      for (const int j : ids) {
+        const double dq = sign * (q_[cur] - q_[j]);
+        if (!(dq > 0.0)) continue;  // j never overtakes cur to the right
+        const double xj = std::max(x, (p_[j] - p_[cur]) / (q_[cur] - q_[j]));
+        if (xj < next_x || (xj == next_x && next >= 0 && sign * q_[j] < sign * q_[next])) {
+          next = j;
+          next_x = xj;
+        }
+      }
+      out.push_back({cur, next < 0 ? x_hi : next_x});
+      if (next < 0) return true;
+      cur = next;
+      x = next_x;
+    }
+    return false;  // cannot happen (slopes strictly monotone); be safe
+  };
+  if (!envelope(up_, 1.0, upper_) || !envelope(low_, -1.0, lower_)) return false;
+  // g(x) = U(x) - L(x) is concave: evaluate it at every breakpoint to find where it is >= 0.
+  auto value = [&](const std::vector<Piece>& pcs, double x, std::size_t& hint) {
+    while (hint + 1 < pcs.size() && pcs[hint].x_end < x) ++hint;
+    const int i = pcs[hint].line;
+    return p_[i] + q_[i] * x;
+  };
+  // The breakpoints, merged in increasing x.
+  std::size_t iu = 0, il = 0, hu = 0, hl = 0;
+  double xa = std::numeric_limits<double>::quiet_NaN(), xb = xa;
+  double prev_x = x_lo, prev_g = 0.0;
+  bool first = true, inside = false, closed = false;
+  while (true) {
+    double x;
+    if (first) {
+      x = x_lo;
+    } else {
+      const double xu = iu < upper_.size() ? upper_[iu].x_end : x_hi;
+      const double xl = il < lower_.size() ? lower_[il].x_end : x_hi;
+      x = std::min(xu, xl);
+      if (x == xu) ++iu;
+      if (x == xl) ++il;
+    }
+    const double U = value(upper_, x, hu), L = value(lower_, x, hl);
+    const double g = U - L;
+    if (std::abs(g) <= 1e-9 * (std::abs(U) + std::abs(L)) + 1e-300) return false;  // touching: degenerate
+    if (first) {
+      if (g > 0.0) {
+        xa = x_lo;
+        inside = true;
+      }
+    } else if (!inside && g > 0.0) {
+      if (closed) return false;  // a second positive stretch: not concave, rounding trouble
+      // Entering between prev_x and x: where the active upper and lower lines cross.
+      xa = prev_x + (x - prev_x) * (-prev_g) / (g - prev_g);
+      inside = true;
+    } else if (inside && g < 0.0) {
+      xb = prev_x + (x - prev_x) * prev_g / (prev_g - g);
+      inside = false;
+      closed = true;
+    }
+    prev_x = x;
+    prev_g = g;
+    first = false;
+    if (x >= x_hi) break;
+  }
+  if (std::isnan(xa)) return false;  // empty: clip for the certificate
+  if (inside) xb = x_hi;
+  if (!(xb - xa > 1e-12 * std::max(std::abs(xa), std::abs(xb)) + 1e-300)) return false;
+  // Edges counter-clockwise: lower pieces left to right, the right side if x_hi is reached, upper pieces
+  // right to left, the left side if x_lo is reached. Vertex j = edge j ∩ edge j+1 (Cramer, exact lines).
+  const int nxt = 1 - cur_;
+  const std::size_t cap = lower_.size() + upper_.size() + 2;
+  if (edges_[nxt].size() < cap) {
+    edges_[nxt].resize(2 * cap);
+    vertices_[nxt].resize(2 * cap);
+  }
+  if (dist_.size() < 16) dist_.resize(16);
+  if (edges_[cur_].size() < 16) {
+    edges_[cur_].resize(16);
+    vertices_[cur_].resize(16);
+  }
+  Line* e = edges_[nxt].data();
+  std::size_t cnt = 0;
+  const bool has_left = xa == x_lo, has_right = xb == x_hi;
+  auto overlaps = [&](const std::vector<Piece>& pcs, std::size_t k) {
+    const double start = k == 0 ? x_lo : pcs[k - 1].x_end;
+    return pcs[k].x_end > xa && start < xb;
+  };
+  for (std::size_t k = 0; k < lower_.size(); ++k)
+    if (overlaps(lower_, k)) e[cnt++] = scratch_[static_cast<std::size_t>(lower_[k].line)];
+  if (has_right) e[cnt++] = right;
+  for (std::size_t k = upper_.size(); k-- > 0;)
+    if (overlaps(upper_, k)) e[cnt++] = scratch_[static_cast<std::size_t>(upper_[k].line)];
+  if (has_left) e[cnt++] = left;
+  if (cnt < 3) return false;
+  Vertex* v = vertices_[nxt].data();
+  for (std::size_t j = 0; j < cnt; ++j)
+    if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
+  cur_ = nxt;
+  m_ = cnt;
+  return true;
+}
+
 bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {
   const double det = l1.a * l2.b - l2.a * l1.b;
   const double scale = std::abs(l1.a * l2.b) + std::abs(l2.a * l1.b);
@@ -64,6 +223,16 @@ bool Polygon2d::clip(const Line& line) {
   const std::size_t m = m_;
   const Line* edges = edges_[cur_].data();
   const Vertex* verts = vertices_[cur_].data();
+  {
+    // Most lines are redundant (every vertex inside): find that out with a lean pass and no stores.
+    double worst = -1.0;
+    const double ac = std::abs(line.c);
+    for (std::size_t j = 0; j < m; ++j) {
+      const double ax = line.a * verts[j].x, by = line.b * verts[j].y;
+      worst = std::max(worst, (ax + by - line.c) - kTol * (std::abs(ax) + std::abs(by) + ac));
+    }
+    if (worst <= 0.0) return false;
+  }
   if (dist_.size() < m) dist_.resize(2 * m);
   double* dist = dist_.data();
   // dist[j] <= 0 marks an inside vertex (within the tolerance); outside ones keep their distance, which

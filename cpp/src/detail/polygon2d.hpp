@@ -49,6 +49,15 @@ class Polygon2d {
   /// Starts from the box [x_lo, x_hi] x [y_lo, y_hi] (finite, x_lo <= x_hi, y_lo <= y_hi).
   void reset(double x_lo, double x_hi, double y_lo, double y_hi);
 
+  /// The box cut by n lines in one pass, the same polygon as reset() followed by clip() of each line:
+  /// every line with b != 0 bounds y from above (b > 0) or below (b < 0), so the polygon is the region
+  /// between the lower envelope of the upper bounds and the upper envelope of the lower bounds (the
+  /// x-range where they do not cross), found by walking the two envelopes; lines with b = 0 tighten the
+  /// x-range. O(n · pieces) instead of O(n · vertices) clips. Returns false, with the polygon left
+  /// unspecified, when the result is empty or nearly degenerate (touching envelopes, parallel lines):
+  /// the caller then clips line by line, which also yields the emptiness certificate.
+  bool build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n);
+
   /// Becomes a copy of `other` (no allocation once warm).
   void assign(const Polygon2d& other);
 
@@ -79,6 +88,14 @@ class Polygon2d {
   std::vector<Line> edges_[2];
   std::vector<Vertex> vertices_[2];
   std::vector<double> dist_;
+  struct Piece {
+    int line;        // index into scratch_
+    double x_end;    // where the next piece takes over
+  };
+  std::vector<Line> scratch_;  // build(): the lines, box sides included
+  std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
+  std::vector<int> up_, low_;
+  std::vector<Piece> upper_, lower_;
   int cur_ = 0;
   std::size_t m_ = 0;
   bool empty_ = false;

@@ -117,6 +117,18 @@ void clip_rows(Polygon2d& poly, View<IntervalRow> rows, bool relax) {
   }
 }
 
+// Interval k's polygon: the box cut by its rows, in one envelope pass when that applies (see
+// Polygon2d::build), else row by row (which also names the rows of an empty set).
+void interval_polygon(Polygon2d& poly, std::vector<Line>& scratch, double x_lo, double x_hi, double y_lo, double y_hi,
+                      View<IntervalRow> rows, bool relax) {
+  scratch.clear();
+  for (const IntervalRow& r : rows)
+    if (!(relax && r.coupled)) scratch.push_back({r.alpha, r.beta, r.c, r.id});
+  if (poly.build(x_lo, x_hi, y_lo, y_hi, scratch.data(), scratch.size())) return;
+  poly.reset(x_lo, x_hi, y_lo, y_hi);
+  clip_rows(poly, rows, relax);
+}
+
 void push_unique(std::vector<int>& v, int id) {
   if (id >= 0 && std::find(v.begin(), v.end(), id) == v.end()) v.push_back(id);
 }
@@ -179,9 +191,9 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
   std::vector<Vertex> rev;
   std::vector<size_t> rev_size(static_cast<size_t>(n));
   rev.reserve(static_cast<size_t>(n) * 6);
+  std::vector<Line> scratch;
   for (Eigen::Index k = n - 1; k >= 0; --k) {
-    poly.reset(chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1]);
-    clip_rows(poly, chain.rows(k), false);
+    interval_polygon(poly, scratch, chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1], chain.rows(k), false);
     if (poly.empty()) {
       fail_at(k, "no speed at this grid point can reach the end of the path");
       push_unique(out.binding, poly.emptied_by().id);
@@ -259,14 +271,14 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     o->k_lo[n] = o->k_hi[n] = theta_end;
   }
   Polygon2d pr, pf;
+  std::vector<Line> scratch;
   std::vector<Vertex> rev_r, rev_f;
   std::vector<size_t> size_r(static_cast<size_t>(n)), size_f(static_cast<size_t>(n));
   rev_r.reserve(static_cast<size_t>(n) * 6);
   rev_f.reserve(static_cast<size_t>(n) * 6);
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     const View<IntervalRow> rows = chain.rows(k);
-    pr.reset(chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1]);
-    clip_rows(pr, rows, true);
+    interval_polygon(pr, scratch, chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1], rows, true);
     if (pr.empty()) return false;
     // K_full ⊆ K_relaxed, so the full polygon is the relaxed one cut to θ_{k+1} ∈ K_full,k+1 and by
     // the coupling rows: one clipping pass serves both analyses.

@@ -1,0 +1,88 @@
+// Polygon2d::build (envelopes) against reset + clip (the reference), on seeded random line sets shaped
+// like the solver's: slabs (pairs of opposite rows), x-bounds, boxes far larger than the polygon.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "detail/polygon2d.hpp"
+
+using namespace pathpace::detail;
+
+namespace {
+
+double support(const Polygon2d& p, double dx, double dy) {
+  double best = -INFINITY;
+  for (const Vertex& v : p.vertices()) best = std::max(best, dx * v.x + dy * v.y);
+  return best;
+}
+
+}  // namespace
+
+TEST(PolygonBuild, MatchesClippingOnRandomSlabs) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int built = 0, declined_empty = 0, declined_nonempty = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::vector<Line> lines;
+    const int slabs = 1 + trial % 9;
+    int id = 0;
+    for (int j = 0; j < slabs; ++j) {
+      // lo <= a x + b y <= hi, as acceleration or torque rows are.
+      const double a = U(rng), b = trial % 17 == 0 && j == 0 ? 0.0 : U(rng);
+      const double lo = -std::abs(U(rng)) - 0.1, hi = std::abs(U(rng)) + 0.1 + (trial % 5 == 0 ? -1.0 : 0.0);
+      const double n = std::hypot(a, b);
+      if (n == 0.0) continue;
+      lines.push_back({a / n, b / n, hi / n, id++});
+      lines.push_back({-a / n, -b / n, -lo / n, id++});
+    }
+    if (trial % 3 == 0) lines.push_back({1.0, 0.0, 5.0 + U(rng), id++});  // an x-bound row
+    const bool huge = trial % 2 == 0;
+    const double xhi = huge ? 1e15 : 10.0, yb = huge ? 1e15 : 50.0;
+    Polygon2d ref, fast;
+    ref.reset(0.0, xhi, -yb, yb);
+    for (const Line& l : lines) ref.clip(l);
+    if (!fast.build(0.0, xhi, -yb, yb, lines.data(), lines.size())) {
+      ++(ref.empty() ? declined_empty : declined_nonempty);
+      continue;
+    }
+    ++built;
+    ASSERT_FALSE(ref.empty()) << "trial " << trial;
+    for (int d = 0; d < 24; ++d) {
+      const double dx = std::cos(0.2618 * d), dy = std::sin(0.2618 * d);
+      const double a = support(ref, dx, dy), b = support(fast, dx, dy);
+      EXPECT_NEAR(a, b, 1e-9 * std::max(1.0, std::abs(a))) << "trial " << trial << " direction " << d;
+    }
+    // The same supporting rows (ids), as the solver's rows come from the edges.
+    std::vector<int> ids_ref, ids_fast;
+    for (const Line& e : ref.edges()) ids_ref.push_back(e.id);
+    for (const Line& e : fast.edges()) ids_fast.push_back(e.id);
+    std::sort(ids_ref.begin(), ids_ref.end());
+    std::sort(ids_fast.begin(), ids_fast.end());
+    EXPECT_EQ(ids_ref, ids_fast) << "trial " << trial;
+  }
+  // The fast path serves nearly every nonempty set; empty ones are left to clipping (certificates).
+  EXPECT_GT(declined_empty, 100);
+  EXPECT_LT(declined_nonempty, built / 50) << declined_nonempty << " of " << built + declined_nonempty;
+}
+
+TEST(PolygonBuild, DeclinesEmptyAndDegenerateSets) {
+  Polygon2d p;
+  // y <= -1 and y >= 1: empty.
+  std::vector<Line> empty = {{0.0, 1.0, -1.0, 0}, {0.0, -1.0, -1.0, 1}};
+  EXPECT_FALSE(p.build(0.0, 1.0, -10.0, 10.0, empty.data(), empty.size()));
+  // y = x exactly (an equality as two rows): a segment.
+  const double r = std::sqrt(0.5);
+  std::vector<Line> segment = {{-r, r, 0.0, 0}, {r, -r, 0.0, 1}};
+  EXPECT_FALSE(p.build(0.0, 1.0, -10.0, 10.0, segment.data(), segment.size()));
+  // x in [2, 1]: empty x-range.
+  std::vector<Line> xs = {{-1.0, 0.0, -2.0, 0}};
+  EXPECT_FALSE(p.build(0.0, 1.0, -10.0, 10.0, xs.data(), xs.size()));
+  // A plain triangle is built: y >= 0, y <= 1 - x on x in [0, 5].
+  std::vector<Line> tri = {{0.0, -1.0, 0.0, 0}, {r, r, r, 1}};
+  ASSERT_TRUE(p.build(0.0, 5.0, -10.0, 10.0, tri.data(), tri.size()));
+  EXPECT_EQ(p.vertices().size(), 3u);
+  EXPECT_NEAR(support(p, 1.0, 0.0), 1.0, 1e-15);
+  EXPECT_NEAR(support(p, 0.0, 1.0), 1.0, 1e-15);
+}
