@@ -8,6 +8,9 @@ from numpy.typing import ArrayLike, NDArray
 
 Array = NDArray[np.float64]
 
+#: True if the module asked glibc to keep freed heap memory (see PATHPACE_NO_MALLOC_TUNING).
+malloc_tuned: bool
+
 class Error(RuntimeError): ...
 class InvalidInputError(Error, ValueError): ...
 

@@ -21,8 +21,11 @@ def test_type_stubs_name_only_what_the_module_has_and_everything_it_exports():
         for item in node.body:
             if isinstance(item, ast.FunctionDef) and not item.name.startswith("__"):
                 assert hasattr(getattr(_core, name), item.name), f"{name}.{item.name}"
+    attributes = {n.target.id for n in stub.body if isinstance(n, ast.AnnAssign)}
+    for name in attributes:
+        assert hasattr(_core, name), name
     public = {n for n in dir(_core) if not n.startswith("_")}
-    assert public <= set(classes), public - set(classes)
+    assert public <= set(classes) | attributes, public - set(classes) - attributes
 
 
 def test_package_exports_everything_in_all():
@@ -95,3 +98,14 @@ def test_cli_solves_a_waypoint_file(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["status"] == "optimal" and out["duration"] > 0
     assert (tmp_path / "t.csv").is_file() and (tmp_path / "r.json").is_file()
+
+
+def test_malloc_tuning_is_on_by_default_and_can_be_switched_off():
+    import subprocess
+    import sys
+
+    code = "import pathpace._core as c; print(c.malloc_tuned)"
+    on = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    env = dict(__import__("os").environ, PATHPACE_NO_MALLOC_TUNING="1")
+    off = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout.strip()
+    assert (on, off) == ("True", "False")
