@@ -329,27 +329,26 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
   // fixed-size 3x3 product, and the spatial inertia is applied through its parts (m, h = m c, Ī about
   // the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
   const size_t nb = bodies_.size();
-  auto skew = [](const Eigen::Vector3d& w) {
-    Eigen::Matrix3d S;
-    S << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-    return S;
-  };
+  using M32 = Eigen::Matrix<double, 3, 2>;
   Eigen::Matrix3d root_lin = Eigen::Matrix3d::Zero();
   root_lin.col(2) = -gravity_;  // gravity as an upward acceleration of the base, channel 2 only
-  const Eigen::Matrix3d zero3 = Eigen::Matrix3d::Zero();
+  const M32 zero32 = M32::Zero();
   for (size_t i = 0; i < nb; ++i) {
     const Body& bd = bodies_[i];
     const Eigen::Matrix3d& E = ws.E[i];
     const Eigen::Vector3d& r = ws.r[i];
     const bool has_parent = bd.parent >= 0;
     const size_t p = has_parent ? static_cast<size_t>(bd.parent) : 0;
-    const Eigen::Matrix3d& PW = has_parent ? ws.AW[p] : zero3;
+    const M32& PW = has_parent ? ws.AW[p] : zero32;
     const Eigen::Matrix3d& PL = has_parent ? ws.AL[p] : root_lin;
-    Eigen::Matrix3d& AW = ws.AW[i];
+    M32& AW = ws.AW[i];
     Eigen::Matrix3d& AL = ws.AL[i];
     // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
     AW.noalias() = E * PW;
-    AL.noalias() = E * (PL - skew(r) * PW);
+    Eigen::Matrix3d lin = PL;
+    lin.col(0) -= r.cross(PW.col(0));
+    lin.col(1) -= r.cross(PW.col(1));
+    AL.noalias() = E * lin;
     const Eigen::Index j = static_cast<Eigen::Index>(i);
     const double qd = dq[j], qdd = ddq[j];
     Vector6& v = ws.v[i];
@@ -380,14 +379,15 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
     const Eigen::Matrix<double, 6, 6>& I6 = bd.inertia;
     const double m = I6(3, 3);
     const Eigen::Vector3d h(I6(2, 4), I6(0, 5), I6(1, 3));
-    const Eigen::Matrix3d Hx = skew(h);
     const Eigen::Matrix3d Ibar = I6.topLeftCorner<3, 3>();
     Eigen::Matrix3d& FW = ws.FW[i];
     Eigen::Matrix3d& FL = ws.FL[i];
-    FW.noalias() = Ibar * AW;
-    FW.noalias() += Hx * AL;
-    FL.noalias() = m * AL;
-    FL.noalias() -= Hx * AW;
+    FW.leftCols<2>().noalias() = Ibar * AW;
+    FW.col(2).setZero();
+    FL = m * AL;
+    for (int col = 0; col < 3; ++col) FW.col(col) += h.cross(AL.col(col));
+    FL.col(0) -= h.cross(AW.col(0));
+    FL.col(1) -= h.cross(AW.col(1));
     const Eigen::Vector3d Iw = Ibar * w + h.cross(vl), Il = m * vl - h.cross(w);
     FW.col(0) += w.cross(Iw) + vl.cross(Il);
     FL.col(0) += w.cross(Il);
@@ -406,7 +406,7 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
       const size_t p = static_cast<size_t>(bd.parent);
       const Eigen::Matrix3d fl = E.transpose() * ws.FL[i];
       ws.FW[p].noalias() += E.transpose() * ws.FW[i];
-      ws.FW[p].noalias() += skew(ws.r[i]) * fl;
+      for (int col = 0; col < 3; ++col) ws.FW[p].col(col) += ws.r[i].cross(fl.col(col));
       ws.FL[p] += fl;
     }
   }

@@ -82,11 +82,13 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   // The vectorised check first; the element-wise one (which names the entry) only if it fails.
   if (!rows.a.allFinite()) detail::require_finite(constraint->name() + " a", rows.a);
   if (!rows.b.allFinite()) detail::require_finite(constraint->name() + " b", rows.b);
-  for (Eigen::Index j = 0; j < r; ++j)
+  // c may be +inf (an inactive row), never NaN or -inf: -c < +inf holds exactly for the allowed values.
+  if (!((-rows.c.array()) < std::numeric_limits<double>::infinity()).all())
     for (Eigen::Index k = 0; k < rows.c.rows(); ++k)
-      if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
-        detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
-                     "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
+      for (Eigen::Index j = 0; j < r; ++j)
+        if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
+          detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
+                       "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
   constraints_.push_back(std::move(constraint));
   rows_.push_back(std::move(rows));
 }

@@ -21,7 +21,9 @@ class RobotWorkspace {
   std::vector<Vector6> v, a, f;     // spatial velocity, acceleration, force (body coordinates)
   std::vector<Vector6> S;           // joint motion subspace
   // Three RNEA channels at once (eq. 12's a, b, c): angular and linear parts, one column per channel.
-  std::vector<Eigen::Matrix3d> AW, AL, FW, FL;
+  // The gravity channel never has an angular acceleration, so AW keeps channels 0 and 1 only.
+  std::vector<Eigen::Matrix<double, 3, 2>> AW;
+  std::vector<Eigen::Matrix3d> AL, FW, FL;
   Eigen::VectorXd tmp;              // nq scratch
   Eigen::VectorXd zero;             // nq zeros
 };

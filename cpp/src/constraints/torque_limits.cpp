@@ -1,6 +1,7 @@
 #include "pathpace/constraints/torque_limits.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "detail/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
@@ -38,7 +39,7 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
                  std::to_string(n) + " joints");
   ConstraintRows rows;
-  rows.resize(samples.size(), 2 * n);
+  rows.allocate(samples.size(), 2 * n);  // every entry is written below
   for (int j = 0; j < n; ++j) {
     rows.labels[static_cast<size_t>(2 * j)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " upper";
     rows.labels[static_cast<size_t>(2 * j + 1)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " lower";
@@ -52,16 +53,13 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
     robot_->path_torque_coefficients(ws, q, dq, ddq, a, b, c);
     for (int j = 0; j < n; ++j) {
       // eq. (15): τ_L <= a x + b u + c <= τ_U
-      if (std::isfinite(tau_max_[j])) {
-        rows.a(k, 2 * j) = a[j];
-        rows.b(k, 2 * j) = b[j];
-        rows.c(k, 2 * j) = tau_max_[j] - c[j];
-      }
-      if (std::isfinite(tau_min_[j])) {
-        rows.a(k, 2 * j + 1) = -a[j];
-        rows.b(k, 2 * j + 1) = -b[j];
-        rows.c(k, 2 * j + 1) = c[j] - tau_min_[j];
-      }
+      // An infinite limit gives c = +inf: an inactive row.
+      rows.a(k, 2 * j) = a[j];
+      rows.b(k, 2 * j) = b[j];
+      rows.c(k, 2 * j) = std::isfinite(tau_max_[j]) ? tau_max_[j] - c[j] : std::numeric_limits<double>::infinity();
+      rows.a(k, 2 * j + 1) = -a[j];
+      rows.b(k, 2 * j + 1) = -b[j];
+      rows.c(k, 2 * j + 1) = std::isfinite(tau_min_[j]) ? c[j] - tau_min_[j] : std::numeric_limits<double>::infinity();
     }
   }
   return rows;

@@ -41,8 +41,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
         }
         continue;
       }
-      const double norm = std::sqrt(a * a + b * b);
-      lines.push_back({a / norm, b / norm, c / norm, id});
+      lines.push_back({a, b, c, id});  // normalised below, only if it supports the polygon
     }
     offset += static_cast<int>(cr.rows());
   }
@@ -77,7 +76,10 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   }
   std::vector<Line>& out = out_rows ? *out_rows : ps.rows;
   for (const Line& e : polygon.edges())
-    if (e.id >= 0) out.push_back(e);
+    if (e.id >= 0) {
+      const double norm = std::sqrt(e.a * e.a + e.b * e.b);
+      out.push_back({e.a / norm, e.b / norm, e.c / norm, e.id});
+    }
   return ps;
 }
 

@@ -86,8 +86,9 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   q_.resize(m);
   for (std::size_t i = 0; i < m; ++i) {
     const Line& l = scratch_[i];
-    p_[i] = l.c / l.b;
-    q_[i] = -l.a / l.b;
+    const double inv = 1.0 / l.b;
+    p_[i] = l.c * inv;
+    q_[i] = -l.a * inv;
     (l.b > 0.0 ? up_ : low_).push_back(static_cast<int>(i));
   }
   // One envelope over [x_lo, x_hi]: the minimum of the upper bounds (sign = 1) or the maximum of the
@@ -107,18 +108,31 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     }
     double x = x_lo;
     for (std::size_t guard = 0; guard <= ids.size(); ++guard) {
+      // The next breakpoint: the nearest x' >= x where a line of steeper descent (ascent) takes over.
+      // Candidates are compared as fractions num/den (den > 0), one division for the winner only.
       int next = -1;
-      double next_x = x_hi;
+      double best_num = x_hi, best_den = 1.0;
       for (const int j : ids) {
-        const double dq = sign * (q_[cur] - q_[j]);
-        if (!(dq > 0.0)) continue;  // j never overtakes cur to the right
-        const double xj = std::max(x, (p_[j] - p_[cur]) / (q_[cur] - q_[j]));
-        if (xj < next_x || (xj == next_x && next >= 0 && sign * q_[j] < sign * q_[next])) {
+        double den = q_[cur] - q_[j];
+        if (!(sign * den > 0.0)) continue;  // j never overtakes cur to the right
+        double num = p_[j] - p_[cur];
+        if (den < 0.0) {
+          num = -num;
+          den = -den;
+        }
+        if (num < x * den) {  // behind x by rounding: it takes over at x
+          num = x;
+          den = 1.0;
+        }
+        const double lhs = num * best_den, rhs = best_num * den;
+        if (lhs < rhs || (lhs == rhs && next >= 0 && sign * q_[j] < sign * q_[next])) {
           next = j;
-          next_x = xj;
+          best_num = num;
+          best_den = den;
         }
       }
-      out.push_back({cur, next < 0 ? x_hi : next_x});
+      const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
+      out.push_back({cur, next_x});
       if (next < 0) return true;
       cur = next;
       x = next_x;
@@ -213,8 +227,9 @@ bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {
   const double det = l1.a * l2.b - l2.a * l1.b;
   const double scale = std::abs(l1.a * l2.b) + std::abs(l2.a * l1.b);
   if (!(std::abs(det) > 1e-15 * scale) || scale == 0.0) return false;
-  v.x = (l1.c * l2.b - l2.c * l1.b) / det;
-  v.y = (l1.a * l2.c - l2.a * l1.c) / det;
+  const double inv = 1.0 / det;  // one division for both coordinates (within an ulp of dividing twice)
+  v.x = (l1.c * l2.b - l2.c * l1.b) * inv;
+  v.y = (l1.a * l2.c - l2.a * l1.c) * inv;
   return true;
 }
 
