@@ -315,99 +315,155 @@ Eigen::MatrixXd RobotModel::mass_matrix(const Eigen::VectorXd& q) const {
   return 0.5 * (M + M.transpose());
 }
 
+namespace {
+
+// Small fixed-size kernels on plain arrays (E column-major, as Eigen stores it): the compiler unrolls
+// them completely, which Eigen's expression templates did not manage for these 3x2 / 3x3 blocks.
+inline void mul_E(const double* E, const double* x, double* y) {  // y = E x
+  y[0] = E[0] * x[0] + E[3] * x[1] + E[6] * x[2];
+  y[1] = E[1] * x[0] + E[4] * x[1] + E[7] * x[2];
+  y[2] = E[2] * x[0] + E[5] * x[1] + E[8] * x[2];
+}
+inline void mul_Et(const double* E, const double* x, double* y) {  // y = E^T x
+  y[0] = E[0] * x[0] + E[1] * x[1] + E[2] * x[2];
+  y[1] = E[3] * x[0] + E[4] * x[1] + E[5] * x[2];
+  y[2] = E[6] * x[0] + E[7] * x[1] + E[8] * x[2];
+}
+inline void cross(const double* a, const double* b, double* y) {  // y = a × b
+  y[0] = a[1] * b[2] - a[2] * b[1];
+  y[1] = a[2] * b[0] - a[0] * b[2];
+  y[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline void add_cross(const double* a, const double* b, double* y) {  // y += a × b
+  y[0] += a[1] * b[2] - a[2] * b[1];
+  y[1] += a[2] * b[0] - a[0] * b[2];
+  y[2] += a[0] * b[1] - a[1] * b[0];
+}
+inline void sub_cross(const double* a, const double* b, double* y) {  // y -= a × b
+  y[0] -= a[1] * b[2] - a[2] * b[1];
+  y[1] -= a[2] * b[0] - a[0] * b[2];
+  y[2] -= a[0] * b[1] - a[1] * b[0];
+}
+inline void mul_sym(const double* I, const double* x, double* y) {  // y = Ī x, Ī the 6x6's top-left block
+  y[0] = I[0] * x[0] + I[6] * x[1] + I[12] * x[2];
+  y[1] = I[1] * x[0] + I[7] * x[1] + I[13] * x[2];
+  y[2] = I[2] * x[0] + I[8] * x[1] + I[14] * x[2];
+}
+
+}  // namespace
+
 void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                                           const Eigen::Ref<const Eigen::VectorXd>& dq,
                                           const Eigen::Ref<const Eigen::VectorXd>& ddq, Eigen::Ref<Eigen::VectorXd> a,
                                           Eigen::Ref<Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> c) const {
   // eq. (12): τ = M (p'' ṡ² + p' s̈) + C(q, p' ṡ) p' ṡ + g, and C is quadratic in the velocity, so
   // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
-  // gravity, c = g(q). The three passes share one set of joint transforms.
+  // gravity, c = g(q). One sweep carries the three as channels: 0 with q̇ = p', q̈ = p'' (velocity
+  // products included), 1 with q̇ = 0, q̈ = p', 2 with gravity only (never an angular part); the
+  // transforms and inertias are loaded once for all. The spatial inertia is applied through its parts
+  // (m, h = m c, Ī about the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
   kinematics(bodies_, ws, q);
-  // One sweep for the three: channel 0 carries q̇ = p', q̈ = p'' (velocity products included), channel
-  // 1 q̇ = 0, q̈ = p', channel 2 only gravity; the transforms and inertias are loaded once for all.
-  // Angular and linear parts are kept as 3x3 blocks (a column per channel) so that every transform is a
-  // fixed-size 3x3 product, and the spatial inertia is applied through its parts (m, h = m c, Ī about
-  // the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
   const size_t nb = bodies_.size();
-  using M32 = Eigen::Matrix<double, 3, 2>;
-  Eigen::Matrix3d root_lin = Eigen::Matrix3d::Zero();
-  root_lin.col(2) = -gravity_;  // gravity as an upward acceleration of the base, channel 2 only
-  const M32 zero32 = M32::Zero();
+  const double root_aw[6] = {0, 0, 0, 0, 0, 0};
+  const double root_al[9] = {0, 0, 0, 0, 0, 0, -gravity_[0], -gravity_[1], -gravity_[2]};
   for (size_t i = 0; i < nb; ++i) {
     const Body& bd = bodies_[i];
-    const Eigen::Matrix3d& E = ws.E[i];
-    const Eigen::Vector3d& r = ws.r[i];
-    const bool has_parent = bd.parent >= 0;
-    const size_t p = has_parent ? static_cast<size_t>(bd.parent) : 0;
-    const M32& PW = has_parent ? ws.AW[p] : zero32;
-    const Eigen::Matrix3d& PL = has_parent ? ws.AL[p] : root_lin;
-    M32& AW = ws.AW[i];
-    Eigen::Matrix3d& AL = ws.AL[i];
+    const double* E = ws.E[i].data();
+    const double* r = ws.r[i].data();
+    RobotWorkspace::AbcScratch& S = ws.abc[i];
+    const RobotWorkspace::AbcScratch* P = bd.parent >= 0 ? &ws.abc[static_cast<size_t>(bd.parent)] : nullptr;
+    const double* pw = P ? P->aw : root_aw;
+    const double* pl = P ? P->al : root_al;
     // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
-    AW.noalias() = E * PW;
-    Eigen::Matrix3d lin = PL;
-    lin.col(0) -= r.cross(PW.col(0));
-    lin.col(1) -= r.cross(PW.col(1));
-    AL.noalias() = E * lin;
+    double lin[9];
+    for (int ch = 0; ch < 2; ++ch) {
+      mul_E(E, pw + 3 * ch, S.aw + 3 * ch);
+      double t[3] = {pl[3 * ch], pl[3 * ch + 1], pl[3 * ch + 2]};
+      sub_cross(r, pw + 3 * ch, t);
+      mul_E(E, t, lin + 3 * ch);
+    }
+    mul_E(E, pl + 6, lin + 6);
+    std::copy(lin, lin + 9, S.al);
     const Eigen::Index j = static_cast<Eigen::Index>(i);
     const double qd = dq[j], qdd = ddq[j];
-    Vector6& v = ws.v[i];
-    if (has_parent) {
-      const Vector6& vp = ws.v[p];
-      v.head<3>().noalias() = E * vp.head<3>();
-      v.tail<3>().noalias() = E * (vp.tail<3>() - r.cross(vp.head<3>()));
+    double* v = S.v;  // ω then linear
+    if (P) {
+      mul_E(E, P->v, v);
+      double t[3] = {P->v[3], P->v[4], P->v[5]};
+      sub_cross(r, P->v, t);
+      mul_E(E, t, v + 3);
     } else {
-      v.setZero();
+      std::fill(v, v + 6, 0.0);
     }
-    // Joint motion S q̇ and its products (crm(v) vJ) in channel 0.
-    Eigen::Vector3d vJw = Eigen::Vector3d::Zero(), vJl = Eigen::Vector3d::Zero();
+    const double ax[3] = {bd.axis[0], bd.axis[1], bd.axis[2]};
+    const double vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
     if (bd.type == JointType::Revolute) {
-      vJw = bd.axis * qd;
-      AW.col(0) += bd.axis * qdd;
-      AW.col(1) += bd.axis * qd;
+      for (int k = 0; k < 3; ++k) {
+        S.aw[k] += ax[k] * qdd;
+        S.aw[3 + k] += vj[k];
+        v[k] += vj[k];
+      }
+      add_cross(v, vj, S.aw);       // ω × vJ
+      add_cross(v + 3, vj, S.al);   // v × vJ (angular joint motion)
     } else {
-      vJl = bd.axis * qd;
-      AL.col(0) += bd.axis * qdd;
-      AL.col(1) += bd.axis * qd;
+      for (int k = 0; k < 3; ++k) {
+        S.al[k] += ax[k] * qdd;
+        S.al[3 + k] += vj[k];
+        v[3 + k] += vj[k];
+      }
+      add_cross(v, vj, S.al);       // ω × vJ (linear joint motion)
     }
-    v.head<3>() += vJw;
-    v.tail<3>() += vJl;
-    const Eigen::Vector3d w = v.head<3>(), vl = v.tail<3>();
-    AW.col(0) += w.cross(vJw);
-    AL.col(0) += w.cross(vJl) + vl.cross(vJw);
     // f = I a (+ v ×* I v in channel 0)
-    const Eigen::Matrix<double, 6, 6>& I6 = bd.inertia;
-    const double m = I6(3, 3);
-    const Eigen::Vector3d h(I6(2, 4), I6(0, 5), I6(1, 3));
-    const Eigen::Matrix3d Ibar = I6.topLeftCorner<3, 3>();
-    Eigen::Matrix3d& FW = ws.FW[i];
-    Eigen::Matrix3d& FL = ws.FL[i];
-    FW.leftCols<2>().noalias() = Ibar * AW;
-    FW.col(2).setZero();
-    FL = m * AL;
-    for (int col = 0; col < 3; ++col) FW.col(col) += h.cross(AL.col(col));
-    FL.col(0) -= h.cross(AW.col(0));
-    FL.col(1) -= h.cross(AW.col(1));
-    const Eigen::Vector3d Iw = Ibar * w + h.cross(vl), Il = m * vl - h.cross(w);
-    FW.col(0) += w.cross(Iw) + vl.cross(Il);
-    FL.col(0) += w.cross(Il);
+    const double* I6 = bd.inertia.data();
+    const double m = I6[21];
+    const double h[3] = {I6[26], I6[30], I6[19]};  // (I(2,4), I(0,5), I(1,3)) of m [c]x
+    for (int ch = 0; ch < 3; ++ch) {
+      double* fw = S.fw + 3 * ch;
+      double* fl = S.fl + 3 * ch;
+      const double* alc = S.al + 3 * ch;
+      if (ch < 2) {
+        mul_sym(I6, S.aw + 3 * ch, fw);
+        cross(h, S.aw + 3 * ch, fl);
+        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k] - fl[k];
+      } else {
+        fw[0] = fw[1] = fw[2] = 0.0;
+        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k];
+      }
+      add_cross(h, alc, fw);
+    }
+    double Iw[3], Il[3], t[3];
+    mul_sym(I6, v, Iw);
+    add_cross(h, v + 3, Iw);
+    cross(h, v, t);
+    for (int k = 0; k < 3; ++k) Il[k] = m * v[3 + k] - t[k];
+    add_cross(v, Iw, S.fw);
+    add_cross(v + 3, Il, S.fw);
+    add_cross(v, Il, S.fl);
   }
   for (size_t i = nb; i-- > 0;) {
     const Body& bd = bodies_[i];
+    RobotWorkspace::AbcScratch& S = ws.abc[i];
     const Eigen::Index j = static_cast<Eigen::Index>(i);
-    const Eigen::Matrix3d& F = bd.type == JointType::Revolute ? ws.FW[i] : ws.FL[i];
-    const Eigen::RowVector3d tau = bd.axis.transpose() * F;
-    a[j] = tau[0];
-    b[j] = tau[1];
-    c[j] = tau[2];
+    const double* F = bd.type == JointType::Revolute ? S.fw : S.fl;
+    const double* ax = bd.axis.data();
+    a[j] = ax[0] * F[0] + ax[1] * F[1] + ax[2] * F[2];
+    b[j] = ax[0] * F[3] + ax[1] * F[4] + ax[2] * F[5];
+    c[j] = ax[0] * F[6] + ax[1] * F[7] + ax[2] * F[8];
     if (bd.parent >= 0) {
       // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f
-      const Eigen::Matrix3d& E = ws.E[i];
-      const size_t p = static_cast<size_t>(bd.parent);
-      const Eigen::Matrix3d fl = E.transpose() * ws.FL[i];
-      ws.FW[p].noalias() += E.transpose() * ws.FW[i];
-      for (int col = 0; col < 3; ++col) ws.FW[p].col(col) += ws.r[i].cross(fl.col(col));
-      ws.FL[p] += fl;
+      const double* E = ws.E[i].data();
+      const double* r = ws.r[i].data();
+      RobotWorkspace::AbcScratch& P = ws.abc[static_cast<size_t>(bd.parent)];
+      for (int ch = 0; ch < 3; ++ch) {
+        double fl[3], fw[3];
+        mul_Et(E, S.fl + 3 * ch, fl);
+        mul_Et(E, S.fw + 3 * ch, fw);
+        for (int k = 0; k < 3; ++k) {
+          P.fw[3 * ch + k] += fw[k];
+          P.fl[3 * ch + k] += fl[k];
+        }
+        add_cross(r, fl, P.fw + 3 * ch);
+      }
     }
   }
 }

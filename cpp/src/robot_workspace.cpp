@@ -16,6 +16,7 @@ RobotWorkspace::RobotWorkspace(const RobotModel& model) {
   AL.resize(nb);
   FW.resize(nb);
   FL.resize(nb);
+  abc.resize(nb);
   tmp.setZero(model.nq());
   zero.setZero(model.nq());
 }

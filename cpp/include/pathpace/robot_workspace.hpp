@@ -24,6 +24,11 @@ class RobotWorkspace {
   // The gravity channel never has an angular acceleration, so AW keeps channels 0 and 1 only.
   std::vector<Eigen::Matrix<double, 3, 2>> AW;
   std::vector<Eigen::Matrix3d> AL, FW, FL;
+  /// Plain-array scratch of path_torque_coefficients, per body: channel c of a 3-row block at [3c, 3c+3).
+  struct AbcScratch {
+    double aw[6], al[9], fw[9], fl[9], v[6];
+  };
+  std::vector<AbcScratch> abc;
   Eigen::VectorXd tmp;              // nq scratch
   Eigen::VectorXd zero;             // nq zeros
 };
