@@ -53,14 +53,20 @@ void Polygon2d::assign(const Polygon2d& other) {
 
 bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n) {
   empty_ = false;
-  scratch_.clear();
   up_.clear();
   low_.clear();
+  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input).
   Line left{-1.0, 0.0, -x_lo, kBoxXLow}, right{1.0, 0.0, x_hi, kBoxXHigh};
-  scratch_.push_back({0.0, -1.0, -y_lo, kBoxYLow});
-  scratch_.push_back({0.0, 1.0, y_hi, kBoxYHigh});
-  for (std::size_t i = 0; i < n; ++i) {
-    const Line& l = lines[i];
+  box_[0] = {0.0, -1.0, -y_lo, kBoxYLow};
+  box_[1] = {0.0, 1.0, y_hi, kBoxYHigh};
+  src_ = lines;
+  n_src_ = n;
+  if (p_.size() < n + 2) {
+    p_.resize(n + 2);
+    q_.resize(n + 2);
+  }
+  for (std::size_t i = 0; i < n + 2; ++i) {
+    const Line& l = i < n ? lines[i] : box_[i - n];
     if (l.b == 0.0) {
       // A bound on x alone tightens the box (keeping its id, as clipping would).
       if (l.a > 0.0) {
@@ -78,19 +84,12 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
       }
       continue;
     }
-    scratch_.push_back(l);
-  }
-  if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
-  const std::size_t m = scratch_.size();
-  p_.resize(m);
-  q_.resize(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    const Line& l = scratch_[i];
     const double inv = 1.0 / l.b;
     p_[i] = l.c * inv;
     q_[i] = -l.a * inv;
     (l.b > 0.0 ? up_ : low_).push_back(static_cast<int>(i));
   }
+  if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
   // One envelope over [x_lo, x_hi]: the minimum of the upper bounds (sign = 1) or the maximum of the
   // lower bounds (sign = -1). Pieces in increasing x; a switch at x' < x (rounding) happens at x.
   auto envelope = [&](const std::vector<int>& ids, double sign, std::vector<Piece>& out) {
@@ -209,10 +208,10 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     return pcs[k].x_end > xa && start < xb;
   };
   for (std::size_t k = 0; k < lower_.size(); ++k)
-    if (overlaps(lower_, k)) e[cnt++] = scratch_[static_cast<std::size_t>(lower_[k].line)];
+    if (overlaps(lower_, k)) e[cnt++] = line_at(lower_[k].line);
   if (has_right) e[cnt++] = right;
   for (std::size_t k = upper_.size(); k-- > 0;)
-    if (overlaps(upper_, k)) e[cnt++] = scratch_[static_cast<std::size_t>(upper_[k].line)];
+    if (overlaps(upper_, k)) e[cnt++] = line_at(upper_[k].line);
   if (has_left) e[cnt++] = left;
   if (cnt < 3) return false;
   Vertex* v = vertices_[nxt].data();

@@ -33,37 +33,44 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
     ch.x_hi_id[static_cast<size_t>(k)] = p.x_hi_id;
   }
   ch.row_offset.resize(static_cast<size_t>(n) + 1);
+  ch.coupled_offset.resize(static_cast<size_t>(n));
   ch.row_offset[0] = 0;
   size_t total = 0;
   for (Eigen::Index k = 0; k < n; ++k)
     total += sets.rows(k).size() + sets.rows(k + 1).size();
   ch.row_data.reserve(total);
-  auto push = [&ch](double alpha, double beta, double c, int id) {
-    IntervalRow r{alpha, beta, c, id, false};
-    r.coupled = couples_positively(r);
-    if (r.coupled) ch.lattice = false;
-    ch.row_data.push_back(r);
+  std::vector<Line> coupled;
+  auto push = [&ch, &coupled](double alpha, double beta, double c, int id) {
+    const Line r{alpha, beta, c, id};
+    if (couples_positively(r)) coupled.push_back(r);
+    else ch.row_data.push_back(r);
   };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
+    coupled.clear();
     // eq. (26), forward row at s_k: a θ_k + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
     for (const Line& l : sets.rows(k)) push(cancel(l.a, -l.b * h), l.b * h, l.c, l.id);
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
     for (const Line& l : sets.rows(k + 1)) push(-l.b * h, cancel(l.a, l.b * h), l.c, l.id);
+    ch.coupled_offset[static_cast<size_t>(k)] = ch.row_data.size();
+    if (!coupled.empty()) {
+      ch.lattice = false;
+      ch.row_data.insert(ch.row_data.end(), coupled.begin(), coupled.end());
+    }
     ch.row_offset[static_cast<size_t>(k) + 1] = ch.row_data.size();
   }
   return ch;
 }
 
-bool couples_positively(const IntervalRow& r) {
-  const double tol = 1e-12 * (std::abs(r.alpha) + std::abs(r.beta));
-  return r.alpha > tol && r.beta > tol;
+bool couples_positively(const Line& r) {
+  const double tol = 1e-12 * (std::abs(r.a) + std::abs(r.b));
+  return r.a > tol && r.b > tol;
 }
 
 namespace {
 
-double row_violation(const IntervalRow& r, double x, double y) {
-  const double ax = r.alpha * x, by = r.beta * y;
+double row_violation(const Line& r, double x, double y) {
+  const double ax = r.a * x, by = r.b * y;
   return (ax + by - r.c) / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)});
 }
 
@@ -72,9 +79,7 @@ double row_violation(const IntervalRow& r, double x, double y) {
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   double worst = 0.0;
   for (Eigen::Index k = 0; k < chain.intervals(); ++k)
-    for (const IntervalRow& r : chain.rows(k))
-      if (r.coupled)
-        worst = std::max(worst, row_violation(r, theta[k], theta[k + 1]));
+    for (const Line& r : chain.coupled_rows(k)) worst = std::max(worst, row_violation(r, theta[k], theta[k + 1]));
   return worst;
 }
 
@@ -109,24 +114,19 @@ void slice(const Vertex* v, size_t m, double x, double& y_lo, double& y_hi) {
   }
 }
 
-void clip_rows(Polygon2d& poly, View<IntervalRow> rows, bool relax) {
-  for (const IntervalRow& r : rows) {
-    if (relax && r.coupled) continue;
-    poly.clip({r.alpha, r.beta, r.c, r.id});
+void clip_rows(Polygon2d& poly, View<Line> rows) {
+  for (const Line& r : rows) {
+    poly.clip(r);
     if (poly.empty()) return;
   }
 }
 
 // Interval k's polygon: the box cut by its rows, in one envelope pass when that applies (see
 // Polygon2d::build), else row by row (which also names the rows of an empty set).
-void interval_polygon(Polygon2d& poly, std::vector<Line>& scratch, double x_lo, double x_hi, double y_lo, double y_hi,
-                      View<IntervalRow> rows, bool relax) {
-  scratch.clear();
-  for (const IntervalRow& r : rows)
-    if (!(relax && r.coupled)) scratch.push_back({r.alpha, r.beta, r.c, r.id});
-  if (poly.build(x_lo, x_hi, y_lo, y_hi, scratch.data(), scratch.size())) return;
+void interval_polygon(Polygon2d& poly, double x_lo, double x_hi, double y_lo, double y_hi, View<Line> rows) {
+  if (poly.build(x_lo, x_hi, y_lo, y_hi, rows.ptr, rows.n)) return;
   poly.reset(x_lo, x_hi, y_lo, y_hi);
-  clip_rows(poly, rows, relax);
+  clip_rows(poly, rows);
 }
 
 void push_unique(std::vector<int>& v, int id) {
@@ -191,9 +191,8 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
   std::vector<Vertex> rev;
   std::vector<size_t> rev_size(static_cast<size_t>(n));
   rev.reserve(static_cast<size_t>(n) * 6);
-  std::vector<Line> scratch;
   for (Eigen::Index k = n - 1; k >= 0; --k) {
-    interval_polygon(poly, scratch, chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1], chain.rows(k), false);
+    interval_polygon(poly, chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1], chain.rows(k));
     if (poly.empty()) {
       fail_at(k, "no speed at this grid point can reach the end of the path");
       push_unique(out.binding, poly.emptied_by().id);
@@ -220,7 +219,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     double r_lo = theta_begin, r_hi = theta_begin;
     for (Eigen::Index k = 0; k < n; ++k) {
       poly.reset(r_lo, r_hi, chain.x_lo[k + 1], chain.x_hi[k + 1]);
-      clip_rows(poly, chain.rows(k), false);
+      clip_rows(poly, chain.rows(k));
       if (poly.empty()) {
         fail_at(k + 1, "no admissible speed here from the start speed");
         push_unique(out.binding, poly.emptied_by().id);
@@ -271,22 +270,20 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     o->k_lo[n] = o->k_hi[n] = theta_end;
   }
   Polygon2d pr, pf;
-  std::vector<Line> scratch;
   std::vector<Vertex> rev_r, rev_f;
   std::vector<size_t> size_r(static_cast<size_t>(n)), size_f(static_cast<size_t>(n));
   rev_r.reserve(static_cast<size_t>(n) * 6);
   rev_f.reserve(static_cast<size_t>(n) * 6);
   for (Eigen::Index k = n - 1; k >= 0; --k) {
-    const View<IntervalRow> rows = chain.rows(k);
-    interval_polygon(pr, scratch, chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1], rows, true);
+    interval_polygon(pr, chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1], chain.relaxed_rows(k));
     if (pr.empty()) return false;
     // K_full ⊆ K_relaxed, so the full polygon is the relaxed one cut to θ_{k+1} ∈ K_full,k+1 and by
     // the coupling rows: one clipping pass serves both analyses.
     pf.assign(pr);
     if (full.k_hi[k + 1] < relaxed.k_hi[k + 1]) pf.clip({0.0, 1.0, full.k_hi[k + 1], kBoxYHigh});
     if (full.k_lo[k + 1] > relaxed.k_lo[k + 1] && !pf.empty()) pf.clip({0.0, -1.0, -full.k_lo[k + 1], kBoxYLow});
-    for (const IntervalRow& r : rows)
-      if (r.coupled && !pf.empty()) pf.clip({r.alpha, r.beta, r.c, r.id});
+    for (const Line& r : chain.coupled_rows(k))
+      if (!pf.empty()) pf.clip(r);
     if (pf.empty()) return false;
     const Polygon2d* polys[2] = {&pr, &pf};
     std::vector<Vertex>* revs[2] = {&rev_r, &rev_f};

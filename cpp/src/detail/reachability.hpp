@@ -15,19 +15,25 @@
 
 namespace pathpace::detail {
 
-struct IntervalRow {
-  double alpha, beta, c;
-  int id;        // constraint row id (labels)
-  bool coupled;  // α > 0 and β > 0: the only kind of row that breaks max-closure
-};
-
+/// On interval k a row reads α θ_k + β θ_{k+1} <= c, stored as a Line {a = α, b = β, c, id}. Each
+/// interval's rows come in one block, the rows with α > 0 and β > 0 (the only kind that breaks
+/// max-closure, "coupled") at its end, so that the relaxed analysis reads a prefix of the block.
 struct Chain {
   Eigen::VectorXd ds;                 // Δs_k, N
-  std::vector<IntervalRow> row_data;  // all intervals' rows, interval k at [offset[k], offset[k+1])
+  std::vector<Line> row_data;         // all intervals' rows, interval k at [offset[k], offset[k+1])
   std::vector<std::size_t> row_offset;
+  std::vector<std::size_t> coupled_offset;  // interval k's coupled rows: [coupled_offset[k], offset[k+1])
   Eigen::Index intervals() const { return ds.size(); }
-  View<IntervalRow> rows(Eigen::Index k) const {
+  View<Line> rows(Eigen::Index k) const {
     const std::size_t o = row_offset[static_cast<std::size_t>(k)];
+    return {row_data.data() + o, row_offset[static_cast<std::size_t>(k) + 1] - o};
+  }
+  View<Line> relaxed_rows(Eigen::Index k) const {
+    const std::size_t o = row_offset[static_cast<std::size_t>(k)];
+    return {row_data.data() + o, coupled_offset[static_cast<std::size_t>(k)] - o};
+  }
+  View<Line> coupled_rows(Eigen::Index k) const {
+    const std::size_t o = coupled_offset[static_cast<std::size_t>(k)];
     return {row_data.data() + o, row_offset[static_cast<std::size_t>(k) + 1] - o};
   }
   Eigen::VectorXd x_lo, x_hi;                  // per grid point bounds on θ_k
@@ -41,7 +47,7 @@ struct Chain {
 Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets);
 
 /// True for a row with α > 0 and β > 0 (beyond rounding): the only kind that breaks max-closure.
-bool couples_positively(const IntervalRow& r);
+bool couples_positively(const Line& r);
 
 
 /// Largest violation of the positively coupling rows by θ, relative to max(1, |c|, |α θ_k|, |β θ_{k+1}|).

@@ -70,14 +70,14 @@ SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const Sol
   std::vector<int> idx;
   std::vector<double> val;
   for (Eigen::Index k = 0; k < n; ++k) {
-    for (const IntervalRow& r : chain.rows(k)) {
+    for (const Line& r : chain.rows(k)) {
       idx.clear();
       val.clear();
-      if (k > 0 && r.alpha != 0.0) { idx.push_back(static_cast<int>(k) - 1); val.push_back(r.alpha); }
-      if (k + 1 < n && r.beta != 0.0) { idx.push_back(static_cast<int>(k)); val.push_back(r.beta); }
+      if (k > 0 && r.a != 0.0) { idx.push_back(static_cast<int>(k) - 1); val.push_back(r.a); }
+      if (k + 1 < n && r.b != 0.0) { idx.push_back(static_cast<int>(k)); val.push_back(r.b); }
       if (idx.empty()) continue;  // both ends fixed: nothing to decide
       lp.add_row_upper(idx, val, 0.0);
-      rows.push_back({k, r.alpha, r.beta, r.c});
+      rows.push_back({k, r.a, r.b, r.c});
     }
   }
   const int first_box_row = static_cast<int>(rows.size());
