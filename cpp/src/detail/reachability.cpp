@@ -136,36 +136,17 @@ void push_unique(std::vector<int>& v, int id) {
 }  // namespace
 
 Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps) {
-  const Eigen::Index n = static_cast<Eigen::Index>(reach.offset.size()) - 1;
+  const Eigen::Index n = static_cast<Eigen::Index>(reach.start.size());
   Eigen::VectorXd theta(n + 1);
   theta[0] = theta_begin;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const size_t o = reach.offset[static_cast<size_t>(k)], m = reach.offset[static_cast<size_t>(k) + 1] - o;
+    const size_t o = reach.start[static_cast<size_t>(k)], m = reach.size[static_cast<size_t>(k)];
     double lo, hi;
     slice(reach.vertices.data() + o, m, theta[k], lo, hi);
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
 }
-
-namespace {
-
-// Polygons come in from interval N-1 down to 0; this puts them in interval order.
-void store_in_order(Reachability& out, const std::vector<Vertex>& rev, const std::vector<size_t>& rev_size) {
-  const size_t n = rev_size.size();
-  out.offset.resize(n + 1);
-  out.offset[0] = 0;
-  for (size_t k = 0; k < n; ++k) out.offset[k + 1] = out.offset[k] + rev_size[k];
-  out.vertices.resize(rev.size());
-  size_t pos = rev.size();  // interval k's block in `rev` ends where the blocks of k+1..N-1 begin
-  for (size_t k = 0; k < n; ++k) {
-    pos -= rev_size[k];
-    std::copy(rev.begin() + static_cast<long>(pos), rev.begin() + static_cast<long>(pos + rev_size[k]),
-              out.vertices.begin() + static_cast<long>(out.offset[k]));
-  }
-}
-
-}  // namespace
 
 Reachability reachability(const Chain& chain, double theta_begin, double theta_end) {
   Reachability out;
@@ -187,10 +168,11 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
 
   // Backward pass: K_k = {θ_k : ∃ θ_{k+1} ∈ K_{k+1} with (θ_k, θ_{k+1}) on interval k's polygon}.
   Polygon2d poly;
-  // Polygons are stored as they come (interval N-1 first) and put in order at the end.
-  std::vector<Vertex> rev;
-  std::vector<size_t> rev_size(static_cast<size_t>(n));
-  rev.reserve(static_cast<size_t>(n) * 6);
+  // Polygons are stored as they come (interval N-1 first).
+  out.vertices.clear();
+  out.vertices.reserve(static_cast<size_t>(n) * 6);
+  out.start.resize(static_cast<size_t>(n));
+  out.size.resize(static_cast<size_t>(n));
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     interval_polygon(poly, chain.x_lo[k], chain.x_hi[k], out.k_lo[k + 1], out.k_hi[k + 1], chain.rows(k));
     if (poly.empty()) {
@@ -200,8 +182,9 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
       push_unique(out.binding, poly.certificate_edge(1).id);
       return out;
     }
-    rev.insert(rev.end(), poly.vertices().begin(), poly.vertices().end());
-    rev_size[static_cast<size_t>(k)] = poly.vertices().size();
+    out.start[static_cast<size_t>(k)] = out.vertices.size();
+    out.size[static_cast<size_t>(k)] = poly.vertices().size();
+    out.vertices.insert(out.vertices.end(), poly.vertices().begin(), poly.vertices().end());
     out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
     out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
     if (out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
@@ -252,7 +235,6 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     fail_at(0, "the start speed is outside the controllable set");
     return out;
   }
-  store_in_order(out, rev, rev_size);
   out.theta = forward_pass(out, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
   out.theta[0] = theta_begin;
   return out;
@@ -270,10 +252,12 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     o->k_lo[n] = o->k_hi[n] = theta_end;
   }
   Polygon2d pr, pf;
-  std::vector<Vertex> rev_r, rev_f;
-  std::vector<size_t> size_r(static_cast<size_t>(n)), size_f(static_cast<size_t>(n));
-  rev_r.reserve(static_cast<size_t>(n) * 6);
-  rev_f.reserve(static_cast<size_t>(n) * 6);
+  for (Reachability* o : outs) {
+    o->vertices.clear();
+    o->vertices.reserve(static_cast<size_t>(n) * 6);
+    o->start.resize(static_cast<size_t>(n));
+    o->size.resize(static_cast<size_t>(n));
+  }
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     interval_polygon(pr, chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1], chain.relaxed_rows(k));
     if (pr.empty()) return false;
@@ -286,12 +270,12 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
       if (!pf.empty()) pf.clip(r);
     if (pf.empty()) return false;
     const Polygon2d* polys[2] = {&pr, &pf};
-    std::vector<Vertex>* revs[2] = {&rev_r, &rev_f};
-    std::vector<size_t>* sizes[2] = {&size_r, &size_f};
     for (int i = 0; i < 2; ++i) {
       const Polygon2d& p = *polys[i];
-      revs[i]->insert(revs[i]->end(), p.vertices().begin(), p.vertices().end());
-      (*sizes[i])[static_cast<size_t>(k)] = p.vertices().size();
+      Reachability& o = *outs[i];
+      o.start[static_cast<size_t>(k)] = o.vertices.size();
+      o.size[static_cast<size_t>(k)] = p.vertices().size();
+      o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());
       outs[i]->k_lo[k] = p.vertices()[static_cast<size_t>(p.argmin_x())].x;
       outs[i]->k_hi[k] = p.vertices()[static_cast<size_t>(p.argmax_x())].x;
       if (outs[i]->k_hi[k] >= kInfinityCap * (1 - 1e-9)) return false;
@@ -301,7 +285,6 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     Reachability& o = *outs[i];
     const double tol0 = 1e-12 * std::max(1.0, o.k_hi[0]);
     if (theta_begin < o.k_lo[0] - tol0 || theta_begin > o.k_hi[0] + tol0) return false;
-    store_in_order(o, i == 0 ? rev_r : rev_f, i == 0 ? size_r : size_f);
     o.theta = forward_pass(o, std::clamp(theta_begin, o.k_lo[0], o.k_hi[0]), nullptr);
     o.theta[0] = theta_begin;
   }

@@ -57,9 +57,10 @@ struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
   Outcome outcome = Outcome::Feasible;
   Eigen::VectorXd k_lo, k_hi;  // controllable intervals
-  // Interval k's polygon in (θ_k, θ_{k+1}) with θ_{k+1} ∈ K_{k+1}: vertices [offset[k], offset[k+1]).
+  // Interval k's polygon in (θ_k, θ_{k+1}) with θ_{k+1} ∈ K_{k+1}: vertices [start[k], start[k] + size[k])
+  // (stored in the order the backward pass builds them, interval N-1 first).
   std::vector<Vertex> vertices;
-  std::vector<size_t> offset;
+  std::vector<size_t> start, size;
   Eigen::VectorXd theta;       // greedy forward profile (when feasible)
   Eigen::Index failed_index = -1;
   std::vector<int> binding;    // row ids (labels) that bind where it fails
