@@ -183,11 +183,12 @@ void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char*
 namespace {
 
 // Joint transforms ^iX_λ = X_J(q_i) X_tree and motion subspaces, shared by every pass at one q.
-void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) {
+void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                bool motion_subspaces = true) {
   for (size_t i = 0; i < bodies.size(); ++i) {
     const RobotModel::Body& b = bodies[i];
     const double qi = q[static_cast<Eigen::Index>(i)];
-    Vector6& S = ws.S[i];
+    Eigen::Matrix3d& E = ws.E[i];
     if (b.type == RobotModel::JointType::Revolute) {
       // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree. About a coordinate axis (most URDF
       // joints) E_J mixes two rows of E_tree only.
@@ -196,21 +197,26 @@ void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws,
       if (unit >= 0) {
         const double cq = std::cos(qi), sq = std::sin(qi);
         const int i1 = (unit + 1) % 3, i2 = (unit + 2) % 3;
-        // Rot(e_unit, q)^T rows: e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2.
-        Eigen::Matrix3d& E = ws.E[i];
-        E.row(unit) = b.E_tree.row(unit);
-        E.row(i1) = cq * b.E_tree.row(i1) + sq * b.E_tree.row(i2);
-        E.row(i2) = cq * b.E_tree.row(i2) - sq * b.E_tree.row(i1);
+        // Rot(e_unit, q)^T rows: e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2. Column-major, so
+        // element-wise on the raw storage.
+        const double* T = b.E_tree.data();
+        double* D = E.data();
+        for (int col = 0; col < 3; ++col) {
+          const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
+          D[3 * col + unit] = T[3 * col + unit];
+          D[3 * col + i1] = cq * t1 + sq * t2;
+          D[3 * col + i2] = cq * t2 - sq * t1;
+        }
       } else {
-        ws.E[i].noalias() = Eigen::AngleAxisd(-qi, b.axis).toRotationMatrix() * b.E_tree;
+        E.noalias() = Eigen::AngleAxisd(-qi, b.axis).toRotationMatrix() * b.E_tree;
       }
       ws.r[i] = b.r_tree;
-      S << b.axis, Eigen::Vector3d::Zero();
+      if (motion_subspaces) ws.S[i] << b.axis, Eigen::Vector3d::Zero();
     } else {
       // E = E_tree; r = r_tree + E_tree^T (axis q).
-      ws.E[i] = b.E_tree;
+      E = b.E_tree;
       ws.r[i] = b.r_tree + b.E_tree.transpose() * (b.axis * qi);
-      S << Eigen::Vector3d::Zero(), b.axis;
+      if (motion_subspaces) ws.S[i] << Eigen::Vector3d::Zero(), b.axis;
     }
   }
 }
@@ -362,7 +368,7 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
   // products included), 1 with q̇ = 0, q̈ = p', 2 with gravity only (never an angular part); the
   // transforms and inertias are loaded once for all. The spatial inertia is applied through its parts
   // (m, h = m c, Ī about the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
-  kinematics(bodies_, ws, q);
+  kinematics(bodies_, ws, q, false);
   const size_t nb = bodies_.size();
   const double root_aw[6] = {0, 0, 0, 0, 0, 0};
   const double root_al[9] = {0, 0, 0, 0, 0, 0, -gravity_[0], -gravity_[1], -gravity_[2]};
@@ -375,15 +381,13 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
     const double* pw = P ? P->aw : root_aw;
     const double* pl = P ? P->al : root_al;
     // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
-    double lin[9];
     for (int ch = 0; ch < 2; ++ch) {
       mul_E(E, pw + 3 * ch, S.aw + 3 * ch);
       double t[3] = {pl[3 * ch], pl[3 * ch + 1], pl[3 * ch + 2]};
       sub_cross(r, pw + 3 * ch, t);
-      mul_E(E, t, lin + 3 * ch);
+      mul_E(E, t, S.al + 3 * ch);
     }
-    mul_E(E, pl + 6, lin + 6);
-    std::copy(lin, lin + 9, S.al);
+    mul_E(E, pl + 6, S.al + 6);
     const Eigen::Index j = static_cast<Eigen::Index>(i);
     const double qd = dq[j], qdd = ddq[j];
     double* v = S.v;  // ω then linear
