@@ -1,6 +1,7 @@
 #include "pathpace/robot_model.hpp"
 
 #include <cmath>
+#include <memory>
 #include <fstream>
 #include <sstream>
 
@@ -323,38 +324,175 @@ Eigen::MatrixXd RobotModel::mass_matrix(const Eigen::VectorXd& q) const {
 
 namespace {
 
-// Small fixed-size kernels on plain arrays (E column-major, as Eigen stores it): the compiler unrolls
-// them completely, which Eigen's expression templates did not manage for these 3x2 / 3x3 blocks.
-inline void mul_E(const double* E, const double* x, double* y) {  // y = E x
+// The fused sweep of path_torque_coefficients, written once for a scalar T (double: one sample) or a
+// GCC vector of two doubles (two samples in the two SIMD lanes; the baseline x86-64 has SSE2). Plain
+// arrays, E column-major as Eigen stores it: the compiler unrolls every 3x3 kernel completely.
+template <typename T>
+struct AbcBody {
+  T aw[6], al[9], fw[9], fl[9], v[6];  // channel c of a 3-row block at [3c, 3c + 3)
+  T E[9], r[3];                        // ^iX_λ's rotation and origin
+};
+
+template <typename T, typename M>
+inline void mul_E(const M* E, const T* x, T* y) {  // y = E x
   y[0] = E[0] * x[0] + E[3] * x[1] + E[6] * x[2];
   y[1] = E[1] * x[0] + E[4] * x[1] + E[7] * x[2];
   y[2] = E[2] * x[0] + E[5] * x[1] + E[8] * x[2];
 }
-inline void mul_Et(const double* E, const double* x, double* y) {  // y = E^T x
+template <typename T>
+inline void mul_Et(const T* E, const T* x, T* y) {  // y = E^T x
   y[0] = E[0] * x[0] + E[1] * x[1] + E[2] * x[2];
   y[1] = E[3] * x[0] + E[4] * x[1] + E[5] * x[2];
   y[2] = E[6] * x[0] + E[7] * x[1] + E[8] * x[2];
 }
-inline void cross(const double* a, const double* b, double* y) {  // y = a × b
+template <typename A, typename B, typename T>
+inline void cross(const A* a, const B* b, T* y) {  // y = a × b
   y[0] = a[1] * b[2] - a[2] * b[1];
   y[1] = a[2] * b[0] - a[0] * b[2];
   y[2] = a[0] * b[1] - a[1] * b[0];
 }
-inline void add_cross(const double* a, const double* b, double* y) {  // y += a × b
+template <typename A, typename B, typename T>
+inline void add_cross(const A* a, const B* b, T* y) {  // y += a × b
   y[0] += a[1] * b[2] - a[2] * b[1];
   y[1] += a[2] * b[0] - a[0] * b[2];
   y[2] += a[0] * b[1] - a[1] * b[0];
 }
-inline void sub_cross(const double* a, const double* b, double* y) {  // y -= a × b
+template <typename A, typename B, typename T>
+inline void sub_cross(const A* a, const B* b, T* y) {  // y -= a × b
   y[0] -= a[1] * b[2] - a[2] * b[1];
   y[1] -= a[2] * b[0] - a[0] * b[2];
   y[2] -= a[0] * b[1] - a[1] * b[0];
 }
-inline void mul_sym(const double* I, const double* x, double* y) {  // y = Ī x, Ī the 6x6's top-left block
+template <typename T>
+inline void mul_sym(const double* I, const T* x, T* y) {  // y = Ī x, Ī the 6x6's top-left block
   y[0] = I[0] * x[0] + I[6] * x[1] + I[12] * x[2];
   y[1] = I[1] * x[0] + I[7] * x[1] + I[13] * x[2];
   y[2] = I[2] * x[0] + I[8] * x[1] + I[14] * x[2];
 }
+
+// eq. (12) by one sweep carrying three RNEA channels: 0 with q̇ = p', q̈ = p'' (velocity products
+// included), 1 with q̇ = 0, q̈ = p', 2 with gravity only (never an angular part). S[i].E and S[i].r
+// must hold body i's transform. The spatial inertia is applied through its parts (m, h = m c, Ī about
+// the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
+template <typename T>
+void abc_sweep(const std::vector<RobotModel::Body>& bodies, AbcBody<T>* S, const T* dq, const T* ddq,
+               const Eigen::Vector3d& gravity, T* a, T* b, T* c) {
+  const size_t nb = bodies.size();
+  const T zero = T{} * 0.0;
+  T root_aw[6], root_al[9];
+  for (int k = 0; k < 6; ++k) root_aw[k] = zero;
+  for (int k = 0; k < 6; ++k) root_al[k] = zero;
+  for (int k = 0; k < 3; ++k) root_al[6 + k] = zero - gravity[k];  // gravity as an upward base acceleration
+  for (size_t i = 0; i < nb; ++i) {
+    const RobotModel::Body& bd = bodies[i];
+    AbcBody<T>& B = S[i];
+    const T* E = B.E;
+    const T* r = B.r;
+    const AbcBody<T>* P = bd.parent >= 0 ? &S[static_cast<size_t>(bd.parent)] : nullptr;
+    const T* pw = P ? P->aw : root_aw;
+    const T* pl = P ? P->al : root_al;
+    // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
+    for (int ch = 0; ch < 2; ++ch) {
+      mul_E(E, pw + 3 * ch, B.aw + 3 * ch);
+      T t[3] = {pl[3 * ch], pl[3 * ch + 1], pl[3 * ch + 2]};
+      sub_cross(r, pw + 3 * ch, t);
+      mul_E(E, t, B.al + 3 * ch);
+    }
+    mul_E(E, pl + 6, B.al + 6);
+    const T qd = dq[i], qdd = ddq[i];
+    T* v = B.v;  // ω then linear
+    if (P) {
+      mul_E(E, P->v, v);
+      T t[3] = {P->v[3], P->v[4], P->v[5]};
+      sub_cross(r, P->v, t);
+      mul_E(E, t, v + 3);
+    } else {
+      for (int k = 0; k < 6; ++k) v[k] = zero;
+    }
+    const double ax[3] = {bd.axis[0], bd.axis[1], bd.axis[2]};
+    const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
+    if (bd.type == RobotModel::JointType::Revolute) {
+      for (int k = 0; k < 3; ++k) {
+        B.aw[k] += ax[k] * qdd;
+        B.aw[3 + k] += vj[k];
+        v[k] += vj[k];
+      }
+      add_cross(v, vj, B.aw);      // ω × vJ
+      add_cross(v + 3, vj, B.al);  // v × vJ (angular joint motion)
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        B.al[k] += ax[k] * qdd;
+        B.al[3 + k] += vj[k];
+        v[3 + k] += vj[k];
+      }
+      add_cross(v, vj, B.al);  // ω × vJ (linear joint motion)
+    }
+    // f = I a (+ v ×* I v in channel 0)
+    const double* I6 = bd.inertia.data();
+    const double m = I6[21];
+    const double h[3] = {I6[26], I6[30], I6[19]};  // (I(2,4), I(0,5), I(1,3)) of m [c]x
+    for (int ch = 0; ch < 3; ++ch) {
+      T* fw = B.fw + 3 * ch;
+      T* fl = B.fl + 3 * ch;
+      const T* alc = B.al + 3 * ch;
+      if (ch < 2) {
+        mul_sym(I6, B.aw + 3 * ch, fw);
+        cross(h, B.aw + 3 * ch, fl);
+        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k] - fl[k];
+      } else {
+        fw[0] = fw[1] = fw[2] = zero;
+        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k];
+      }
+      add_cross(h, alc, fw);
+    }
+    T Iw[3], Il[3], t[3];
+    mul_sym(I6, v, Iw);
+    add_cross(h, v + 3, Iw);
+    cross(h, v, t);
+    for (int k = 0; k < 3; ++k) Il[k] = m * v[3 + k] - t[k];
+    add_cross(v, Iw, B.fw);
+    add_cross(v + 3, Il, B.fw);
+    add_cross(v, Il, B.fl);
+  }
+  for (size_t i = nb; i-- > 0;) {
+    const RobotModel::Body& bd = bodies[i];
+    AbcBody<T>& B = S[i];
+    const T* F = bd.type == RobotModel::JointType::Revolute ? B.fw : B.fl;
+    const double* ax = bd.axis.data();
+    a[i] = ax[0] * F[0] + ax[1] * F[1] + ax[2] * F[2];
+    b[i] = ax[0] * F[3] + ax[1] * F[4] + ax[2] * F[5];
+    c[i] = ax[0] * F[6] + ax[1] * F[7] + ax[2] * F[8];
+    if (bd.parent >= 0) {
+      // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f
+      AbcBody<T>& P = S[static_cast<size_t>(bd.parent)];
+      for (int ch = 0; ch < 3; ++ch) {
+        T fl[3], fw[3];
+        mul_Et(B.E, B.fl + 3 * ch, fl);
+        mul_Et(B.E, B.fw + 3 * ch, fw);
+        for (int k = 0; k < 3; ++k) {
+          P.fw[3 * ch + k] += fw[k];
+          P.fl[3 * ch + k] += fl[k];
+        }
+        add_cross(B.r, fl, P.fw + 3 * ch);
+      }
+    }
+  }
+}
+
+// The AbcBody array of a workspace's byte buffer, aligned for T.
+template <typename T>
+AbcBody<T>* abc_bodies(RobotWorkspace& ws, size_t nb) {
+  const size_t bytes = nb * sizeof(AbcBody<T>) + alignof(AbcBody<T>);
+  if (ws.abc_buffer.size() < bytes) ws.abc_buffer.resize(bytes);
+  void* p = ws.abc_buffer.data();
+  size_t space = ws.abc_buffer.size();
+  p = std::align(alignof(AbcBody<T>), nb * sizeof(AbcBody<T>), p, space);
+  return static_cast<AbcBody<T>*>(p);
+}
+
+#if defined(__GNUC__)
+using Double2 = double __attribute__((vector_size(16)));  // two samples, one per SIMD lane
+#endif
 
 }  // namespace
 
@@ -364,111 +502,88 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
                                           Eigen::Ref<Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> c) const {
   // eq. (12): τ = M (p'' ṡ² + p' s̈) + C(q, p' ṡ) p' ṡ + g, and C is quadratic in the velocity, so
   // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
-  // gravity, c = g(q). One sweep carries the three as channels: 0 with q̇ = p', q̈ = p'' (velocity
-  // products included), 1 with q̇ = 0, q̈ = p', 2 with gravity only (never an angular part); the
-  // transforms and inertias are loaded once for all. The spatial inertia is applied through its parts
-  // (m, h = m c, Ī about the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
+  // gravity, c = g(q): three RNEA channels in one sweep (abc_sweep).
   kinematics(bodies_, ws, q, false);
   const size_t nb = bodies_.size();
-  const double root_aw[6] = {0, 0, 0, 0, 0, 0};
-  const double root_al[9] = {0, 0, 0, 0, 0, 0, -gravity_[0], -gravity_[1], -gravity_[2]};
+  AbcBody<double>* S = abc_bodies<double>(ws, nb);
   for (size_t i = 0; i < nb; ++i) {
-    const Body& bd = bodies_[i];
-    const double* E = ws.E[i].data();
-    const double* r = ws.r[i].data();
-    RobotWorkspace::AbcScratch& S = ws.abc[i];
-    const RobotWorkspace::AbcScratch* P = bd.parent >= 0 ? &ws.abc[static_cast<size_t>(bd.parent)] : nullptr;
-    const double* pw = P ? P->aw : root_aw;
-    const double* pl = P ? P->al : root_al;
-    // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
-    for (int ch = 0; ch < 2; ++ch) {
-      mul_E(E, pw + 3 * ch, S.aw + 3 * ch);
-      double t[3] = {pl[3 * ch], pl[3 * ch + 1], pl[3 * ch + 2]};
-      sub_cross(r, pw + 3 * ch, t);
-      mul_E(E, t, S.al + 3 * ch);
-    }
-    mul_E(E, pl + 6, S.al + 6);
-    const Eigen::Index j = static_cast<Eigen::Index>(i);
-    const double qd = dq[j], qdd = ddq[j];
-    double* v = S.v;  // ω then linear
-    if (P) {
-      mul_E(E, P->v, v);
-      double t[3] = {P->v[3], P->v[4], P->v[5]};
-      sub_cross(r, P->v, t);
-      mul_E(E, t, v + 3);
-    } else {
-      std::fill(v, v + 6, 0.0);
-    }
-    const double ax[3] = {bd.axis[0], bd.axis[1], bd.axis[2]};
-    const double vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
-    if (bd.type == JointType::Revolute) {
-      for (int k = 0; k < 3; ++k) {
-        S.aw[k] += ax[k] * qdd;
-        S.aw[3 + k] += vj[k];
-        v[k] += vj[k];
-      }
-      add_cross(v, vj, S.aw);       // ω × vJ
-      add_cross(v + 3, vj, S.al);   // v × vJ (angular joint motion)
-    } else {
-      for (int k = 0; k < 3; ++k) {
-        S.al[k] += ax[k] * qdd;
-        S.al[3 + k] += vj[k];
-        v[3 + k] += vj[k];
-      }
-      add_cross(v, vj, S.al);       // ω × vJ (linear joint motion)
-    }
-    // f = I a (+ v ×* I v in channel 0)
-    const double* I6 = bd.inertia.data();
-    const double m = I6[21];
-    const double h[3] = {I6[26], I6[30], I6[19]};  // (I(2,4), I(0,5), I(1,3)) of m [c]x
-    for (int ch = 0; ch < 3; ++ch) {
-      double* fw = S.fw + 3 * ch;
-      double* fl = S.fl + 3 * ch;
-      const double* alc = S.al + 3 * ch;
-      if (ch < 2) {
-        mul_sym(I6, S.aw + 3 * ch, fw);
-        cross(h, S.aw + 3 * ch, fl);
-        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k] - fl[k];
-      } else {
-        fw[0] = fw[1] = fw[2] = 0.0;
-        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k];
-      }
-      add_cross(h, alc, fw);
-    }
-    double Iw[3], Il[3], t[3];
-    mul_sym(I6, v, Iw);
-    add_cross(h, v + 3, Iw);
-    cross(h, v, t);
-    for (int k = 0; k < 3; ++k) Il[k] = m * v[3 + k] - t[k];
-    add_cross(v, Iw, S.fw);
-    add_cross(v + 3, Il, S.fw);
-    add_cross(v, Il, S.fl);
+    std::copy(ws.E[i].data(), ws.E[i].data() + 9, S[i].E);
+    std::copy(ws.r[i].data(), ws.r[i].data() + 3, S[i].r);
   }
-  for (size_t i = nb; i-- > 0;) {
-    const Body& bd = bodies_[i];
-    RobotWorkspace::AbcScratch& S = ws.abc[i];
-    const Eigen::Index j = static_cast<Eigen::Index>(i);
-    const double* F = bd.type == JointType::Revolute ? S.fw : S.fl;
-    const double* ax = bd.axis.data();
-    a[j] = ax[0] * F[0] + ax[1] * F[1] + ax[2] * F[2];
-    b[j] = ax[0] * F[3] + ax[1] * F[4] + ax[2] * F[5];
-    c[j] = ax[0] * F[6] + ax[1] * F[7] + ax[2] * F[8];
-    if (bd.parent >= 0) {
-      // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f
-      const double* E = ws.E[i].data();
-      const double* r = ws.r[i].data();
-      RobotWorkspace::AbcScratch& P = ws.abc[static_cast<size_t>(bd.parent)];
-      for (int ch = 0; ch < 3; ++ch) {
-        double fl[3], fw[3];
-        mul_Et(E, S.fl + 3 * ch, fl);
-        mul_Et(E, S.fw + 3 * ch, fw);
-        for (int k = 0; k < 3; ++k) {
-          P.fw[3 * ch + k] += fw[k];
-          P.fl[3 * ch + k] += fl[k];
+  abc_sweep<double>(bodies_, S, dq.data(), ddq.data(), gravity_, a.data(), b.data(), c.data());
+}
+
+void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
+                                                const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
+                                                Eigen::MatrixXd& c) const {
+  const Eigen::Index n = nq(), count = q.rows();
+  if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
+    detail::fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
+  a.resize(count, n);
+  b.resize(count, n);
+  c.resize(count, n);
+  Eigen::Index s = 0;
+#if defined(__GNUC__)
+  // Two samples per sweep, one in each SIMD lane, when every revolute joint turns about a coordinate
+  // axis (the joint rotation is then built from cos and sin per lane).
+  bool axis_aligned = true;
+  for (const Body& bd : bodies_)
+    axis_aligned &= bd.type == JointType::Prismatic || bd.axis == Eigen::Vector3d::UnitX() ||
+                    bd.axis == Eigen::Vector3d::UnitY() || bd.axis == Eigen::Vector3d::UnitZ();
+  if (axis_aligned) {
+    const size_t nb = bodies_.size();
+    AbcBody<Double2>* S = abc_bodies<Double2>(ws, nb);
+    std::vector<Double2> qd2(nb), qdd2(nb), a2(nb), b2(nb), c2(nb);
+    for (; s + 1 < count; s += 2) {
+      for (size_t i = 0; i < nb; ++i) {
+        const Body& bd = bodies_[i];
+        const Eigen::Index j = static_cast<Eigen::Index>(i);
+        const double q0 = q(s, j), q1 = q(s + 1, j);
+        qd2[i] = Double2{dq(s, j), dq(s + 1, j)};
+        qdd2[i] = Double2{ddq(s, j), ddq(s + 1, j)};
+        AbcBody<Double2>& B = S[i];
+        const double* T = bd.E_tree.data();
+        if (bd.type == JointType::Revolute) {
+          // E = Rot(e_u, q)^T E_tree: rows i1, i2 of E_tree mixed by cos and sin (as in kinematics()).
+          const int u = bd.axis.x() == 1.0 ? 0 : bd.axis.y() == 1.0 ? 1 : 2;
+          const int i1 = (u + 1) % 3, i2 = (u + 2) % 3;
+          const Double2 cq{std::cos(q0), std::cos(q1)}, sq{std::sin(q0), std::sin(q1)};
+          for (int col = 0; col < 3; ++col) {
+            const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
+            B.E[3 * col + u] = Double2{T[3 * col + u], T[3 * col + u]};
+            B.E[3 * col + i1] = cq * t1 + sq * t2;
+            B.E[3 * col + i2] = cq * t2 - sq * t1;
+          }
+          for (int k = 0; k < 3; ++k) B.r[k] = Double2{bd.r_tree[k], bd.r_tree[k]};
+        } else {
+          for (int k = 0; k < 9; ++k) B.E[k] = Double2{T[k], T[k]};
+          const Eigen::Vector3d r0 = bd.r_tree + bd.E_tree.transpose() * (bd.axis * q0);
+          const Eigen::Vector3d r1 = bd.r_tree + bd.E_tree.transpose() * (bd.axis * q1);
+          for (int k = 0; k < 3; ++k) B.r[k] = Double2{r0[k], r1[k]};
         }
-        add_cross(r, fl, P.fw + 3 * ch);
+      }
+      abc_sweep<Double2>(bodies_, S, qd2.data(), qdd2.data(), gravity_, a2.data(), b2.data(), c2.data());
+      for (size_t i = 0; i < nb; ++i) {
+        const Eigen::Index j = static_cast<Eigen::Index>(i);
+        a(s, j) = a2[i][0];
+        a(s + 1, j) = a2[i][1];
+        b(s, j) = b2[i][0];
+        b(s + 1, j) = b2[i][1];
+        c(s, j) = c2[i][0];
+        c(s + 1, j) = c2[i][1];
       }
     }
+  }
+#endif
+  Eigen::VectorXd qs(n), dqs(n), ddqs(n), as(n), bs(n), cs(n);
+  for (; s < count; ++s) {
+    qs = q.row(s).transpose();
+    dqs = dq.row(s).transpose();
+    ddqs = ddq.row(s).transpose();
+    path_torque_coefficients(ws, qs, dqs, ddqs, as, bs, cs);
+    a.row(s) = as.transpose();
+    b.row(s) = bs.transpose();
+    c.row(s) = cs.transpose();
   }
 }
 

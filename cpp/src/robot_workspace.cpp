@@ -12,11 +12,6 @@ RobotWorkspace::RobotWorkspace(const RobotModel& model) {
   a.resize(nb);
   f.resize(nb);
   S.resize(nb);
-  AW.resize(nb);
-  AL.resize(nb);
-  FW.resize(nb);
-  FL.resize(nb);
-  abc.resize(nb);
   tmp.setZero(model.nq());
   zero.setZero(model.nq());
 }

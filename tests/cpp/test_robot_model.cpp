@@ -124,3 +124,36 @@ TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
   EXPECT_EQ(t.tau_min()[0], 0.0);
   EXPECT_EQ(t.tau_max()[7], 40.0);
 }
+
+TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
+  // kArm: coordinate-axis revolute joints and a tilted prismatic one (the two-lane path); the same
+  // tree with a tilted revolute axis (the one-sample fallback). An odd sample count leaves a tail.
+  std::string tilted = kArm;
+  tilted.replace(tilted.find("<axis xyz=\"0 1 0\"/>"), 19, "<axis xyz=\"0 0.6 0.8\"/>");
+  for (const std::string& xml : {std::string(kArm), tilted}) {
+    const RobotModel r = RobotModel::from_urdf_string(xml);
+    RobotWorkspace ws(r);
+    std::mt19937 gen(3);
+    std::uniform_real_distribution<double> U(-2.0, 2.0);
+    const int count = 7;
+    Eigen::MatrixXd q(count, 3), dq(count, 3), ddq(count, 3);
+    for (int s = 0; s < count; ++s)
+      for (int j = 0; j < 3; ++j) {
+        q(s, j) = U(gen);
+        dq(s, j) = U(gen);
+        ddq(s, j) = U(gen);
+      }
+    Eigen::MatrixXd A, B, C;
+    r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
+    ASSERT_EQ(A.rows(), count);
+    for (int s = 0; s < count; ++s) {
+      Eigen::VectorXd a(3), b(3), c(3);
+      r.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b, c);
+      EXPECT_NEAR((A.row(s).transpose() - a).norm(), 0.0, 1e-12 * (1.0 + a.norm())) << s;
+      EXPECT_NEAR((B.row(s).transpose() - b).norm(), 0.0, 1e-12 * (1.0 + b.norm())) << s;
+      EXPECT_NEAR((C.row(s).transpose() - c).norm(), 0.0, 1e-12 * (1.0 + c.norm())) << s;
+      EXPECT_GT(a.norm() + b.norm(), 1e-3);
+    }
+    EXPECT_THROW(r.path_torque_coefficients_batch(ws, q.leftCols(2), dq, ddq, A, B, C), InvalidInput);
+  }
+}

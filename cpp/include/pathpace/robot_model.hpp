@@ -75,6 +75,12 @@ class RobotModel {
                                 Eigen::Ref<Eigen::VectorXd> a, Eigen::Ref<Eigen::VectorXd> b,
                                 Eigen::Ref<Eigen::VectorXd> c) const;
 
+  /// The same at many samples: row s of q, dq, ddq (each (samples, nq)) gives row s of a, b, c. Two
+  /// samples go through each sweep in the two SIMD lanes where the compiler has vector types.
+  void path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
+                                      const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
+                                      Eigen::MatrixXd& c) const;
+
   /// World placement of a link's frame (4x4 homogeneous).
   Eigen::Matrix4d frame_placement(const Eigen::VectorXd& q, const std::string& link) const;
   /// World-frame linear Jacobian (3 x nq) of a point fixed in a link (coordinates in the link frame).

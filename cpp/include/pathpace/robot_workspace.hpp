@@ -20,15 +20,7 @@ class RobotWorkspace {
   std::vector<Eigen::Vector3d> r;   // body i: its origin in parent coordinates
   std::vector<Vector6> v, a, f;     // spatial velocity, acceleration, force (body coordinates)
   std::vector<Vector6> S;           // joint motion subspace
-  // Three RNEA channels at once (eq. 12's a, b, c): angular and linear parts, one column per channel.
-  // The gravity channel never has an angular acceleration, so AW keeps channels 0 and 1 only.
-  std::vector<Eigen::Matrix<double, 3, 2>> AW;
-  std::vector<Eigen::Matrix3d> AL, FW, FL;
-  /// Plain-array scratch of path_torque_coefficients, per body: channel c of a 3-row block at [3c, 3c+3).
-  struct AbcScratch {
-    double aw[6], al[9], fw[9], fl[9], v[6];
-  };
-  std::vector<AbcScratch> abc;
+  std::vector<unsigned char> abc_buffer;  // path_torque_coefficients' per-body scratch (see robot_model.cpp)
   Eigen::VectorXd tmp;              // nq scratch
   Eigen::VectorXd zero;             // nq zeros
 };

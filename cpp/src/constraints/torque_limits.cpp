@@ -45,12 +45,10 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
     rows.labels[static_cast<size_t>(2 * j + 1)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " lower";
   }
   RobotWorkspace ws(*robot_);
-  Eigen::VectorXd a(n), b(n), c(n), q(n), dq(n), ddq(n);
+  Eigen::MatrixXd A, B, C;
+  robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, A, B, C);
   for (Eigen::Index k = 0; k < samples.size(); ++k) {
-    q = samples.q.row(k).transpose();
-    dq = samples.dq.row(k).transpose();
-    ddq = samples.ddq.row(k).transpose();
-    robot_->path_torque_coefficients(ws, q, dq, ddq, a, b, c);
+    const auto a = A.row(k), b = B.row(k), c = C.row(k);
     for (int j = 0; j < n; ++j) {
       // eq. (15): τ_L <= a x + b u + c <= τ_U
       // An infinite limit gives c = +inf: an inactive row.
