@@ -45,6 +45,10 @@ Matrix6 spatial_inertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix3
   return I;
 }
 
+Eigen::VectorXd as_vector(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
 struct Builder {
   const RobotModelOptions& options;
   std::vector<RobotModel::Body>& bodies;
@@ -70,6 +74,27 @@ struct Builder {
     v_max.push_back(vel);
     effort.push_back(eff);
     return static_cast<int>(bodies.size()) - 1;
+  }
+
+  // The six virtual joints of RobotModelOptions::floating_base (x, y, z, then rotations about z, y, x;
+  // unlimited, unactuated). Returns the last one's body, which carries the root link.
+  int add_floating_base() {
+    const double inf = std::numeric_limits<double>::infinity();
+    const char* names[6] = {"floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx"};
+    const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
+                                     Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
+    int body = -1;
+    for (int i = 0; i < 6; ++i)
+      body = add_body(body, i < 3 ? RobotModel::JointType::Prismatic : RobotModel::JointType::Revolute, axes[i],
+                      Eigen::Isometry3d::Identity(), names[i], -inf, inf, inf, 0.0);
+    return body;
+  }
+
+  void store_limits(Eigen::VectorXd& lo, Eigen::VectorXd& hi, Eigen::VectorXd& vel, Eigen::VectorXd& eff) const {
+    lo = as_vector(q_lo);
+    hi = as_vector(q_hi);
+    vel = as_vector(v_max);
+    eff = as_vector(effort);
   }
 
   // `placement`: the link frame in the coordinates of body `body` (-1: the world).
@@ -153,25 +178,12 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModel
   m.name_ = urdf->getName();
   m.gravity_ = options.gravity;
   Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}};
-  int root_body = -1;
-  if (options.floating_base) {
-    const double inf = std::numeric_limits<double>::infinity();
-    const char* names[6] = {"floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx"};
-    const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
-                                     Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
-    for (int i = 0; i < 6; ++i)
-      root_body = b.add_body(root_body, i < 3 ? JointType::Prismatic : JointType::Revolute, axes[i],
-                             Eigen::Isometry3d::Identity(), names[i], -inf, inf, inf, 0.0);
-  }
+  const int root_body = options.floating_base ? b.add_floating_base() : -1;
   b.add_link(urdf->getRoot(), root_body, Eigen::Isometry3d::Identity());
   for (const auto& [name, value] : options.locked_joints)
     if (!b.locked_used.count(name))
       detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
-  auto vec = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
-  m.q_lo_ = vec(b.q_lo);
-  m.q_hi_ = vec(b.q_hi);
-  m.v_max_ = vec(b.v_max);
-  m.effort_ = vec(b.effort);
+  b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
   return m;
 }
 
@@ -183,42 +195,45 @@ void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char*
 
 namespace {
 
-// Joint transforms ^iX_λ = X_J(q_i) X_tree and motion subspaces, shared by every pass at one q.
-void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
-                bool motion_subspaces = true) {
+// ^iX_λ = X_J(q) X_tree of one body as its rotation E (column-major, 9 values) and the origin r of the
+// joint frame in parent coordinates.
+void joint_transform(const RobotModel::Body& b, double q, double* E, double* r) {
+  const double* T = b.E_tree.data();
+  if (b.type == RobotModel::JointType::Prismatic) {
+    // E = E_tree; r = r_tree + E_tree^T (axis q).
+    std::copy(T, T + 9, E);
+    Eigen::Map<Eigen::Vector3d> origin(r);
+    origin = b.r_tree + b.E_tree.transpose() * (b.axis * q);
+    return;
+  }
+  // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree.
+  std::copy(b.r_tree.data(), b.r_tree.data() + 3, r);
+  const Eigen::Vector3d& ax = b.axis;
+  const int unit = ax.x() == 1.0 ? 0 : ax.y() == 1.0 ? 1 : ax.z() == 1.0 ? 2 : -1;
+  if (unit < 0) {
+    Eigen::Map<Eigen::Matrix3d> rotation(E);
+    rotation.noalias() = Eigen::AngleAxisd(-q, ax).toRotationMatrix() * b.E_tree;
+    return;
+  }
+  // About a coordinate axis (most URDF joints) E_J mixes two rows of E_tree only:
+  // e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2.
+  const double cq = std::cos(q), sq = std::sin(q);
+  const int i1 = (unit + 1) % 3, i2 = (unit + 2) % 3;
+  for (int col = 0; col < 3; ++col) {
+    const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
+    E[3 * col + unit] = T[3 * col + unit];
+    E[3 * col + i1] = cq * t1 + sq * t2;
+    E[3 * col + i2] = cq * t2 - sq * t1;
+  }
+}
+
+// Joint transforms and motion subspaces, shared by every pass at one q.
+void kinematics(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) {
   for (size_t i = 0; i < bodies.size(); ++i) {
     const RobotModel::Body& b = bodies[i];
-    const double qi = q[static_cast<Eigen::Index>(i)];
-    Eigen::Matrix3d& E = ws.E[i];
-    if (b.type == RobotModel::JointType::Revolute) {
-      // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree. About a coordinate axis (most URDF
-      // joints) E_J mixes two rows of E_tree only.
-      const Eigen::Vector3d& ax = b.axis;
-      const int unit = ax.x() == 1.0 ? 0 : ax.y() == 1.0 ? 1 : ax.z() == 1.0 ? 2 : -1;
-      if (unit >= 0) {
-        const double cq = std::cos(qi), sq = std::sin(qi);
-        const int i1 = (unit + 1) % 3, i2 = (unit + 2) % 3;
-        // Rot(e_unit, q)^T rows: e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2. Column-major, so
-        // element-wise on the raw storage.
-        const double* T = b.E_tree.data();
-        double* D = E.data();
-        for (int col = 0; col < 3; ++col) {
-          const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
-          D[3 * col + unit] = T[3 * col + unit];
-          D[3 * col + i1] = cq * t1 + sq * t2;
-          D[3 * col + i2] = cq * t2 - sq * t1;
-        }
-      } else {
-        E.noalias() = Eigen::AngleAxisd(-qi, b.axis).toRotationMatrix() * b.E_tree;
-      }
-      ws.r[i] = b.r_tree;
-      if (motion_subspaces) ws.S[i] << b.axis, Eigen::Vector3d::Zero();
-    } else {
-      // E = E_tree; r = r_tree + E_tree^T (axis q).
-      E = b.E_tree;
-      ws.r[i] = b.r_tree + b.E_tree.transpose() * (b.axis * qi);
-      if (motion_subspaces) ws.S[i] << Eigen::Vector3d::Zero(), b.axis;
-    }
+    joint_transform(b, q[static_cast<Eigen::Index>(i)], ws.E[i].data(), ws.r[i].data());
+    if (b.type == RobotModel::JointType::Revolute) ws.S[i] << b.axis, Eigen::Vector3d::Zero();
+    else ws.S[i] << Eigen::Vector3d::Zero(), b.axis;
   }
 }
 
@@ -503,13 +518,9 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
   // eq. (12): τ = M (p'' ṡ² + p' s̈) + C(q, p' ṡ) p' ṡ + g, and C is quadratic in the velocity, so
   // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
   // gravity, c = g(q): three RNEA channels in one sweep (abc_sweep).
-  kinematics(bodies_, ws, q, false);
   const size_t nb = bodies_.size();
   AbcBody<double>* S = abc_bodies<double>(ws, nb);
-  for (size_t i = 0; i < nb; ++i) {
-    std::copy(ws.E[i].data(), ws.E[i].data() + 9, S[i].E);
-    std::copy(ws.r[i].data(), ws.r[i].data() + 3, S[i].r);
-  }
+  for (size_t i = 0; i < nb; ++i) joint_transform(bodies_[i], q[static_cast<Eigen::Index>(i)], S[i].E, S[i].r);
   abc_sweep<double>(bodies_, S, dq.data(), ddq.data(), gravity_, a.data(), b.data(), c.data());
 }
 
@@ -524,54 +535,30 @@ void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen:
   c.resize(count, n);
   Eigen::Index s = 0;
 #if defined(__GNUC__)
-  // Two samples per sweep, one in each SIMD lane, when every revolute joint turns about a coordinate
-  // axis (the joint rotation is then built from cos and sin per lane).
-  bool axis_aligned = true;
-  for (const Body& bd : bodies_)
-    axis_aligned &= bd.type == JointType::Prismatic || bd.axis == Eigen::Vector3d::UnitX() ||
-                    bd.axis == Eigen::Vector3d::UnitY() || bd.axis == Eigen::Vector3d::UnitZ();
-  if (axis_aligned) {
-    const size_t nb = bodies_.size();
-    AbcBody<Double2>* S = abc_bodies<Double2>(ws, nb);
-    std::vector<Double2> qd2(nb), qdd2(nb), a2(nb), b2(nb), c2(nb);
-    for (; s + 1 < count; s += 2) {
-      for (size_t i = 0; i < nb; ++i) {
-        const Body& bd = bodies_[i];
-        const Eigen::Index j = static_cast<Eigen::Index>(i);
-        const double q0 = q(s, j), q1 = q(s + 1, j);
-        qd2[i] = Double2{dq(s, j), dq(s + 1, j)};
-        qdd2[i] = Double2{ddq(s, j), ddq(s + 1, j)};
-        AbcBody<Double2>& B = S[i];
-        const double* T = bd.E_tree.data();
-        if (bd.type == JointType::Revolute) {
-          // E = Rot(e_u, q)^T E_tree: rows i1, i2 of E_tree mixed by cos and sin (as in kinematics()).
-          const int u = bd.axis.x() == 1.0 ? 0 : bd.axis.y() == 1.0 ? 1 : 2;
-          const int i1 = (u + 1) % 3, i2 = (u + 2) % 3;
-          const Double2 cq{std::cos(q0), std::cos(q1)}, sq{std::sin(q0), std::sin(q1)};
-          for (int col = 0; col < 3; ++col) {
-            const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
-            B.E[3 * col + u] = Double2{T[3 * col + u], T[3 * col + u]};
-            B.E[3 * col + i1] = cq * t1 + sq * t2;
-            B.E[3 * col + i2] = cq * t2 - sq * t1;
-          }
-          for (int k = 0; k < 3; ++k) B.r[k] = Double2{bd.r_tree[k], bd.r_tree[k]};
-        } else {
-          for (int k = 0; k < 9; ++k) B.E[k] = Double2{T[k], T[k]};
-          const Eigen::Vector3d r0 = bd.r_tree + bd.E_tree.transpose() * (bd.axis * q0);
-          const Eigen::Vector3d r1 = bd.r_tree + bd.E_tree.transpose() * (bd.axis * q1);
-          for (int k = 0; k < 3; ++k) B.r[k] = Double2{r0[k], r1[k]};
-        }
-      }
-      abc_sweep<Double2>(bodies_, S, qd2.data(), qdd2.data(), gravity_, a2.data(), b2.data(), c2.data());
-      for (size_t i = 0; i < nb; ++i) {
-        const Eigen::Index j = static_cast<Eigen::Index>(i);
-        a(s, j) = a2[i][0];
-        a(s + 1, j) = a2[i][1];
-        b(s, j) = b2[i][0];
-        b(s + 1, j) = b2[i][1];
-        c(s, j) = c2[i][0];
-        c(s + 1, j) = c2[i][1];
-      }
+  // Two samples per sweep, one in each SIMD lane.
+  const size_t nb = bodies_.size();
+  AbcBody<Double2>* S = abc_bodies<Double2>(ws, nb);
+  std::vector<Double2> qd2(nb), qdd2(nb), a2(nb), b2(nb), c2(nb);
+  for (; s + 1 < count; s += 2) {
+    for (size_t i = 0; i < nb; ++i) {
+      const Eigen::Index j = static_cast<Eigen::Index>(i);
+      qd2[i] = Double2{dq(s, j), dq(s + 1, j)};
+      qdd2[i] = Double2{ddq(s, j), ddq(s + 1, j)};
+      double E0[9], E1[9], r0[3], r1[3];
+      joint_transform(bodies_[i], q(s, j), E0, r0);
+      joint_transform(bodies_[i], q(s + 1, j), E1, r1);
+      for (int k = 0; k < 9; ++k) S[i].E[k] = Double2{E0[k], E1[k]};
+      for (int k = 0; k < 3; ++k) S[i].r[k] = Double2{r0[k], r1[k]};
+    }
+    abc_sweep<Double2>(bodies_, S, qd2.data(), qdd2.data(), gravity_, a2.data(), b2.data(), c2.data());
+    for (size_t i = 0; i < nb; ++i) {
+      const Eigen::Index j = static_cast<Eigen::Index>(i);
+      a(s, j) = a2[i][0];
+      a(s + 1, j) = a2[i][1];
+      b(s, j) = b2[i][0];
+      b(s + 1, j) = b2[i][1];
+      c(s, j) = c2[i][0];
+      c(s + 1, j) = c2[i][1];
     }
   }
 #endif
@@ -684,11 +671,10 @@ RobotModel RobotModel::combine(const std::vector<RobotModel>& parts, const std::
   for (const std::string& j : m.joint_names_)
     if (seen[j]++) detail::fail("combined joint name '" + j + "' is not unique (two parts share a name and a joint)");
   if (!name.empty()) m.name_ = name;
-  auto vec = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
-  m.q_lo_ = vec(lo);
-  m.q_hi_ = vec(hi);
-  m.v_max_ = vec(vel);
-  m.effort_ = vec(eff);
+  m.q_lo_ = as_vector(lo);
+  m.q_hi_ = as_vector(hi);
+  m.v_max_ = as_vector(vel);
+  m.effort_ = as_vector(eff);
   return m;
 }
 
@@ -703,32 +689,18 @@ RobotModel RobotModel::free_object(const std::string& name, double mass, const E
   const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues().minCoeff();
   if (min_eig < -1e-12 * std::max(1.0, inertia.cwiseAbs().maxCoeff()))
     detail::fail("inertia has eigenvalue " + detail::fmt(min_eig) + ": it must be positive semi-definite");
+  detail::require_finite("gravity", gravity);
   RobotModel m;
   m.name_ = name;
   m.gravity_ = gravity;
-  detail::require_finite("gravity", gravity);
-  const double inf = std::numeric_limits<double>::infinity();
-  const char* names[6] = {"floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx"};
-  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
-                                   Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
-  for (int i = 0; i < 6; ++i) {
-    Body b;
-    b.parent = i - 1;
-    b.type = i < 3 ? JointType::Prismatic : JointType::Revolute;
-    b.axis = axes[i];
-    b.E_tree.setIdentity();
-    b.r_tree.setZero();
-    b.inertia.setZero();
-    m.bodies_.push_back(b);
-    m.joint_names_.push_back(names[i]);
-  }
-  m.bodies_.back().inertia = spatial_inertia(mass, com, inertia);
-  m.links_[name] = {5, Eigen::Isometry3d::Identity()};
+  RobotModelOptions options;
+  options.floating_base = true;
+  Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}};
+  const int body = b.add_floating_base();
+  m.bodies_[static_cast<size_t>(body)].inertia = spatial_inertia(mass, com, inertia);
+  m.links_[name] = {body, Eigen::Isometry3d::Identity()};
   m.link_names_.push_back(name);
-  m.q_lo_ = Eigen::VectorXd::Constant(6, -inf);
-  m.q_hi_ = Eigen::VectorXd::Constant(6, inf);
-  m.v_max_ = Eigen::VectorXd::Constant(6, inf);
-  m.effort_ = Eigen::VectorXd::Zero(6);
+  b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
   return m;
 }
 

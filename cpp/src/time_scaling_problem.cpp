@@ -150,13 +150,13 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
 
   Result res;
   res.path = path_;
-  for (const auto& c : constraints_)
+  for (const auto& c : constraints_) {
     if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(c)) res.robot = torque->robot();
-  for (const auto& c : constraints_)
     if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
       res.robot = contact->robot();
       res.contacts = contact;
     }
+  }
   res.s = samples_.s;
   const Eigen::Index n = intervals();
 

@@ -126,8 +126,8 @@ TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
 }
 
 TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
-  // kArm: coordinate-axis revolute joints and a tilted prismatic one (the two-lane path); the same
-  // tree with a tilted revolute axis (the one-sample fallback). An odd sample count leaves a tail.
+  // kArm: coordinate-axis revolute joints and a tilted prismatic one; the same tree with a tilted
+  // revolute axis (the general rotation in each lane). An odd sample count leaves a one-sample tail.
   std::string tilted = kArm;
   tilted.replace(tilted.find("<axis xyz=\"0 1 0\"/>"), 19, "<axis xyz=\"0 0.6 0.8\"/>");
   for (const std::string& xml : {std::string(kArm), tilted}) {

@@ -76,7 +76,7 @@ class RobotModel {
                                 Eigen::Ref<Eigen::VectorXd> c) const;
 
   /// The same at many samples: row s of q, dq, ddq (each (samples, nq)) gives row s of a, b, c. Two
-  /// samples go through each sweep in the two SIMD lanes where the compiler has vector types.
+  /// samples go through each sweep in the two SIMD lanes where the compiler has vector types (GCC, Clang).
   void path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
                                       const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                       Eigen::MatrixXd& c) const;

@@ -3,9 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include <glpk.h>
-
 #include "detail/glpk_guard.hpp"
+#include "detail/glpk_util.hpp"
 #include "detail/projection.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/errors.hpp"
@@ -154,7 +153,8 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   }
 
   RobotWorkspace ws(*robot_);
-  Eigen::VectorXd a(n), b(n), c(n);
+  Eigen::MatrixXd a, b, c;  // eq. (12) at every grid point, row p
+  robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
   std::vector<Eigen::Isometry3d> T;
   Eigen::MatrixXd J;
   Eigen::Matrix3Xd gen;
@@ -164,15 +164,14 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   size_t widest = 0;
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     const Eigen::VectorXd q = samples.q.row(p).transpose();
-    robot_->path_torque_coefficients(ws, q, samples.dq.row(p).transpose(), samples.ddq.row(p).transpose(), a, b, c);
     // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
-    lp.A.col(0).head(n) = a;  // the min-normal-force rows below n keep zeros in x and u
-    lp.A.col(1).head(n) = b;
+    lp.A.col(0).head(n) = a.row(p).transpose();  // the min-normal-force rows below n keep zeros in x and u
+    lp.A.col(1).head(n) = b.row(p).transpose();
     contact_jacobians(q, T, J, gen);
     for (int i = 0; i < m; ++i)
       lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
-    lp.row_lo.head(n) = tau_min_ - c;
-    lp.row_hi.head(n) = tau_max_ - c;
+    lp.row_lo.head(n) = tau_min_ - c.row(p).transpose();
+    lp.row_hi.head(n) = tau_max_ - c.row(p).transpose();
     const detail::Projection pr = projector.project(lp);
     if (pr.outcome == detail::Projection::Outcome::Failed)
       throw Error("contact projection failed at grid index " + std::to_string(p) + " (s = " + detail::fmt(samples.s[p]) +
@@ -231,8 +230,8 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
   Eigen::MatrixXd J, A(rows, cols);
   Eigen::Matrix3Xd gen;
   Eigen::VectorXd tau(n);
-  std::vector<int> ia(1), ja(1);
-  std::vector<double> ar(1);
+  std::vector<int> ia, ja;
+  std::vector<double> ar;
   glp_term_out(GLP_OFF);
   detail::GlpkHookState state;
   glp_prob* lp = nullptr;
@@ -246,10 +245,10 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
   glp_set_obj_dir(lp, GLP_MAX);
   glp_add_rows(lp, rows);
   glp_add_cols(lp, cols);
-  for (int j = 0; j < m * k; ++j) glp_set_col_bnds(lp, j + 1, GLP_LO, 0.0, 0.0);
-  glp_set_col_bnds(lp, cols, GLP_UP, 0.0, options_.cap);
+  for (int j = 0; j < m * k; ++j) detail::glpk_set_bounds(lp, false, j + 1, 0.0, inf);
+  detail::glpk_set_bounds(lp, false, cols, -inf, options_.cap);
   glp_set_obj_coef(lp, cols, 1.0);
-  for (int i = 0; i < m; ++i) glp_set_row_bnds(lp, n + i + 1, GLP_LO, options_.min_normal_force, 0.0);
+  for (int i = 0; i < m; ++i) detail::glpk_set_bounds(lp, true, n + i + 1, options_.min_normal_force, inf);
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
@@ -266,40 +265,15 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
       A.block(n + i, i * k, 1, k).setOnes();
       A(n + i, cols - 1) = k - 1;
     }
-    ia.resize(1);
-    ja.resize(1);
-    ar.resize(1);
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c)
-        if (A(r, c) != 0.0) {
-          ia.push_back(r + 1);
-          ja.push_back(c + 1);
-          ar.push_back(A(r, c));
-        }
-    glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
-    for (int j = 0; j < n; ++j) {
-      const double lo = tau_min_[j] - tau[j], hi = tau_max_[j] - tau[j];
-      const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-      const int type = has_lo && has_hi ? (lo == hi ? GLP_FX : GLP_DB) : has_lo ? GLP_LO : has_hi ? GLP_UP : GLP_FR;
-      glp_set_row_bnds(lp, j + 1, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
-    }
+    detail::glpk_load_dense(lp, A, ia, ja, ar);
+    for (int j = 0; j < n; ++j) detail::glpk_set_bounds(lp, true, j + 1, tau_min_[j] - tau[j], tau_max_[j] - tau[j]);
     if (first) glp_adv_basis(lp, 0);
     first = false;
-    int ret = glp_simplex(lp, &parm);
-    int st = glp_get_status(lp);
-    if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS)) {
-      glp_std_basis(lp);
-      ret = glp_simplex(lp, &parm);
-      st = glp_get_status(lp);
-    }
-    if (ret != 0 || st != GLP_OPT) {  // confirm "no forces" (or recover) in exact arithmetic
-      glp_std_basis(lp);
-      if (glp_exact(lp, &parm) != 0) {
-        glp_delete_prob(lp);
-        glp_error_hook(nullptr, nullptr);
-        throw Error("force distribution: the LP solver did not finish at sample " + std::to_string(s));
-      }
-      st = glp_get_status(lp);
+    const int st = detail::glpk_solve_robust(lp, parm);
+    if (st < 0) {
+      glp_delete_prob(lp);
+      glp_error_hook(nullptr, nullptr);
+      throw Error("force distribution: the LP solver did not finish at sample " + std::to_string(s));
     }
     ContactForces& f = out[static_cast<size_t>(s)];
     f.forces.resize(m, 3);

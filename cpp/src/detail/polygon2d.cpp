@@ -57,16 +57,17 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   low_.clear();
   // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input).
   Line left{-1.0, 0.0, -x_lo, kBoxXLow}, right{1.0, 0.0, x_hi, kBoxXHigh};
-  box_[0] = {0.0, -1.0, -y_lo, kBoxYLow};
-  box_[1] = {0.0, 1.0, y_hi, kBoxYHigh};
-  src_ = lines;
-  n_src_ = n;
+  const Line box[2] = {{0.0, -1.0, -y_lo, kBoxYLow}, {0.0, 1.0, y_hi, kBoxYHigh}};
+  auto line_at = [&](int i) -> const Line& {
+    const std::size_t u = static_cast<std::size_t>(i);
+    return u < n ? lines[u] : box[u - n];
+  };
   if (p_.size() < n + 2) {
     p_.resize(n + 2);
     q_.resize(n + 2);
   }
   for (std::size_t i = 0; i < n + 2; ++i) {
-    const Line& l = i < n ? lines[i] : box_[i - n];
+    const Line& l = line_at(static_cast<int>(i));
     if (l.b == 0.0) {
       // A bound on x alone tightens the box (keeping its id, as clipping would).
       if (l.a > 0.0) {
@@ -195,11 +196,6 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     edges_[nxt].resize(2 * cap);
     vertices_[nxt].resize(2 * cap);
   }
-  if (dist_.size() < 16) dist_.resize(16);
-  if (edges_[cur_].size() < 16) {
-    edges_[cur_].resize(16);
-    vertices_[cur_].resize(16);
-  }
   Line* e = edges_[nxt].data();
   std::size_t cnt = 0;
   const bool has_left = xa == x_lo, has_right = xb == x_hi;
@@ -237,16 +233,6 @@ bool Polygon2d::clip(const Line& line) {
   const std::size_t m = m_;
   const Line* edges = edges_[cur_].data();
   const Vertex* verts = vertices_[cur_].data();
-  {
-    // Most lines are redundant (every vertex inside): find that out with a lean pass and no stores.
-    double worst = -1.0;
-    const double ac = std::abs(line.c);
-    for (std::size_t j = 0; j < m; ++j) {
-      const double ax = line.a * verts[j].x, by = line.b * verts[j].y;
-      worst = std::max(worst, (ax + by - line.c) - kTol * (std::abs(ax) + std::abs(by) + ac));
-    }
-    if (worst <= 0.0) return false;
-  }
   if (dist_.size() < m) dist_.resize(2 * m);
   double* dist = dist_.data();
   // dist[j] <= 0 marks an inside vertex (within the tolerance); outside ones keep their distance, which

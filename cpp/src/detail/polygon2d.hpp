@@ -89,17 +89,9 @@ class Polygon2d {
   std::vector<Vertex> vertices_[2];
   std::vector<double> dist_;
   struct Piece {
-    int line;        // see line_at()
+    int line;        // lines[line], or the box's lower (n) or upper (n + 1) side
     double x_end;    // where the next piece takes over
   };
-  // build(): the input lines, then the box's y sides.
-  const Line& line_at(int i) const {
-    const std::size_t u = static_cast<std::size_t>(i);
-    return u < n_src_ ? src_[u] : box_[u - n_src_];
-  }
-  const Line* src_ = nullptr;
-  std::size_t n_src_ = 0;
-  Line box_[2];
   std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
   std::vector<int> up_, low_;
   std::vector<Piece> upper_, lower_;

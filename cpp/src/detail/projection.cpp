@@ -1,6 +1,7 @@
 #include "detail/projection.hpp"
 
 #include "detail/glpk_guard.hpp"
+#include "detail/glpk_util.hpp"
 
 #include <cmath>
 #include <limits>
@@ -8,16 +9,6 @@
 #include <glpk.h>
 
 namespace pathpace::detail {
-
-namespace {
-
-void set_bounds(glp_prob* lp, bool row, int i, double lo, double hi) {
-  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-  const int type = has_lo && has_hi ? (lo == hi ? GLP_FX : GLP_DB) : has_lo ? GLP_LO : has_hi ? GLP_UP : GLP_FR;
-  (row ? glp_set_row_bnds : glp_set_col_bnds)(lp, i, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
-}
-
-}  // namespace
 
 Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps) {
   PolytopeProjector p;
@@ -57,19 +48,9 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     cols_ = cols;
   }
   glp_prob* lp = lp_;
-  std::vector<int> ia(1), ja(1);
-  std::vector<double> ar(1);
-  for (int i = 0; i < rows; ++i) {
-    set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
-    for (int j = 0; j < cols; ++j)
-      if (in.A(i, j) != 0.0) {
-        ia.push_back(i + 1);
-        ja.push_back(j + 1);
-        ar.push_back(in.A(i, j));
-      }
-  }
-  for (int j = 0; j < cols; ++j) set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
-  glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
+  for (int i = 0; i < rows; ++i) glpk_set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
+  for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
+  glpk_load_dense(lp, in.A, ia_, ja_, ar_);
   // No scaling: GLPK's automatic scaling was seen to make the primal simplex declare small, plainly
   // feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
   // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
@@ -85,23 +66,10 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     glp_set_obj_coef(lp, 1, vx);
     glp_set_obj_coef(lp, 2, vu);
     ++out.lp_solves;
-    // Warm start from the previous direction's basis; if the floating-point simplex stalls or fails,
-    // restart it from the slack basis, and as a last resort solve in exact rational arithmetic (these
-    // LPs are small: joints x (2 + contacts x cone edges)).
-    int ret = glp_simplex(lp, &parm);
-    if (ret != 0 || (glp_get_status(lp) != GLP_OPT && glp_get_status(lp) != GLP_NOFEAS)) {
-      glp_std_basis(lp);
-      ret = glp_simplex(lp, &parm);
-    }
-    int st = glp_get_status(lp);
-    if (ret != 0 || st == GLP_NOFEAS || (st != GLP_OPT)) {
-      // "Empty" is a claim about the robot (no contact forces balance it): confirm it exactly too.
-      glp_std_basis(lp);
-      if (glp_exact(lp, &parm) != 0) return -1;
-      st = glp_get_status(lp);
-      if (st == GLP_NOFEAS) return 0;
-    }
-    if (st != GLP_OPT) return -1;
+    // Warm start from the previous direction's basis (these LPs are small: joints x (2 + contacts x
+    // cone edges), so the exact fallback is affordable).
+    const int st = glpk_solve_robust(lp, parm);
+    if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {glp_get_col_prim(lp, 1), glp_get_col_prim(lp, 2)};
     return 1;
   };

@@ -47,6 +47,8 @@ class PolytopeProjector {
   void release();
   ::glp_prob* lp_ = nullptr;
   int rows_ = -1, cols_ = -1;
+  std::vector<int> ia_, ja_;  // matrix-loading scratch
+  std::vector<double> ar_;
 };
 
 /// One polytope, from a cold start.

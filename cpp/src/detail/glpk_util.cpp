@@ -1,0 +1,43 @@
+#include "detail/glpk_util.hpp"
+
+#include <cmath>
+
+namespace pathpace::detail {
+
+void glpk_set_bounds(glp_prob* lp, bool row, int i, double lo, double hi) {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  const int type = has_lo && has_hi ? (lo == hi ? GLP_FX : GLP_DB) : has_lo ? GLP_LO : has_hi ? GLP_UP : GLP_FR;
+  (row ? glp_set_row_bnds : glp_set_col_bnds)(lp, i, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
+}
+
+void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja,
+                     std::vector<double>& ar) {
+  ia.assign(1, 0);  // GLPK's arrays are 1-based
+  ja.assign(1, 0);
+  ar.assign(1, 0.0);
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    for (Eigen::Index j = 0; j < A.cols(); ++j)
+      if (A(i, j) != 0.0) {
+        ia.push_back(static_cast<int>(i) + 1);
+        ja.push_back(static_cast<int>(j) + 1);
+        ar.push_back(A(i, j));
+      }
+  glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
+}
+
+int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm) {
+  int ret = glp_simplex(lp, &parm);
+  int st = glp_get_status(lp);
+  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS)) {
+    glp_std_basis(lp);
+    ret = glp_simplex(lp, &parm);
+    st = glp_get_status(lp);
+  }
+  if (ret == 0 && st == GLP_OPT) return GLP_OPT;
+  glp_std_basis(lp);
+  if (glp_exact(lp, &parm) != 0) return -1;
+  st = glp_get_status(lp);
+  return st == GLP_OPT || st == GLP_NOFEAS ? st : -1;
+}
+
+}  // namespace pathpace::detail

@@ -1,0 +1,26 @@
+#pragma once
+// GLPK steps shared by the polytope projection and the force-distribution LP (never installed).
+// Callers install the error hook of glpk_guard.hpp around these calls.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <glpk.h>
+
+namespace pathpace::detail {
+
+/// Row (row = true) or column i (1-based) bounded by lo <= . <= hi; ±inf for an absent side, lo == hi
+/// an equality.
+void glpk_set_bounds(glp_prob* lp, bool row, int i, double lo, double hi);
+
+/// Loads the nonzeros of a dense matrix (ia, ja, ar: scratch, reused across calls).
+void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja,
+                     std::vector<double>& ar);
+
+/// The simplex from the current basis (a warm start); if it stalls or fails, again from the slack basis;
+/// if that still does not end optimal, in exact rational arithmetic, which also confirms an
+/// infeasibility (a claim about the robot, so it is checked exactly). Returns GLP_OPT, GLP_NOFEAS, or
+/// -1 when the solver did not finish.
+int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm);
+
+}  // namespace pathpace::detail
