@@ -2,13 +2,14 @@
 #   make demo   - solve a real problem (Panda arm path) and print the timing
 #   make test   - build the library, run the C++ tests (ctest) and the Python tests (pytest)
 #   make bench  - peer comparison against toppra; writes bench/README.md's table
+#   make wheel  - a self-contained manylinux wheel in dist/ (GLPK, urdfdom bundled)
 SHELL := /bin/bash
 VENV := .venv
 PY := $(VENV)/bin/python
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 JOBS ?= 2
 
-.PHONY: setup cpp python test test-cpp test-python test-packaging demo bench clean
+.PHONY: setup cpp python wheel test test-cpp test-python test-packaging test-wheel demo bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -32,7 +33,14 @@ test-packaging: cpp
 test-python: python
 	@$(PY) -m pytest -q tests/python
 
-test: test-cpp test-packaging test-python
+# A manylinux wheel with GLPK and urdfdom bundled (auditwheel), in dist/.
+wheel: python
+	@bash scripts/build_wheel.sh
+
+test-wheel: wheel
+	@bash tests/packaging/test_wheel.sh
+
+test: test-cpp test-packaging test-python test-wheel
 
 demo: python
 	@$(PY) examples/demo.py
