@@ -177,6 +177,12 @@ void bind_problem(py::module_& m) {
       .def_property_readonly("infeasible_s", [](const Result& r) { return r.infeasibility.s; })
       .def_property_readonly("binding_constraints", [](const Result& r) { return r.infeasibility.constraints; })
       .def_property_readonly("stats", [](const Result& r) { return stats_dict(r.stats); })
+      .def_readonly("relaxation", &Result::relaxation,
+                    "For an INFEASIBLE result: dict family -> smallest scale of that family's limits that makes the "
+                    "problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see TimeScalingProblem.relaxation)")
+      .def_readonly("binding", &Result::binding,
+                    "For a timed result: per interval (N entries) the label of the constraint that binds there, "
+                    "'' where none does, typically the interval of a switch (to colour a phase-plane plot by the active limit)")
       .def("trajectory", [](const Result& r) { return std::make_shared<Trajectory>(r.trajectory()); })
       .def("__repr__", [](const Result& r) {
         std::string s = "<Result status=" + std::string(to_string(r.status));
@@ -255,9 +261,23 @@ void bind_problem(py::module_& m) {
         return out;
       })
       .def("feasible_set", &TimeScalingProblem::feasible_set, "k"_a)
+      .def("relaxation", [](const TimeScalingProblem& p, double max_scale, double tolerance) {
+        py::gil_scoped_release release;
+        return p.relaxation(max_scale, tolerance);
+      }, "max_scale"_a = 1e3, "tolerance"_a = 1e-3,
+         "Smallest uniform relaxation of each constraint family that makes the problem feasible.\n\n"
+         "Returns a dict family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family "
+         "together when there are several): the family's limit intervals widened by that factor about zero, the "
+         "others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor; "
+         "inf if `max_scale` is not enough. 1.0 for every family of a feasible problem.")
+      .def("restarted", &TimeScalingProblem::restarted, "s0"_a, "sdot0"_a,
+           "The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0): the "
+           "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and end speed. Its result "
+           "starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.")
       .def("solve", [](const TimeScalingProblem& p, const std::string& method, int max_iterations,
-                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance) {
+                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance, bool explain) {
         SolverOptions o;
+        o.explain = explain;
         o.method = parse_method(method);
         o.max_iterations = max_iterations;
         o.tolerance = tolerance;
@@ -268,7 +288,8 @@ void bind_problem(py::module_& m) {
       }, "method"_a = "auto", "max_iterations"_a = SolverOptions().max_iterations,
          "tolerance"_a = SolverOptions().tolerance,
          "initial_trust_region"_a = SolverOptions().initial_trust_region,
-         "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance);
+         "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance,
+         "explain"_a = SolverOptions().explain);
 }
 
 }  // namespace pathpace::python

@@ -1,12 +1,15 @@
 #include "pathpace/time_scaling_problem.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
+#include "detail/binding.hpp"
 #include "detail/grid_sets.hpp"
 #include "detail/reachability.hpp"
 #include "detail/slp.hpp"
+#include "detail/sub_path.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
@@ -177,6 +180,10 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
       for (size_t i = 0; i < res.infeasibility.constraints.size(); ++i)
         os << (i ? ", " : "") << res.infeasibility.constraints[i];
     }
+    if (st == Status::Infeasible && options.explain) {
+      res.relaxation = relaxation();
+      os << "; " << describe_relaxation(res.relaxation);
+    }
     res.message = os.str();
     return res;
   };
@@ -184,6 +191,17 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   for (Eigen::Index k = 0; k <= n; ++k) {
     const detail::PointSet& p = sets.points[static_cast<size_t>(k)];
     if (p.empty) return report(Status::Infeasible, k, p.certificate, "no (sdot^2, sddot) satisfies the constraints");
+  }
+
+  // A boundary speed beyond the speed bound of its end point: say so in the user's terms (the
+  // reachability analysis would only find that no speed is admissible one grid point further on).
+  for (const auto& [k, sdot, name] : {std::make_tuple(Eigen::Index(0), sdot_begin_, "sdot_begin"),
+                                      std::make_tuple(n, sdot_end_, "sdot_end")}) {
+    const detail::PointSet& p = sets.points[static_cast<size_t>(k)];
+    if (sdot * sdot > p.x_hi * (1 + 1e-12) && p.x_hi_id >= 0)
+      return report(Status::Infeasible, k, {p.x_hi_id},
+                    std::string(name) + " = " + detail::fmt(sdot) + " is faster than the constraints allow at " +
+                        (k == 0 ? "s_begin" : "s_end") + " (sdot <= " + detail::fmt(std::sqrt(p.x_hi)) + ")");
   }
 
   t0 = std::chrono::steady_clock::now();
@@ -284,7 +302,115 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     res.sddot[k] = (theta[k + 1] - theta[k]) / (2.0 * ds);
   }
   res.duration = res.times[n];
+  res.binding = detail::binding_labels(chain, sets, theta);
   return res;
+}
+
+bool TimeScalingProblem::feasible_with(const std::vector<ConstraintRows>& rows) const {
+  const detail::GridSets sets = detail::build_grid_sets(samples_, rows);
+  for (const detail::PointSet& p : sets.points)
+    if (p.empty) return false;
+  const detail::Chain chain = detail::build_chain(samples_.s, sets);
+  // Unbounded is not infeasible: some timing exists (and a relaxation cannot make it less bounded).
+  return detail::reachability(chain, sdot_begin_ * sdot_begin_, sdot_end_ * sdot_end_).outcome !=
+         detail::Reachability::Outcome::Infeasible;
+}
+
+std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance) const {
+  if (!(max_scale > 1.0) || !std::isfinite(max_scale))
+    detail::fail("max_scale = " + detail::fmt(max_scale) + " must be > 1 and finite");
+  if (!(rel_tolerance > 0.0 && rel_tolerance < 1.0))
+    detail::fail("rel_tolerance = " + detail::fmt(rel_tolerance) + " must be in (0, 1)");
+  std::vector<std::string> families;
+  for (const auto& c : constraints_) {
+    const std::string f = c->family();
+    if (!f.empty() && std::find(families.begin(), families.end(), f) == families.end() && c->relaxed(2.0))
+      families.push_back(f);
+  }
+  if (families.size() >= 2) families.push_back("all");
+  std::map<std::string, double> out;
+  if (families.empty()) return out;
+  if (feasible_with(rows_)) {
+    for (const std::string& f : families) out[f] = 1.0;
+    return out;
+  }
+  for (const std::string& f : families) {
+    auto feasible = [&](double scale) {
+      std::vector<ConstraintRows> rows = rows_;
+      for (size_t i = 0; i < constraints_.size(); ++i) {
+        const std::string fi = constraints_[i]->family();
+        if (fi.empty() || (f != "all" && fi != f)) continue;
+        if (auto r = constraints_[i]->relaxed(scale)) rows[i] = r->evaluate(samples_);
+      }
+      return feasible_with(rows);
+    };
+    // Feasibility grows with the scale (each relaxed set contains the last): double until feasible,
+    // then bisect on log(scale).
+    double lo = 1.0, hi = 2.0;
+    while (hi < max_scale && !feasible(hi)) {
+      lo = hi;
+      hi = std::min(4.0 * hi, max_scale);
+    }
+    if (hi >= max_scale && !feasible(max_scale)) {
+      out[f] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    while (hi > lo * (1.0 + rel_tolerance)) {
+      const double mid = std::sqrt(lo * hi);
+      (feasible(mid) ? hi : lo) = mid;
+    }
+    out[f] = hi;
+  }
+  return out;
+}
+
+std::string TimeScalingProblem::describe_relaxation(const std::map<std::string, double>& relaxation) {
+  std::ostringstream os;
+  std::vector<std::pair<double, std::string>> finite;
+  for (const auto& [f, scale] : relaxation)
+    if (std::isfinite(scale) && f != "all") finite.emplace_back(scale, f);
+  std::sort(finite.begin(), finite.end());
+  if (finite.empty()) {
+    auto all = relaxation.find("all");
+    if (all != relaxation.end() && std::isfinite(all->second))
+      os << "feasible only with every family of limits x " << detail::fmt(std::ceil(all->second * 1e3) / 1e3);
+    else if (relaxation.empty())
+      os << "no constraint family can be relaxed to explain it";
+    else
+      os << "no single family of limits scaled up to x 1000 makes it feasible";
+    return os.str();
+  }
+  // Four digits say enough, rounded up so that the printed scale is a feasible one.
+  auto up4 = [](double v) {
+    const double e = std::pow(10.0, std::floor(std::log10(v)) - 3);
+    return detail::fmt(std::ceil(v / e) * e);
+  };
+  os << "feasible with ";
+  for (size_t i = 0; i < finite.size(); ++i)
+    os << (i ? " or " : "") << finite[i].second << " limits x " << up4(finite[i].first);
+  return os.str();
+}
+
+TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const {
+  const Eigen::Index n = intervals();
+  const double a = samples_.s[0], b = samples_.s[n];
+  if (!std::isfinite(s0) || s0 < a || s0 >= b)
+    detail::fail("s0 = " + detail::fmt(s0) + " must be in [s_begin, s_end) = [" + detail::fmt(a) + ", " +
+                 detail::fmt(b) + ")");
+  if (!std::isfinite(sdot0) || sdot0 < 0.0) detail::fail("sdot0 = " + detail::fmt(sdot0) + " must be >= 0 and finite");
+  std::vector<double> g{s0};
+  for (Eigen::Index k = 1; k <= n; ++k) {
+    if (samples_.s[k] <= s0) continue;
+    // A grid point a hair beyond s0 would make an interval of width ~0 (a wasted, ill-conditioned row
+    // pair); the end point always stays.
+    if (k < n && samples_.s[k] - s0 <= 1e-9 * (samples_.s[k] - samples_.s[k - 1])) continue;
+    g.push_back(samples_.s[k]);
+  }
+  std::shared_ptr<const Path> tail = s0 == a ? path_ : std::make_shared<detail::SubPath>(path_, s0);
+  TimeScalingProblem p(std::move(tail), Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())));
+  for (const auto& c : constraints_) p.add_constraint(c);
+  p.set_boundary_speeds(sdot0, sdot_end_);
+  return p;
 }
 
 }  // namespace pathpace

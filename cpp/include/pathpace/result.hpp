@@ -3,6 +3,7 @@
 /// What a solve returns: a status, the timing at the grid points and where a failure happened.
 
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +57,14 @@ class Result {
   Eigen::VectorXd times;  ///< t_k (N+1), t_0 = 0
   Eigen::VectorXd sddot;  ///< s̈ on interval k (N)
   Infeasibility infeasibility;
+  /// For an Infeasible result (when SolverOptions::explain): the smallest scale of each constraint
+  /// family's limits that makes the problem feasible, e.g. {"torque": 1.18, "velocity": inf}; see
+  /// TimeScalingProblem::relaxation.
+  std::map<std::string, double> relaxation;
+  /// For a timed result: per interval k (N entries), the label of the constraint that binds on it
+  /// (the row with the least relative slack at the solution, if below 1e-6), "" if none does: typically
+  /// the interval of a bang-bang switch, whose end speeds are set by its neighbours' limits.
+  std::vector<std::string> binding;
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any

@@ -25,6 +25,9 @@ struct SolverOptions {
   double tolerance = 1e-7;
   double initial_trust_region = 0.5;   ///< trust-region half-width, relative to max θ of the start
   double lp_feasibility_tolerance = 1e-9;  ///< GLPK primal feasibility tolerance (tol_bnd)
+  /// On an infeasible result, also find the smallest relaxation of each constraint family that makes
+  /// it feasible (Result::relaxation; costs a few dozen reachability analyses).
+  bool explain = true;
 };
 
 }  // namespace pathpace

@@ -2,7 +2,9 @@
 /// @file time_scaling_problem.hpp
 /// The time-scaling problem: a path, a grid, constraints and boundary speeds (sec. V).
 
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -56,8 +58,30 @@ class TimeScalingProblem {
 
   Result solve(const SolverOptions& options = SolverOptions()) const;
 
+  /// Why an infeasible problem is infeasible, as the smallest uniform relaxation that fixes it: for
+  /// each constraint family (Constraint::family(): "velocity", "acceleration", "torque", ...) the
+  /// smallest scale >= 1 of that family's limit intervals (Constraint::relaxed, the others unchanged)
+  /// that makes the problem feasible, found by bisection on a geometric scale to `rel_tolerance`
+  /// (the returned scale is feasible, scale / (1 + rel_tolerance) is not); +inf if even `max_scale`
+  /// is not enough (e.g. velocity limits cannot fix what acceleration limits forbid). With two or more
+  /// families, "all" scales every family together. A feasible problem gives 1 for each family.
+  /// Feasibility is decided by the reachability analysis (O(N) per trial, no SLP).
+  std::map<std::string, double> relaxation(double max_scale = 1e3, double rel_tolerance = 1e-3) const;
+
+  /// The problem that continues a running trajectory from s0 at speed sdot0 (>= 0): the path from s0
+  /// to s_end, the grid points beyond s0 (s0 itself becomes the first one; a grid point closer to s0
+  /// than 1e-9 of the interval is dropped), the same constraints, boundary speeds (sdot0, sdot_end).
+  /// Its solution starts at q = p(s0), q̇ = p'(s0)·sdot0: the continuation has no jump in position or
+  /// velocity. Times in its result count from the restart (t = 0 at s0).
+  TimeScalingProblem restarted(double s0, double sdot0) const;
+
+  /// "feasible with torque limits x 1.18 or acceleration limits x 1.4" for a relaxation() map.
+  static std::string describe_relaxation(const std::map<std::string, double>& relaxation);
+
  private:
   void init_samples();
+  /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
+  bool feasible_with(const std::vector<ConstraintRows>& rows) const;
   std::shared_ptr<const Path> path_;
   PathSamples samples_;
   std::vector<std::shared_ptr<const Constraint>> constraints_;

@@ -50,4 +50,13 @@ ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
   return rows;
 }
 
+std::shared_ptr<const Constraint> AccelerationLimits::relaxed(double scale) const {
+  Eigen::VectorXd lo = amin_, hi = amax_;
+  for (Eigen::Index j = 0; j < lo.size(); ++j) {
+    lo[j] = widen_lower(lo[j], scale);
+    hi[j] = widen_upper(hi[j], scale);
+  }
+  return std::make_shared<AccelerationLimits>(lo, hi);
+}
+
 }  // namespace pathpace

@@ -63,4 +63,13 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
   return rows;
 }
 
+std::shared_ptr<const Constraint> TorqueLimits::relaxed(double scale) const {
+  Eigen::VectorXd lo = tau_min_, hi = tau_max_;
+  for (Eigen::Index j = 0; j < lo.size(); ++j) {
+    lo[j] = widen_lower(lo[j], scale);
+    hi[j] = widen_upper(hi[j], scale);
+  }
+  return std::make_shared<TorqueLimits>(robot_, lo, hi);
+}
+
 }  // namespace pathpace

@@ -40,4 +40,8 @@ ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
   return rows;
 }
 
+std::shared_ptr<const Constraint> VelocityLimits::relaxed(double scale) const {
+  return std::make_shared<VelocityLimits>(vmin_ * scale, vmax_ * scale);
+}
+
 }  // namespace pathpace

@@ -17,6 +17,9 @@ class AccelerationLimits : public Constraint {
 
   std::string name() const override { return "acceleration limits"; }
   ConstraintRows evaluate(const PathSamples& samples) const override;
+  std::string family() const override { return "acceleration"; }
+  /// [amin, amax] widened by `scale` about zero (Constraint::relaxed).
+  std::shared_ptr<const Constraint> relaxed(double scale) const override;
 
   const Eigen::VectorXd& amin() const { return amin_; }
   const Eigen::VectorXd& amax() const { return amax_; }

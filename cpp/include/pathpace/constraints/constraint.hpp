@@ -4,6 +4,7 @@
 /// x = ṡ² and u = s̈ (the paper's eq. 9).
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,20 @@ class Constraint {
   /// The half-planes at every grid point of `samples`. Throws InvalidInput when the constraint does
   /// not fit the path (e.g. a dimension mismatch), naming what does not fit.
   virtual ConstraintRows evaluate(const PathSamples& samples) const = 0;
+
+  /// The family of limits a uniform relaxation scales when an infeasible problem is explained
+  /// ("velocity", "acceleration", "torque", ...; see TimeScalingProblem::relaxation). Empty: the
+  /// constraint is not relaxed.
+  virtual std::string family() const { return {}; }
+
+  /// The same constraint with its limit intervals widened by `scale` >= 1 about zero (a bound l <= 0
+  /// becomes scale·l, a bound l > 0 becomes l / scale, likewise for upper bounds), so that the
+  /// feasible set grows monotonically with the scale; nullptr if the constraint has no such scale.
+  virtual std::shared_ptr<const Constraint> relaxed(double /*scale*/) const { return nullptr; }
 };
+
+/// A limit interval [lo, hi] widened by scale >= 1 about zero (see Constraint::relaxed).
+inline double widen_lower(double lo, double scale) { return lo <= 0.0 ? lo * scale : lo / scale; }
+inline double widen_upper(double hi, double scale) { return hi >= 0.0 ? hi * scale : hi / scale; }
 
 }  // namespace pathpace

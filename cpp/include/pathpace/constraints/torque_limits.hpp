@@ -23,6 +23,9 @@ class TorqueLimits : public Constraint {
 
   std::string name() const override { return "torque limits"; }
   ConstraintRows evaluate(const PathSamples& samples) const override;
+  std::string family() const override { return "torque"; }
+  /// [tau_min, tau_max] (after scale and margin) widened by `scale` about zero (Constraint::relaxed).
+  std::shared_ptr<const Constraint> relaxed(double scale) const override;
 
   const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
   const Eigen::VectorXd& tau_max() const { return tau_max_; }

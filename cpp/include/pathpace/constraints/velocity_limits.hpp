@@ -18,6 +18,9 @@ class VelocityLimits : public Constraint {
 
   std::string name() const override { return "velocity limits"; }
   ConstraintRows evaluate(const PathSamples& samples) const override;
+  std::string family() const override { return "velocity"; }
+  /// vmin·scale, vmax·scale.
+  std::shared_ptr<const Constraint> relaxed(double scale) const override;
 
   const Eigen::VectorXd& vmin() const { return vmin_; }
   const Eigen::VectorXd& vmax() const { return vmax_; }

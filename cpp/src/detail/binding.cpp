@@ -1,0 +1,40 @@
+#include "detail/binding.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pathpace::detail {
+
+std::vector<std::string> binding_labels(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta,
+                                        double tolerance) {
+  const Eigen::Index n = chain.intervals();
+  std::vector<std::string> out(static_cast<size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) {
+    double best = std::numeric_limits<double>::infinity();
+    int best_id = 0;
+    bool found = false;
+    auto consider = [&](double slack, double scale, int id) {
+      const double rel = slack / std::max(scale, 1e-300);
+      if (rel < best) {
+        best = rel;
+        best_id = id;
+        found = true;
+      }
+    };
+    for (const Line& r : chain.rows(k)) {
+      const double lhs_k = r.a * theta[k], lhs_k1 = r.b * theta[k + 1];
+      consider(r.c - lhs_k - lhs_k1, std::max({std::abs(r.c), std::abs(lhs_k) + std::abs(lhs_k1)}), r.id);
+    }
+    // A speed bound at either end of the interval (eq. 16); the ends fixed by boundary speeds are not
+    // constraints of the path, and a bound of "no limit" is none.
+    for (Eigen::Index j : {k, k + 1}) {
+      const int id = chain.x_hi_id[static_cast<size_t>(j)];
+      if (id >= 0 && j > 0 && j < n) consider(chain.x_hi[j] - theta[j], std::abs(chain.x_hi[j]), id);
+    }
+    if (found && best <= tolerance) out[static_cast<size_t>(k)] = sets.label(best_id);
+  }
+  return out;
+}
+
+}  // namespace pathpace::detail

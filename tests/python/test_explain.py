@@ -1,0 +1,214 @@
+"""Boundary states, restarts, and answers to "why is it infeasible?" / "what binds where?"."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+
+def line(length=1.0):
+    """q = length * s on s in [0, 1]: ṡ = q̇ / length, so limits on q map exactly to limits on s."""
+    return pp.CubicSplinePath(np.array([[0.0], [length]]))
+
+
+def line_problem(N, v=1.0, a=1.0, length=1.0, sdot=(0.0, 0.0)):
+    prob = pp.TimeScalingProblem(line(length), grid=N)
+    prob.add_velocity_limits([-v], [v])
+    prob.add_acceleration_limits([-a], [a])
+    prob.set_boundary_speeds(*sdot)
+    return prob
+
+
+# ------------------------------------------------------------------------------------ boundary speeds
+def trapezoid_time(L, V, A, v0, v1):
+    """Fastest time over distance L from speed v0 to v1 with |v| <= V, |a| <= A (cruise reached)."""
+    d_acc, d_dec = (V * V - v0 * v0) / (2 * A), (V * V - v1 * v1) / (2 * A)
+    assert d_acc + d_dec <= L
+    return (V - v0) / A + (V - v1) / A + (L - d_acc - d_dec) / V
+
+
+@pytest.mark.parametrize("N", [8, 16, 40])
+def test_nonzero_start_speed_gives_the_analytic_trapezoid(N):
+    # v0 = 0.5: accelerate over 0.375, cruise 0.125, brake over 0.5 -- every switch on the grid of N = 8k,
+    # so the piecewise-quadratic timing is the continuous optimum exactly.
+    res = line_problem(N, sdot=(0.5, 0.0)).solve()
+    assert res.status == pp.Status.OPTIMAL
+    assert res.duration == pytest.approx(trapezoid_time(1.0, 1.0, 1.0, 0.5, 0.0), rel=1e-9)
+    assert res.sdot[0] == pytest.approx(0.5, abs=1e-12) and res.sdot[-1] == 0.0
+    traj = res.trajectory()
+    t = np.linspace(0, res.duration, 2001)
+    assert np.abs(traj.qd(t)).max() <= 1.0 + 1e-9
+    assert np.abs(traj.qdd(t)).max() <= 1.0 + 1e-9
+
+
+def test_nonzero_speeds_at_both_ends():
+    res = line_problem(40, sdot=(0.5, 0.5)).solve()
+    assert res.status == pp.Status.OPTIMAL
+    assert res.duration == pytest.approx(trapezoid_time(1.0, 1.0, 1.0, 0.5, 0.5), rel=1e-9)
+    assert res.sdot[-1] == pytest.approx(0.5, abs=1e-12)
+
+
+@pytest.mark.parametrize("which", ["sdot_begin", "sdot_end"])
+def test_boundary_speed_above_the_velocity_limit_is_named(which):
+    speeds = (2.0, 0.0) if which == "sdot_begin" else (0.0, 2.0)
+    res = line_problem(10, sdot=speeds).solve()
+    assert res.status == pp.Status.INFEASIBLE
+    assert res.infeasible_index == (0 if which == "sdot_begin" else 10)
+    assert res.message.startswith(f"{which} = 2 is faster than the constraints allow at ")
+    assert "(sdot <= 1)" in res.message
+    assert res.binding_constraints == ["velocity joint 0"]
+
+
+def test_start_too_fast_to_stop_is_infeasible_and_explained():
+    # From ṡ = 1 a stop within 0.4 needs a deceleration of 1 / (2 * 0.4) = 1.25: acceleration limits x 1.25;
+    # no velocity limit can help. The decelerating profile is linear in θ, so exact on any grid.
+    res = pp.TimeScalingProblem(line(0.4), grid=40)
+    res.add_velocity_limits([-2.0], [2.0])
+    res.add_acceleration_limits([-1.0], [1.0])
+    res.set_boundary_speeds(1.0 / 0.4, 0.0)  # q̇ = 0.4 ṡ = 1 at the start
+    out = res.solve()
+    assert out.status == pp.Status.INFEASIBLE
+    r = out.relaxation
+    assert set(r) == {"velocity", "acceleration", "all"}
+    assert r["velocity"] == math.inf
+    assert 1.25 <= r["acceleration"] <= 1.25 * (1 + 1e-3)
+    assert 1.25 <= r["all"] <= 1.25 * (1 + 1e-3)
+    assert "feasible with acceleration limits x 1.25" in out.message
+    # The contract behind the number: scaled limits solve, slightly less do not.
+    for scale, ok in [(r["acceleration"], True), (r["acceleration"] / (1 + 2e-3), False)]:
+        p = pp.TimeScalingProblem(line(0.4), grid=40)
+        p.add_velocity_limits([-2.0], [2.0])
+        p.add_acceleration_limits([-scale], [scale])
+        p.set_boundary_speeds(1.0 / 0.4, 0.0)
+        assert p.solve(explain=False).ok == ok
+
+
+def test_torque_relaxation_is_the_smallest_feasible_scale():
+    robot = pp.RobotModel.from_urdf(str(DATA / "pendulum.urdf"))  # 1 kg at 1 m, |τ| <= 5.6 N m
+    # Up from rest at 1.2 rad, where gravity alone needs 9.81 sin 1.2 = 9.14 N m: no swing can help.
+    path = pp.CubicSplinePath(np.array([[1.2], [1.25], [1.3]]))
+
+    def problem(scale):
+        p = pp.TimeScalingProblem(path, grid=100)
+        p.add_velocity_limits([-5.0], [5.0])
+        p.add_torque_limits(robot, scale=scale)
+        return p
+
+    res = problem(1.0).solve()
+    assert res.status == pp.Status.INFEASIBLE
+    r = res.relaxation
+    assert set(r) == {"velocity", "torque", "all"} and r["velocity"] == math.inf
+    assert r["torque"] >= 9.81 * math.sin(1.2) / 5.6 * (1 - 1e-9)  # the start from rest
+    assert problem(r["torque"]).solve(explain=False).ok
+    assert not problem(r["torque"] / (1 + 2e-3)).solve(explain=False).ok
+    assert "feasible with torque limits x " in res.message
+    # Without explain, nothing is computed.
+    assert problem(1.0).solve(explain=False).relaxation == {}
+
+
+def test_relaxation_of_a_feasible_problem_is_one_and_validates_its_arguments():
+    prob = line_problem(10)
+    assert prob.relaxation() == {"velocity": 1.0, "acceleration": 1.0, "all": 1.0}
+    with pytest.raises(pp.InvalidInputError, match=r"^max_scale = 1 must be > 1 and finite$"):
+        prob.relaxation(max_scale=1.0)
+    with pytest.raises(pp.InvalidInputError, match=r"^rel_tolerance = 0 must be in \(0, 1\)$"):
+        prob.relaxation(tolerance=0.0)
+
+
+# ------------------------------------------------------------------------------------ binding labels
+def test_binding_labels_follow_the_bang_coast_bang_phases():
+    res = line_problem(8, sdot=(0.5, 0.0)).solve()
+    b = res.binding
+    assert len(b) == 8
+    # accelerate on [0, 0.375] (intervals 0-2), cruise on [0.375, 0.5] (3), brake on [0.5, 1] (4-7); at
+    # the switch intervals 2 and 4 the speed bound ties with the acceleration row.
+    assert b[0] == b[1] == "acceleration joint 0 upper"
+    assert b[3] == "velocity joint 0"
+    assert b[5] == b[6] == b[7] == "acceleration joint 0 lower"
+    assert b[2] in ("acceleration joint 0 upper", "velocity joint 0")
+    assert b[4] in ("acceleration joint 0 lower", "velocity joint 0")
+
+
+def test_binding_labels_name_torque_limits_on_a_swing():
+    robot = pp.RobotModel.from_urdf(str(DATA / "pendulum.urdf"))
+    path = pp.CubicSplinePath(np.array([[0.0], [0.25], [0.5]]))
+    prob = pp.TimeScalingProblem(path, grid=100)
+    prob.add_torque_limits(robot)
+    res = prob.solve()
+    assert res.ok and len(res.binding) == 100
+    b = res.binding
+    assert set(b) <= {"torque hinge upper", "torque hinge lower", ""}
+    assert b[0] == "torque hinge upper" and b[-1] == "torque hinge lower"
+    # Bang-bang: accelerate at the upper torque limit, brake at the lower one. Where the switch falls
+    # inside an interval, neither of its rows is tight (its end speeds are set by its neighbours): that
+    # interval, and only that one, has no label.
+    first_lower = b.index("torque hinge lower")
+    assert all(x == "torque hinge upper" for x in b[: first_lower - 1])
+    assert b[first_lower - 1] in ("torque hinge upper", "")
+    assert all(x == "torque hinge lower" for x in b[first_lower:])
+
+
+# ------------------------------------------------------------------------------------ restarts
+def two_joint_problem(N=200):
+    path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, 0.5], [0.2, 1.5]]))
+    prob = pp.TimeScalingProblem(path, grid=N)
+    prob.add_velocity_limits([-1, -1], [1, 1])
+    prob.add_acceleration_limits([-2, -2], [2, 2])
+    return prob
+
+
+def test_restart_at_a_grid_point_continues_the_optimum():
+    prob = two_joint_problem()
+    res = prob.solve()
+    traj = res.trajectory()
+    k = 77
+    tail = prob.restarted(res.s[k], res.sdot[k])
+    assert tail.grid[0] == res.s[k] and np.array_equal(tail.grid, res.s[k:])
+    assert tail.sdot_begin == res.sdot[k] and tail.sdot_end == 0.0
+    out = tail.solve()
+    assert out.status == pp.Status.OPTIMAL
+    # Bellman: the tail of an optimum is the optimum of the tail (both certified to 1e-7).
+    assert out.duration == pytest.approx(res.duration - res.times[k], rel=3e-7)
+    tt = out.trajectory()
+    np.testing.assert_allclose(tt.q(0.0), traj.q(res.times[k]), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(tt.qd(0.0), traj.qd(res.times[k]), rtol=0, atol=1e-12)
+
+
+def test_restart_inside_an_interval_starts_where_the_trajectory_is():
+    prob = two_joint_problem()
+    res = prob.solve()
+    traj = res.trajectory()
+    t_r = 0.5 * (res.times[3] + res.times[4])  # accelerating from rest, far below the speed limits
+    s0, sd0, _ = traj.s(t_r)
+    tail = prob.restarted(s0, sd0)
+    assert tail.grid[0] == s0 and tail.grid[1] == res.s[4] and tail.intervals == 200 - 3
+    out = tail.solve()
+    assert out.status == pp.Status.OPTIMAL
+    tt = out.trajectory()
+    np.testing.assert_allclose(tt.q(0.0), traj.q(t_r), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(tt.qd(0.0), traj.qd(t_r), rtol=0, atol=1e-12)
+    # The restart may only re-time what lies ahead: not slower than the rest of the original, and not
+    # faster than the original's remainder by more than the discretisation (one interval's worth).
+    rest = res.duration - t_r
+    assert out.duration <= rest * (1 + 1e-7)
+    assert out.duration >= rest - (res.times[4] - res.times[3])
+
+
+def test_restart_validates_its_arguments():
+    prob = two_joint_problem(10)
+    with pytest.raises(pp.InvalidInputError, match=r"^s0 = 1 must be in \[s_begin, s_end\) = \[0, 1\)$"):
+        prob.restarted(1.0, 0.0)
+    with pytest.raises(pp.InvalidInputError, match=r"^s0 = -0.1 must be in"):
+        prob.restarted(-0.1, 0.0)
+    with pytest.raises(pp.InvalidInputError, match=r"^sdot0 = -1 must be >= 0 and finite$"):
+        prob.restarted(0.5, -1.0)
+    with pytest.raises(pp.InvalidInputError, match=r"^sdot0 = nan must be >= 0 and finite$"):
+        prob.restarted(0.5, float("nan"))
+    # s0 a hair before a grid point does not create a degenerate interval.
+    tail = prob.restarted(0.3 - 1e-12, 0.0)
+    assert tail.grid[1] == pytest.approx(0.4) and tail.intervals == 7
