@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "pathpace/auto_grid.hpp"
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 #include "pathpace/sampled_path.hpp"
@@ -110,6 +111,17 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const SampledPath& p) {
         return "<SampledPath samples=" + std::to_string(p.samples().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+
+  m.def("auto_grid", [](std::shared_ptr<Path> path, double tolerance, int min_intervals, int max_intervals) {
+    if (!path) throw InvalidInput("path must be a pathpace Path, not None");
+    py::gil_scoped_release release;
+    return auto_grid(*path, tolerance, min_intervals, max_intervals);
+  }, "path"_a, "tolerance"_a = 1e-3, "min_intervals"_a = 16, "max_intervals"_a = 1000000,
+     "A grid of s fitted to the path's shape (what grid='auto' uses).\n\n"
+     "Every interval is halved until p, p' and p'' deviate from their chords at its midpoint by at most "
+     "`tolerance` times their scale over the path (largest coordinate range, largest |p'_j|, largest "
+     "|p''_j|); starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial "
+     "path. Returns the grid points s_0..s_N (the N used is len - 1). InvalidInputError past `max_intervals`.");
 }
 
 }  // namespace pathpace::python

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "pathpace/auto_grid.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
@@ -192,7 +193,18 @@ void bind_problem(py::module_& m) {
       });
 
   py::class_<TimeScalingProblem, std::shared_ptr<TimeScalingProblem>>(m, "TimeScalingProblem")
-      .def(py::init([](std::shared_ptr<Path> path, py::object grid) {
+      .def(py::init([](std::shared_ptr<Path> path, py::object grid, double grid_tolerance) {
+             if (py::isinstance<py::str>(grid)) {
+               const std::string g = grid.cast<std::string>();
+               if (g != "auto") throw InvalidInput("grid = '" + g + "' must be 'auto', an int or an array of s");
+               if (!path) throw InvalidInput("path must be a pathpace Path, not None");
+               Eigen::VectorXd s;
+               {
+                 py::gil_scoped_release release;
+                 s = auto_grid(*path, grid_tolerance);
+               }
+               return std::make_shared<TimeScalingProblem>(std::move(path), std::move(s));
+             }
              if (py::isinstance<py::int_>(grid)) {
                const long long n = grid.cast<long long>();
                if (n < 1 || n > 100000000)
@@ -204,7 +216,10 @@ void bind_problem(py::module_& m) {
              Eigen::VectorXd g = to_vector(grid, "grid");
              return std::make_shared<TimeScalingProblem>(std::move(path), std::move(g));
            }),
-           "path"_a, "grid"_a = 100)
+           "path"_a, "grid"_a = 100, "grid_tolerance"_a = 1e-3,
+           "grid: N (uniform intervals), an increasing array of s from s_begin to s_end, or 'auto' "
+           "(pathpace.auto_grid(path, grid_tolerance): refined where the path bends; the N used is "
+           "problem.intervals).")
       .def("add_velocity_limits", [](TimeScalingProblem& p, py::handle vmin, py::handle vmax) {
         p.add_velocity_limits(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"));
       }, "vmin"_a, "vmax"_a)

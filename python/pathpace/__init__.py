@@ -24,6 +24,7 @@ from ._core import (
     TorqueLimits,
     Trajectory,
     VelocityLimits,
+    auto_grid,
 )
 
 try:
@@ -32,6 +33,7 @@ except PackageNotFoundError:  # running from a source tree
     __version__ = "0.0.0"
 
 __all__ = [
+    "auto_grid",
     "AccelerationLimits",
     "Constraint",
     "Contact",

@@ -2,6 +2,7 @@
 /// @file pathpace.hpp
 /// Umbrella header: everything a user of pathpace needs.
 
+#include "pathpace/auto_grid.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/constraint.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
