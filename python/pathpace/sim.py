@@ -238,7 +238,7 @@ class Simulator:
             n = np.asarray(c.normal, dtype=float)
             n = n / np.linalg.norm(n)
             if abs(n[2] - 1.0) > 1e-9:
-                _fail(f"contacts[{k}].normal = {tuple(c.normal)} must be (0, 0, 1): only contacts on the floor are simulated")
+                _fail(f"contacts[{k}].normal = ({', '.join(f'{v:g}' for v in c.normal)}) must be (0, 0, 1): only contacts on the floor are simulated")
             X = robot.frame_placement(q0, c.link)
             z = (X @ np.append(c.point, 1.0))[2]
             if abs(z - self.floor_height) > 1e-3:
@@ -261,6 +261,9 @@ class Simulator:
             if torque_limits and math.isfinite(effort[i]) and effort[i] > 0:
                 a.forcelimited = mj.mjtLimited.mjLIMITED_TRUE
                 a.forcerange = [-effort[i], effort[i]]
+        if not torque_limits:  # MuJoCo's URDF import also limits the joint's total actuator force
+            for j in spec.joints:
+                j.actfrclimited = mj.mjtLimited.mjLIMITED_FALSE
         self.model = model = spec.compile()
         self.spec = spec
         self.data = mj.MjData(model)
