@@ -16,8 +16,8 @@ the robot slips, pivots on a sole edge or falls, and `SimResult` says so.
 optimal timing sits on the boundary of the feasible set, where a real robot is not safe): the smallest
 minimum normal force (or friction margin) whose optimum executes in simulation, with its cost in T.
 
-Everything is deterministic: fixed time step, a fixed number of solver iterations, and the only
-randomness (optional feed-forward torque noise) is seeded.
+Everything is deterministic: fixed time step, MuJoCo's deterministic solver (the same inputs give the
+same bits), and the only randomness (optional feed-forward torque noise) is seeded.
 """
 
 from __future__ import annotations
@@ -225,7 +225,6 @@ class Simulator:
         spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
         spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
         spec.option.iterations = solver_iterations
-        spec.option.tolerance = 0.0  # always the same number of iterations: deterministic, cost-stable
 
         # Floor and contact spheres: only sphere-floor pairs collide (contype/conaffinity bits).
         self.floor_height = float(floor_height)
@@ -534,7 +533,8 @@ def find_executable_margin(
     (fraction of μ, in [lower, upper] within [0, 1)); the other margin stays at the value given.
     configure(prob) may add further constraints (velocity, torque limits...) to every problem. The search
     assumes that executability is monotone in the margin (every trial is kept in `trials` to check).
-    It stops when the bracket is narrower than `tolerance`.
+    An upper bound without any timing (too large a margin: infeasible) is halved towards `lower` until
+    the problem is feasible. It stops when the bracket is narrower than `tolerance`.
     """
     if parameter not in ("min_normal_force", "friction_margin"):
         _fail(f"parameter = '{parameter}' must be 'min_normal_force' or 'friction_margin'")
@@ -568,6 +568,11 @@ def find_executable_margin(
     if lo.executed:
         return MarginSearch(parameter, lower, lo.duration, lo.duration, trials)
     hi = attempt(upper)
+    # Too large a margin leaves no timing at all (the solver reports infeasible): halve the step towards
+    # the lower bound until there is one (solves only, no simulation).
+    while hi.sim is None and upper - lower > tolerance:
+        upper = 0.5 * (lower + upper)
+        hi = attempt(upper)
     if not hi.executed:
         return MarginSearch(parameter, None, math.nan, lo.duration, trials)
     a, b, best = lower, upper, hi
