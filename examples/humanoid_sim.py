@@ -80,6 +80,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--amplitude", type=float, default=0.07, help="pelvis sway amplitude in m (default 0.07)")
     ap.add_argument("--contact-timeconst", type=float, default=0.005, help="MuJoCo contact time constant (s)")
     ap.add_argument("--quick", action="store_true", help="a few timings only (the test's short version)")
+    ap.add_argument("--plot", action="store_true", help="write examples/output/humanoid_sim.png")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -124,7 +125,42 @@ def main(argv: list[str] | None = None) -> dict:
                   f"{len(search.trials)} trials in {time.perf_counter() - wall:.1f} s")
         else:
             print("no executable margin in [0, 40] N")
-    return {"rows": rows, "search": search, "simulator": sim}
+        print("\nfind_executable_margin on the friction margin alone (no minimum normal force), [0, 0.9]")
+        fric = find_executable_margin(sim, path, contacts, parameter="friction_margin", lower=0.0, upper=0.9,
+                                      tolerance=0.05, grid=args.grid)
+        print(fric.table())
+        print("no friction margin in [0, 0.9] executes" if fric.margin is None else
+              f"smallest executable friction margin: {fric.margin:.2f}, T = {fric.duration:.3f} s (+{100 * fric.cost:.0f} %)")
+    if args.plot:
+        plot(rows, search)
+    return {"rows": rows, "search": search, "friction_search": fric if not args.quick else None, "simulator": sim}
+
+
+def plot(rows: list[dict], search) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    picks = [r for r in rows if r["sim"] is not None and (
+        (r["timing"] == "pathpace, contacts" and r["friction_margin"] == 0.5 and r["min_normal_force"] in (0.0, 20.0))
+        or r["timing"].startswith("velocity") or r["timing"].startswith("uniform, 1.0"))]
+    fig, ax = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    for r in picks:
+        sim = r["sim"]
+        label = r["timing"] + ("" if r["min_normal_force"] is None else f", {r['min_normal_force']:g} N") + f" (T = {r['T']:.2f} s)"
+        ax[0].plot(sim.times, np.degrees(sim.tilt), label=label)
+        ax[1].plot(sim.times, 1e3 * np.max(sim.lift, axis=1))
+    ax[0].set_ylabel("base tilt (deg)")
+    ax[0].legend(fontsize=7)
+    ax[0].set_title("Talos sway in MuJoCo: which timings keep it up")
+    ax[1].set_ylabel("largest contact-point lift (mm)")
+    ax[1].set_xlabel("t (s) from the start of the motion (then 1 s holding the end)")
+    out = Path(__file__).resolve().parent / "output"
+    out.mkdir(exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(out / "humanoid_sim.png", dpi=110)
+    print(f"plot: {out / 'humanoid_sim.png'}")
 
 
 if __name__ == "__main__":

@@ -32,7 +32,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Simulator", "SimResult", "MarginTrial", "MarginSearch", "find_executable_margin"]
+__all__ = ["Simulator", "SimResult", "MarginTrial", "MarginSearch", "find_executable_margin", "resolve_mesh"]
 
 FLOATING_JOINTS = ("floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx")
 
@@ -108,6 +108,26 @@ class SimResult:
                 f"tilt {math.degrees(self.max_tilt):.2f} deg, tracking {self.max_tracking_error:.3f}")
 
 
+def resolve_mesh(filename: str, search: Sequence[_FsPath]) -> _FsPath | None:
+    """A URDF mesh reference as a file, or None if not found. package://pkg/a/b is looked up, like ROS's
+    package path, as <dir>/pkg/a/b for each dir in `search`, then without its leading folders (<dir>/a/b,
+    ...; example-robot-data writes package:///example-robot-data/robots/...); file:// and relative
+    references the same way, absolute ones as they are."""
+    for prefix in ("package://", "file://"):
+        if filename.startswith(prefix):
+            filename = filename[len(prefix):]
+            break
+    if _FsPath(filename).is_absolute() and _FsPath(filename).is_file():
+        return _FsPath(filename)
+    parts = [p for p in filename.split("/") if p]
+    for first in range(max(1, len(parts))):
+        for d in search:
+            candidate = _FsPath(d).joinpath(*parts[first:])
+            if candidate.is_file():
+                return candidate
+    return None
+
+
 class Simulator:
     """A MuJoCo model of a pathpace `RobotModel` standing on a floor at z = `floor_height`.
 
@@ -120,6 +140,10 @@ class Simulator:
 
     The floor is stiff: MuJoCo's soft contact with time constant `contact_timeconst` (default 5 ms; MuJoCo's
     own default, 20 ms, lets a sole edge sink by ~5 mm under Talos, and the robot rocks on it).
+
+    Geometry: by default the URDF's visual and collision geometry is dropped (faster; the spheres are the
+    contact model). visual_meshes=True keeps the visual STL/OBJ meshes for drawing (never colliding),
+    resolving package:// against `package_dirs`, the URDF's folder and two above it, and example-robot-data.
 
     Gains: kp (N·m/rad) defaults to effort / `stiffness_error` (full torque at that error), capped where
     the joint's own inertia would make explicit PD unstable at this time step; kd defaults to
@@ -146,6 +170,8 @@ class Simulator:
         gain_cap: float | None = 0.5,
         torque_limits: bool = True,
         solver_iterations: int = 100,
+        visual_meshes: bool = False,
+        package_dirs: Sequence[str | _FsPath] = (),
     ) -> None:
         mj = _mujoco()
         self.mujoco = mj
@@ -171,11 +197,37 @@ class Simulator:
         # The URDF without geometry (the spheres below are the only thing that touches the floor, which
         # is the contact model pathpace planned with) and without joint damping/friction (our model has
         # none, so the feed-forward could not cancel them).
-        text = _FsPath(urdf).read_text() if not str(urdf).lstrip().startswith("<") else str(urdf)
+        from_file = not str(urdf).lstrip().startswith("<")
+        text = _FsPath(urdf).read_text() if from_file else str(urdf)
         root = ET.fromstring(text)
+        search = [_FsPath(d) for d in (package_dirs or ())]
+        if from_file:
+            # A URDF usually sits in <package>/urdf/ or <package>/robots/: package:// resolves two levels up.
+            here = _FsPath(urdf).resolve().parent
+            search += [here, here.parent, here.parent.parent]
+        if visual_meshes:
+            try:
+                from .robots import example_robot_data_dir
+
+                search.append(example_robot_data_dir())
+            except FileNotFoundError:
+                pass
+        self.visual_geoms = 0
         for link in root.iter("link"):
-            for tag in ("visual", "collision"):
-                for e in link.findall(tag):
+            for e in link.findall("collision"):
+                link.remove(e)
+            for e in link.findall("visual"):
+                mesh = e.find("geometry/mesh")
+                keep = visual_meshes
+                if keep and mesh is not None:
+                    found = resolve_mesh(mesh.get("filename", ""), search)
+                    # MuJoCo reads STL and OBJ (not COLLADA): other visuals are dropped.
+                    keep = found is not None and found.suffix.lower() in (".stl", ".obj")
+                    if keep:
+                        mesh.set("filename", str(found))
+                if keep:
+                    self.visual_geoms += 1
+                else:
                     link.remove(e)
         urdf_movable = {}
         for j in root.iter("joint"):
@@ -193,8 +245,12 @@ class Simulator:
         for old in root.findall("mujoco"):
             root.remove(old)
         ext = ET.SubElement(root, "mujoco")
-        ET.SubElement(ext, "compiler", fusestatic="false", discardvisual="true", balanceinertia="false")
+        # Inertias only from the URDF's <inertial> (as in our model), never from geometry.
+        ET.SubElement(ext, "compiler", fusestatic="false", discardvisual="false", balanceinertia="false",
+                      inertiafromgeom="false", strippath="false")
         spec = mj.MjSpec.from_string(ET.tostring(root, encoding="unicode"))
+        for g in spec.geoms:  # the URDF's visuals: drawn, never touching anything, massless
+            g.contype, g.conaffinity, g.group, g.density, g.mass = 0, 0, 1, 0.0, 0.0
 
         # Locked joints: weld the child body at the locked value, as pathpace's loader does.
         for name, value in locked.items():

@@ -17,7 +17,7 @@ import pathpace as pp
 from pathpace.robots import example_robot_urdf
 
 mujoco = pytest.importorskip("mujoco")
-from pathpace.sim import Simulator, find_executable_margin  # noqa: E402
+from pathpace.sim import Simulator, find_executable_margin, resolve_mesh  # noqa: E402
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 PANDA = "panda_description/urdf/panda.urdf"
@@ -202,3 +202,33 @@ def test_find_executable_margin_bisects_on_the_minimum_normal_force(sway):
         find_executable_margin(sway["sim"], sway["path"], parameter="mu")
     with pytest.raises(pp.InvalidInputError, match="upper = 1.5 must be < 1 for the friction margin"):
         find_executable_margin(sway["sim"], sway["path"], parameter="friction_margin", upper=1.5)
+
+
+def test_visual_meshes_resolve_package_paths_and_change_no_dynamics(sway, tmp_path):
+    urdf = example_robot_urdf("talos_data/robots/talos_full_v2.urdf")
+    refs = {m.get("filename") for m in ET.parse(urdf).getroot().iter("mesh")}
+    stl = [r for r in refs if r.lower().endswith(".stl")]
+    assert stl and all(r.split("example-robot-data/robots/")[0] in ("package://", "package:///") for r in stl)
+    robots = urdf.parents[2]
+    assert all(resolve_mesh(r, [robots]) is not None for r in stl)
+    assert resolve_mesh("package://nowhere/x.stl", [robots]) is None
+    (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
+    assert resolve_mesh("m.stl", [tmp_path]) == tmp_path / "m.stl"
+    assert resolve_mesh(f"file://{tmp_path / 'm.stl'}", []) == tmp_path / "m.stl"
+    plain = sway["sim"]
+    drawn = sway["ns"]["talos_simulator"](sway["robot"], sway["path"], sway["contacts"], visual_meshes=True)
+    assert drawn.model.nmesh > 30 and plain.model.nmesh == 0
+    assert np.all(drawn.model.geom_contype[drawn.model.geom_group == 1] == 0)
+    assert np.array_equal(drawn.model.body_mass, plain.model.body_mass)
+    assert np.array_equal(drawn.model.body_inertia, plain.model.body_inertia)
+
+
+def test_torque_noise_is_seeded():
+    urdf = example_robot_urdf(PANDA)
+    robot = pp.RobotModel.from_urdf(str(urdf), locked_joints=PANDA_LOCKED)
+    path = pp.CubicSplinePath(np.array([np.full(robot.nq, 0.1), np.full(robot.nq, -0.2)]))
+    traj = pp.Trajectory(path, np.linspace(0, 1, 11), np.full(11, 2.0))
+    sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
+    a, b, c = (sim.run(traj, torque_noise=1.0, seed=k, settle=0.1, hold=0.1) for k in (1, 1, 2))
+    assert np.array_equal(a.tracking_error, b.tracking_error)
+    assert not np.array_equal(a.tracking_error, c.tracking_error)
