@@ -145,8 +145,9 @@ class Simulator:
     contact model). visual_meshes=True keeps the visual STL/OBJ meshes for drawing (never colliding),
     resolving package:// against `package_dirs`, the URDF's folder and two above it, and example-robot-data.
 
-    Gains: kp (N·m/rad) defaults to effort / `stiffness_error` (full torque at that error), capped where
-    the joint's own inertia would make explicit PD unstable at this time step; kd defaults to
+    Gains: kp (N·m/rad) defaults to effort / `stiffness_error` (full torque at that error), capped at
+    inertia · max_frequency² (rad/s; the joint's own diagonal mass-matrix entry at q0), which explicit
+    integration resolves while max_frequency · timestep <= 1; kd defaults to
     `damping_ratio` · kp (s). Both may be given per actuated joint (arrays in robot.joint_names order
     without the floating coordinates) or as scalars. Damping is integrated implicitly (implicitfast).
     """
@@ -167,7 +168,7 @@ class Simulator:
         kd: float | np.ndarray | None = None,
         stiffness_error: float = 0.02,
         damping_ratio: float = 0.02,
-        gain_cap: float | None = 0.5,
+        max_frequency: float | None = 500.0,
         torque_limits: bool = True,
         solver_iterations: int = 100,
         visual_meshes: bool = False,
@@ -337,9 +338,11 @@ class Simulator:
         if kp is None:
             finite_effort = np.where(np.isfinite(effort[self.actuated]) & (effort[self.actuated] > 0), effort[self.actuated], 100.0)
             kp = finite_effort / stiffness_error
-            if gain_cap is not None:
-                # Explicit stiffness: keep ω dt <= gain_cap for each joint's own inertia.
-                kp = np.minimum(kp, inertia * (gain_cap / timestep) ** 2)
+            if max_frequency is not None:
+                # The stiffness is integrated explicitly: a light joint (a wrist, a foot in the air) must not
+                # oscillate faster than max_frequency on its own inertia. Independent of the time step, so
+                # that a smaller step converges to the same closed loop.
+                kp = np.minimum(kp, inertia * max_frequency**2)
         kp = np.broadcast_to(np.asarray(kp, dtype=float), (len(self.actuated),)).copy()
         kd = damping_ratio * kp if kd is None else np.broadcast_to(np.asarray(kd, dtype=float), (len(self.actuated),)).copy()
         if np.any(~(kp > 0)):
