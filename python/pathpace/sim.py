@@ -41,7 +41,7 @@ def _mujoco():
     # Imported lazily: `import pathpace` must not need MuJoCo.
     try:
         import mujoco
-    except ImportError as e:  # pragma: no cover - exercised only without the extra
+    except ImportError as e:
         raise ImportError("pathpace.sim needs MuJoCo: pip install 'pathpace[sim]' (mujoco==3.3.7)") from e
     return mujoco
 
@@ -382,9 +382,9 @@ class Simulator:
                 _fail(f"urdf: MuJoCo places link '{c.link}' {err:.2e} away from the pathpace model at q0 (locked_joints?)")
         if self.floating:
             weight = self.robot.gravity(q0)[2]  # g(q): the force that holds the base up
-            mass = float(np.sum(self.model.body_mass)) * np.linalg.norm(self.model.opt.gravity)
-            if abs(weight - mass) > 1e-6 * max(1.0, abs(weight)):
-                _fail(f"urdf: MuJoCo's robot weighs {mass:.6g} N, the pathpace model {weight:.6g} N")
+            mj_weight = float(np.sum(self.model.body_mass)) * np.linalg.norm(self.model.opt.gravity)
+            if abs(weight - mj_weight) > 1e-6 * max(1.0, abs(weight)):
+                _fail(f"urdf: MuJoCo's robot weighs {mj_weight:.6g} N, the pathpace model {weight:.6g} N")
 
     def contact_positions(self) -> np.ndarray:
         """(contacts, 3) world positions of the contact points now."""
@@ -460,7 +460,15 @@ class Simulator:
         mj, model, data = self.mujoco, self.model, self.data
         dt = model.opt.timestep
         crit = {"slip": 0.005, "lift": 0.005, "tilt": 0.05, "tracking": 0.1}
-        crit.update(criteria or {})
+        for key, value in (criteria or {}).items():
+            if key not in crit:
+                _fail(f"criteria['{key}']: unknown; the criteria are {sorted(crit)}")
+            crit[key] = float(value)
+        for name, value in (("settle", settle), ("hold", hold)):
+            if not (value >= 0):
+                _fail(f"{name} = {value} must be >= 0")
+        if not (record_dt > 0):
+            _fail(f"record_dt = {record_dt} must be > 0")
         T = float(traj.duration)
         n_move = int(math.ceil(T / dt - 1e-9))
         t_ctrl = np.minimum(np.arange(n_move + 1) * dt, T)
@@ -491,17 +499,16 @@ class Simulator:
         n_hold = int(round(hold / dt))
         every = max(1, int(round(record_dt / dt)))
         rec_t, rec_z, rec_zp, rec_tilt, rec_pos, rec_err = [], [], [], [], [], []
-        plan_cache: dict[int, tuple[float, np.ndarray]] = {}
+        plan_k, z_plan, zaxis_plan = -1, 0.0, np.zeros(3)  # the plan's root link at control step plan_k
         fell, fall_time, saturated = False, None, 0
         forcerange = model.actuator_forcerange
         limited = model.actuator_forcelimited.astype(bool)
         for step in range(n_move + n_hold + 1):
             k = min(step, n_move)
             if step % every == 0 or step == n_move + n_hold:
-                if k not in plan_cache:
+                if k != plan_k:
                     X = self.robot.frame_placement(q_des[k], self.root_link)
-                    plan_cache = {k: (X[2, 3], X[:3, 2].copy())}
-                z_plan, zaxis_plan = plan_cache[k]
+                    plan_k, z_plan, zaxis_plan = k, float(X[2, 3]), X[:3, 2].copy()
                 zaxis = data.xmat[self.root_body_id].reshape(3, 3)[:, 2]
                 tilt = math.acos(max(-1.0, min(1.0, float(zaxis @ zaxis_plan))))
                 z = float(data.xpos[self.root_body_id][2])

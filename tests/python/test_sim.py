@@ -26,8 +26,14 @@ PANDA_LOCKED = {"panda_finger_joint1": 0.02, "panda_finger_joint2": 0.035, "pand
 
 
 def test_import_pathpace_does_not_import_mujoco():
-    code = "import sys, pathpace; assert 'mujoco' not in sys.modules"
+    code = "import sys, pathpace, pathpace.sim; assert 'mujoco' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+    # Without MuJoCo, building a Simulator says what to install.
+    code = ("import sys; sys.modules['mujoco'] = None\n"
+            "import pathpace.sim\n"
+            "try:\n    pathpace.sim.Simulator(None, '')\nexcept ImportError as e:\n    print(e)")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout
+    assert "pip install 'pathpace[sim]' (mujoco==3.3.7)" in out
 
 
 def mj_inverse(sim, q, qd, qdd):
@@ -136,6 +142,16 @@ def test_validation_names_the_argument():
         Simulator(robot, urdf, [link], q, locked_joints=PANDA_LOCKED, floor_height=z)
     with pytest.raises(pp.InvalidInputError, match="kp\\[0\\] must be > 0"):
         Simulator(robot, urdf, locked_joints=PANDA_LOCKED, kp=0.0)
+    sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
+    traj = pp.Trajectory(pp.CubicSplinePath(np.zeros((2, robot.nq))), [0.0, 1.0], [1.0, 1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"criteria\['slide'\]: unknown; the criteria are \['lift', 'slip'"):
+        sim.run(traj, criteria={"slide": 0.01})
+    with pytest.raises(pp.InvalidInputError, match="hold = -1 must be >= 0"):
+        sim.run(traj, hold=-1)
+    with pytest.raises(pp.InvalidInputError, match="record_dt = 0 must be > 0"):
+        sim.run(traj, record_dt=0)
+    with pytest.raises(pp.InvalidInputError, match="feedforward = 'pd' must be 'auto', 'contact'"):
+        sim.run(traj, feedforward="pd")
 
 
 def test_panda_tracks_a_torque_limited_optimum_with_margin_and_not_one_without():
@@ -232,3 +248,11 @@ def test_torque_noise_is_seeded():
     a, b, c = (sim.run(traj, torque_noise=1.0, seed=k, settle=0.1, hold=0.1) for k in (1, 1, 2))
     assert np.array_equal(a.tracking_error, b.tracking_error)
     assert not np.array_equal(a.tracking_error, c.tracking_error)
+
+
+def test_example_quick_run_prints_the_fig1_rows(capsys):
+    out = runpy.run_path(str(EXAMPLES / "humanoid_sim.py"))["main"](["--quick"])
+    verdicts = {(r["timing"], r["min_normal_force"]): r["verdict"] for r in out["rows"]}
+    assert verdicts == {("pathpace, contacts", 0.0): "fell", ("pathpace, contacts", 20.0): "yes",
+                        ("velocity + acceleration limits only", None): "no", ("uniform, 1.0 x T(ours)", None): "fell"}
+    assert "| pathpace, contacts" in capsys.readouterr().out
