@@ -1,0 +1,652 @@
+"""Execution of pathpace trajectories in a physics simulator (MuJoCo): does the robot stay up?
+
+A timing is only as good as the model it was computed with. `Simulator` loads the URDF the
+pathpace `RobotModel` came from into MuJoCo (``pip install 'pathpace[sim]'``, MuJoCo 3.3.7), with a
+floor, a free joint when the model has a floating base, the joints the model locked welded at their
+values, and one small sphere per pathpace `Contact` (with its friction coefficient μ) as the only
+geometry that touches the floor. It then tracks a `Trajectory` with joint PD plus feed-forward torques
+from *our* model: inverse dynamics with the contact forces of the force-distribution LP (the most
+robust forces that realise the motion, `Trajectory.contact_forces` / `ContactConstraint.
+force_distribution`), or plain inverse dynamics (`Trajectory.torques`) for a robot without contacts.
+The simulator knows nothing of the plan beyond the joint targets: if the timing asks for forces the
+floor cannot give (a pull, a force outside the friction cone, a centre of pressure beyond the sole),
+the robot slips, pivots on a sole edge or falls, and `SimResult` says so.
+
+`find_executable_margin` automates the search a user would do by hand (sec. V.D of the paper: a time-
+optimal timing sits on the boundary of the feasible set, where a real robot is not safe): the smallest
+minimum normal force (or friction margin) whose optimum executes in simulation, with its cost in T.
+
+Everything is deterministic: fixed time step, MuJoCo's deterministic solver (the same inputs give the
+same bits), and the only randomness (optional feed-forward torque noise) is seeded.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path as _FsPath
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from . import _core
+
+__all__ = ["Simulator", "SimResult", "MarginTrial", "MarginSearch", "find_executable_margin", "resolve_mesh"]
+
+FLOATING_JOINTS = ("floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx")
+
+
+def _mujoco():
+    # Imported lazily: `import pathpace` must not need MuJoCo.
+    try:
+        import mujoco
+    except ImportError as e:
+        raise ImportError("pathpace.sim needs MuJoCo: pip install 'pathpace[sim]' (mujoco==3.3.7)") from e
+    return mujoco
+
+
+def _fail(message: str) -> None:
+    raise _core.InvalidInputError(message)
+
+
+@dataclasses.dataclass
+class SimResult:
+    """What happened when a trajectory was executed (`Simulator.run`).
+
+    Time series are sampled every `record_dt` from the start of the trajectory (after the settling
+    phase) to the end of the hold phase, or to the fall. Displacements of the contact points are
+    measured from where they were when the trajectory started (after settling on the floor).
+    """
+
+    times: np.ndarray  #: (m,) s since the trajectory started
+    base_height: np.ndarray  #: (m,) z of the root link (m)
+    base_height_planned: np.ndarray  #: (m,) z of the root link in the plan (held at the end)
+    tilt: np.ndarray  #: (m,) angle between the root link's z axis and the plan's (rad)
+    slip: np.ndarray  #: (m, contacts) horizontal displacement of each contact point (m)
+    lift: np.ndarray  #: (m, contacts) vertical displacement of each contact point (m)
+    tracking_error: np.ndarray  #: (m,) largest |q - q_planned| over the actuated joints (rad or m)
+    duration: float  #: T of the trajectory (s)
+    fell: bool  #: the base dropped by more than fall_height or tilted by more than fall_tilt
+    fall_time: float | None  #: when (s since the start of the trajectory), if it fell
+    torque_saturation: float  #: fraction of control steps with some actuator at its torque limit
+    criteria: dict  #: the thresholds `executed` applies
+    feedforward: str  #: "contact", "inverse_dynamics" or "none"
+
+    @property
+    def max_slip(self) -> float:
+        return float(np.max(self.slip)) if self.slip.size else 0.0
+
+    @property
+    def max_lift(self) -> float:
+        return float(np.max(self.lift)) if self.lift.size else 0.0
+
+    @property
+    def max_tilt(self) -> float:
+        return float(np.max(self.tilt)) if self.tilt.size else 0.0
+
+    @property
+    def max_tracking_error(self) -> float:
+        return float(np.max(self.tracking_error)) if self.tracking_error.size else 0.0
+
+    @property
+    def min_base_height_error(self) -> float:
+        """The largest drop of the base below its planned height (m, >= 0 means it sank)."""
+        return float(np.max(self.base_height_planned - self.base_height)) if self.times.size else 0.0
+
+    @property
+    def executed(self) -> bool:
+        """Did the robot do what the plan says: no fall, feet where they were (slip and lift within the
+        criteria: a sole that pivots on its edge lifts its other edge), base upright, joints tracked?"""
+        c = self.criteria
+        return (not self.fell and self.max_slip <= c["slip"] and self.max_lift <= c["lift"]
+                and self.max_tilt <= c["tilt"] and self.max_tracking_error <= c["tracking"])
+
+    def summary(self) -> str:
+        verdict = "fell" if self.fell else ("executed" if self.executed else "stood, but off plan")
+        return (f"T = {self.duration:.3f} s: {verdict}; slip {1e3 * self.max_slip:.1f} mm, lift {1e3 * self.max_lift:.1f} mm, "
+                f"tilt {math.degrees(self.max_tilt):.2f} deg, tracking {self.max_tracking_error:.3f}")
+
+
+def resolve_mesh(filename: str, search: Sequence[_FsPath]) -> _FsPath | None:
+    """A URDF mesh reference as a file, or None if not found. package://pkg/a/b is looked up, like ROS's
+    package path, as <dir>/pkg/a/b for each dir in `search`, then without its leading folders (<dir>/a/b,
+    ...; example-robot-data writes package:///example-robot-data/robots/...); file:// and relative
+    references the same way, absolute ones as they are."""
+    for prefix in ("package://", "file://"):
+        if filename.startswith(prefix):
+            filename = filename[len(prefix):]
+            break
+    if _FsPath(filename).is_absolute() and _FsPath(filename).is_file():
+        return _FsPath(filename)
+    parts = [p for p in filename.split("/") if p]
+    for first in range(max(1, len(parts))):
+        for d in search:
+            candidate = _FsPath(d).joinpath(*parts[first:])
+            if candidate.is_file():
+                return candidate
+    return None
+
+
+class Simulator:
+    """A MuJoCo model of a pathpace `RobotModel` standing on a floor at z = `floor_height`.
+
+    robot: the pathpace model; urdf: the file (or XML string) it was loaded from; locked_joints: the
+    same dict given to `RobotModel.from_urdf` (every movable URDF joint must be either in robot.joint_names
+    or locked); contacts: the pathpace contacts whose points touch the floor (world normal +z), each
+    becoming a sphere of `contact_radius` with friction μ = contact.friction; q0: a configuration in
+    which the contact points are on the floor (used to place the spheres and to check that MuJoCo's
+    kinematics agree with ours).
+
+    The floor is stiff: MuJoCo's soft contact with time constant `contact_timeconst` (default 5 ms; MuJoCo's
+    own default, 20 ms, lets a sole edge sink by ~5 mm under Talos, and the robot rocks on it).
+
+    Geometry: by default the URDF's visual and collision geometry is dropped (faster; the spheres are the
+    contact model). visual_meshes=True keeps the visual STL/OBJ meshes for drawing (never colliding),
+    resolving package:// against `package_dirs`, the URDF's folder and two above it, and example-robot-data.
+
+    Gains: kp (N·m/rad) defaults to effort / `stiffness_error` (full torque at that error), capped at
+    inertia · max_frequency² (rad/s; the joint's own diagonal mass-matrix entry at q0), which explicit
+    integration resolves while max_frequency · timestep <= 1; kd defaults to
+    `damping_ratio` · kp (s). Both may be given per actuated joint (arrays in robot.joint_names order
+    without the floating coordinates) or as scalars. Damping is integrated implicitly (implicitfast).
+    """
+
+    def __init__(
+        self,
+        robot: _core.RobotModel,
+        urdf: str | _FsPath,
+        contacts: Sequence[_core.Contact] = (),
+        q0: np.ndarray | None = None,
+        *,
+        locked_joints: dict[str, float] | None = None,
+        timestep: float = 1e-3,
+        contact_radius: float = 0.005,
+        contact_timeconst: float = 0.005,
+        floor_height: float = 0.0,
+        kp: float | np.ndarray | None = None,
+        kd: float | np.ndarray | None = None,
+        stiffness_error: float = 0.02,
+        damping_ratio: float = 0.02,
+        max_frequency: float | None = 500.0,
+        torque_limits: bool = True,
+        solver_iterations: int = 100,
+        visual_meshes: bool = False,
+        package_dirs: Sequence[str | _FsPath] = (),
+    ) -> None:
+        mj = _mujoco()
+        self.mujoco = mj
+        self.robot = robot
+        self.contacts = list(contacts)
+        locked = dict(locked_joints or {})
+        if not (timestep > 0 and math.isfinite(timestep)):
+            _fail(f"timestep = {timestep} must be > 0")
+        if not (contact_radius > 0):
+            _fail(f"contact_radius = {contact_radius} must be > 0")
+        if not (contact_timeconst >= 2 * timestep):
+            _fail(f"contact_timeconst = {contact_timeconst} must be >= 2 timestep = {2 * timestep} (MuJoCo's stability limit)")
+        names = list(robot.joint_names)
+        self.floating = names[:6] == list(FLOATING_JOINTS)
+        if any(n in FLOATING_JOINTS for n in names[6 if self.floating else 0:]):
+            _fail("robot: floating_* coordinates only as the first six joints of one floating base are simulated")
+        self.actuated = [i for i, n in enumerate(names) if n not in FLOATING_JOINTS]
+        q0 = np.zeros(robot.nq) if q0 is None else np.asarray(q0, dtype=float)
+        if q0.shape != (robot.nq,):
+            _fail(f"q0 has shape {q0.shape}, expected ({robot.nq},)")
+        self.root_link = robot.link_names[0]
+
+        # The URDF without geometry (the spheres below are the only thing that touches the floor, which
+        # is the contact model pathpace planned with) and without joint damping/friction (our model has
+        # none, so the feed-forward could not cancel them).
+        from_file = not str(urdf).lstrip().startswith("<")
+        text = _FsPath(urdf).read_text() if from_file else str(urdf)
+        root = ET.fromstring(text)
+        search = [_FsPath(d) for d in (package_dirs or ())]
+        if from_file:
+            # A URDF usually sits in <package>/urdf/ or <package>/robots/: package:// resolves two levels up.
+            here = _FsPath(urdf).resolve().parent
+            search += [here, here.parent, here.parent.parent]
+        if visual_meshes:
+            try:
+                from .robots import example_robot_data_dir
+
+                search.append(example_robot_data_dir())
+            except FileNotFoundError:
+                pass
+        self.visual_geoms = 0
+        for link in root.iter("link"):
+            for e in link.findall("collision"):
+                link.remove(e)
+            for e in link.findall("visual"):
+                mesh = e.find("geometry/mesh")
+                keep = visual_meshes
+                if keep and mesh is not None:
+                    found = resolve_mesh(mesh.get("filename", ""), search)
+                    # MuJoCo reads STL and OBJ (not COLLADA): other visuals are dropped.
+                    keep = found is not None and found.suffix.lower() in (".stl", ".obj")
+                    if keep:
+                        mesh.set("filename", str(found))
+                if keep:
+                    self.visual_geoms += 1
+                else:
+                    link.remove(e)
+        urdf_movable = {}
+        for j in root.iter("joint"):
+            for e in j.findall("dynamics") + j.findall("mimic"):
+                j.remove(e)
+            if j.get("type") in ("revolute", "continuous", "prismatic"):
+                urdf_movable[j.get("name")] = j.get("type")
+        for name in names:
+            if name not in FLOATING_JOINTS and name not in urdf_movable:
+                _fail(f"robot.joint_names: '{name}' is not a movable joint of the URDF")
+        for name in urdf_movable:
+            if name not in names and name not in locked:
+                _fail(f"locked_joints: URDF joint '{name}' is not in the robot model; pass the locked_joints the "
+                      "model was loaded with")
+        for old in root.findall("mujoco"):
+            root.remove(old)
+        ext = ET.SubElement(root, "mujoco")
+        # Inertias only from the URDF's <inertial> (as in our model), never from geometry.
+        ET.SubElement(ext, "compiler", fusestatic="false", discardvisual="false", balanceinertia="false",
+                      inertiafromgeom="false", strippath="false")
+        spec = mj.MjSpec.from_string(ET.tostring(root, encoding="unicode"))
+        for g in spec.geoms:  # the URDF's visuals: drawn, never touching anything, massless
+            g.contype, g.conaffinity, g.group, g.density, g.mass = 0, 0, 1, 0.0, 0.0
+
+        # Locked joints: weld the child body at the locked value, as pathpace's loader does.
+        for name, value in locked.items():
+            joint = spec.joint(name)
+            if joint is None:
+                _fail(f"locked_joints: '{name}' is not a joint of the URDF")
+            body = joint.parent
+            axis = np.asarray(joint.axis, dtype=float)
+            axis = axis / np.linalg.norm(axis)
+            if joint.type == mj.mjtJoint.mjJNT_SLIDE:
+                offset = np.zeros(3)
+                mj.mju_rotVecQuat(offset, axis * value, np.asarray(body.quat, dtype=float))
+                body.pos = np.asarray(body.pos, dtype=float) + offset
+            else:
+                turn, out = np.zeros(4), np.zeros(4)
+                mj.mju_axisAngle2Quat(turn, axis, float(value))
+                mj.mju_mulQuat(out, np.asarray(body.quat, dtype=float), turn)
+                body.quat = out
+            spec.delete(joint)
+
+        root_body = spec.worldbody.first_body()
+        if root_body is None or root_body.name != self.root_link:
+            _fail(f"urdf: MuJoCo's root body is not the model's root link '{self.root_link}'")
+        if self.floating:
+            root_body.add_freejoint(name="floating_base")
+        spec.option.timestep = timestep
+        spec.option.gravity = np.asarray(robot.gravity_vector, dtype=float)
+        spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+        spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
+        spec.option.iterations = solver_iterations
+
+        # Floor and contact spheres: only sphere-floor pairs collide (contype/conaffinity bits).
+        self.floor_height = float(floor_height)
+        spec.worldbody.add_geom(name="floor", type=mj.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
+                                pos=[0, 0, self.floor_height], contype=0, conaffinity=2, condim=3,
+                                friction=[min([c.friction for c in self.contacts], default=1.0), 0.0, 0.0])
+        for k, c in enumerate(self.contacts):
+            if c.other_link is not None:
+                _fail(f"contacts[{k}]: link-to-link contacts ('{c.link}' on '{c.other_link}') are not simulated")
+            n = np.asarray(c.normal, dtype=float)
+            n = n / np.linalg.norm(n)
+            if abs(n[2] - 1.0) > 1e-9:
+                _fail(f"contacts[{k}].normal = ({', '.join(f'{v:g}' for v in c.normal)}) must be (0, 0, 1): only contacts on the floor are simulated")
+            X = robot.frame_placement(q0, c.link)
+            z = (X @ np.append(c.point, 1.0))[2]
+            if abs(z - self.floor_height) > 1e-3:
+                _fail(f"contacts[{k}] ('{c.link}') is at z = {z:.4g} in q0, expected on the floor (z = {self.floor_height})")
+            body = spec.body(c.link)
+            centre = np.asarray(c.point, dtype=float) + contact_radius * (X[:3, :3].T @ n)
+            # priority: the sphere's μ is the contact's μ (MuJoCo would otherwise take the larger one).
+            body.add_geom(name=f"pathpace_contact_{k}", type=mj.mjtGeom.mjGEOM_SPHERE, size=[contact_radius, 0, 0],
+                          pos=centre, contype=2, conaffinity=0, condim=3, priority=1, friction=[c.friction, 0.0, 0.0],
+                          mass=0.0, density=0.0, group=3, solref=[contact_timeconst, 1.0])
+            body.add_site(name=f"pathpace_contact_{k}", pos=np.asarray(c.point, dtype=float))
+
+        # Actuators: force = kp (ctrl - q) - kd q̇ with ctrl = q* + (τ_ff + kd q̇*) / kp, i.e. PD about the plan
+        # plus the feed-forward, with the damping term integrated implicitly.
+        effort = np.asarray(robot.effort_limits, dtype=float)
+        for i in self.actuated:
+            a = spec.add_actuator(name=names[i], target=names[i], trntype=mj.mjtTrn.mjTRN_JOINT)
+            a.gaintype = mj.mjtGain.mjGAIN_FIXED
+            a.biastype = mj.mjtBias.mjBIAS_AFFINE
+            if torque_limits and math.isfinite(effort[i]) and effort[i] > 0:
+                a.forcelimited = mj.mjtLimited.mjLIMITED_TRUE
+                a.forcerange = [-effort[i], effort[i]]
+        if not torque_limits:  # MuJoCo's URDF import also limits the joint's total actuator force
+            for j in spec.joints:
+                j.actfrclimited = mj.mjtLimited.mjLIMITED_FALSE
+        self.model = model = spec.compile()
+        self.spec = spec
+        self.data = mj.MjData(model)
+
+        # Index maps pathpace q -> MuJoCo qpos / qvel / actuators.
+        self.qpos_index = np.array([model.joint(names[i]).qposadr[0] for i in self.actuated], dtype=int)
+        self.dof_index = np.array([model.joint(names[i]).dofadr[0] for i in self.actuated], dtype=int)
+        self.site_ids = np.array([model.site(f"pathpace_contact_{k}").id for k in range(len(self.contacts))], dtype=int)
+        self.root_body_id = model.body(self.root_link).id
+
+        # Gains.
+        self.set_configuration(q0)
+        M = np.zeros((model.nv, model.nv))
+        mj.mj_fullM(model, M, self.data.qM)
+        inertia = np.diag(M)[self.dof_index]
+        if kp is None:
+            finite_effort = np.where(np.isfinite(effort[self.actuated]) & (effort[self.actuated] > 0), effort[self.actuated], 100.0)
+            kp = finite_effort / stiffness_error
+            if max_frequency is not None:
+                # The stiffness is integrated explicitly: a light joint (a wrist, a foot in the air) must not
+                # oscillate faster than max_frequency on its own inertia. Independent of the time step, so
+                # that a smaller step converges to the same closed loop.
+                kp = np.minimum(kp, inertia * max_frequency**2)
+        kp = np.broadcast_to(np.asarray(kp, dtype=float), (len(self.actuated),)).copy()
+        kd = damping_ratio * kp if kd is None else np.broadcast_to(np.asarray(kd, dtype=float), (len(self.actuated),)).copy()
+        if np.any(~(kp > 0)):
+            _fail(f"kp[{int(np.argmin(kp > 0))}] must be > 0")
+        if np.any(~(kd >= 0)):
+            _fail(f"kd[{int(np.argmin(kd >= 0))}] must be >= 0")
+        self.kp, self.kd = kp, kd
+        for k in range(len(self.actuated)):
+            model.actuator_gainprm[k, 0] = kp[k]
+            model.actuator_biasprm[k, :3] = (0.0, -kp[k], -kd[k])
+        self._check_kinematics(q0)
+
+    # ----------------------------------------------------------------------------------------------
+    def set_configuration(self, q: np.ndarray) -> None:
+        """MuJoCo state at the pathpace configuration q, at rest."""
+        mj, model, data = self.mujoco, self.model, self.data
+        mj.mj_resetData(model, data)
+        q = np.asarray(q, dtype=float)
+        if self.floating:
+            X = self.robot.frame_placement(q, self.root_link)
+            quat = np.zeros(4)
+            mj.mju_mat2Quat(quat, X[:3, :3].flatten())
+            data.qpos[:3] = X[:3, 3]
+            data.qpos[3:7] = quat
+        data.qpos[self.qpos_index] = q[self.actuated]
+        mj.mj_forward(model, data)
+
+    def _check_kinematics(self, q0: np.ndarray) -> None:
+        # MuJoCo and pathpace must agree on where every contact link is and on the total weight;
+        # a wrong locked value or a misread URDF shows up here rather than as a "fall".
+        self.set_configuration(q0)
+        for c in self.contacts:
+            X = self.robot.frame_placement(q0, c.link)
+            b = self.model.body(c.link).id
+            err = max(np.max(np.abs(self.data.xpos[b] - X[:3, 3])), np.max(np.abs(self.data.xmat[b].reshape(3, 3) - X[:3, :3])))
+            if err > 1e-6:
+                _fail(f"urdf: MuJoCo places link '{c.link}' {err:.2e} away from the pathpace model at q0 (locked_joints?)")
+        if self.floating:
+            weight = self.robot.gravity(q0)[2]  # g(q): the force that holds the base up
+            mj_weight = float(np.sum(self.model.body_mass)) * np.linalg.norm(self.model.opt.gravity)
+            if abs(weight - mj_weight) > 1e-6 * max(1.0, abs(weight)):
+                _fail(f"urdf: MuJoCo's robot weighs {mj_weight:.6g} N, the pathpace model {weight:.6g} N")
+
+    def contact_positions(self) -> np.ndarray:
+        """(contacts, 3) world positions of the contact points now."""
+        return self.data.site_xpos[self.site_ids].copy()
+
+    # ----------------------------------------------------------------------------------------------
+    def feedforward(self, traj: _core.Trajectory, t: np.ndarray, mode: str = "auto",
+                    contact_model: _core.ContactConstraint | None = None) -> tuple[np.ndarray, str]:
+        """(len(t), nq) feed-forward torques and the mode used.
+
+        "contact": τ = M q̈ + C q̇ + g - Σ Jᵀ f with f from the force-distribution LP: the trajectory's own
+        contact constraint when it has one (its margins shape the forces), else `contact_model`, else the
+        simulator's contacts with 8 cone edges and no margins. "inverse_dynamics": τ = M q̈ + C q̇ + g
+        (a robot without contacts). "none": PD only. "auto": "contact" if there are contacts.
+        """
+        t = np.asarray(t, dtype=float)
+        if mode == "auto":
+            mode = "contact" if (self.contacts or traj.contacts is not None) else "inverse_dynamics"
+        if mode == "none":
+            return np.zeros((t.size, self.robot.nq)), mode
+        if mode == "inverse_dynamics":
+            return np.atleast_2d(traj.torques(t, self.robot)), mode
+        if mode != "contact":
+            _fail(f"feedforward = '{mode}' must be 'auto', 'contact', 'inverse_dynamics' or 'none'")
+        if traj.contacts is not None and contact_model is None:
+            cf = traj.contact_forces(t)
+        else:
+            model = contact_model or _core.ContactConstraint(self.robot, self.contacts, cone_edges=8)
+            q, qd, qdd = traj.evaluate(t)
+            cf = model.force_distribution(q, qd, qdd)
+        tau = np.atleast_2d(np.array(cf.torques, dtype=float))
+        # Where no contact forces of any sign meet the torque limits the LP has no answer: the motion is
+        # impossible; track it with gravity-and-motion torques and the last good contact forces instead
+        # (NaN would stop the simulation, and the robot is about to show what happens anyway).
+        bad = ~np.atleast_1d(np.asarray(cf.feasible, dtype=bool)) | ~np.all(np.isfinite(tau), axis=1)
+        if np.any(bad):
+            good = np.flatnonzero(~bad)
+            for k in np.flatnonzero(bad):
+                prev = good[good < k]
+                tau[k] = tau[prev[-1]] if prev.size else 0.0
+        return tau, mode
+
+    def _static_feedforward(self, q: np.ndarray, mode: str, contact_model: _core.ContactConstraint | None) -> np.ndarray:
+        zero = np.zeros_like(q)
+        if mode == "none":
+            return zero
+        if mode == "inverse_dynamics" or not self.contacts:
+            return self.robot.gravity(q)
+        model = contact_model or _core.ContactConstraint(self.robot, self.contacts, cone_edges=8)
+        cf = model.force_distribution(q, zero, zero)
+        return np.asarray(cf.torques, dtype=float) if cf.feasible else self.robot.gravity(q)
+
+    def run(
+        self,
+        traj: _core.Trajectory,
+        *,
+        feedforward: str = "auto",
+        contact_model: _core.ContactConstraint | None = None,
+        settle: float = 0.5,
+        hold: float = 1.0,
+        record_dt: float = 0.01,
+        fall_height: float = 0.15,
+        fall_tilt: float = 0.5,
+        criteria: dict | None = None,
+        torque_noise: float = 0.0,
+        seed: int = 0,
+    ) -> SimResult:
+        """Execute `traj`: start at rest at q(0), hold it for `settle` s (the contacts load up), track the
+        trajectory, hold its last point for `hold` s. Stops early if the robot falls (base `fall_height` m
+        below plan or tilted by `fall_tilt` rad). `criteria` (defaults: slip 5 mm, lift 5 mm, tilt 0.05 rad,
+        tracking 0.1) are the thresholds of `SimResult.executed`. `torque_noise`: std of Gaussian noise
+        (N·m) added to the feed-forward at every step, from a generator seeded with `seed`."""
+        mj, model, data = self.mujoco, self.model, self.data
+        dt = model.opt.timestep
+        crit = {"slip": 0.005, "lift": 0.005, "tilt": 0.05, "tracking": 0.1}
+        for key, value in (criteria or {}).items():
+            if key not in crit:
+                _fail(f"criteria['{key}']: unknown; the criteria are {sorted(crit)}")
+            crit[key] = float(value)
+        for name, value in (("settle", settle), ("hold", hold)):
+            if not (value >= 0):
+                _fail(f"{name} = {value} must be >= 0")
+        if not (record_dt > 0):
+            _fail(f"record_dt = {record_dt} must be > 0")
+        T = float(traj.duration)
+        n_move = int(math.ceil(T / dt - 1e-9))
+        t_ctrl = np.minimum(np.arange(n_move + 1) * dt, T)
+        q_des, qd_des, _ = traj.evaluate(t_ctrl)
+        tau_ff, mode = self.feedforward(traj, t_ctrl, feedforward, contact_model)
+        qd_des = qd_des.copy()
+        qd_des[-1] = 0.0  # holding the end: at rest whatever the timing's last speed
+        rng = np.random.default_rng(seed)
+        a = self.actuated
+
+        def ctrl_for(step: int) -> np.ndarray:
+            k = min(step, n_move)
+            ff = tau_ff[k, a] if step < n_move else static[1][a]
+            if torque_noise > 0:
+                ff = ff + rng.normal(0.0, torque_noise, ff.shape)
+            return q_des[k, a] + (ff + self.kd * qd_des[k, a]) / self.kp
+
+        # Settling and holding use the static torques at the first and last point: a time-optimal timing
+        # starts and ends with its largest acceleration (s̈ != 0 at ṡ = 0), which is not what holds the
+        # robot still.
+        static = [self._static_feedforward(q_des[k], mode, contact_model) for k in (0, n_move)]
+        self.set_configuration(q_des[0])
+        data.ctrl[:] = q_des[0, a] + static[0][a] / self.kp
+        for _ in range(int(round(settle / dt))):
+            mj.mj_step(model, data)
+        p0 = self.contact_positions()
+
+        n_hold = int(round(hold / dt))
+        every = max(1, int(round(record_dt / dt)))
+        rec_t, rec_z, rec_zp, rec_tilt, rec_pos, rec_err = [], [], [], [], [], []
+        plan_k, z_plan, zaxis_plan = -1, 0.0, np.zeros(3)  # the plan's root link at control step plan_k
+        fell, fall_time, saturated = False, None, 0
+        forcerange = model.actuator_forcerange
+        limited = model.actuator_forcelimited.astype(bool)
+        for step in range(n_move + n_hold + 1):
+            k = min(step, n_move)
+            if step % every == 0 or step == n_move + n_hold:
+                if k != plan_k:
+                    X = self.robot.frame_placement(q_des[k], self.root_link)
+                    plan_k, z_plan, zaxis_plan = k, float(X[2, 3]), X[:3, 2].copy()
+                zaxis = data.xmat[self.root_body_id].reshape(3, 3)[:, 2]
+                tilt = math.acos(max(-1.0, min(1.0, float(zaxis @ zaxis_plan))))
+                z = float(data.xpos[self.root_body_id][2])
+                rec_t.append(step * dt)
+                rec_z.append(z)
+                rec_zp.append(z_plan)
+                rec_tilt.append(tilt)
+                rec_pos.append(self.contact_positions())
+                rec_err.append(float(np.max(np.abs(data.qpos[self.qpos_index] - q_des[k, a]))) if a else 0.0)
+                if self.floating and (z_plan - z > fall_height or tilt > fall_tilt):
+                    fell, fall_time = True, step * dt
+                    break
+            if step == n_move + n_hold:
+                break
+            data.ctrl[:] = ctrl_for(step)
+            mj.mj_step(model, data)
+            if np.any(limited):
+                f = data.actuator_force[limited]
+                if np.any(np.abs(f) >= forcerange[limited, 1] * (1 - 1e-9)):
+                    saturated += 1
+        pos = np.array(rec_pos).reshape(len(rec_pos), len(self.contacts), 3)
+        d = pos - p0
+        return SimResult(
+            times=np.array(rec_t), base_height=np.array(rec_z), base_height_planned=np.array(rec_zp),
+            tilt=np.array(rec_tilt), slip=np.linalg.norm(d[:, :, :2], axis=2), lift=d[:, :, 2],
+            tracking_error=np.array(rec_err), duration=T, fell=fell, fall_time=fall_time,
+            torque_saturation=saturated / max(1, n_move + n_hold), criteria=crit, feedforward=mode)
+
+
+# --------------------------------------------------------------------------------------------------
+@dataclasses.dataclass
+class MarginTrial:
+    """One timing tried by `find_executable_margin`."""
+
+    min_normal_force: float
+    friction_margin: float
+    status: str  #: the solver's status name
+    duration: float  #: T (nan if the solver found no timing)
+    executed: bool
+    sim: SimResult | None
+
+
+@dataclasses.dataclass
+class MarginSearch:
+    """The smallest margin whose time-optimal timing executes in simulation, and what it costs."""
+
+    parameter: str  #: "min_normal_force" or "friction_margin"
+    margin: float | None  #: the smallest executable value found (None: not even the upper bound executes)
+    duration: float  #: T at that margin (nan if none)
+    zero_margin_duration: float  #: T of the optimum at the lower bound of the search
+    trials: list[MarginTrial]
+
+    @property
+    def cost(self) -> float:
+        """Relative increase of T over the lower bound's optimum (0.25 = 25 % slower)."""
+        return self.duration / self.zero_margin_duration - 1.0
+
+    def table(self) -> str:
+        rows = [f"{'min normal force (N)':>21s} {'friction margin':>16s} {'T (s)':>8s} {'executes':>9s}  simulation"]
+        for tr in sorted(self.trials, key=lambda r: (r.min_normal_force, r.friction_margin)):
+            sim = tr.sim.summary() if tr.sim is not None else tr.status
+            rows.append(f"{tr.min_normal_force:21.2f} {tr.friction_margin:16.3f} {tr.duration:8.3f} "
+                        f"{'yes' if tr.executed else 'no':>9s}  {sim}")
+        return "\n".join(rows)
+
+
+def find_executable_margin(
+    sim: Simulator,
+    path: _core.Path,
+    contacts: Sequence[_core.Contact] | None = None,
+    *,
+    parameter: str = "min_normal_force",
+    lower: float = 0.0,
+    upper: float = 40.0,
+    tolerance: float = 1.0,
+    min_normal_force: float = 0.0,
+    friction_margin: float = 0.0,
+    grid: int | np.ndarray = 100,
+    cone_edges: int = 8,
+    drift_tolerance: float = 1e-4,
+    configure: Callable[[_core.TimeScalingProblem], Any] | None = None,
+    run_options: dict | None = None,
+) -> MarginSearch:
+    """Bisection on one margin of the contact constraint for the smallest value whose time-optimal timing
+    executes in `sim` (`SimResult.executed`).
+
+    parameter: "min_normal_force" (N per contact; searched in [lower, upper]) or "friction_margin"
+    (fraction of μ, in [lower, upper] within [0, 1)); the other margin stays at the value given.
+    configure(prob) may add further constraints (velocity, torque limits...) to every problem. The search
+    assumes that executability is monotone in the margin (every trial is kept in `trials` to check).
+    An upper bound without any timing (too large a margin: infeasible) is halved towards `lower` until
+    the problem is feasible. It stops when the bracket is narrower than `tolerance`.
+    """
+    if parameter not in ("min_normal_force", "friction_margin"):
+        _fail(f"parameter = '{parameter}' must be 'min_normal_force' or 'friction_margin'")
+    if not (upper > lower >= 0):
+        _fail(f"upper = {upper} must be > lower = {lower} >= 0")
+    if parameter == "friction_margin" and upper >= 1:
+        _fail(f"upper = {upper} must be < 1 for the friction margin")
+    if not (tolerance > 0):
+        _fail(f"tolerance = {tolerance} must be > 0")
+    contacts = list(sim.contacts if contacts is None else contacts)
+    trials: list[MarginTrial] = []
+
+    def attempt(value: float) -> MarginTrial:
+        opts = {"min_normal_force": min_normal_force, "friction_margin": friction_margin}
+        opts[parameter] = value
+        prob = _core.TimeScalingProblem(path, grid=grid)
+        prob.add_contacts(sim.robot, contacts, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts)
+        if configure is not None:
+            configure(prob)
+        res = prob.solve()
+        if not res.ok:
+            trial = MarginTrial(opts["min_normal_force"], opts["friction_margin"], res.status.name, math.nan, False, None)
+        else:
+            out = sim.run(res.trajectory(), **(run_options or {}))
+            trial = MarginTrial(opts["min_normal_force"], opts["friction_margin"], res.status.name, res.duration,
+                                out.executed, out)
+        trials.append(trial)
+        return trial
+
+    lo = attempt(lower)
+    if lo.executed:
+        return MarginSearch(parameter, lower, lo.duration, lo.duration, trials)
+    hi = attempt(upper)
+    # Too large a margin leaves no timing at all (the solver reports infeasible): halve the step towards
+    # the lower bound until there is one (solves only, no simulation).
+    while hi.sim is None and upper - lower > tolerance:
+        upper = 0.5 * (lower + upper)
+        hi = attempt(upper)
+    if not hi.executed:
+        return MarginSearch(parameter, None, math.nan, lo.duration, trials)
+    a, b, best = lower, upper, hi
+    while b - a > tolerance:
+        mid = 0.5 * (a + b)
+        tr = attempt(mid)
+        if tr.executed:
+            b, best = mid, tr
+        else:
+            a = mid
+    return MarginSearch(parameter, b, best.duration, lo.duration, trials)

@@ -1,0 +1,258 @@
+"""pathpace.sim: the MuJoCo model against our dynamics, its validation, and the paper's fig. 1 in short.
+
+Skipped without MuJoCo (the optional extra `sim`). The Talos runs simulate about 10 s in all.
+"""
+
+import math
+import runpy
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+from pathpace.robots import example_robot_urdf
+
+mujoco = pytest.importorskip("mujoco")
+from pathpace.sim import Simulator, find_executable_margin, resolve_mesh  # noqa: E402
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PANDA = "panda_description/urdf/panda.urdf"
+# Locked at values that are not zero: a prismatic finger and a revolute joint are welded where they are.
+PANDA_LOCKED = {"panda_finger_joint1": 0.02, "panda_finger_joint2": 0.035, "panda_joint3": 0.4}
+
+
+def test_import_pathpace_does_not_import_mujoco():
+    code = "import sys, pathpace, pathpace.sim; assert 'mujoco' not in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True)
+    # Without MuJoCo, building a Simulator says what to install.
+    code = ("import sys; sys.modules['mujoco'] = None\n"
+            "import pathpace.sim\n"
+            "try:\n    pathpace.sim.Simulator(None, '')\nexcept ImportError as e:\n    print(e)")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout
+    assert "pip install 'pathpace[sim]' (mujoco==3.3.7)" in out
+
+
+def mj_inverse(sim, q, qd, qdd):
+    """MuJoCo's inverse dynamics at our state, for a fixed base or a floating base at rest in rotation
+    (base angular velocity and acceleration zero, where Euler rates and body rates coincide)."""
+    m, d = sim.model, sim.data
+    sim.set_configuration(q)  # at rest; qacc is left from mj_forward
+    d.qacc[:] = 0.0
+    if sim.floating:
+        d.qvel[:3], d.qacc[:3] = qd[:3], qdd[:3]
+    d.qvel[sim.dof_index] = qd[sim.actuated]
+    d.qacc[sim.dof_index] = qdd[sim.actuated]
+    flags = m.opt.disableflags
+    m.opt.disableflags = flags | mujoco.mjtDisableBit.mjDSBL_CONSTRAINT  # no joint-limit or floor forces
+    try:
+        mujoco.mj_inverse(m, d)
+    finally:
+        m.opt.disableflags = flags
+    return d.qfrc_inverse.copy()
+
+
+def test_fixed_base_model_with_locked_joints_matches_our_dynamics():
+    urdf = example_robot_urdf(PANDA)
+    robot = pp.RobotModel.from_urdf(str(urdf), locked_joints=PANDA_LOCKED)
+    sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
+    assert not sim.floating and sim.model.nq == robot.nq == 6
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        q, qd, qdd = rng.uniform(-1, 1, (3, robot.nq))
+        tau = mj_inverse(sim, q, qd, qdd)
+        ours = robot.inverse_dynamics(q, qd, qdd)
+        assert np.max(np.abs(tau[sim.dof_index] - ours[sim.actuated])) < 1e-6 * max(1.0, np.max(np.abs(ours)))
+        M = np.zeros((sim.model.nv, sim.model.nv))
+        mujoco.mj_fullM(sim.model, M, sim.data.qM)
+        assert np.allclose(M, robot.mass_matrix(q), rtol=0, atol=1e-6)
+        X = robot.frame_placement(q, "panda_hand")
+        b = sim.model.body("panda_hand").id
+        assert np.allclose(sim.data.xpos[b], X[:3, 3], atol=1e-9)
+        assert np.allclose(sim.data.xmat[b].reshape(3, 3), X[:3, :3], atol=1e-9)
+
+
+@pytest.fixture(scope="module")
+def sway():
+    """Talos, its feet-fixed sway path and sole contacts (examples/talos_sway.py), and the simulator."""
+    ns = runpy.run_path(str(EXAMPLES / "humanoid_sim.py"))
+    ts = ns["talos_sway"]
+    robot = ts.load_talos()
+    path = ts.sway_path(robot)
+    contacts = ts.sole_contacts(4)
+    sim = ns["talos_simulator"](robot, path, contacts)
+    return {"ns": ns, "robot": robot, "path": path, "contacts": contacts, "sim": sim}
+
+
+def test_floating_base_model_matches_our_dynamics(sway):
+    sim, robot = sway["sim"], sway["robot"]
+    assert sim.floating and sim.model.nq == robot.nq + 1  # quaternion
+    rng = np.random.default_rng(4)
+    q_stand = sway["path"].q(0.0)
+    for _ in range(4):
+        q = q_stand + rng.uniform(-0.3, 0.3, robot.nq)
+        q[2] += 1.0  # in the air
+        qd, qdd = rng.uniform(-1, 1, (2, robot.nq))
+        qd[3:6] = qdd[3:6] = 0.0
+        tau = mj_inverse(sim, q, qd, qdd)
+        ours = robot.inverse_dynamics(q, qd, qdd)
+        scale = np.max(np.abs(ours))
+        assert np.max(np.abs(tau[sim.dof_index] - ours[sim.actuated])) < 1e-6 * scale
+        assert np.max(np.abs(tau[:3] - ours[:3])) < 1e-6 * scale  # the base force, world frame in both
+        for link in ("left_sole_link", "head_2_link", "gripper_right_base_link"):
+            X = robot.frame_placement(q, link)
+            assert np.allclose(sim.data.xpos[sim.model.body(link).id], X[:3, 3], atol=1e-9)
+
+
+def test_contacts_become_spheres_with_their_friction(sway):
+    sim, contacts = sway["sim"], sway["contacts"]
+    for k, c in enumerate(contacts):
+        g = sim.model.geom(f"pathpace_contact_{k}")
+        assert g.type[0] == mujoco.mjtGeom.mjGEOM_SPHERE and g.friction[0] == c.friction
+    # Only the spheres touch the floor: 1 mm into it, there are contacts at the 8 spheres and nowhere else.
+    q = sway["path"].q(0.0)
+    q[2] -= 1e-3
+    sim.set_configuration(q)
+    pairs = {tuple(sorted(sim.model.geom(g).name for g in sim.data.contact.geom[i])) for i in range(sim.data.ncon)}
+    assert pairs == {("floor", f"pathpace_contact_{k}") for k in range(len(contacts))}
+
+
+def test_validation_names_the_argument():
+    urdf = example_robot_urdf(PANDA)
+    robot = pp.RobotModel.from_urdf(str(urdf), locked_joints=PANDA_LOCKED)
+    with pytest.raises(pp.InvalidInputError, match="locked_joints: URDF joint 'panda_finger_joint1' is not in the robot model"):
+        Simulator(robot, urdf, locked_joints={"panda_joint3": 0.4})
+    with pytest.raises(pp.InvalidInputError, match=r"timestep = 0 must be > 0"):
+        Simulator(robot, urdf, locked_joints=PANDA_LOCKED, timestep=0)
+    with pytest.raises(pp.InvalidInputError, match=r"contact_timeconst = 0.001 must be >= 2 timestep = 0.002"):
+        Simulator(robot, urdf, locked_joints=PANDA_LOCKED, contact_timeconst=0.001)
+    q = np.zeros(robot.nq)
+    z = robot.frame_placement(q, "panda_hand")[2, 3]
+    floor = pp.Contact("panda_hand", normal=(0, 0, 1))
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[0\] \('panda_hand'\) is at z = .* expected on the floor"):
+        Simulator(robot, urdf, [floor], q, locked_joints=PANDA_LOCKED)
+    wall = pp.Contact("panda_hand", normal=(1, 0, 0))
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[0\].normal = \(1, 0, 0\) must be \(0, 0, 1\)"):
+        Simulator(robot, urdf, [wall], q, locked_joints=PANDA_LOCKED, floor_height=z)
+    link = pp.Contact("panda_hand", other_link="panda_link0")
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[0\]: link-to-link contacts"):
+        Simulator(robot, urdf, [link], q, locked_joints=PANDA_LOCKED, floor_height=z)
+    with pytest.raises(pp.InvalidInputError, match="kp\\[0\\] must be > 0"):
+        Simulator(robot, urdf, locked_joints=PANDA_LOCKED, kp=0.0)
+    sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
+    traj = pp.Trajectory(pp.CubicSplinePath(np.zeros((2, robot.nq))), [0.0, 1.0], [1.0, 1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"criteria\['slide'\]: unknown; the criteria are \['lift', 'slip'"):
+        sim.run(traj, criteria={"slide": 0.01})
+    with pytest.raises(pp.InvalidInputError, match="hold = -1 must be >= 0"):
+        sim.run(traj, hold=-1)
+    with pytest.raises(pp.InvalidInputError, match="record_dt = 0 must be > 0"):
+        sim.run(traj, record_dt=0)
+    with pytest.raises(pp.InvalidInputError, match="feedforward = 'pd' must be 'auto', 'contact'"):
+        sim.run(traj, feedforward="pd")
+
+
+def test_panda_tracks_a_torque_limited_optimum_with_margin_and_not_one_without():
+    urdf = example_robot_urdf(PANDA)
+    robot = pp.RobotModel.from_urdf(str(urdf), locked_joints=PANDA_LOCKED)
+    rng = np.random.default_rng(0)
+    lo, hi = robot.position_limits
+    path = pp.CubicSplinePath(lo + (hi - lo) * rng.uniform(0.2, 0.8, (4, robot.nq)))
+    sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
+    runs = {}
+    for scale in (0.8, 1.0):
+        prob = pp.TimeScalingProblem(path, grid=200)
+        prob.add_torque_limits(robot, scale=scale)
+        res = prob.solve()
+        assert res.ok
+        runs[scale] = [sim.run(res.trajectory(), feedforward=ff, settle=0.2, hold=0.2) for ff in ("auto", "none")]
+    with_ff, without = runs[0.8]
+    assert with_ff.feedforward == "inverse_dynamics" and without.feedforward == "none"
+    # PD alone lags under gravity and the motion; with our model's torques the error is 20x smaller.
+    assert with_ff.max_tracking_error < 2e-3 and with_ff.max_tracking_error < 0.05 * without.max_tracking_error
+    # At 100 % of the effort limits the motors have nothing left to correct with: the shoulder sags onto its
+    # joint limit.
+    assert runs[1.0][0].max_tracking_error > 0.5 and runs[1.0][0].torque_saturation > 0.1
+
+
+def timing(sway, min_normal_force=0.0, friction_margin=0.0):
+    return sway["ns"]["contact_timing"](sway["robot"], sway["path"], sway["contacts"], 100, min_normal_force,
+                                        friction_margin).trajectory()
+
+
+def test_talos_sway_zero_margin_optimum_and_uniform_timing_fall_the_margin_optimum_executes(sway):
+    sim = sway["sim"]
+    bare = sim.run(timing(sway))
+    assert bare.fell and bare.fall_time < bare.duration + 1.0
+    safe_traj = timing(sway, 20.0, 0.5)
+    safe = sim.run(safe_traj)
+    assert safe.feedforward == "contact" and not safe.fell and safe.executed, safe.summary()
+    assert safe.max_slip < 5e-3 and safe.max_lift < 5e-3 and safe.max_tilt < math.radians(1.0)
+    assert safe.duration > bare.duration
+    # The same duration at a constant rate: the abrupt start and stop throw it over.
+    uniform = sim.run(sway["ns"]["uniform"](sway["path"], 100, safe.duration))
+    assert uniform.fell
+    # The optimum under joint velocity and acceleration limits only: a sole pivots on its edge and slides.
+    kin = sim.run(sway["ns"]["kinematic_timing"](sway["robot"], sway["path"], 100).trajectory())
+    assert kin.duration < bare.duration and not kin.executed
+    assert kin.max_lift > 0.01 and kin.max_slip > 0.01
+    # Deterministic: the same run again gives the same numbers, bit for bit.
+    again = sim.run(safe_traj)
+    assert np.array_equal(again.base_height, safe.base_height) and np.array_equal(again.slip, safe.slip)
+
+
+def test_find_executable_margin_bisects_on_the_minimum_normal_force(sway):
+    # 90 N per contact leaves no timing (the unloaded foot cannot push that hard): the upper bound
+    # is halved towards 10 N: 50 N, then the bracket [10, 50] is bisected to within 10 N.
+    out = find_executable_margin(sway["sim"], sway["path"], lower=10.0, upper=90.0, tolerance=10.0, friction_margin=0.5)
+    assert [t.min_normal_force for t in out.trials] == [10.0, 90.0, 50.0, 30.0, 20.0]
+    assert out.trials[1].status == "INFEASIBLE" and out.trials[1].sim is None and math.isnan(out.trials[1].duration)
+    assert [t.executed for t in out.trials] == [False, False, True, True, True]
+    assert out.margin == 20.0 and out.parameter == "min_normal_force"
+    assert out.duration == out.trials[-1].duration and out.zero_margin_duration == out.trials[0].duration
+    assert 0.0 < out.cost < 0.2
+    assert "yes" in out.table() and "fell" in out.table()
+    with pytest.raises(pp.InvalidInputError, match="parameter = 'mu' must be"):
+        find_executable_margin(sway["sim"], sway["path"], parameter="mu")
+    with pytest.raises(pp.InvalidInputError, match="upper = 1.5 must be < 1 for the friction margin"):
+        find_executable_margin(sway["sim"], sway["path"], parameter="friction_margin", upper=1.5)
+
+
+def test_visual_meshes_resolve_package_paths_and_change_no_dynamics(sway, tmp_path):
+    urdf = example_robot_urdf("talos_data/robots/talos_full_v2.urdf")
+    refs = {m.get("filename") for m in ET.parse(urdf).getroot().iter("mesh")}
+    stl = [r for r in refs if r.lower().endswith(".stl")]
+    assert stl and all(r.split("example-robot-data/robots/")[0] in ("package://", "package:///") for r in stl)
+    robots = urdf.parents[2]
+    assert all(resolve_mesh(r, [robots]) is not None for r in stl)
+    assert resolve_mesh("package://nowhere/x.stl", [robots]) is None
+    (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
+    assert resolve_mesh("m.stl", [tmp_path]) == tmp_path / "m.stl"
+    assert resolve_mesh(f"file://{tmp_path / 'm.stl'}", []) == tmp_path / "m.stl"
+    plain = sway["sim"]
+    drawn = sway["ns"]["talos_simulator"](sway["robot"], sway["path"], sway["contacts"], visual_meshes=True)
+    assert drawn.model.nmesh > 30 and plain.model.nmesh == 0
+    assert np.all(drawn.model.geom_contype[drawn.model.geom_group == 1] == 0)
+    assert np.array_equal(drawn.model.body_mass, plain.model.body_mass)
+    assert np.array_equal(drawn.model.body_inertia, plain.model.body_inertia)
+
+
+def test_torque_noise_is_seeded():
+    urdf = example_robot_urdf(PANDA)
+    robot = pp.RobotModel.from_urdf(str(urdf), locked_joints=PANDA_LOCKED)
+    path = pp.CubicSplinePath(np.array([np.full(robot.nq, 0.1), np.full(robot.nq, -0.2)]))
+    traj = pp.Trajectory(path, np.linspace(0, 1, 11), np.full(11, 2.0))
+    sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
+    a, b, c = (sim.run(traj, torque_noise=1.0, seed=k, settle=0.1, hold=0.1) for k in (1, 1, 2))
+    assert np.array_equal(a.tracking_error, b.tracking_error)
+    assert not np.array_equal(a.tracking_error, c.tracking_error)
+
+
+def test_example_quick_run_prints_the_fig1_rows(capsys):
+    out = runpy.run_path(str(EXAMPLES / "humanoid_sim.py"))["main"](["--quick"])
+    verdicts = {(r["timing"], r["min_normal_force"]): r["verdict"] for r in out["rows"]}
+    assert verdicts == {("pathpace, contacts", 0.0): "fell", ("pathpace, contacts", 20.0): "yes",
+                        ("velocity + acceleration limits only", None): "no", ("uniform, 1.0 x T(ours)", None): "fell"}
+    assert "| pathpace, contacts" in capsys.readouterr().out
