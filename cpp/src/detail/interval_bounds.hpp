@@ -37,4 +37,14 @@ struct IntervalRows {
 /// The forms and bounds on every interval of `grid` (strictly increasing, inside the path's domain).
 IntervalRows interval_rows(const PiecewisePolynomialPath& path, const Eigen::VectorXd& grid);
 
+/// Speed bounds at the grid points that keep v_L <= q̇_j <= v_U on the whole of every interval:
+/// out[k] <= ... such that θ_k <= out[k] for all k implies, on interval k,
+/// p'_j(σ)² ((1 - λ)θ_k + λθ_{k+1}) <= v² (v the limit on the side of p'_j's sign; the smaller one where
+/// p'_j changes sign), checked by the Bernstein coefficients of that polynomial. Each interval starts from
+/// the exact end values v²/p'_j(s)² (the line through them is below v²/p'_j² where that is concave) and
+/// scales them down until the Bernstein check holds, so the loss is O(Δs²), not O(Δs) as with
+/// max |p'_j| over the interval. Entries without a limit are +inf.
+Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, const Eigen::VectorXd& grid,
+                                        const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax);
+
 }  // namespace pathpace::detail
