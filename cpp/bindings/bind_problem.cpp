@@ -22,6 +22,12 @@ namespace pathpace::python {
 
 namespace {
 
+Guarantee parse_guarantee(const std::string& g) {
+  if (g == "grid") return Guarantee::Grid;
+  if (g == "continuous") return Guarantee::Continuous;
+  throw InvalidInput("guarantee = '" + g + "' must be one of 'grid', 'continuous'");
+}
+
 Method parse_method(const std::string& m) {
   if (m == "auto") return Method::Auto;
   if (m == "slp") return Method::Slp;
@@ -48,7 +54,8 @@ py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
                   "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
-                  "time_slp"_a = s.time_slp);
+                  "time_slp"_a = s.time_slp, "audit_rounds"_a = s.audit_rounds, "audit_cuts"_a = s.audit_cuts,
+                  "audit_worst"_a = s.audit_worst);
 }
 
 }  // namespace
@@ -290,9 +297,14 @@ void bind_problem(py::module_& m) {
            "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and end speed. Its result "
            "starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.")
       .def("solve", [](const TimeScalingProblem& p, const std::string& method, int max_iterations,
-                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance, bool explain) {
+                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance, bool explain,
+                       const std::string& guarantee, int audit_points, double audit_tolerance, int max_audit_rounds) {
         SolverOptions o;
         o.explain = explain;
+        o.guarantee = parse_guarantee(guarantee);
+        o.audit_points = audit_points;
+        o.audit_tolerance = audit_tolerance;
+        o.max_audit_rounds = max_audit_rounds;
         o.method = parse_method(method);
         o.max_iterations = max_iterations;
         o.tolerance = tolerance;
@@ -304,7 +316,12 @@ void bind_problem(py::module_& m) {
          "tolerance"_a = SolverOptions().tolerance,
          "initial_trust_region"_a = SolverOptions().initial_trust_region,
          "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance,
-         "explain"_a = SolverOptions().explain);
+         "explain"_a = SolverOptions().explain, "guarantee"_a = "grid", "audit_points"_a = SolverOptions().audit_points,
+         "audit_tolerance"_a = SolverOptions().audit_tolerance, "max_audit_rounds"_a = SolverOptions().max_audit_rounds,
+         "Time-optimal timing. guarantee='grid': limits hold at the grid points (eq. 26); 'continuous': at every "
+         "instant (velocity/acceleration by Bernstein bounds of a piecewise-polynomial path, torque/contact by "
+         "audit at audit_points interior points per interval with exact cuts until the audit passes; "
+         "stats['audit_worst'] is the largest relative violation left, negative = the margin reached).");
 }
 
 }  // namespace pathpace::python

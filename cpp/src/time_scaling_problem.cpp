@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "detail/binding.hpp"
+#include "detail/continuous.hpp"
 #include "detail/grid_sets.hpp"
 #include "detail/reachability.hpp"
 #include "detail/slp.hpp"
@@ -16,6 +17,7 @@
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
+#include "pathpace/piecewise_polynomial_path.hpp"
 
 namespace pathpace {
 
@@ -150,7 +152,52 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   if (!(options.lp_feasibility_tolerance > 0.0 && options.lp_feasibility_tolerance < 1e-3))
     detail::fail("lp_feasibility_tolerance = " + detail::fmt(options.lp_feasibility_tolerance) +
                  " must be in (0, 1e-3)");
+  if (options.guarantee == Guarantee::Grid) return solve_rows(rows_, nullptr, options);
+  if (options.audit_points < 1 || options.audit_points > 1000)
+    detail::fail("audit_points = " + std::to_string(options.audit_points) + " must be in [1, 1000]");
+  if (!(options.audit_tolerance >= 0.0 && options.audit_tolerance < 1.0))
+    detail::fail("audit_tolerance = " + detail::fmt(options.audit_tolerance) + " must be in [0, 1)");
+  if (options.max_audit_rounds < 1)
+    detail::fail("max_audit_rounds = " + std::to_string(options.max_audit_rounds) + " must be >= 1");
 
+  // guarantee = continuous (see detail/continuous.hpp): velocity and acceleration rows that hold between
+  // grid points by construction, then audit-and-cut rounds for the other constraints.
+  std::vector<ConstraintRows> rows = rows_;
+  detail::IntervalExtra extra;
+  detail::add_kinematic_continuous_rows(*path_, samples_, constraints_, rows, extra);
+  std::vector<int> offset;
+  int id = 0;
+  for (const ConstraintRows& cr : rows_) {
+    offset.push_back(id);
+    id += static_cast<int>(cr.rows());
+  }
+  Result res;
+  int rounds = 0, cuts = 0;
+  for (;;) {
+    res = solve_rows(rows, &extra, options);
+    if (!res.ok()) break;
+    const Eigen::VectorXd theta = res.sdot.array().square();
+    const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, offset,
+                                                      options.audit_points, options.audit_tolerance, extra);
+    ++rounds;
+    cuts += audit.cuts;
+    res.stats.audit_worst = audit.worst;
+    if (audit.cuts == 0) break;
+    if (rounds >= options.max_audit_rounds) {
+      res.status = Status::IterationLimit;
+      res.message = "guarantee = 'continuous': after " + std::to_string(rounds) +
+                    " audit rounds a limit is still exceeded between grid points by " + detail::fmt(audit.worst) +
+                    " (relative); raise max_audit_rounds or refine the grid";
+      break;
+    }
+  }
+  res.stats.audit_rounds = rounds;
+  res.stats.audit_cuts = cuts;
+  return res;
+}
+
+Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constraint_rows,
+                                      const detail::IntervalExtra* extra, const SolverOptions& options) const {
   Result res;
   res.path = path_;
   for (const auto& c : constraints_) {
@@ -164,7 +211,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   const Eigen::Index n = intervals();
 
   auto t0 = std::chrono::steady_clock::now();
-  const detail::GridSets sets = detail::build_grid_sets(samples_, rows_);
+  const detail::GridSets sets = detail::build_grid_sets(samples_, constraint_rows);
   res.stats.time_feasible_sets = seconds_since(t0);
   res.stats.average_halfplanes = sets.average_rows;
 
@@ -205,7 +252,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   }
 
   t0 = std::chrono::steady_clock::now();
-  const detail::Chain chain = detail::build_chain(samples_.s, sets);
+  const detail::Chain chain = detail::build_chain(samples_.s, sets, extra);
   const double th0 = sdot_begin_ * sdot_begin_, thN = sdot_end_ * sdot_end_;
   res.status = Status::Optimal;
   bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
@@ -406,7 +453,10 @@ TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const 
     if (k < n && samples_.s[k] - s0 <= 1e-9 * (samples_.s[k] - samples_.s[k - 1])) continue;
     g.push_back(samples_.s[k]);
   }
-  std::shared_ptr<const Path> tail = s0 == a ? path_ : std::make_shared<detail::SubPath>(path_, s0);
+  std::shared_ptr<const Path> tail;
+  if (s0 == a) tail = path_;
+  else if (auto pp = std::dynamic_pointer_cast<const PiecewisePolynomialPath>(path_)) tail = detail::polynomial_tail(*pp, s0);
+  else tail = std::make_shared<detail::SubPath>(path_, s0);
   TimeScalingProblem p(std::move(tail), Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())));
   for (const auto& c : constraints_) p.add_constraint(c);
   p.set_boundary_speeds(sdot0, sdot_end_);

@@ -277,6 +277,10 @@ class TimeScalingProblem:
         initial_trust_region: float = 0.5,
         lp_feasibility_tolerance: float = 1e-9,
         explain: bool = True,
+        guarantee: str = "grid",
+        audit_points: int = 8,
+        audit_tolerance: float = 1e-10,
+        max_audit_rounds: int = 30,
     ) -> Result: ...
 
 def auto_grid(path: Path, tolerance: float = 1e-3, min_intervals: int = 16, max_intervals: int = 1000000) -> Array: ...

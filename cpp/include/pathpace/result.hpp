@@ -45,6 +45,11 @@ struct SolverStats {
   double time_feasible_sets = 0;  ///< seconds: polygons and pruning
   double time_reachability = 0;   ///< seconds: controllable sets and forward pass
   double time_slp = 0;            ///< seconds
+  int audit_rounds = 0;           ///< guarantee = continuous: solve-audit rounds
+  int audit_cuts = 0;             ///< guarantee = continuous: interval rows added by the audits
+  /// guarantee = continuous: the largest relative violation the last audit found (<= audit_tolerance
+  /// when it passed; negative = the smallest relative slack, i.e. the margin reached)
+  double audit_worst = 0;
 };
 
 class Result {

@@ -16,6 +16,17 @@ enum class Method {
   Slp,
 };
 
+/// Where the limits hold.
+enum class Guarantee {
+  /// At the grid points, with the s̈ of both adjacent intervals (eq. 26): the paper's collocation.
+  Grid,
+  /// At every instant: velocity and acceleration limits by Bernstein bounds of the path's polynomial
+  /// pieces over each interval (sufficient by construction; needs a piecewise-polynomial path); every
+  /// other constraint (torque, contact, linear) audited at `audit_points` interior points per interval,
+  /// the broken rows added there as exact cuts and the problem solved again until the audit passes.
+  Continuous,
+};
+
 struct SolverOptions {
   Method method = Method::Auto;
   int max_iterations = 200;        ///< SLP iterations
@@ -28,6 +39,12 @@ struct SolverOptions {
   /// On an infeasible result, also find the smallest relaxation of each constraint family that makes
   /// it feasible (Result::relaxation; costs a few dozen reachability analyses).
   bool explain = true;
+  Guarantee guarantee = Guarantee::Grid;
+  int audit_points = 8;            ///< interior points per interval audited (guarantee = continuous)
+  /// Relative violation the audit accepts, relative to the row's own terms (max(|c|, |a x| + |b u|)), which
+  /// can be larger than the limit itself: 1e-10 keeps violations of the limits below 1e-9 relative.
+  double audit_tolerance = 1e-10;
+  int max_audit_rounds = 30;       ///< solve-audit-cut rounds before giving up (status IterationLimit)
 };
 
 }  // namespace pathpace

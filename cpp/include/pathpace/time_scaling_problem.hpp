@@ -18,6 +18,10 @@
 
 namespace pathpace {
 
+namespace detail {
+struct IntervalExtra;
+}
+
 /// Minimise T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) (eq. 25, 27) over the speeds at the grid points subject to
 /// every constraint's half-planes at every grid point, on both sides of each grid point (eq. 26:
 /// s̈ of interval k at s_k and of interval k-1 at s_k).
@@ -82,6 +86,10 @@ class TimeScalingProblem {
   void init_samples();
   /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
   bool feasible_with(const std::vector<ConstraintRows>& rows) const;
+  /// solve() on these rows (one ConstraintRows per constraint, then any extra ones), plus rows of single
+  /// intervals if `extra` (guarantee = continuous).
+  Result solve_rows(const std::vector<ConstraintRows>& rows, const detail::IntervalExtra* extra,
+                    const SolverOptions& options) const;
   std::shared_ptr<const Path> path_;
   PathSamples samples_;
   std::vector<std::shared_ptr<const Constraint>> constraints_;

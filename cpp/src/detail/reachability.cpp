@@ -17,7 +17,7 @@ double cancel(double p, double q) {
 
 }  // namespace
 
-Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
+Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const IntervalExtra* extra) {
   Chain ch;
   const Eigen::Index n_pts = s.size(), n = n_pts - 1;
   ch.ds = s.tail(n) - s.head(n);
@@ -37,7 +37,7 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
   ch.row_offset[0] = 0;
   size_t total = 0;
   for (Eigen::Index k = 0; k < n; ++k)
-    total += sets.rows(k).size() + sets.rows(k + 1).size();
+    total += sets.rows(k).size() + sets.rows(k + 1).size() + (extra ? extra->rows[static_cast<size_t>(k)].size() : 0);
   ch.row_data.reserve(total);
   std::vector<Line> coupled;
   auto push = [&ch, &coupled](double alpha, double beta, double c, int id) {
@@ -52,6 +52,8 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets) {
     for (const Line& l : sets.rows(k)) push(cancel(l.a, -l.b * h), l.b * h, l.c, l.id);
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
     for (const Line& l : sets.rows(k + 1)) push(-l.b * h, cancel(l.a, l.b * h), l.c, l.id);
+    if (extra)
+      for (const Line& l : extra->rows[static_cast<size_t>(k)]) push(l.a, l.b, l.c, l.id);
     ch.coupled_offset[static_cast<size_t>(k)] = ch.row_data.size();
     if (!coupled.empty()) {
       ch.lattice = false;

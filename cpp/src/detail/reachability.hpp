@@ -44,7 +44,13 @@ struct Chain {
   bool lattice = true;
 };
 
-Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets);
+/// Rows of single intervals beyond the grid points' (guarantee = continuous: bounds that hold between
+/// grid points), rows[k] for interval k, in chain form α θ_k + β θ_{k+1} <= c with label ids.
+struct IntervalExtra {
+  std::vector<std::vector<Line>> rows;
+};
+
+Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const IntervalExtra* extra = nullptr);
 
 /// True for a row with α > 0 and β > 0 (beyond rounding): the only kind that breaks max-closure.
 bool couples_positively(const Line& r);

@@ -1,0 +1,222 @@
+#include "detail/continuous.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "detail/interval_bounds.hpp"
+#include "detail/validate.hpp"
+#include "pathpace/constraints/acceleration_limits.hpp"
+#include "pathpace/constraints/velocity_limits.hpp"
+#include "pathpace/piecewise_polynomial_path.hpp"
+
+namespace pathpace::detail {
+
+namespace {
+
+int total_rows(const std::vector<ConstraintRows>& rows) {
+  int n = 0;
+  for (const ConstraintRows& r : rows) n += static_cast<int>(r.rows());
+  return n;
+}
+
+}  // namespace
+
+void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
+                                   const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                   std::vector<ConstraintRows>& rows, IntervalExtra& extra) {
+  const Eigen::Index N = samples.size() - 1, n = samples.dof();
+  extra.rows.resize(static_cast<size_t>(N));
+  bool any = false;
+  for (const auto& c : constraints)
+    any = any || std::dynamic_pointer_cast<const VelocityLimits>(c) || std::dynamic_pointer_cast<const AccelerationLimits>(c);
+  if (!any) return;
+  const auto* pp = dynamic_cast<const PiecewisePolynomialPath*>(&path);
+  if (!pp)
+    fail("guarantee = 'continuous' bounds velocity and acceleration between grid points on piecewise-polynomial "
+         "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath); this path is not one");
+  const IntervalRows ir = interval_rows(*pp, samples.s);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto& c : constraints) {
+    if (auto vl = std::dynamic_pointer_cast<const VelocityLimits>(c)) {
+      // One bound per grid point for all joints (each joint's own would do too, but the polygon keeps only
+      // the smallest bound on x alone anyway).
+      ConstraintRows cr;
+      cr.resize(samples.size(), 1);
+      cr.labels[0] = "velocity (between grid points)";
+      const Eigen::VectorXd bound = continuous_speed_bounds(*pp, samples.s, vl->vmin(), vl->vmax());
+      for (Eigen::Index k = 0; k <= N; ++k)
+        if (bound[k] < inf) {
+          cr.a(k, 0) = 1.0;
+          cr.c(k, 0) = bound[k];
+        }
+      rows.push_back(std::move(cr));
+    } else if (auto al = std::dynamic_pointer_cast<const AccelerationLimits>(c)) {
+      const int id0 = total_rows(rows);
+      ConstraintRows cr;  // labels only: its rows are inactive at the grid points, they act on intervals
+      cr.resize(samples.size(), 2 * n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        cr.labels[static_cast<size_t>(2 * j)] = "acceleration joint " + std::to_string(j) + " upper (between grid points)";
+        cr.labels[static_cast<size_t>(2 * j + 1)] = "acceleration joint " + std::to_string(j) + " lower (between grid points)";
+      }
+      rows.push_back(std::move(cr));
+      for (Eigen::Index k = 0; k < N; ++k) {
+        auto& out = extra.rows[static_cast<size_t>(k)];
+        for (size_t i = ir.offset[static_cast<size_t>(k)]; i < ir.offset[static_cast<size_t>(k) + 1]; ++i) {
+          const int j = ir.joint[i];
+          if (std::isfinite(al->amax()[j])) out.push_back({ir.A[i], ir.B[i], al->amax()[j], id0 + 2 * j});
+          if (std::isfinite(al->amin()[j])) out.push_back({-ir.A[i], -ir.B[i], -al->amin()[j], id0 + 2 * j + 1});
+        }
+      }
+    }
+  }
+}
+
+namespace {
+
+// Relative violation of row (a, b, c) at λ on an interval with θ_k = t0, θ_{k+1} = t1, u = (t1 - t0)/(2Δs).
+double violation(double a, double b, double c, double lam, double t0, double t1, double u) {
+  if (c == std::numeric_limits<double>::infinity()) return -std::numeric_limits<double>::infinity();
+  const double ax = a * ((1.0 - lam) * t0 + lam * t1), bu = b * u;
+  return (ax + bu - c) / std::max({std::abs(c), std::abs(ax) + std::abs(bu), 1e-300});
+}
+
+}  // namespace
+
+Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
+                    const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                    const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra) {
+  Audit audit;
+  const Eigen::Index N = s.size() - 1;
+  std::vector<size_t> which;
+  for (size_t i = 0; i < constraints.size(); ++i)
+    if (!std::dynamic_pointer_cast<const VelocityLimits>(constraints[i]) &&
+        !std::dynamic_pointer_cast<const AccelerationLimits>(constraints[i]))
+      which.push_back(i);
+  if (which.empty() || points < 1) return audit;
+  // Coarse pass at Chebyshev points of each interval: dense near the ends, where a row that is tight at
+  // the grid point with a slope into the interval peaks.
+  std::vector<double> lam(static_cast<size_t>(points));
+  for (int m = 0; m < points; ++m) lam[static_cast<size_t>(m)] = 0.5 * (1.0 - std::cos(M_PI * (m + 1.0) / (points + 1.0)));
+  auto samples_at = [&](const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) {
+    PathSamples ps;
+    ps.s.resize(static_cast<Eigen::Index>(ks.size()));
+    for (size_t i = 0; i < ks.size(); ++i) ps.s[static_cast<Eigen::Index>(i)] = s[ks[i]] + (s[ks[i] + 1] - s[ks[i]]) * ls[i];
+    path.evaluate(ps.s, ps.q, ps.dq, ps.ddq);
+    return ps;
+  };
+  std::vector<Eigen::Index> ks;
+  std::vector<double> ls;
+  for (Eigen::Index k = 0; k < N; ++k)
+    for (int m = 0; m < points; ++m) {
+      ks.push_back(k);
+      ls.push_back(lam[static_cast<size_t>(m)]);
+    }
+  const PathSamples coarse = samples_at(ks, ls);
+  audit.worst = -std::numeric_limits<double>::infinity();
+  auto u_of = [&](Eigen::Index k) { return (theta[k + 1] - theta[k]) / (2.0 * (s[k + 1] - s[k])); };
+  struct Candidate {
+    Eigen::Index k, j;
+    double lo, hi, x1, x2, f1, f2;  // golden-section bracket [lo, hi] with inner points x1 < x2
+  };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (size_t ci : which) {
+    const ConstraintRows cr = constraints[ci]->evaluate(coarse);
+    std::vector<Candidate> cand;
+    for (Eigen::Index k = 0; k < N; ++k) {
+      const double u = u_of(k);
+      for (Eigen::Index j = 0; j < cr.rows(); ++j) {
+        double worst = -std::numeric_limits<double>::infinity();
+        int at = -1;
+        for (int m = 0; m < points; ++m) {
+          const Eigen::Index r = k * points + m;
+          const double v = violation(cr.a(r, j), cr.b(r, j), cr.c(r, j), lam[static_cast<size_t>(m)], theta[k], theta[k + 1], u);
+          if (v > worst) {
+            worst = v;
+            at = m;
+          }
+        }
+        if (at < 0) continue;
+        audit.worst = std::max(audit.worst, worst);
+        // A row within 1 % of its limit somewhere: find its peak between the neighbouring audit points.
+        if (worst > -1e-2) {
+          const double lo = at == 0 ? 0.0 : lam[static_cast<size_t>(at - 1)];
+          const double hi = at == points - 1 ? 1.0 : lam[static_cast<size_t>(at + 1)];
+          cand.push_back({k, j, lo, hi, hi - g * (hi - lo), lo + g * (hi - lo), 0.0, 0.0});
+        }
+      }
+    }
+    if (cand.empty()) continue;
+    // Golden-section search for each candidate's peak, all candidates evaluated in one batch per step.
+    auto eval = [&](const std::vector<double>& at_lam, std::vector<double>& f) {
+      ks.clear();
+      for (const Candidate& c : cand) ks.push_back(c.k);
+      const PathSamples ps = samples_at(ks, at_lam);
+      const ConstraintRows rr = constraints[ci]->evaluate(ps);
+      f.resize(cand.size());
+      for (size_t i = 0; i < cand.size(); ++i) {
+        const Candidate& c = cand[i];
+        f[i] = violation(rr.a(static_cast<Eigen::Index>(i), c.j), rr.b(static_cast<Eigen::Index>(i), c.j),
+                         rr.c(static_cast<Eigen::Index>(i), c.j), at_lam[i], theta[c.k], theta[c.k + 1], u_of(c.k));
+      }
+    };
+    std::vector<double> x(cand.size()), f;
+    for (size_t i = 0; i < cand.size(); ++i) x[i] = cand[i].x1;
+    eval(x, f);
+    for (size_t i = 0; i < cand.size(); ++i) cand[i].f1 = f[i];
+    for (size_t i = 0; i < cand.size(); ++i) x[i] = cand[i].x2;
+    eval(x, f);
+    for (size_t i = 0; i < cand.size(); ++i) cand[i].f2 = f[i];
+    for (int it = 0; it < 24; ++it) {
+      for (size_t i = 0; i < cand.size(); ++i) {
+        Candidate& c = cand[i];
+        if (c.f1 >= c.f2) {  // the peak is in [lo, x2]
+          c.hi = c.x2;
+          c.x2 = c.x1;
+          c.f2 = c.f1;
+          c.x1 = c.hi - g * (c.hi - c.lo);
+          x[i] = c.x1;
+        } else {
+          c.lo = c.x1;
+          c.x1 = c.x2;
+          c.f1 = c.f2;
+          c.x2 = c.lo + g * (c.hi - c.lo);
+          x[i] = c.x2;
+        }
+      }
+      eval(x, f);
+      for (size_t i = 0; i < cand.size(); ++i) (x[i] == cand[i].x1 ? cand[i].f1 : cand[i].f2) = f[i];
+    }
+    ks.clear();
+    ls.clear();
+    std::vector<size_t> cut;
+    for (size_t i = 0; i < cand.size(); ++i) {
+      const Candidate& c = cand[i];
+      const double best = std::max(c.f1, c.f2);
+      audit.worst = std::max(audit.worst, best);
+      if (best > tolerance) {
+        cut.push_back(i);
+        ks.push_back(c.k);
+        ls.push_back(c.f1 >= c.f2 ? c.x1 : c.x2);
+      }
+    }
+    if (cut.empty()) continue;
+    // The cut: the row itself at the peak, as a row of the interval (exact, see the header).
+    const PathSamples ps = samples_at(ks, ls);
+    const ConstraintRows rr = constraints[ci]->evaluate(ps);
+    for (size_t q = 0; q < cut.size(); ++q) {
+      const Candidate& c = cand[cut[q]];
+      const double l = ls[q], h = s[c.k + 1] - s[c.k];
+      const double a = rr.a(static_cast<Eigen::Index>(q), c.j), b = rr.b(static_cast<Eigen::Index>(q), c.j);
+      extra.rows[static_cast<size_t>(c.k)].push_back(
+          {a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(static_cast<Eigen::Index>(q), c.j),
+           row_offset[ci] + static_cast<int>(c.j)});
+      ++audit.cuts;
+    }
+  }
+  if (!std::isfinite(audit.worst)) audit.worst = 0.0;
+  return audit;
+}
+
+}  // namespace pathpace::detail

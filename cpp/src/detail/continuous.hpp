@@ -1,0 +1,45 @@
+#pragma once
+// guarantee = continuous: limits that hold at every instant, not only at the grid points.
+//
+// Velocity and acceleration limits get rows that are sufficient by construction (Bernstein bounds of
+// the path's polynomial pieces, detail/interval_bounds.hpp): per grid point, a speed bound from the
+// largest |p'_j| on the two adjacent intervals (ṡ² is linear on an interval, so it never exceeds its
+// larger end value); per interval, the Bernstein forms of q̈_j. Every other constraint (torque,
+// contact, linear) is audited at interior points of every interval, and where the timing breaks a
+// row there, that row is added to its interval: at s = s_k + λΔs_k a row a x + b u <= c reads
+//   (a (1 - λ) - b / (2Δs_k)) θ_k + (a λ + b / (2Δs_k)) θ_{k+1} <= c
+// (θ(s) = (1 - λ)θ_k + λθ_{k+1}, u = (θ_{k+1} - θ_k)/(2Δs_k)): an exact constraint of the timing, not a
+// margin, so the cuts cost T only what the limits between grid points really demand.
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "detail/reachability.hpp"
+#include "pathpace/constraints/constraint.hpp"
+#include "pathpace/path.hpp"
+
+namespace pathpace::detail {
+
+/// Appends to `rows` the grid-point speed bounds, and to `extra` the interval forms, of every
+/// VelocityLimits and AccelerationLimits in `constraints` (whose own rows are rows[0..constraints.size())).
+/// Throws InvalidInput if the path is not piecewise polynomial.
+void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
+                                   const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                   std::vector<ConstraintRows>& rows, IntervalExtra& extra);
+
+struct Audit {
+  double worst = 0.0;  ///< largest violation found, relative to max(|c|, |a θ(s)| + |b u|) (<= 0: none)
+  int cuts = 0;        ///< rows added to `extra`
+};
+
+/// Checks every constraint other than velocity and acceleration limits at `points` interior points of
+/// each interval of grid `s` under the timing θ, and adds to `extra` each row that is violated by more than
+/// `tolerance` (relative), at the interior point where it is violated most. `row_offset[i]` is the label
+/// id of constraint i's first row.
+Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
+                    const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                    const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra);
+
+}  // namespace pathpace::detail
