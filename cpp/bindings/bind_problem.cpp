@@ -283,10 +283,11 @@ void bind_problem(py::module_& m) {
         return out;
       })
       .def("feasible_set", &TimeScalingProblem::feasible_set, "k"_a)
-      .def("relaxation", [](const TimeScalingProblem& p, double max_scale, double tolerance) {
+      .def("relaxation", [](const TimeScalingProblem& p, double max_scale, double tolerance, const std::string& guarantee) {
+        const Guarantee g = parse_guarantee(guarantee);
         py::gil_scoped_release release;
-        return p.relaxation(max_scale, tolerance);
-      }, "max_scale"_a = 1e3, "tolerance"_a = 1e-3,
+        return p.relaxation(max_scale, tolerance, g);
+      }, "max_scale"_a = 1e3, "tolerance"_a = 1e-3, "guarantee"_a = "grid",
          "Smallest uniform relaxation of each constraint family that makes the problem feasible.\n\n"
          "Returns a dict family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family "
          "together when there are several): the family's limit intervals widened by that factor about zero, the "

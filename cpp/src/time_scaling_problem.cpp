@@ -228,7 +228,7 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
         os << (i ? ", " : "") << res.infeasibility.constraints[i];
     }
     if (st == Status::Infeasible && options.explain) {
-      res.relaxation = relaxation();
+      res.relaxation = relaxation(1e3, 1e-3, options.guarantee);
       os << "; " << describe_relaxation(res.relaxation);
     }
     res.message = os.str();
@@ -353,17 +353,23 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   return res;
 }
 
-bool TimeScalingProblem::feasible_with(const std::vector<ConstraintRows>& rows) const {
+bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                       std::vector<ConstraintRows> rows, Guarantee guarantee) const {
+  detail::IntervalExtra extra;
+  if (guarantee == Guarantee::Continuous)
+    detail::add_kinematic_continuous_rows(*path_, samples_, constraints, rows, extra);
   const detail::GridSets sets = detail::build_grid_sets(samples_, rows);
   for (const detail::PointSet& p : sets.points)
     if (p.empty) return false;
-  const detail::Chain chain = detail::build_chain(samples_.s, sets);
+  const detail::Chain chain =
+      detail::build_chain(samples_.s, sets, guarantee == Guarantee::Continuous ? &extra : nullptr);
   // Unbounded is not infeasible: some timing exists (and a relaxation cannot make it less bounded).
   return detail::reachability(chain, sdot_begin_ * sdot_begin_, sdot_end_ * sdot_end_).outcome !=
          detail::Reachability::Outcome::Infeasible;
 }
 
-std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance) const {
+std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance,
+                                                             Guarantee guarantee) const {
   if (!(max_scale > 1.0) || !std::isfinite(max_scale))
     detail::fail("max_scale = " + detail::fmt(max_scale) + " must be > 1 and finite");
   if (!(rel_tolerance > 0.0 && rel_tolerance < 1.0))
@@ -377,19 +383,23 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
   if (families.size() >= 2) families.push_back("all");
   std::map<std::string, double> out;
   if (families.empty()) return out;
-  if (feasible_with(rows_)) {
+  if (feasible_with(constraints_, rows_, guarantee)) {
     for (const std::string& f : families) out[f] = 1.0;
     return out;
   }
   for (const std::string& f : families) {
     auto feasible = [&](double scale) {
       std::vector<ConstraintRows> rows = rows_;
+      std::vector<std::shared_ptr<const Constraint>> cons = constraints_;
       for (size_t i = 0; i < constraints_.size(); ++i) {
         const std::string fi = constraints_[i]->family();
         if (fi.empty() || (f != "all" && fi != f)) continue;
-        if (auto r = constraints_[i]->relaxed(scale)) rows[i] = r->evaluate(samples_);
+        if (auto r = constraints_[i]->relaxed(scale)) {
+          rows[i] = r->evaluate(samples_);
+          cons[i] = std::move(r);
+        }
       }
-      return feasible_with(rows);
+      return feasible_with(cons, std::move(rows), guarantee);
     };
     // Feasibility grows with the scale (each relaxed set contains the last): double until feasible,
     // then bisect on log(scale).

@@ -121,3 +121,31 @@ def test_continuous_validation_messages():
         prob.solve(guarantee="continuous", audit_tolerance=-1.0)
     with pytest.raises(pp.InvalidInputError, match=r"^max_audit_rounds = 0 must be >= 1$"):
         prob.solve(guarantee="continuous", max_audit_rounds=0)
+
+
+def test_circle_at_the_speed_limit_converges_to_the_analytic_time_from_above():
+    # q = (cos x, sin x), x = 0.3 + 2πs: with |q̇_j| <= v only, the fastest traversal keeps the faster
+    # joint at v: T* = ∫ max_j |p'_j| / v ds = 4√2 / v over the full circle. Continuous-time feasible
+    # timings are never faster; the grid's are (they break the limit between grid points).
+    v = 1.0
+    s = np.linspace(0, 1, 129)
+    x = 0.3 + 2 * np.pi * s
+    q = np.stack([np.cos(x), np.sin(x)], 1)
+    dq = 2 * np.pi * np.stack([-np.sin(x), np.cos(x)], 1)
+    path = pp.SampledPath(s, q, dq, -(2 * np.pi) ** 2 * q)  # quintic Hermite: the circle to ~1e-9
+    sd = [0.99 * v / np.abs(path.dq(np.array([e]))).max() for e in (0.0, 1.0)]  # start and end just below
+    T_star = 4 * np.sqrt(2) / v
+    for N, slack in [(100, 1.5e-3), (400, 1.5e-4)]:
+        res = {}
+        for g in ("grid", "continuous"):
+            prob = pp.TimeScalingProblem(path, grid=N)
+            prob.add_velocity_limits([-v, -v], [v, v])
+            prob.set_boundary_speeds(*sd)
+            res[g] = prob.solve(guarantee=g)
+            assert res[g].status == pp.Status.OPTIMAL
+        cont = res["continuous"]
+        assert T_star * (1 - 1e-9) <= cont.duration <= T_star * (1 + slack)
+        tr, t = at_1khz(cont)
+        assert np.abs(tr.qd(t)).max() <= v * (1 + 1e-9)
+        tr, t = at_1khz(res["grid"])
+        assert np.abs(tr.qd(t)).max() > v * (1 + 1e-4)

@@ -70,7 +70,10 @@ class TimeScalingProblem {
   /// is not enough (e.g. velocity limits cannot fix what acceleration limits forbid). With two or more
   /// families, "all" scales every family together. A feasible problem gives 1 for each family.
   /// Feasibility is decided by the reachability analysis (O(N) per trial, no SLP).
-  std::map<std::string, double> relaxation(double max_scale = 1e3, double rel_tolerance = 1e-3) const;
+  /// With guarantee = Continuous, feasibility counts the rows that hold velocity and acceleration limits
+  /// between grid points (not the audit's cuts, which depend on the solution: a lower bound then).
+  std::map<std::string, double> relaxation(double max_scale = 1e3, double rel_tolerance = 1e-3,
+                                           Guarantee guarantee = Guarantee::Grid) const;
 
   /// The problem that continues a running trajectory from s0 at speed sdot0 (>= 0): the path from s0
   /// to s_end, the grid points beyond s0 (s0 itself becomes the first one; a grid point closer to s0
@@ -85,7 +88,8 @@ class TimeScalingProblem {
  private:
   void init_samples();
   /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
-  bool feasible_with(const std::vector<ConstraintRows>& rows) const;
+  bool feasible_with(const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                     std::vector<ConstraintRows> rows, Guarantee guarantee) const;
   /// solve() on these rows (one ConstraintRows per constraint, then any extra ones), plus rows of single
   /// intervals if `extra` (guarantee = continuous).
   Result solve_rows(const std::vector<ConstraintRows>& rows, const detail::IntervalExtra* extra,
