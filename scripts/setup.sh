@@ -20,6 +20,17 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO "${APT[@]}" install -y -qq "${missing[@]}" >/dev/null
 fi
 
+# Optional: Debian's chromium, in which the report test renders the HTML page (it skips without it).
+if ! command -v chromium >/dev/null 2>&1 && [ -z "${PATHPACE_NO_CHROMIUM:-}" ]; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  echo "setup: installing chromium (optional, for the HTML report test)"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get -o DPkg::Lock::Timeout=600 install -y -qq chromium >/dev/null 2>&1 ||
+    { $SUDO apt-get -o DPkg::Lock::Timeout=600 update -qq >/dev/null 2>&1 &&
+      DEBIAN_FRONTEND=noninteractive $SUDO apt-get -o DPkg::Lock::Timeout=600 install -y -qq chromium >/dev/null 2>&1; } ||
+    echo "setup: chromium could not be installed; the report rendering test will be skipped"
+fi
+
 PY=${PYTHON:-python3}
 if [ ! -x .venv/bin/python ]; then
   echo "setup: creating .venv"
@@ -27,7 +38,7 @@ if [ ! -x .venv/bin/python ]; then
 fi
 
 # Re-install Python requirements only when this list changes.
-REQS="numpy scipy pytest pybind11>=2.12 scikit-build-core>=0.10 cmake ninja pin example-robot-data toppra cvxpy clarabel matplotlib"
+REQS="numpy scipy pytest pybind11>=2.12 scikit-build-core>=0.10 cmake ninja pin example-robot-data toppra cvxpy clarabel matplotlib pyyaml plotly dask[distributed] playwright"
 STAMP=.venv/.pathpace-requirements
 if [ ! -f "$STAMP" ] || [ "$(cat "$STAMP")" != "$REQS" ]; then
   echo "setup: installing Python packages into .venv"

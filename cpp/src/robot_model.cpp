@@ -184,6 +184,11 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModel
     if (!b.locked_used.count(name))
       detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
   b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
+  auto source = std::make_shared<Source>();
+  source->kind = Source::Kind::Urdf;
+  source->urdf = xml;
+  source->options = options;
+  m.source_ = std::move(source);
   return m;
 }
 
@@ -675,6 +680,11 @@ RobotModel RobotModel::combine(const std::vector<RobotModel>& parts, const std::
   m.q_hi_ = as_vector(hi);
   m.v_max_ = as_vector(vel);
   m.effort_ = as_vector(eff);
+  auto source = std::make_shared<Source>();
+  source->kind = Source::Kind::Combine;
+  source->parts = parts;
+  source->name = name;
+  m.source_ = std::move(source);
   return m;
 }
 
@@ -701,6 +711,14 @@ RobotModel RobotModel::free_object(const std::string& name, double mass, const E
   m.links_[name] = {body, Eigen::Isometry3d::Identity()};
   m.link_names_.push_back(name);
   b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
+  auto source = std::make_shared<Source>();
+  source->kind = Source::Kind::FreeObject;
+  source->options.gravity = gravity;
+  source->name = name;
+  source->mass = mass;
+  source->com = com;
+  source->inertia = inertia;
+  m.source_ = std::move(source);
   return m;
 }
 

@@ -26,6 +26,11 @@ from ._core import (
     VelocityLimits,
 )
 
+from . import export as _export
+from .batch import solve_many
+
+_export.install()  # Trajectory.to_joint_trajectory, Trajectory.resample
+
 try:
     __version__ = _version("pathpace")
 except PackageNotFoundError:  # running from a source tree
@@ -53,4 +58,5 @@ __all__ = [
     "Trajectory",
     "VelocityLimits",
     "__version__",
+    "solve_many",
 ]

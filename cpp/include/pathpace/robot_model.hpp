@@ -81,6 +81,29 @@ class RobotModel {
                                       const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                       Eigen::MatrixXd& c) const;
 
+  /// Centre of mass of the whole model at q, in world coordinates (m). Links fixed to the world (a
+  /// fixed base's root link) do not move and are not counted, as in pinocchio's centerOfMass.
+  Eigen::Vector3d center_of_mass(const Eigen::VectorXd& q) const;
+  /// Total mass of the moving bodies (kg), the weight of center_of_mass().
+  double mass() const;
+
+  /// How this model was built, so that an identical one can be built elsewhere (Python pickling,
+  /// another process or machine): the URDF text and options, the parts of combine() with its name, or
+  /// free_object()'s arguments. rebuild(source()) gives an identical model.
+  struct Source {
+    enum class Kind { Urdf, Combine, FreeObject };
+    Kind kind = Kind::Urdf;
+    std::string urdf;                 ///< Urdf: the XML text
+    RobotModelOptions options;        ///< Urdf: the options; FreeObject: options.gravity
+    std::vector<RobotModel> parts;    ///< Combine
+    std::string name;                 ///< Combine, FreeObject
+    double mass = 0.0;                ///< FreeObject
+    Eigen::Vector3d com = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  };
+  const Source& source() const { return *source_; }
+  static RobotModel rebuild(const Source& source);
+
   /// World placement of a link's frame (4x4 homogeneous).
   Eigen::Matrix4d frame_placement(const Eigen::VectorXd& q, const std::string& link) const;
   /// World-frame linear Jacobian (3 x nq) of a point fixed in a link (coordinates in the link frame).
@@ -118,6 +141,7 @@ class RobotModel {
   std::map<std::string, std::pair<int, Eigen::Isometry3d>> links_;  // link -> (body, placement in body)
   Eigen::VectorXd q_lo_, q_hi_, v_max_, effort_;
   Eigen::Vector3d gravity_;
+  std::shared_ptr<const Source> source_;
 };
 
 }  // namespace pathpace
