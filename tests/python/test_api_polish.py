@@ -204,3 +204,91 @@ def test_boundary_velocities_set_speeds_along_the_tangent():
     clamped = kinematic_problem(boundary="clamped")  # p'(0) = 0: only q̇ = 0 is possible
     with pytest.raises(pp.InvalidInputError, match=r"the path does not move at s = 0"):
         clamped.set_boundary_velocities([0.1, 0.0], np.zeros(2))
+
+
+def test_every_public_class_and_method_has_a_docstring():
+    import inspect
+
+    missing = []
+    for name in pp.__all__:
+        obj = getattr(pp, name)
+        if not inspect.isclass(obj) or obj.__module__ != "pathpace._core" or issubclass(obj, Exception):
+            continue
+        if name != "Status" and ("Parameters" not in (obj.__doc__ or "") and "Attributes" not in (obj.__doc__ or "")):
+            missing.append(name)
+        for attr, member in vars(obj).items():
+            if attr.startswith("_") or isinstance(member, property):
+                continue
+            doc = getattr(obj, attr).__doc__ or ""
+            text = doc.split("\n", 1)[1].strip() if "\n" in doc else ""  # after pybind11's signature line
+            if not text:
+                missing.append(f"{name}.{attr}")
+    assert missing == []
+
+
+def top_level_split(text):
+    """Splits a signature's parameter list at commas outside brackets and quotes."""
+    out, depth, quote, cur = [], 0, None, ""
+    for ch in text:
+        if quote:
+            quote = None if ch == quote else quote
+        elif ch in "'\"":
+            quote = ch
+        elif ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            out.append(cur)
+            cur = ""
+            continue
+        cur += ch
+    return out + [cur]
+
+
+def test_stubs_match_the_module():
+    """python/pathpace/_core.pyi declares every public class, method and property of _core, with the
+    runtime's parameter names in order."""
+    import ast
+    import inspect
+
+    stub = ast.parse((pathlib.Path(pp.__file__).with_name("_core.pyi")).read_text())
+    declared = {}
+    for node in stub.body:
+        if isinstance(node, ast.ClassDef):
+            members = {}
+            for f in node.body:
+                if isinstance(f, ast.FunctionDef):
+                    args = [a.arg for a in f.args.posonlyargs + f.args.args + f.args.kwonlyargs]
+                    members[f.name] = args[1:] if args and args[0] in ("self", "cls") else args
+                elif isinstance(f, ast.AnnAssign):
+                    members[f.target.id] = None
+            declared[node.name] = members
+    problems = []
+    for name in pp.__all__:
+        obj = getattr(pp, name)
+        if not inspect.isclass(obj) or obj.__module__ != "pathpace._core" or issubclass(obj, Exception) or name == "Status":
+            continue
+        if name not in declared:
+            problems.append(name)
+            continue
+        for attr, member in vars(obj).items():
+            if attr.startswith("_") and attr not in ("__init__", "__call__", "__bool__"):
+                continue
+            if attr == "__init__" and type(member).__name__ == "wrapper_descriptor":  # no constructor bound
+                continue
+            if attr not in declared[name]:
+                problems.append(f"{name}.{attr}")
+                continue
+            if isinstance(member, property) or declared[name][attr] is None:
+                continue
+            fn = getattr(obj, attr)
+            if inspect.isfunction(fn):  # added in Python (pathpace.export)
+                params = list(inspect.signature(fn).parameters)[1:]
+            else:
+                sig = (fn.__doc__ or "").strip().split("\n", 1)[0]
+                params = [p.split(":")[0].split("=")[0].strip() for p in top_level_split(sig[sig.find("(") + 1 : sig.rfind(")")])]
+                params = [p for p in params if p and p != "self"]
+            if params != declared[name][attr]:
+                problems.append(f"{name}.{attr}: runtime {params}, stub {declared[name][attr]}")
+    assert problems == [], "\n".join(problems)
