@@ -292,3 +292,20 @@ def test_stubs_match_the_module():
             if params != declared[name][attr]:
                 problems.append(f"{name}.{attr}: runtime {params}, stub {declared[name][attr]}")
     assert problems == [], "\n".join(problems)
+
+
+def test_pickle_state_and_tolerance_validation():
+    with pytest.raises(pp.InvalidInputError, match=r"CubicSplinePath pickle state has 1 entries, expected 5"):
+        pp.CubicSplinePath.__new__(pp.CubicSplinePath).__setstate__((1,))
+    with pytest.raises(pp.InvalidInputError, match=r"TimeScalingProblem pickle state has 2 entries, expected 5"):
+        pp.TimeScalingProblem.__new__(pp.TimeScalingProblem).__setstate__((1, 2))
+    with pytest.raises(pp.InvalidInputError, match=r"RobotModel pickle state kind = 'mesh' must be 'urdf', 'combine' or 'free_object'"):
+        pp.RobotModel.__new__(pp.RobotModel).__setstate__(("mesh",))
+    with pytest.raises(pp.InvalidInputError, match=r"Contact pickle state: point and normal must have size 3"):
+        pp.Contact.__new__(pp.Contact).__setstate__(("a", [0.0, 0.0], [0.0, 0.0, 1.0], 0.5, ""))
+    prob = kinematic_problem()
+    with pytest.raises(pp.InvalidInputError, match=r"tolerance = -1 must be >= 0 and finite"):
+        prob.set_boundary_velocities(np.zeros(2), np.zeros(2), tolerance=-1.0)
+    box = pp.RobotModel.free_object("box", 1.0)
+    assert box.mass == 1.0
+    np.testing.assert_allclose(box.center_of_mass(np.array([1.0, 2.0, 3.0, 0.0, 0.0, 0.0])), [1.0, 2.0, 3.0])
