@@ -2,13 +2,14 @@
 #   make demo   - solve a real problem (Panda arm path) and print the timing
 #   make test   - build the library, run the C++ tests (ctest) and the Python tests (pytest)
 #   make bench  - peer comparison against toppra; writes bench/README.md's table
+#   make wheel  - build/wheel/dist/pathpace-*-manylinux_*.whl, installable without the Debian -dev packages
 SHELL := /bin/bash
 VENV := .venv
 PY := $(VENV)/bin/python
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 JOBS ?= 2
 
-.PHONY: setup cpp python test test-cpp test-python test-packaging demo bench clean
+.PHONY: setup cpp python wheel test test-cpp test-python test-packaging test-wheel demo bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -32,7 +33,14 @@ test-packaging: cpp
 test-python: python
 	@$(PY) -m pytest -q tests/python
 
-test: test-cpp test-packaging test-python
+# A manylinux wheel with libglpk, liburdfdom and their dependencies bundled (auditwheel), licences included.
+wheel: python
+	@bash scripts/build_wheel.sh
+
+test-wheel: wheel
+	@bash tests/packaging/wheel_test.sh
+
+test: test-cpp test-packaging test-python test-wheel
 
 demo: python
 	@$(PY) examples/demo.py
