@@ -2,6 +2,7 @@
 
     pathpace solve problem.yaml --out traj.csv --json result.json      # one problem (YAML or JSON)
     pathpace solve a.yaml b.yaml c.yaml --out-dir results/ --progress   # a batch, in parallel
+                                       (--progress: a bar for batches, elapsed time for one long solve)
     pathpace solve waypoints.csv --vmax 1,1 --amax 2,2                  # quick: a waypoint CSV and limits
     pathpace check problem.yaml traj.csv       # audit any trajectory CSV: worst margin per constraint
     pathpace plot problem.yaml --out fig.png   # phase plane, polygons, torques, contacts
@@ -138,9 +139,12 @@ def cmd_solve(args: argparse.Namespace) -> int:
     from .batch import solve_many
 
     specs = [_load(f, args.grid, args.tolerance) for f in args.problems]
+    progress = args.progress if args.progress is not None else sys.stderr.isatty()
     if len(specs) == 1:
+        from .progress import run_with_progress
+
         spec = specs[0]
-        res = spec.solve()
+        res = run_with_progress(spec.solve, f"solving {spec.name}", progress)
         print(json.dumps(_summary(res, spec.name), indent=1))
         _write_outputs(spec, res, args.out, args.json, args.dt, args.joint_trajectory)
         return 0 if res.ok else 1
@@ -150,7 +154,6 @@ def cmd_solve(args: argparse.Namespace) -> int:
     for i, s in enumerate(specs):
         groups.setdefault(tuple(sorted(s.solver.items())), []).append(i)
     results = [None] * len(specs)
-    progress = args.progress if args.progress is not None else sys.stderr.isatty()
     for opts, idx in groups.items():
         for i, r in zip(idx, solve_many([specs[i].problem for i in idx], workers=args.workers, progress=progress,
                                         **dict(opts))):
@@ -188,8 +191,10 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 
 def _solved(args: argparse.Namespace):
+    from .progress import run_with_progress
+
     spec = _load(args.problem, args.grid, args.tolerance)
-    res = spec.solve()
+    res = run_with_progress(spec.solve, f"solving {spec.name}", sys.stderr.isatty())
     if not res.ok:
         print(json.dumps(_summary(res, spec.name), indent=1))
     return spec, res

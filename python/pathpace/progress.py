@@ -42,3 +42,27 @@ class ProgressBar:
         if self.enabled:
             self.file.write("\n")
             self.file.flush()
+
+
+def run_with_progress(fn, label: str, enabled: bool = True, file: TextIO | None = None, interval: float = 0.2):
+    """Runs fn() in a worker thread (the solve releases the GIL) while the calling thread shows the
+    elapsed time on stderr; returns fn's result (and raises its exception)."""
+    if not enabled:
+        return fn()
+    import concurrent.futures
+    import itertools
+
+    out = file if file is not None else sys.stderr
+    start = time.perf_counter()
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        future = pool.submit(fn)
+        for spin in itertools.cycle("|/-\\"):
+            try:
+                result = future.result(timeout=interval)
+                break
+            except concurrent.futures.TimeoutError:
+                out.write(f"\r{label} {spin} {time.perf_counter() - start:.1f} s ")
+                out.flush()
+    out.write(f"\r{label} done in {time.perf_counter() - start:.2f} s\n")
+    out.flush()
+    return result

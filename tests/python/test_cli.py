@@ -134,6 +134,13 @@ def test_argument_and_file_errors_are_one_line(problem, tmp_path):
     one_line_error(run("frobnicate"), "invalid choice: 'frobnicate'")
 
 
+def test_progress_on_a_single_solve(problem):
+    p = run("solve", problem, "--progress")
+    assert p.returncode == 0, p.stderr
+    assert "solving swing done in" in p.stderr
+    assert json.loads(p.stdout)["status"] == "optimal"
+
+
 def test_infeasible_exits_1_with_where_and_why(problem, tmp_path):
     f = tmp_path / "weak.yaml"
     f.write_text(PENDULUM.replace("torque: {from: urdf, scale: 0.9, margin: 0.1}", "torque: {min: [-0.1], max: [0.1]}")
