@@ -217,7 +217,10 @@ position_limits : ndarray (2, nq)
 gravity_vector : ndarray (3,)
     m/s² in the world frame.
 mass : float
-    kg, of the moving bodies.)"},
+    kg, of the moving bodies.
+mimic_joints : list of (str, str, float, float)
+    URDF mimic joints (name, joint, multiplier, offset): q_name = multiplier · q_joint + offset, as in
+    pinocchio. They have no coordinate in q; their torque acts on their joint, times the multiplier.)"},
     {"RobotModel", "from_urdf", R"(Loads a URDF file.
 
 Parameters

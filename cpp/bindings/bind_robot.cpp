@@ -145,6 +145,11 @@ void bind_robot(py::module_& m) {
            "Returns\n-------\nndarray (3,)\n    World coordinates in m. Links fixed to the world are not counted "
            "(as pinocchio's centerOfMass).")
       .def_property_readonly("mass", &RobotModel::mass, "float: total mass of the moving bodies in kg")
+      .def_property_readonly("mimic_joints", [](const RobotModel& r) {
+        py::list out;
+        for (const auto& mj : r.mimic_joints()) out.append(py::make_tuple(mj.name, mj.joint, mj.multiplier, mj.offset));
+        return out;
+      }, "list of (name, joint, multiplier, offset): q[name] = multiplier · q[joint] + offset; not in q")
       .def(py::pickle([](const RobotModel& r) { return source_state(r.source()); },
                       [](const py::tuple& t) { return std::make_shared<RobotModel>(RobotModel::rebuild(state_source(t))); }))
       .def("inverse_dynamics", [](const RobotModel& r, py::handle q, py::handle qd, py::handle qdd) {
