@@ -109,13 +109,17 @@ name : str
 Parameters
 ----------
 vmin, vmax : array_like (n,)
-    rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none.)"},
+    rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none.
+joint_names : list of str, optional
+    Name the joints in row labels and messages ("velocity panda_joint2"; default "velocity joint 1").)"},
     {"AccelerationLimits", nullptr, R"(Joint acceleration limits amin <= p''ṡ² + p's̈ <= amax (eq. 14).
 
 Parameters
 ----------
 amin, amax : array_like (n,)
-    rad/s² (or m/s²); amin <= amax, ±inf for none.)"},
+    rad/s² (or m/s²); amin <= amax, ±inf for none.
+joint_names : list of str, optional
+    Name the joints in row labels and messages ("acceleration panda_joint2 upper").)"},
     {"LinearConstraint", nullptr, R"(lo <= A·x + B·u + C <= hi at every grid point (x = ṡ², u = s̈).
 
 Parameters

@@ -1,4 +1,6 @@
 // Constraints, the problem, results and trajectories.
+#include <optional>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -69,29 +71,35 @@ void bind_constraints(py::module_& m) {
       .def_property_readonly("name", &Constraint::name);
 
   py::class_<VelocityLimits, Constraint, std::shared_ptr<VelocityLimits>>(m, "VelocityLimits")
-      .def(py::init([](py::handle vmin, py::handle vmax) {
-             return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"));
+      .def(py::init([](py::handle vmin, py::handle vmax, std::optional<std::vector<std::string>> joint_names) {
+             return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"),
+                                                     joint_names.value_or(std::vector<std::string>{}));
            }),
-           "vmin"_a, "vmax"_a)
+           "vmin"_a, "vmax"_a, "joint_names"_a = py::none())
       .def_property_readonly("vmin", &VelocityLimits::vmin)
       .def_property_readonly("vmax", &VelocityLimits::vmax)
-      .def(py::pickle([](const VelocityLimits& c) { return py::make_tuple(c.vmin(), c.vmax()); },
+      .def_property_readonly("joint_names", &VelocityLimits::joint_names)
+      .def(py::pickle([](const VelocityLimits& c) { return py::make_tuple(c.vmin(), c.vmax(), c.joint_names()); },
                       [](const py::tuple& t) {
-                        check_state(t, 2, "VelocityLimits");
-                        return std::make_shared<VelocityLimits>(to_vector(t[0], "vmin"), to_vector(t[1], "vmax"));
+                        check_state(t, 3, "VelocityLimits");
+                        return std::make_shared<VelocityLimits>(to_vector(t[0], "vmin"), to_vector(t[1], "vmax"),
+                                                                t[2].cast<std::vector<std::string>>());
                       }));
 
   py::class_<AccelerationLimits, Constraint, std::shared_ptr<AccelerationLimits>>(m, "AccelerationLimits")
-      .def(py::init([](py::handle amin, py::handle amax) {
-             return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"));
+      .def(py::init([](py::handle amin, py::handle amax, std::optional<std::vector<std::string>> joint_names) {
+             return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"),
+                                                         joint_names.value_or(std::vector<std::string>{}));
            }),
-           "amin"_a, "amax"_a)
+           "amin"_a, "amax"_a, "joint_names"_a = py::none())
       .def_property_readonly("amin", &AccelerationLimits::amin)
       .def_property_readonly("amax", &AccelerationLimits::amax)
-      .def(py::pickle([](const AccelerationLimits& c) { return py::make_tuple(c.amin(), c.amax()); },
+      .def_property_readonly("joint_names", &AccelerationLimits::joint_names)
+      .def(py::pickle([](const AccelerationLimits& c) { return py::make_tuple(c.amin(), c.amax(), c.joint_names()); },
                       [](const py::tuple& t) {
-                        check_state(t, 2, "AccelerationLimits");
-                        return std::make_shared<AccelerationLimits>(to_vector(t[0], "amin"), to_vector(t[1], "amax"));
+                        check_state(t, 3, "AccelerationLimits");
+                        return std::make_shared<AccelerationLimits>(to_vector(t[0], "amin"), to_vector(t[1], "amax"),
+                                                                    t[2].cast<std::vector<std::string>>());
                       }));
 
   py::class_<LinearConstraint, Constraint, std::shared_ptr<LinearConstraint>>(m, "LinearConstraint")

@@ -247,11 +247,14 @@ def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpe
     if "velocity" in lim:
         lo, hi = _limits(r, lim["velocity"], "limits.velocity", n, None if robot is None else robot.velocity_limits,
                          "velocity")
-        _wrap(r, "limits.velocity", prob.add_velocity_limits, lo, hi)
+        names = joint_names if robot is not None else None  # messages then name the joints
+        _wrap(r, "limits.velocity", prob.add_constraint, _wrap(r, "limits.velocity", pp.VelocityLimits, lo, hi, names))
         spec.velocity_limits = (lo, hi)
     if "acceleration" in lim:
         lo, hi = _limits(r, lim["acceleration"], "limits.acceleration", n, None, "acceleration")
-        _wrap(r, "limits.acceleration", prob.add_acceleration_limits, lo, hi)
+        names = joint_names if robot is not None else None
+        _wrap(r, "limits.acceleration", prob.add_constraint,
+              _wrap(r, "limits.acceleration", pp.AccelerationLimits, lo, hi, names))
         spec.acceleration_limits = (lo, hi)
     if "torque" in lim and "contacts" in data:
         raise r.fail("limits.torque", "contacts include the torque limits: give torque_scale/torque_margin under "

@@ -309,3 +309,24 @@ def test_pickle_state_and_tolerance_validation():
     box = pp.RobotModel.free_object("box", 1.0)
     assert box.mass == 1.0
     np.testing.assert_allclose(box.center_of_mass(np.array([1.0, 2.0, 3.0, 0.0, 0.0, 0.0])), [1.0, 2.0, 3.0])
+
+
+def test_joint_names_in_limit_labels_and_messages():
+    names = ["shoulder", "elbow"]
+    prob = kinematic_problem()
+    prob2 = pp.TimeScalingProblem(prob.path, grid=200)
+    prob2.add_constraint(pp.VelocityLimits([-1, -1], [1, 1], joint_names=names))
+    prob2.add_constraint(pp.AccelerationLimits([-2, -2], [2, 2], joint_names=names))
+    fs = prob2.feasible_set(100)
+    assert all(("shoulder" in lab or "elbow" in lab) and "joint" not in lab for lab in fs.labels + [fs.x_max_label])
+    assert prob2.solve().duration == prob.solve().duration  # names change nothing else
+    with pytest.raises(pp.InvalidInputError, match=re.escape("vmax[1] (elbow) = -1 must be >= 0")):
+        pp.VelocityLimits([-1, -1], [1, -1], joint_names=names)
+    with pytest.raises(pp.InvalidInputError, match=re.escape("amin[0] (shoulder) = 3 must be <= amax[0] = 2")):
+        pp.AccelerationLimits([3, -2], [2, 2], joint_names=names)
+    with pytest.raises(pp.InvalidInputError, match=re.escape("joint_names has size 1, expected 2 (one per joint, as vmax)")):
+        pp.VelocityLimits([-1, -1], [1, 1], joint_names=["a"])
+    v = roundtrip(pp.VelocityLimits([-1, -1], [1, 1], joint_names=names))
+    assert v.joint_names == names
+    # Without names, as before: indices.
+    assert "velocity joint" in kinematic_problem().feasible_set(100).x_max_label

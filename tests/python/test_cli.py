@@ -106,7 +106,7 @@ def one_line_error(p, *needles):
     [
         (lambda t: t.replace("grid: 400", "grid: 400\nspeed: 3"), ["swing.yaml", "key 'speed'", "unknown key"]),
         (lambda t: t.replace("velocity: [3.0]", "velocity: [3.0, 2.0]"), ["key 'limits.velocity'", "2 entries", "expected 1"]),
-        (lambda t: t.replace("velocity: [3.0]", "velocity: [-3.0]"), ["key 'limits.velocity'", "vmax[0] = -3"]),
+        (lambda t: t.replace("velocity: [3.0]", "velocity: [-3.0]"), ["key 'limits.velocity'", "vmax[0] (hinge) = -3"]),
         (lambda t: t.replace("pendulum.urdf", "nothere.urdf"), ["key 'robot.urdf'", "nothere.urdf", "does not exist"]),
         (lambda t: t.replace("boundary: clamped", "boundary: tight"), ["key 'path'", "boundary = 'tight'"]),
         (lambda t: t.replace("sdot: [0, 0]", "sdot: [0]"), ["key 'boundary.sdot'"]),
@@ -149,6 +149,7 @@ def test_infeasible_exits_1_with_where_and_why(problem, tmp_path):
     assert p.returncode == 1
     out = json.loads(p.stdout)
     assert out["status"] == "infeasible" and out["binding_constraints"] and out["infeasible_index"] >= 0
+    assert "torque hinge upper" in out["binding_constraints"]  # joints named, not numbered
 
 
 def test_batch_with_progress_bar(problem, tmp_path):
