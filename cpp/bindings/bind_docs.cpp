@@ -246,6 +246,8 @@ Raises
 InvalidInputError
     Unreadable file, invalid URDF, unknown locked joint.)"},
     {"RobotModel", "from_urdf_string", R"(As ``from_urdf``, from the URDF's XML text.)"},
+    {"RobotModel", "from_urdf_file", R"(The same as ``from_urdf`` (the C++ name, RobotModel::from_urdf_file).)"},
+    {"RobotModel", "gravity_torques", R"(The same as ``gravity(q)`` (the C++ name, RobotModel::gravity_torques): (nq,) in N·m.)"},
     {"RobotModel", "inverse_dynamics", R"(τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA.
 
 Parameters

@@ -145,6 +145,11 @@ void bind_robot(py::module_& m) {
            "Returns\n-------\nndarray (3,)\n    World coordinates in m. Links fixed to the world are not counted "
            "(as pinocchio's centerOfMass).")
       .def_property_readonly("mass", &RobotModel::mass, "float: total mass of the moving bodies in kg")
+      // The C++ names, so that code reads the same in both languages.
+      .def_static("from_urdf_file", [](const std::filesystem::path& path, bool floating_base, py::object locked_joints, py::handle gravity) {
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path.string(), options(floating_base, locked_joints, gravity)));
+      }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def("gravity_torques", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a)
       .def_property_readonly("mimic_joints", [](const RobotModel& r) {
         py::list out;
         for (const auto& mj : r.mimic_joints()) out.append(py::make_tuple(mj.name, mj.joint, mj.multiplier, mj.offset));

@@ -145,6 +145,12 @@ class RobotModel:
         gravity: ArrayLike = (0.0, 0.0, -9.81),
     ) -> RobotModel: ...
     @staticmethod
+    def from_urdf_file(
+        path: str | os.PathLike[str], floating_base: bool = False, locked_joints: dict[str, float] | None = None,
+        gravity: ArrayLike = (0.0, 0.0, -9.81),
+    ) -> RobotModel: ...
+    def gravity_torques(self, q: ArrayLike) -> Array: ...
+    @staticmethod
     def from_urdf_string(
         xml: str, floating_base: bool = False, locked_joints: dict[str, float] | None = None,
         gravity: ArrayLike = (0.0, 0.0, -9.81),

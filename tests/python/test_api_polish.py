@@ -330,3 +330,10 @@ def test_joint_names_in_limit_labels_and_messages():
     assert v.joint_names == names
     # Without names, as before: indices.
     assert "velocity joint" in kinematic_problem().feasible_set(100).x_max_label
+
+
+def test_cpp_names_work_in_python():
+    a = pp.RobotModel.from_urdf_file(DATA / "pendulum.urdf")
+    q = np.array([0.7])
+    np.testing.assert_array_equal(a.gravity_torques(q), a.gravity(q))
+    assert a.joint_names == pp.RobotModel.from_urdf(DATA / "pendulum.urdf").joint_names

@@ -65,6 +65,8 @@ class RobotModel {
   const Eigen::VectorXd& velocity_limits() const { return v_max_; }
   const Eigen::VectorXd& effort_limits() const { return effort_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
+  /// The same as gravity(): Python's name (where gravity(q) is the torque vector), usable in both.
+  const Eigen::Vector3d& gravity_vector() const { return gravity_; }
 
   /// τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by the recursive Newton-Euler algorithm.
   Eigen::VectorXd inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) const;
