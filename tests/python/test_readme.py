@@ -26,3 +26,12 @@ def test_readme_problem_file_loads(tmp_path):
     f.write_text(yaml_block)
     spec = load_problem(f)
     assert spec.robot.nq == 7 and spec.solve().ok
+
+
+def test_readme_first_python_example_runs_as_pasted():
+    readme = (ROOT / "README.md").read_text()
+    block = re.findall(r"```python\n(.*?)```", readme, re.S)[0]
+    scope = {}
+    exec(compile(block, "README.md", "exec"), scope)  # noqa: S102 - the README's own example
+    assert scope["res"].ok and abs(scope["res"].duration - 2.8189) < 1e-3  # the value the README prints
+    assert set(scope["samples"]) == {"t", "q", "qd", "qdd"}
