@@ -181,8 +181,10 @@ def cmd_check(args: argparse.Namespace) -> int:
         ok = r["margin"] >= -args.tolerance * r["scale"]
         worst_ok &= ok
         where = f" at t = {r['t']:.6g} s" + (f", {r['where']}" if r["where"] else "")
-        print(f"{r['constraint']:<{width}}  worst margin {r['margin']:+.6g} {r['unit']} "
-              f"({100 * r['margin'] / r['scale']:+.3f} % of the limit){where}  {'ok' if ok else 'VIOLATED'}")
+        share = ("(force-distribution margin: the weakest cone weight)" if r["constraint"] == "contact"
+                 else f"({100 * r['margin'] / r['scale']:+.3f} % of the limit)")
+        print(f"{r['constraint']:<{width}}  worst margin {r['margin']:+.6g} {r['unit']} {share}{where}  "
+              f"{'ok' if ok else 'VIOLATED'}")
     if args.json:
         Path(args.json).write_text(json.dumps(rows, indent=1))
     if not rows:

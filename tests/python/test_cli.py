@@ -192,3 +192,37 @@ def test_quick_waypoint_form_with_locked_joints(tmp_path):
             "--torque", "--out", tmp_path / "t.csv")
     assert p.returncode == 0, p.stderr
     assert next(csv.reader((tmp_path / "t.csv").open()))[1] == "q_panda_joint1"
+
+
+def test_contact_problem_file_solves_and_checks(tmp_path):
+    """The rod of sec. IV.E standing on its end (tests/python/test_contact.py), |θ| <= 0.15 so that it can
+    rest at both ends: the CLI gives the API's timing, and the audit has a contact row."""
+    import sys as _sys
+
+    _sys.path.insert(0, str(pathlib.Path(__file__).parent))
+    from test_contact import rod_path
+
+    th = np.linspace(-0.15, 0.15, 101)
+    path = rod_path(th)
+    q, dq, ddq = path.evaluate(th)
+    problem = tmp_path / "rod.json"
+    problem.write_text(json.dumps({
+        "robot": {"urdf": str(DATA / "rod.urdf")},
+        "path": {"samples": {"s": th.tolist(), "q": q.tolist(), "dq": dq.tolist(), "ddq": ddq.tolist()}},
+        "grid": th.tolist(),
+        "contacts": {"points": [{"link": "rod", "point": [0, 0, -1], "normal": [0, 0, 1], "friction": 0.5}],
+                     "cone_edges": 4},
+    }))
+    robot = pp.RobotModel.from_urdf(DATA / "rod.urdf")
+    prob = pp.TimeScalingProblem(path, grid=th)
+    prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, -1], normal=[0, 0, 1], friction=0.5)], cone_edges=4)
+    expected = prob.solve()
+    assert expected.ok
+    out = tmp_path / "t.csv"
+    p = run("solve", problem, "--out", out)
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout)["duration"] == pytest.approx(expected.duration, rel=1e-12)
+    p = run("check", problem, out)
+    assert p.returncode == 0, p.stdout + p.stderr
+    contact = [ln for ln in p.stdout.splitlines() if ln.startswith("contact")]
+    assert len(contact) == 1 and contact[0].endswith("ok") and "force-distribution margin" in contact[0]
