@@ -2,7 +2,7 @@
 #   make demo   - solve a real problem (Panda arm path) and print the timing
 #   make test   - build the library, run the C++ tests (ctest) and the Python tests (pytest)
 #   make bench  - peer comparison against toppra; writes bench/README.md's table
-#   make wheel  - a self-contained manylinux wheel in dist/ (GLPK, urdfdom bundled)
+#   make wheel  - build/wheel/dist/pathpace-*-manylinux_*.whl, installable without the Debian -dev packages
 SHELL := /bin/bash
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -33,12 +33,12 @@ test-packaging: cpp
 test-python: python
 	@$(PY) -m pytest -q tests/python
 
-# A manylinux wheel with GLPK and urdfdom bundled (auditwheel), in dist/.
+# A manylinux wheel with libglpk, liburdfdom and their dependencies bundled (auditwheel), licences included.
 wheel: python
 	@bash scripts/build_wheel.sh
 
 test-wheel: wheel
-	@bash tests/packaging/test_wheel.sh
+	@bash tests/packaging/wheel_test.sh
 
 test: test-cpp test-packaging test-python test-wheel
 

@@ -34,7 +34,7 @@ HALF_SITTING = {
 
 
 def load_talos() -> pp.RobotModel:
-    """Talos with its floating base; the gripper's mimic joints locked (pathpace rejects mimic joints)."""
+    """Talos with its floating base; the grippers' mimic joints locked at 0 (the grippers do not move here)."""
     urdf = str(example_robot_urdf("talos_data/robots/talos_full_v2.urdf"))
     mimic = [j.get("name") for j in ET.parse(urdf).getroot().iter("joint") if j.find("mimic") is not None]
     return pp.RobotModel.from_urdf(urdf, floating_base=True, locked_joints={n: 0.0 for n in mimic})

@@ -42,6 +42,44 @@ Eigen::VectorXd optional_vector(py::handle h, const char* name) {
   return h.is_none() ? Eigen::VectorXd() : to_vector(h, name);
 }
 
+const char* boundary_name(SplineBoundary b) {
+  switch (b) {
+    case SplineBoundary::NotAKnot: return "not-a-knot";
+    case SplineBoundary::Natural: return "natural";
+    case SplineBoundary::Clamped: return "clamped";
+  }
+  return "not-a-knot";
+}
+
+// Pickle state of a piecewise polynomial: (breakpoints, coefficients (pieces, degree + 1, n)).
+py::tuple polynomial_state(const PiecewisePolynomialPath& p) {
+  const auto& c = p.coefficients();
+  const py::ssize_t pieces = static_cast<py::ssize_t>(c.size()), rows = c.empty() ? 0 : c[0].rows(),
+                    cols = c.empty() ? 0 : c[0].cols();
+  py::array_t<double> out({pieces, rows, cols});
+  auto o = out.mutable_unchecked<3>();
+  for (py::ssize_t i = 0; i < pieces; ++i)
+    for (py::ssize_t j = 0; j < rows; ++j)
+      for (py::ssize_t k = 0; k < cols; ++k) o(i, j, k) = c[static_cast<size_t>(i)](j, k);
+  return py::make_tuple(p.breakpoints(), out);
+}
+
+std::vector<Eigen::MatrixXd> polynomial_pieces(py::handle coefficients) {
+  auto c = as_float_array(coefficients, "coefficients");
+  if (c.ndim() != 3) throw InvalidInput("coefficients has shape " + shape_str(c) + ", expected (pieces, degree + 1, n)");
+  std::vector<Eigen::MatrixXd> pieces;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  for (py::ssize_t i = 0; i < c.shape(0); ++i)
+    pieces.emplace_back(Eigen::Map<const RowMajor>(c.data() + i * c.shape(1) * c.shape(2), c.shape(1), c.shape(2)));
+  return pieces;
+}
+
+void check_state(const py::tuple& t, size_t size, const char* what) {
+  if (t.size() != size)
+    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
+                       std::to_string(size));
+}
+
 }  // namespace
 
 void bind_paths(py::module_& m) {
@@ -71,6 +109,12 @@ void bind_paths(py::module_& m) {
            "breakpoints"_a, "coefficients"_a,
            "coefficients[i, j, :] multiplies (s - breakpoints[i])**j on piece i")
       .def_property_readonly("breakpoints", &PiecewisePolynomialPath::breakpoints)
+      .def(py::pickle([](const PiecewisePolynomialPath& p) { return polynomial_state(p); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "PiecewisePolynomialPath");
+                        return std::make_shared<PiecewisePolynomialPath>(to_vector(t[0], "breakpoints"),
+                                                                         polynomial_pieces(t[1]));
+                      }))
       .def("__repr__", [](const PiecewisePolynomialPath& p) {
         return "<PiecewisePolynomialPath pieces=" + std::to_string(p.coefficients().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
@@ -97,6 +141,27 @@ void bind_paths(py::module_& m) {
            "Cubic spline through waypoints (K, n); boundary as scipy's CubicSpline bc_type.")
       .def_property_readonly("knots", &CubicSplinePath::knots)
       .def_property_readonly("waypoints", &CubicSplinePath::waypoints)
+      .def_property_readonly("boundary", [](const CubicSplinePath& p) { return boundary_name(p.boundary()); },
+                             "str: 'not-a-knot', 'natural' or 'clamped'")
+      .def_property_readonly("start_derivative", [](const CubicSplinePath& p) -> py::object {
+        return p.start_derivative().size() ? py::cast(p.start_derivative()) : py::object(py::none());
+      }, "ndarray (n,) or None: p'(s_begin) of a clamped spline")
+      .def_property_readonly("end_derivative", [](const CubicSplinePath& p) -> py::object {
+        return p.end_derivative().size() ? py::cast(p.end_derivative()) : py::object(py::none());
+      }, "ndarray (n,) or None: p'(s_end) of a clamped spline")
+      // Rebuilt from its constructor arguments (waypoints, knots, boundary, end slopes): the same
+      // deterministic computation gives the same coefficients.
+      .def(py::pickle([](const CubicSplinePath& p) {
+                        return py::make_tuple(p.waypoints(), p.knots(), boundary_name(p.boundary()),
+                                              p.start_derivative(), p.end_derivative());
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 5, "CubicSplinePath");
+                        const SplineBoundary b = parse_boundary(t[2].cast<std::string>());
+                        Eigen::VectorXd d0 = to_vector(t[3], "start_derivative"), d1 = to_vector(t[4], "end_derivative");
+                        return std::make_shared<CubicSplinePath>(to_matrix(t[0], "waypoints"), to_vector(t[1], "knots"), b,
+                                                                 d0, d1);
+                      }))
       .def("__repr__", [](const CubicSplinePath& p) {
         return "<CubicSplinePath waypoints=" + std::to_string(p.waypoints().rows()) + " dof=" + std::to_string(p.dof()) + ">";
       });
@@ -108,6 +173,17 @@ void bind_paths(py::module_& m) {
            }),
            "s"_a, "q"_a, "dq"_a, "ddq"_a, "q, q', q'' given at samples s; quintic Hermite in between.")
       .def_property_readonly("samples", &SampledPath::samples)
+      // Rebuilt from (s, q, q', q'') at its samples; the quintic Hermite pieces reproduce them exactly.
+      .def(py::pickle([](const SampledPath& p) {
+                        Eigen::MatrixXd q, dq, ddq;
+                        p.evaluate(p.samples(), q, dq, ddq);
+                        return py::make_tuple(p.samples(), q, dq, ddq);
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 4, "SampledPath");
+                        return std::make_shared<SampledPath>(to_vector(t[0], "s"), to_matrix(t[1], "q"),
+                                                             to_matrix(t[2], "dq"), to_matrix(t[3], "ddq"));
+                      }))
       .def("__repr__", [](const SampledPath& p) {
         return "<SampledPath samples=" + std::to_string(p.samples().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });

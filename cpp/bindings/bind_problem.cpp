@@ -1,4 +1,6 @@
 // Constraints, the problem, results and trajectories.
+#include <optional>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -50,6 +52,17 @@ py::object at_times(const Trajectory& tr, py::handle t, int which) {
   return py::cast(out);
 }
 
+void check_state(const py::tuple& t, size_t size, const char* what) {
+  if (t.size() != size)
+    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
+                       std::to_string(size));
+}
+
+template <typename T>
+std::shared_ptr<T> optional_ptr(py::handle h) {
+  return h.is_none() ? std::shared_ptr<T>() : h.cast<std::shared_ptr<T>>();
+}
+
 py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
@@ -66,20 +79,36 @@ void bind_constraints(py::module_& m) {
       .def_property_readonly("name", &Constraint::name);
 
   py::class_<VelocityLimits, Constraint, std::shared_ptr<VelocityLimits>>(m, "VelocityLimits")
-      .def(py::init([](py::handle vmin, py::handle vmax) {
-             return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"));
+      .def(py::init([](py::handle vmin, py::handle vmax, std::optional<std::vector<std::string>> joint_names) {
+             return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"),
+                                                     joint_names.value_or(std::vector<std::string>{}));
            }),
-           "vmin"_a, "vmax"_a)
+           "vmin"_a, "vmax"_a, "joint_names"_a = py::none())
       .def_property_readonly("vmin", &VelocityLimits::vmin)
-      .def_property_readonly("vmax", &VelocityLimits::vmax);
+      .def_property_readonly("vmax", &VelocityLimits::vmax)
+      .def_property_readonly("joint_names", &VelocityLimits::joint_names)
+      .def(py::pickle([](const VelocityLimits& c) { return py::make_tuple(c.vmin(), c.vmax(), c.joint_names()); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "VelocityLimits");
+                        return std::make_shared<VelocityLimits>(to_vector(t[0], "vmin"), to_vector(t[1], "vmax"),
+                                                                t[2].cast<std::vector<std::string>>());
+                      }));
 
   py::class_<AccelerationLimits, Constraint, std::shared_ptr<AccelerationLimits>>(m, "AccelerationLimits")
-      .def(py::init([](py::handle amin, py::handle amax) {
-             return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"));
+      .def(py::init([](py::handle amin, py::handle amax, std::optional<std::vector<std::string>> joint_names) {
+             return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"),
+                                                         joint_names.value_or(std::vector<std::string>{}));
            }),
-           "amin"_a, "amax"_a)
+           "amin"_a, "amax"_a, "joint_names"_a = py::none())
       .def_property_readonly("amin", &AccelerationLimits::amin)
-      .def_property_readonly("amax", &AccelerationLimits::amax);
+      .def_property_readonly("amax", &AccelerationLimits::amax)
+      .def_property_readonly("joint_names", &AccelerationLimits::joint_names)
+      .def(py::pickle([](const AccelerationLimits& c) { return py::make_tuple(c.amin(), c.amax(), c.joint_names()); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "AccelerationLimits");
+                        return std::make_shared<AccelerationLimits>(to_vector(t[0], "amin"), to_vector(t[1], "amax"),
+                                                                    t[2].cast<std::vector<std::string>>());
+                      }));
 
   py::class_<LinearConstraint, Constraint, std::shared_ptr<LinearConstraint>>(m, "LinearConstraint")
       .def(py::init([](py::handle A, py::handle B, py::handle C, py::handle lo, py::handle hi,
@@ -87,7 +116,14 @@ void bind_constraints(py::module_& m) {
              return std::make_shared<LinearConstraint>(rows_arg(A, "A"), rows_arg(B, "B"), rows_arg(C, "C"),
                                                        rows_arg(lo, "lo"), rows_arg(hi, "hi"), label);
            }),
-           "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear");
+           "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear")
+      .def(py::pickle([](const LinearConstraint& c) { return py::make_tuple(c.A(), c.B(), c.C(), c.lo(), c.hi(), c.label()); },
+                      [](const py::tuple& t) {
+                        check_state(t, 6, "LinearConstraint");
+                        return std::make_shared<LinearConstraint>(rows_arg(t[0], "A"), rows_arg(t[1], "B"), rows_arg(t[2], "C"),
+                                                                  rows_arg(t[3], "lo"), rows_arg(t[4], "hi"),
+                                                                  t[5].cast<std::string>());
+                      }));
 }
 
 void bind_problem(py::module_& m) {
@@ -142,6 +178,8 @@ void bind_problem(py::module_& m) {
                                 is_scalar(t));
       }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces).")
       .def_property_readonly("contacts", [](const Trajectory& tr) { return std::const_pointer_cast<ContactConstraint>(tr.contacts()); })
+      .def_property_readonly("robot", [](const Trajectory& tr) { return std::const_pointer_cast<RobotModel>(tr.robot()); },
+                             "RobotModel or None: the robot whose torque limits or contacts shaped this trajectory")
       .def("q", [](const Trajectory& tr, py::handle t) { return at_times(tr, t, 0); }, "t"_a,
            "q(t): shape (n,) for a scalar t, (len(t), n) for an array")
       .def("qd", [](const Trajectory& tr, py::handle t) { return at_times(tr, t, 1); }, "t"_a)
@@ -159,6 +197,37 @@ void bind_problem(py::module_& m) {
         return py::dict("t"_a = t, "q"_a = q, "qd"_a = qd, "qdd"_a = qdd);
       }, "dt"_a, "uniform resampling: dict of t (m,), q, qd, qdd (m, n)")
       .def("sample_times", &Trajectory::sample_times, "dt"_a)
+      .def("__call__", [](const Trajectory& tr, py::handle t, int order) {
+        if (order < 0 || order > 2) throw InvalidInput("order = " + std::to_string(order) + " must be 0, 1 or 2");
+        return at_times(tr, t, order);
+      }, "t"_a, "order"_a = 0,
+         "q(t) (order 0, rad or m), q̇(t) (1, per s) or q̈(t) (2, per s²), as toppra's ``traj(t, order)``.\n\n"
+         "Parameters\n----------\nt : float or array_like (m,)\n    Times in s, clamped to [0, duration].\n"
+         "order : {0, 1, 2}\n\nReturns\n-------\nndarray\n    (n,) for a scalar t, (m, n) for an array.")
+      .def("time_spline", [](const Trajectory& tr) {
+        std::shared_ptr<CubicSplinePath> out;
+        {
+          py::gil_scoped_release release;
+          out = std::make_shared<CubicSplinePath>(tr.time_spline());
+        }
+        return out;
+      }, "A C² cubic spline in time through the grid (toppra's ParametrizeSpline).\n\n"
+         "Returns\n-------\nCubicSplinePath\n    Parameter t in s (knots = ``times``), through q(t_k) = p(s_k), clamped to "
+         "q̇ = p'(s) ṡ at both ends; its ``q``, ``dq``, ``ddq`` are q(t), q̇(t), q̈(t) with q̈ continuous. Between "
+         "grid points it departs from the exact timing by O(Δt⁴), so check it against the limits.")
+      .def(py::pickle([](const Trajectory& tr) {
+                        return py::make_tuple(std::const_pointer_cast<Path>(tr.path()), tr.grid(), tr.sdot_grid(),
+                                              std::const_pointer_cast<RobotModel>(tr.robot()),
+                                              std::const_pointer_cast<ContactConstraint>(tr.contacts()));
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 5, "Trajectory");
+                        auto tr = std::make_shared<Trajectory>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "s"),
+                                                               to_vector(t[2], "sdot"));
+                        tr->set_robot(optional_ptr<RobotModel>(t[3]));
+                        tr->set_contacts(optional_ptr<ContactConstraint>(t[4]));
+                        return tr;
+                      }))
       .def("torques", [](const Trajectory& tr, py::handle t, std::shared_ptr<RobotModel> robot) -> py::object {
         const RobotModel* r = robot ? robot.get() : tr.robot().get();
         if (!r) throw InvalidInput("robot: this trajectory was not shaped by torque limits; pass robot=");
@@ -192,6 +261,46 @@ void bind_problem(py::module_& m) {
                     "For a timed result: per interval (N entries) the label of the constraint that binds there, "
                     "'' where none does, typically the interval of a switch (to colour a phase-plane plot by the active limit)")
       .def("trajectory", [](const Result& r) { return std::make_shared<Trajectory>(r.trajectory()); })
+      .def("__bool__", &Result::ok, "True when the timing is usable (``ok``): ``if res: ...``")
+      .def(py::pickle([](const Result& r) {
+                        const SolverStats& st = r.stats;
+                        return py::make_tuple(
+                            static_cast<int>(r.status), r.message, r.duration, r.s, r.sdot, r.times, r.sddot,
+                            py::make_tuple(r.infeasibility.grid_index, r.infeasibility.s, r.infeasibility.constraints),
+                            py::make_tuple(st.slp_iterations, st.lp_solves, st.greatest_element, st.gap, st.average_halfplanes,
+                                           st.time_constraints, st.time_feasible_sets, st.time_reachability, st.time_slp),
+                            std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
+                            std::const_pointer_cast<ContactConstraint>(r.contacts));
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 12, "Result");
+                        Result r;
+                        r.status = static_cast<Status>(t[0].cast<int>());
+                        r.message = t[1].cast<std::string>();
+                        r.duration = t[2].cast<double>();
+                        r.s = to_vector(t[3], "s");
+                        r.sdot = to_vector(t[4], "sdot");
+                        r.times = to_vector(t[5], "times");
+                        r.sddot = to_vector(t[6], "sddot");
+                        const py::tuple inf = t[7].cast<py::tuple>();
+                        r.infeasibility.grid_index = inf[0].cast<Eigen::Index>();
+                        r.infeasibility.s = inf[1].cast<double>();
+                        r.infeasibility.constraints = inf[2].cast<std::vector<std::string>>();
+                        const py::tuple st = t[8].cast<py::tuple>();
+                        r.stats.slp_iterations = st[0].cast<int>();
+                        r.stats.lp_solves = st[1].cast<int>();
+                        r.stats.greatest_element = st[2].cast<bool>();
+                        r.stats.gap = st[3].cast<double>();
+                        r.stats.average_halfplanes = st[4].cast<double>();
+                        r.stats.time_constraints = st[5].cast<double>();
+                        r.stats.time_feasible_sets = st[6].cast<double>();
+                        r.stats.time_reachability = st[7].cast<double>();
+                        r.stats.time_slp = st[8].cast<double>();
+                        r.path = optional_ptr<Path>(t[9]);
+                        r.robot = optional_ptr<RobotModel>(t[10]);
+                        r.contacts = optional_ptr<ContactConstraint>(t[11]);
+                        return r;
+                      }))
       .def("__repr__", [](const Result& r) {
         std::string s = "<Result status=" + std::string(to_string(r.status));
         if (r.ok()) s += " duration=" + std::to_string(r.duration);
@@ -272,6 +381,33 @@ void bind_problem(py::module_& m) {
         p.add_constraint(std::move(c));
       }, "constraint"_a)
       .def("set_boundary_speeds", &TimeScalingProblem::set_boundary_speeds, "sdot_begin"_a = 0.0, "sdot_end"_a = 0.0)
+      .def("set_boundary_velocities", [](TimeScalingProblem& p, py::handle qd_begin, py::handle qd_end, double tolerance) {
+        p.set_boundary_velocities(to_vector(qd_begin, "qd_begin"), to_vector(qd_end, "qd_end"), tolerance);
+      }, "qd_begin"_a, "qd_end"_a, "tolerance"_a = 1e-6,
+         "Boundary conditions as joint velocities q̇ (rad/s or m/s) at s_begin and s_end.\n\n"
+         "q̇ = p'(s) ṡ (eq. 10): each must be a non-negative multiple of the path tangent p'; the speeds\n"
+         "ṡ = p'·q̇ / |p'|² are then set as by ``set_boundary_speeds``.\n\n"
+         "Parameters\n----------\nqd_begin, qd_end : array_like (n,)\n    Joint velocities at the ends.\n"
+         "tolerance : float\n    Allowed |q̇ - p' ṡ|∞ relative to |q̇|.\n\n"
+         "Raises\n------\nInvalidInputError\n    Naming the joint index where q̇ is not along p'.")
+      // Rebuilt from (path, grid, constraints, boundary speeds): constraint rows are evaluated again.
+      .def(py::pickle([](const TimeScalingProblem& p) {
+                        std::vector<std::shared_ptr<Constraint>> cs;
+                        for (const auto& c : p.constraints()) cs.push_back(std::const_pointer_cast<Constraint>(c));
+                        return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs, p.sdot_begin(),
+                                              p.sdot_end());
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 5, "TimeScalingProblem");
+                        auto p = std::make_shared<TimeScalingProblem>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "grid"));
+                        const auto cs = t[2].cast<std::vector<std::shared_ptr<Constraint>>>();
+                        {
+                          py::gil_scoped_release release;
+                          for (const auto& c : cs) p->add_constraint(c);
+                        }
+                        p->set_boundary_speeds(t[3].cast<double>(), t[4].cast<double>());
+                        return p;
+                      }))
       .def_property_readonly("sdot_begin", &TimeScalingProblem::sdot_begin)
       .def_property_readonly("sdot_end", &TimeScalingProblem::sdot_end)
       .def_property_readonly("grid", &TimeScalingProblem::grid)

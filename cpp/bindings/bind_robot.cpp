@@ -2,6 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "convert.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
@@ -39,12 +40,66 @@ Eigen::VectorXd qvec(const RobotModel& r, py::handle h, const char* name) {
   return v;
 }
 
+void check_state(const py::tuple& t, size_t size, const char* what) {
+  if (t.size() != size)
+    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
+                       std::to_string(size));
+}
+
+// A model pickles as the record of how it was built (RobotModel::Source), nested for combine().
+py::tuple source_state(const RobotModel::Source& s) {
+  switch (s.kind) {
+    case RobotModel::Source::Kind::Urdf: {
+      py::dict locked;
+      for (const auto& [name, value] : s.options.locked_joints) locked[py::str(name)] = value;
+      return py::make_tuple("urdf", s.urdf, s.options.floating_base, locked, Eigen::VectorXd(s.options.gravity));
+    }
+    case RobotModel::Source::Kind::Combine: {
+      py::list parts;
+      for (const RobotModel& p : s.parts) parts.append(source_state(p.source()));
+      return py::make_tuple("combine", parts, s.name);
+    }
+    case RobotModel::Source::Kind::FreeObject:
+      return py::make_tuple("free_object", s.name, s.mass, Eigen::VectorXd(s.com), Eigen::MatrixXd(s.inertia),
+                            Eigen::VectorXd(s.options.gravity));
+  }
+  throw InvalidInput("robot model source has an unknown kind");
+}
+
+RobotModel::Source state_source(const py::tuple& t) {
+  if (t.size() < 1) throw InvalidInput("RobotModel pickle state is empty");
+  const std::string kind = t[0].cast<std::string>();
+  RobotModel::Source s;
+  if (kind == "urdf") {
+    check_state(t, 5, "RobotModel (urdf)");
+    s.kind = RobotModel::Source::Kind::Urdf;
+    s.urdf = t[1].cast<std::string>();
+    s.options = options(t[2].cast<bool>(), t[3], t[4]);
+  } else if (kind == "combine") {
+    check_state(t, 3, "RobotModel (combine)");
+    s.kind = RobotModel::Source::Kind::Combine;
+    for (auto part : t[1].cast<py::list>()) s.parts.push_back(RobotModel::rebuild(state_source(part.cast<py::tuple>())));
+    s.name = t[2].cast<std::string>();
+  } else if (kind == "free_object") {
+    check_state(t, 6, "RobotModel (free_object)");
+    s.kind = RobotModel::Source::Kind::FreeObject;
+    s.name = t[1].cast<std::string>();
+    s.mass = t[2].cast<double>();
+    s.com = to_vector(t[3], "com");
+    s.inertia = to_matrix(t[4], "inertia");
+    s.options.gravity = to_vector(t[5], "gravity");
+  } else {
+    throw InvalidInput("RobotModel pickle state kind = '" + kind + "' must be 'urdf', 'combine' or 'free_object'");
+  }
+  return s;
+}
+
 }  // namespace
 
 void bind_robot(py::module_& m) {
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", "A rigid-body tree from a URDF (immutable).")
-      .def_static("from_urdf", [](const std::string& path, bool floating_base, py::object locked_joints, py::handle gravity) {
-        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path, options(floating_base, locked_joints, gravity)));
+      .def_static("from_urdf", [](const std::filesystem::path& path, bool floating_base, py::object locked_joints, py::handle gravity) {
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path.string(), options(floating_base, locked_joints, gravity)));
       }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
       .def_static("from_urdf_string", [](const std::string& xml, bool floating_base, py::object locked_joints, py::handle gravity) {
         return std::make_shared<RobotModel>(RobotModel::from_urdf_string(xml, options(floating_base, locked_joints, gravity)));
@@ -84,6 +139,24 @@ void bind_robot(py::module_& m) {
         return l;
       }, "(2, nq): lower and upper")
       .def_property_readonly("gravity_vector", &RobotModel::gravity, "the gravity acceleration in the world frame")
+      .def("center_of_mass", [](const RobotModel& r, py::handle q) { return r.center_of_mass(qvec(r, q, "q")); }, "q"_a,
+           "Centre of mass of the moving bodies at q.\n\n"
+           "Parameters\n----------\nq : array_like (nq,)\n    Joint positions (rad or m).\n\n"
+           "Returns\n-------\nndarray (3,)\n    World coordinates in m. Links fixed to the world are not counted "
+           "(as pinocchio's centerOfMass).")
+      .def_property_readonly("mass", &RobotModel::mass, "float: total mass of the moving bodies in kg")
+      // The C++ names, so that code reads the same in both languages.
+      .def_static("from_urdf_file", [](const std::filesystem::path& path, bool floating_base, py::object locked_joints, py::handle gravity) {
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path.string(), options(floating_base, locked_joints, gravity)));
+      }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def("gravity_torques", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a)
+      .def_property_readonly("mimic_joints", [](const RobotModel& r) {
+        py::list out;
+        for (const auto& mj : r.mimic_joints()) out.append(py::make_tuple(mj.name, mj.joint, mj.multiplier, mj.offset));
+        return out;
+      }, "list of (name, joint, multiplier, offset): q[name] = multiplier · q[joint] + offset; not in q")
+      .def(py::pickle([](const RobotModel& r) { return source_state(r.source()); },
+                      [](const py::tuple& t) { return std::make_shared<RobotModel>(RobotModel::rebuild(state_source(t))); }))
       .def("inverse_dynamics", [](const RobotModel& r, py::handle q, py::handle qd, py::handle qdd) {
         return r.inverse_dynamics(qvec(r, q, "q"), qvec(r, qd, "qd"), qvec(r, qdd, "qdd"));
       }, "q"_a, "qd"_a, "qdd"_a, "τ = M(q) q̈ + C(q, q̇) q̇ + g(q)")
@@ -127,7 +200,16 @@ void bind_robot(py::module_& m) {
            }),
            "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0)
       .def_property_readonly("tau_min", &TorqueLimits::tau_min)
-      .def_property_readonly("tau_max", &TorqueLimits::tau_max);
+      .def_property_readonly("tau_max", &TorqueLimits::tau_max)
+      // The stored limits already include scale and margin: rebuilt with scale 1 and margin 0.
+      .def(py::pickle([](const TorqueLimits& c) {
+                        return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.tau_min(), c.tau_max());
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "TorqueLimits");
+                        return std::make_shared<TorqueLimits>(t[0].cast<std::shared_ptr<RobotModel>>(), to_vector(t[1], "tau_min"),
+                                                              to_vector(t[2], "tau_max"), 1.0, 0.0);
+                      }));
 
   py::class_<Contact>(m, "Contact",
                       "A point fixed in a link (link coordinates) touching the world, or `other_link` when given. The "
@@ -153,6 +235,21 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("other_link", [](const Contact& c) -> py::object {
         return c.other_link.empty() ? py::object(py::none()) : py::object(py::str(c.other_link));
       })
+      .def(py::pickle([](const Contact& c) {
+                        return py::make_tuple(c.link, Eigen::VectorXd(c.point), Eigen::VectorXd(c.normal), c.friction, c.other_link);
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 5, "Contact");
+                        Contact c;
+                        c.link = t[0].cast<std::string>();
+                        const Eigen::VectorXd p = to_vector(t[1], "point"), nrm = to_vector(t[2], "normal");
+                        if (p.size() != 3 || nrm.size() != 3) throw InvalidInput("Contact pickle state: point and normal must have size 3");
+                        c.point = p;
+                        c.normal = nrm;
+                        c.friction = t[3].cast<double>();
+                        c.other_link = t[4].cast<std::string>();
+                        return c;
+                      }))
       .def("__repr__", [](const Contact& c) {
         return "<Contact link='" + c.link + "'" + (c.other_link.empty() ? "" : " other_link='" + c.other_link + "'") +
                " friction=" + std::to_string(c.friction) + ">";
@@ -185,6 +282,28 @@ void bind_robot(py::module_& m) {
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
            "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)
       .def_property_readonly("contacts", &ContactConstraint::contacts)
+      // Rebuilt from the robot, contacts, options and the stored limits (which include torque_scale and
+      // torque_margin, so those are 1 and 0 in the copy).
+      .def(py::pickle([](const ContactConstraint& c) {
+                        const ContactOptions& o = c.options();
+                        return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.contacts(), o.cone_edges,
+                                              o.friction_margin, o.min_normal_force, o.cap, c.tau_min(), c.tau_max());
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 8, "ContactConstraint");
+                        ContactOptions o = contact_options(t[2].cast<int>(), t[3].cast<double>(), t[4].cast<double>(), 1.0, 0.0);
+                        o.cap = t[5].cast<double>();
+                        auto robot = t[0].cast<std::shared_ptr<RobotModel>>();
+                        auto contacts = t[1].cast<std::vector<Contact>>();
+                        Eigen::VectorXd lo = to_vector(t[6], "tau_min"), hi = to_vector(t[7], "tau_max");
+                        std::shared_ptr<ContactConstraint> out;
+                        {
+                          py::gil_scoped_release release;
+                          out = std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o, std::move(lo),
+                                                                    std::move(hi));
+                        }
+                        return out;
+                      }))
       .def_property_readonly("robot", [](const ContactConstraint& c) { return std::const_pointer_cast<RobotModel>(c.robot()); })
       .def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd) {
         const bool scalar = py::array(py::reinterpret_borrow<py::object>(q)).ndim() == 1;

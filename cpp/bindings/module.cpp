@@ -17,6 +17,7 @@ void bind_paths(py::module_& m);
 void bind_constraints(py::module_& m);  // the Constraint base: before any derived constraint
 void bind_robot(py::module_& m);
 void bind_problem(py::module_& m);
+void add_docstrings(py::module_& m);  // bind_docs.cpp: after every binding
 
 namespace {
 
@@ -53,5 +54,6 @@ PYBIND11_MODULE(_core, m) {
   pathpace::python::bind_constraints(m);
   pathpace::python::bind_robot(m);
   pathpace::python::bind_problem(m);
+  pathpace::python::add_docstrings(m);
   m.attr("malloc_tuned") = pathpace::python::tune_malloc();
 }

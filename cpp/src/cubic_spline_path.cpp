@@ -17,6 +17,12 @@ void check_waypoints(const Eigen::MatrixXd& w) {
   detail::require_finite("waypoints", w);
 }
 
+// scipy's "clamped" without slopes means p' = 0 at both ends; explicit slopes pass through.
+Eigen::VectorXd end_slope(SplineBoundary boundary, const Eigen::VectorXd& d, const Eigen::MatrixXd& w) {
+  if (boundary == SplineBoundary::Clamped && d.size() == 0) return Eigen::VectorXd::Zero(w.cols());
+  return d;
+}
+
 Eigen::VectorXd place_knots(const Eigen::MatrixXd& w, KnotSpacing spacing, double a, double b) {
   if (!std::isfinite(a)) detail::fail("s_begin = " + detail::fmt(a) + " must be finite");
   if (!std::isfinite(b)) detail::fail("s_end = " + detail::fmt(b) + " must be finite");
@@ -42,13 +48,21 @@ Eigen::VectorXd place_knots(const Eigen::MatrixXd& w, KnotSpacing spacing, doubl
 CubicSplinePath::CubicSplinePath(const Eigen::MatrixXd& waypoints, KnotSpacing spacing, SplineBoundary boundary,
                                  double s_begin, double s_end, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1)
     : PiecewisePolynomialPath((check_waypoints(waypoints),
-                               build(waypoints, place_knots(waypoints, spacing, s_begin, s_end), boundary, d0, d1))),
-      waypoints_(waypoints) {}
+                               build(waypoints, place_knots(waypoints, spacing, s_begin, s_end), boundary,
+                                     end_slope(boundary, d0, waypoints), end_slope(boundary, d1, waypoints)))),
+      waypoints_(waypoints),
+      boundary_(boundary),
+      start_derivative_(end_slope(boundary, d0, waypoints)),
+      end_derivative_(end_slope(boundary, d1, waypoints)) {}
 
 CubicSplinePath::CubicSplinePath(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
                                  SplineBoundary boundary, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1)
-    : PiecewisePolynomialPath((check_waypoints(waypoints), build(waypoints, knots, boundary, d0, d1))),
-      waypoints_(waypoints) {}
+    : PiecewisePolynomialPath((check_waypoints(waypoints), build(waypoints, knots, boundary, end_slope(boundary, d0, waypoints),
+                                                         end_slope(boundary, d1, waypoints)))),
+      waypoints_(waypoints),
+      boundary_(boundary),
+      start_derivative_(end_slope(boundary, d0, waypoints)),
+      end_derivative_(end_slope(boundary, d1, waypoints)) {}
 
 PiecewisePolynomialPath CubicSplinePath::build(const Eigen::MatrixXd& y, const Eigen::VectorXd& t,
                                                SplineBoundary boundary, const Eigen::VectorXd& d0,

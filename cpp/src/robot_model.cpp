@@ -57,6 +57,7 @@ struct Builder {
   std::map<std::string, std::pair<int, Eigen::Isometry3d>>& links;
   std::vector<double> q_lo, q_hi, v_max, effort;
   std::map<std::string, bool> locked_used;
+  std::vector<RobotModel::MimicJoint> mimics;  // in body order; resolved to coordinates after the tree
 
   int add_body(int parent, RobotModel::JointType type, const Eigen::Vector3d& axis, const Eigen::Isometry3d& tree,
                const std::string& name, double lo, double hi, double vel, double eff) {
@@ -134,9 +135,19 @@ struct Builder {
         add_link(child_link, body, origin * motion);
         continue;
       }
-      if (joint->mimic)
-        detail::fail("joint '" + joint->name + "' mimics '" + joint->mimic->joint_name +
-                     "': mimic joints are not supported (lock it with locked_joints, or remove the mimic tag)");
+      if (joint->mimic) {
+        // q = multiplier · q_joint + offset; a locked joint fixes its mimic too.
+        auto held = options.locked_joints.find(joint->mimic->joint_name);
+        if (held != options.locked_joints.end()) {
+          const double value = joint->mimic->multiplier * held->second + joint->mimic->offset;
+          Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+          if (prismatic) motion.translation() = axis.normalized() * value;
+          else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
+          add_link(child_link, body, origin * motion);
+          continue;
+        }
+        mimics.push_back({joint->name, joint->mimic->joint_name, joint->mimic->multiplier, joint->mimic->offset});
+      }
       if (!(axis.norm() > 0.0)) detail::fail("joint '" + joint->name + "' has a zero axis");
       const double inf = std::numeric_limits<double>::infinity();
       double lo = -inf, hi = inf, vel = inf, eff = inf;
@@ -156,6 +167,69 @@ struct Builder {
 };
 
 }  // namespace
+
+// Mimic joints: the dynamics run on the same tree with one coordinate per body (bodies_model), with
+// q_bodies = E q + o on the way in and τ = Eᵀ τ_bodies on the way out (virtual work).
+struct RobotModel::MimicMap {
+  std::vector<MimicJoint> joints;
+  std::shared_ptr<const RobotModel> bodies_model;
+  Eigen::MatrixXd E;  // (bodies, nq): ∂q_bodies/∂q
+  Eigen::VectorXd o;  // (bodies): offsets
+};
+
+void RobotModel::remove_mimic_coordinates(const std::vector<MimicJoint>& mimics) {
+  auto map = std::make_shared<MimicMap>();
+  map->bodies_model = std::make_shared<const RobotModel>(*this);  // as built: one coordinate per body
+  map->joints = mimics;
+  const Eigen::Index nb = static_cast<Eigen::Index>(bodies_.size());
+  std::map<std::string, Eigen::Index> body_of_joint;
+  for (Eigen::Index i = 0; i < nb; ++i) body_of_joint[joint_names_[static_cast<size_t>(i)]] = i;
+  std::map<std::string, const MimicJoint*> mimic_of;
+  for (const MimicJoint& mj : mimics) mimic_of[mj.name] = &mj;
+  std::vector<Eigen::Index> coord(static_cast<size_t>(nb), -1);
+  std::vector<std::string> names;
+  std::vector<double> lo, hi, vel, eff;
+  for (Eigen::Index i = 0; i < nb; ++i) {
+    const std::string& name = joint_names_[static_cast<size_t>(i)];
+    if (mimic_of.count(name)) continue;
+    coord[static_cast<size_t>(i)] = static_cast<Eigen::Index>(names.size());
+    names.push_back(name);
+    lo.push_back(q_lo_[i]);
+    hi.push_back(q_hi_[i]);
+    vel.push_back(v_max_[i]);
+    eff.push_back(effort_[i]);
+  }
+  map->E = Eigen::MatrixXd::Zero(nb, static_cast<Eigen::Index>(names.size()));
+  map->o = Eigen::VectorXd::Zero(nb);
+  for (Eigen::Index i = 0; i < nb; ++i) {
+    if (coord[static_cast<size_t>(i)] >= 0) {
+      map->E(i, coord[static_cast<size_t>(i)]) = 1.0;
+      continue;
+    }
+    const MimicJoint& mj = *mimic_of[joint_names_[static_cast<size_t>(i)]];
+    auto target = body_of_joint.find(mj.joint);
+    if (target == body_of_joint.end())
+      detail::fail("joint '" + mj.name + "' mimics '" + mj.joint + "', which is not a movable joint of robot '" + name_ + "'");
+    if (mimic_of.count(mj.joint))
+      detail::fail("joint '" + mj.name + "' mimics '" + mj.joint + "', itself a mimic joint: chains of mimic joints are not supported");
+    if (!std::isfinite(mj.multiplier) || !std::isfinite(mj.offset))
+      detail::fail("joint '" + mj.name + "': mimic multiplier = " + detail::fmt(mj.multiplier) + " and offset = " +
+                   detail::fmt(mj.offset) + " must be finite");
+    map->E(i, coord[static_cast<size_t>(target->second)]) = mj.multiplier;
+    map->o[i] = mj.offset;
+  }
+  joint_names_ = names;
+  q_lo_ = as_vector(lo);
+  q_hi_ = as_vector(hi);
+  v_max_ = as_vector(vel);
+  effort_ = as_vector(eff);
+  mimic_ = std::move(map);
+}
+
+const std::vector<RobotModel::MimicJoint>& RobotModel::mimic_joints() const {
+  static const std::vector<MimicJoint> none;
+  return mimic_ ? mimic_->joints : none;
+}
 
 RobotModel RobotModel::from_urdf_file(const std::string& path, const RobotModelOptions& options) {
   std::ifstream in(path);
@@ -177,13 +251,19 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModel
   RobotModel m;
   m.name_ = urdf->getName();
   m.gravity_ = options.gravity;
-  Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}};
+  Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}, {}};
   const int root_body = options.floating_base ? b.add_floating_base() : -1;
   b.add_link(urdf->getRoot(), root_body, Eigen::Isometry3d::Identity());
   for (const auto& [name, value] : options.locked_joints)
     if (!b.locked_used.count(name))
       detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
   b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
+  if (!b.mimics.empty()) m.remove_mimic_coordinates(b.mimics);
+  auto source = std::make_shared<Source>();
+  source->kind = Source::Kind::Urdf;
+  source->urdf = xml;
+  source->options = options;
+  m.source_ = std::move(source);
   return m;
 }
 
@@ -296,6 +376,13 @@ void rnea_pass(const std::vector<RobotModel::Body>& bodies, RobotWorkspace& ws, 
 void RobotModel::inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                                   const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::Ref<const Eigen::VectorXd>& qdd,
                                   bool with_gravity, Eigen::Ref<Eigen::VectorXd> tau) const {
+  if (mimic_) {
+    const MimicMap& mm = *mimic_;
+    Eigen::VectorXd tau_bodies(static_cast<Eigen::Index>(bodies_.size()));
+    mm.bodies_model->inverse_dynamics(ws, mm.E * q + mm.o, mm.E * qd, mm.E * qdd, with_gravity, tau_bodies);
+    tau.noalias() = mm.E.transpose() * tau_bodies;
+    return;
+  }
   kinematics(bodies_, ws, q);
   ws.tmp = qd;
   rnea_pass(bodies_, ws, &ws.tmp, qdd, with_gravity ? &gravity_ : nullptr, tau);
@@ -518,6 +605,16 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
   // eq. (12): τ = M (p'' ṡ² + p' s̈) + C(q, p' ṡ) p' ṡ + g, and C is quadratic in the velocity, so
   // a = M p'' + C(q, p') p' = RNEA(q, p', p'') without gravity, b = M p' = RNEA(q, 0, p') without
   // gravity, c = g(q): three RNEA channels in one sweep (abc_sweep).
+  if (mimic_) {
+    const MimicMap& mm = *mimic_;
+    const Eigen::Index nbodies = static_cast<Eigen::Index>(bodies_.size());
+    Eigen::VectorXd ab(nbodies), bb(nbodies), cb(nbodies);
+    mm.bodies_model->path_torque_coefficients(ws, mm.E * q + mm.o, mm.E * dq, mm.E * ddq, ab, bb, cb);
+    a.noalias() = mm.E.transpose() * ab;
+    b.noalias() = mm.E.transpose() * bb;
+    c.noalias() = mm.E.transpose() * cb;
+    return;
+  }
   const size_t nb = bodies_.size();
   AbcBody<double>* S = abc_bodies<double>(ws, nb);
   for (size_t i = 0; i < nb; ++i) joint_transform(bodies_[i], q[static_cast<Eigen::Index>(i)], S[i].E, S[i].r);
@@ -530,6 +627,17 @@ void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen:
   const Eigen::Index n = nq(), count = q.rows();
   if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
     detail::fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
+  if (mimic_) {
+    const MimicMap& mm = *mimic_;
+    const Eigen::MatrixXd qb = (q * mm.E.transpose()).rowwise() + mm.o.transpose();
+    const Eigen::MatrixXd dqb = dq * mm.E.transpose(), ddqb = ddq * mm.E.transpose();
+    Eigen::MatrixXd ab, bb, cb;
+    mm.bodies_model->path_torque_coefficients_batch(ws, qb, dqb, ddqb, ab, bb, cb);
+    a.noalias() = ab * mm.E;
+    b.noalias() = bb * mm.E;
+    c.noalias() = cb * mm.E;
+    return;
+  }
   a.resize(count, n);
   b.resize(count, n);
   c.resize(count, n);
@@ -582,6 +690,10 @@ int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body
 }
 
 void RobotModel::body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const {
+  if (mimic_) {
+    mimic_->bodies_model->body_placements(mimic_->E * q + mimic_->o, T);
+    return;
+  }
   T.resize(bodies_.size());
   for (size_t i = 0; i < T.size(); ++i) {
     const Body& b = bodies_[i];
@@ -598,6 +710,12 @@ void RobotModel::body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std
 
 void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p,
                                     double sign, Eigen::Ref<Eigen::MatrixXd> J) const {
+  if (mimic_) {  // chain rule: a mimic body's column goes to its joint's, times the multiplier
+    Eigen::MatrixXd Jb = Eigen::MatrixXd::Zero(3, static_cast<Eigen::Index>(bodies_.size()));
+    mimic_->bodies_model->add_point_jacobian(T, body, p, sign, Jb);
+    J.noalias() += Jb * mimic_->E;
+    return;
+  }
   for (int i = body; i >= 0; i = bodies_[static_cast<size_t>(i)].parent) {
     const Body& b = bodies_[static_cast<size_t>(i)];
     // The joint frame is the body frame: its axis is fixed in the body, its origin is the body origin.
@@ -675,6 +793,36 @@ RobotModel RobotModel::combine(const std::vector<RobotModel>& parts, const std::
   m.q_hi_ = as_vector(hi);
   m.v_max_ = as_vector(vel);
   m.effort_ = as_vector(eff);
+  bool any_mimic = false;
+  for (const RobotModel& p : parts) any_mimic = any_mimic || bool(p.mimic_);
+  if (any_mimic) {  // block-diagonal E over the parts; the bodies model combines the parts' bodies models
+    auto map = std::make_shared<MimicMap>();
+    map->E = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m.bodies_.size()), m.nq());
+    map->o = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m.bodies_.size()));
+    std::vector<RobotModel> full;
+    Eigen::Index row = 0, col = 0;
+    for (const RobotModel& p : parts) {
+      const Eigen::Index nbp = static_cast<Eigen::Index>(p.bodies_.size()), np = p.nq();
+      if (p.mimic_) {
+        map->E.block(row, col, nbp, np) = p.mimic_->E;
+        map->o.segment(row, nbp) = p.mimic_->o;
+        map->joints.insert(map->joints.end(), p.mimic_->joints.begin(), p.mimic_->joints.end());
+        full.push_back(*p.mimic_->bodies_model);
+      } else {
+        map->E.block(row, col, nbp, np).setIdentity();
+        full.push_back(p);
+      }
+      row += nbp;
+      col += np;
+    }
+    map->bodies_model = std::make_shared<const RobotModel>(combine(full, m.name_));
+    m.mimic_ = std::move(map);
+  }
+  auto source = std::make_shared<Source>();
+  source->kind = Source::Kind::Combine;
+  source->parts = parts;
+  source->name = name;
+  m.source_ = std::move(source);
   return m;
 }
 
@@ -695,12 +843,20 @@ RobotModel RobotModel::free_object(const std::string& name, double mass, const E
   m.gravity_ = gravity;
   RobotModelOptions options;
   options.floating_base = true;
-  Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}};
+  Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}, {}};
   const int body = b.add_floating_base();
   m.bodies_[static_cast<size_t>(body)].inertia = spatial_inertia(mass, com, inertia);
   m.links_[name] = {body, Eigen::Isometry3d::Identity()};
   m.link_names_.push_back(name);
   b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
+  auto source = std::make_shared<Source>();
+  source->kind = Source::Kind::FreeObject;
+  source->options.gravity = gravity;
+  source->name = name;
+  source->mass = mass;
+  source->com = com;
+  source->inertia = inertia;
+  m.source_ = std::move(source);
   return m;
 }
 

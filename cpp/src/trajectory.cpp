@@ -111,6 +111,15 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
   return contacts_->force_distribution(q, qd, qdd);
 }
 
+CubicSplinePath Trajectory::time_spline() const {
+  const Eigen::Index last = s_.size() - 1;
+  Eigen::MatrixXd q, dq, ddq;
+  path_->evaluate(s_, q, dq, ddq);
+  // Clamped ends: the exact joint velocities p'(s) ṡ (eq. 10) at t = 0 and t = T.
+  const Eigen::VectorXd v0 = dq.row(0).transpose() * sdot_[0], v1 = dq.row(last).transpose() * sdot_[last];
+  return CubicSplinePath(q, times_, SplineBoundary::Clamped, v0, v1);
+}
+
 Eigen::VectorXd Trajectory::sample_times(double dt) const {
   if (!(dt > 0.0) || !std::isfinite(dt)) detail::fail("dt = " + detail::fmt(dt) + " must be > 0 and finite");
   const double T = duration();

@@ -27,6 +27,11 @@ from ._core import (
     auto_grid,
 )
 
+from . import export as _export
+from .batch import solve_many
+
+_export.install()  # Trajectory.to_joint_trajectory, Trajectory.resample
+
 try:
     __version__ = _version("pathpace")
 except PackageNotFoundError:  # running from a source tree
@@ -55,4 +60,5 @@ __all__ = [
     "Trajectory",
     "VelocityLimits",
     "__version__",
+    "solve_many",
 ]

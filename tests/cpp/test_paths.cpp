@@ -359,8 +359,14 @@ TEST(CubicSplinePathValidation, ChordLengthNeedsDistinctConsecutiveWaypoints) {
 TEST(CubicSplinePathValidation, EndDerivatives) {
   const MatrixXd w = random_matrix(4, 2, 1);
   const auto clamped = SplineBoundary::Clamped;
-  expect_invalid([&] { CubicSplinePath(w, KnotSpacing::Uniform, clamped); },
-                 "start_derivative has size 0, expected 2 (one per coordinate)");
+  // scipy's "clamped": no derivative given means zero end slopes.
+  const CubicSplinePath zero(w, KnotSpacing::Uniform, clamped);
+  VectorXd q(2), dq(2), ddq(2);
+  zero.evaluate(0.0, q, dq, ddq);
+  EXPECT_LT(dq.cwiseAbs().maxCoeff(), 1e-12);  // zero up to the rounding of the spline's coefficients
+  zero.evaluate(1.0, q, dq, ddq);
+  EXPECT_LT(dq.cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(zero.start_derivative(), VectorXd::Zero(2));
   expect_invalid([&] { CubicSplinePath(w, KnotSpacing::Uniform, clamped, 0.0, 1.0, vec({1, 2}), vec({1, 2, 3})); },
                  "end_derivative has size 3, expected 2 (one per coordinate)");
   expect_invalid([&] { CubicSplinePath(w, vec({0, 1, 2, 3}), clamped, vec({1, kNan}), vec({1, 2})); },

@@ -1,5 +1,7 @@
-// Built against an installed pathpace via find_package(pathpace): solves a small problem through the
-// installed headers and library only; exits non-zero on failure.
+// Built against an installed pathpace via find_package(pathpace): solves small problems through the
+// installed headers and library only; exits non-zero on failure. The part between the README markers is
+// README.md's C++ example verbatim (tests/python/test_readme.py checks that they agree), so `make test`
+// compiles and runs the example a user pastes.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -21,6 +23,32 @@ class Line : public pathpace::Path {
   }
 };
 
+// README example begin
+// Time a 2-joint spline through three waypoints under velocity and acceleration limits.
+int readme_example() {
+  Eigen::MatrixXd waypoints(3, 2);  // one waypoint per row
+  waypoints << 0.0, 0.0,
+               1.0, 0.5,
+               0.2, 1.5;
+  auto path = std::make_shared<pathpace::CubicSplinePath>(waypoints);  // s in [0, 1], not-a-knot
+
+  pathpace::TimeScalingProblem problem(path, 1000);  // N = 1000 uniform grid intervals
+  const Eigen::Vector2d vmax(1.0, 1.0), amax(2.0, 2.0);
+  problem.add_velocity_limits(-vmax, vmax);          // rad/s
+  problem.add_acceleration_limits(-amax, amax);      // rad/s²
+  const pathpace::Result result = problem.solve();
+  if (!result.ok()) {
+    std::printf("%s: %s\n", pathpace::to_string(result.status), result.message.c_str());
+    return 1;
+  }
+  const pathpace::Trajectory trajectory = result.trajectory();
+  Eigen::MatrixXd q, qd, qdd;  // (samples, joints)
+  trajectory.evaluate(trajectory.sample_times(0.01), q, qd, qdd);
+  std::printf("T = %.4f s, %ld samples at 100 Hz\n", trajectory.duration(), static_cast<long>(q.rows()));
+  return 0;
+}
+// README example end
+
 }  // namespace
 
 int main() {
@@ -29,5 +57,6 @@ int main() {
   prob.add_acceleration_limits(Eigen::VectorXd::Constant(1, -1.0), Eigen::VectorXd::Constant(1, 1.0));
   const pathpace::Result r = prob.solve();
   std::printf("consumer: status %s, T = %.6f (expected 4)\n", pathpace::to_string(r.status), r.duration);
-  return (r.status == pathpace::Status::Optimal && std::abs(r.duration - 4.0) < 1e-3) ? 0 : 1;
+  if (!(r.status == pathpace::Status::Optimal && std::abs(r.duration - 4.0) < 1e-3)) return 1;
+  return readme_example();
 }

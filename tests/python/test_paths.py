@@ -99,8 +99,6 @@ def test_sampled_path_reproduces_samples_and_converges_at_sixth_order():
         (lambda: pp.CubicSplinePath(np.array([[0.0], [1.0]]), boundary="clamped", start_derivative=[0.0, 1.0],
                                     end_derivative=[0.0]),
          r"start_derivative has size 2, expected 1 \(one per coordinate\)"),
-        (lambda: pp.CubicSplinePath(np.array([[0.0], [1.0]]), boundary="clamped"),
-         r"start_derivative has size 0, expected 1"),
         (lambda: pp.CubicSplinePath(np.array([[0.0], [1.0]]), start_derivative=[1.0]),
          r"start_derivative and end_derivative are only used with the clamped boundary"),
         (lambda: pp.CubicSplinePath(np.array([[0.0], [1.0]]), s_begin=1.0, s_end=1.0),

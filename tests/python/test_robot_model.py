@@ -57,7 +57,7 @@ def models(name):
         urdf = str(example_robot_urdf("ur_description/urdf/ur5_robot.urdf"))
         return pp.RobotModel.from_urdf(urdf), pin.buildModelFromUrdf(urdf), "tool0"
     if name == "talos":
-        # Talos's grippers have mimic joints, which we reject; both models lock them at 0.
+        # Talos's grippers have mimic joints (tests/python/test_mimic.py); both models lock them at 0 here.
         urdf = str(example_robot_urdf("talos_data/robots/talos_full_v2.urdf"))
         import xml.etree.ElementTree as ET
 
@@ -164,12 +164,6 @@ PENDULUM = """<robot name="pendulum">
 def test_robot_validation(make, message):
     with pytest.raises(pp.InvalidInputError, match=message):
         make()
-
-
-def test_mimic_joint_is_rejected_unless_locked():
-    urdf = str(example_robot_urdf("panda_description/urdf/panda.urdf"))
-    with pytest.raises(pp.InvalidInputError, match=r"joint 'panda_finger_joint2' mimics 'panda_finger_joint1'"):
-        pp.RobotModel.from_urdf(urdf)
 
 
 def test_torque_limits_need_matching_path_dimension():

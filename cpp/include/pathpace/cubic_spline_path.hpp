@@ -19,7 +19,7 @@ enum class KnotSpacing {
 enum class SplineBoundary {
   NotAKnot,  ///< p''' continuous at the second and second-last knots (2 waypoints: a line; 3: a parabola)
   Natural,   ///< p'' = 0 at both ends
-  Clamped,   ///< p' given at both ends
+  Clamped,   ///< p' given at both ends; zero slopes when no derivative is given (scipy's "clamped")
 };
 
 /// A cubic spline is a piecewise polynomial path whose pieces are computed from the waypoints.
@@ -38,11 +38,17 @@ class CubicSplinePath : public PiecewisePolynomialPath {
 
   const Eigen::VectorXd& knots() const { return breakpoints(); }
   const Eigen::MatrixXd& waypoints() const { return waypoints_; }
+  SplineBoundary boundary() const { return boundary_; }
+  /// p'(s_begin) and p'(s_end) of a clamped spline (empty for the other boundaries).
+  const Eigen::VectorXd& start_derivative() const { return start_derivative_; }
+  const Eigen::VectorXd& end_derivative() const { return end_derivative_; }
 
  private:
   static PiecewisePolynomialPath build(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
                                        SplineBoundary boundary, const Eigen::VectorXd& d0, const Eigen::VectorXd& d1);
   Eigen::MatrixXd waypoints_;
+  SplineBoundary boundary_ = SplineBoundary::NotAKnot;
+  Eigen::VectorXd start_derivative_, end_derivative_;
 };
 
 }  // namespace pathpace

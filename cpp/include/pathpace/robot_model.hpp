@@ -22,7 +22,8 @@ struct RobotModelOptions {
   /// limit and zero effort (unactuated). Names: "floating_x", "floating_y", "floating_z",
   /// "floating_rz", "floating_ry", "floating_rx".
   bool floating_base = false;
-  /// Joints held at a value and removed from q (e.g. gripper fingers).
+  /// Joints held at a value and removed from q (e.g. gripper fingers). A mimic joint whose joint is
+  /// locked is held at multiplier · value + offset.
   std::map<std::string, double> locked_joints;
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
 };
@@ -30,6 +31,11 @@ struct RobotModelOptions {
 /// The kinematic tree: one body per movable joint (fixed joints merged into their parent, inertias
 /// combined), in depth-first order from the root with children in urdfdom's order, which is also
 /// pinocchio's. Immutable and shareable across threads; scratch space lives in RobotWorkspace.
+///
+/// Mimic joints (URDF <mimic>, e.g. the second finger of a gripper) have a body but no coordinate:
+/// q_mimic = multiplier · q_joint + offset, as in pinocchio. q, q̇, q̈ and τ are then over the other
+/// joints only (nq < bodies().size()); the mimic joint's torque acts on its joint scaled by the
+/// multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not used.
 class RobotModel {
  public:
   enum class JointType { Revolute, Prismatic };
@@ -59,6 +65,8 @@ class RobotModel {
   const Eigen::VectorXd& velocity_limits() const { return v_max_; }
   const Eigen::VectorXd& effort_limits() const { return effort_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
+  /// The same as gravity(): Python's name (where gravity(q) is the torque vector), usable in both.
+  const Eigen::Vector3d& gravity_vector() const { return gravity_; }
 
   /// τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by the recursive Newton-Euler algorithm.
   Eigen::VectorXd inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) const;
@@ -81,20 +89,51 @@ class RobotModel {
                                       const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                       Eigen::MatrixXd& c) const;
 
+  /// Centre of mass of the whole model at q, in world coordinates (m). Links fixed to the world (a
+  /// fixed base's root link) do not move and are not counted, as in pinocchio's centerOfMass.
+  Eigen::Vector3d center_of_mass(const Eigen::VectorXd& q) const;
+  /// Total mass of the moving bodies (kg), the weight of center_of_mass().
+  double mass() const;
+
+  /// How this model was built, so that an identical one can be built elsewhere (Python pickling,
+  /// another process or machine): the URDF text and options, the parts of combine() with its name, or
+  /// free_object()'s arguments. rebuild(source()) gives an identical model.
+  struct Source {
+    enum class Kind { Urdf, Combine, FreeObject };
+    Kind kind = Kind::Urdf;
+    std::string urdf;                 ///< Urdf: the XML text
+    RobotModelOptions options;        ///< Urdf: the options; FreeObject: options.gravity
+    std::vector<RobotModel> parts;    ///< Combine
+    std::string name;                 ///< Combine, FreeObject
+    double mass = 0.0;                ///< FreeObject
+    Eigen::Vector3d com = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  };
+  const Source& source() const { return *source_; }
+  static RobotModel rebuild(const Source& source);
+
   /// World placement of a link's frame (4x4 homogeneous).
   Eigen::Matrix4d frame_placement(const Eigen::VectorXd& q, const std::string& link) const;
   /// World-frame linear Jacobian (3 x nq) of a point fixed in a link (coordinates in the link frame).
   Eigen::MatrixXd point_jacobian(const Eigen::VectorXd& q, const std::string& link, const Eigen::Vector3d& point) const;
 
+  /// A mimic joint: q[name] = multiplier · q[joint] + offset.
+  struct MimicJoint {
+    std::string name, joint;
+    double multiplier = 1.0, offset = 0.0;
+  };
+  const std::vector<MimicJoint>& mimic_joints() const;
+
   /// Body index of a link (merged links map to the body that carries them) and the link's fixed
   /// placement in that body's frame. Throws InvalidInput for an unknown name.
   int body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const;
 
-  /// World poses of every body at q (one pass), for callers that need several frames or Jacobians at
-  /// the same configuration; no argument checks.
+  /// World poses of every body at q (size nq; one pass), for callers that need several frames or
+  /// Jacobians at the same configuration; no argument checks.
   void body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const;
   /// Adds `sign` times the world-frame linear Jacobian of the world point `p` moving with body `body`
-  /// to J (3 x nq), given the body poses T from body_placements(). Nothing for body -1 (the world).
+  /// to J (3 x nq), given the body poses T from body_placements(). Nothing for body -1 (the world). A
+  /// mimic body's column goes to its joint's, times the multiplier.
   void add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p, double sign,
                           Eigen::Ref<Eigen::MatrixXd> J) const;
 
@@ -112,12 +151,17 @@ class RobotModel {
  private:
   friend class RobotWorkspace;
   void check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char* name) const;
+  // After loading with one coordinate per body: make the mimic bodies follow their joints.
+  void remove_mimic_coordinates(const std::vector<MimicJoint>& mimics);
   std::string name_;
   std::vector<Body> bodies_;
   std::vector<std::string> joint_names_, link_names_;
   std::map<std::string, std::pair<int, Eigen::Isometry3d>> links_;  // link -> (body, placement in body)
   Eigen::VectorXd q_lo_, q_hi_, v_max_, effort_;
   Eigen::Vector3d gravity_;
+  std::shared_ptr<const Source> source_;
+  struct MimicMap;  // robot_model.cpp: body -> coordinate map and the one-coordinate-per-body model
+  std::shared_ptr<const MimicMap> mimic_;
 };
 
 }  // namespace pathpace

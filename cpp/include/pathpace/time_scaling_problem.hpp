@@ -48,6 +48,11 @@ class TimeScalingProblem {
 
   /// ṡ at s_begin and s_end (default 0, rest to rest). Must be >= 0 and finite.
   void set_boundary_speeds(double sdot_begin, double sdot_end);
+  /// The boundary speeds from joint velocities q̇ at s_begin and s_end (rad/s or m/s): q̇ = p'(s) ṡ
+  /// (eq. 10), so q̇ must be a non-negative multiple of the path tangent p'; ṡ = p'·q̇ / |p'|². Throws
+  /// InvalidInput naming the joint where q̇ is not parallel to p' (relative tolerance `tolerance`).
+  void set_boundary_velocities(const Eigen::VectorXd& qd_begin, const Eigen::VectorXd& qd_end,
+                               double tolerance = 1e-6);
   double sdot_begin() const { return sdot_begin_; }
   double sdot_end() const { return sdot_end_; }
 

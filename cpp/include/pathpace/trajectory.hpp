@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/contact_forces.hpp"
+#include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/path.hpp"
 
 namespace pathpace {
@@ -53,6 +54,13 @@ class Trajectory {
   /// The force-distribution LP at each t (see ContactForces): contact forces and their margin between
   /// the grid points, where the solver did not look. Throws Error if no contact constraint shaped it.
   std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+
+  /// A C² cubic spline in time through the grid (as toppra's ParametrizeSpline): a CubicSplinePath whose
+  /// parameter is t in [0, T], through q(t_k) = p(s_k) at every grid time, clamped to q̇ = p'(s) ṡ at
+  /// both ends. For controllers that interpolate between points: unlike evaluate(), its q̈ is continuous;
+  /// between grid points it departs from the exact timing (by O(Δt⁴) in q), so its q̇, q̈ may exceed
+  /// the limits by a little — check it with the problem's limits before sending it to a robot.
+  CubicSplinePath time_spline() const;
 
   /// Uniform times 0, dt, 2dt, ..., with T appended if it is not a multiple of dt.
   Eigen::VectorXd sample_times(double dt) const;

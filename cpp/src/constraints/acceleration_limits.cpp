@@ -6,20 +6,27 @@
 
 namespace pathpace {
 
-AccelerationLimits::AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax)
-    : amin_(std::move(amin)), amax_(std::move(amax)) {
+AccelerationLimits::AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax, std::vector<std::string> joint_names)
+    : amin_(std::move(amin)), amax_(std::move(amax)), joint_names_(std::move(joint_names)) {
   detail::require_size("amin", amin_.size(), amax_.size(), "one entry per joint, as amax");
+  if (!joint_names_.empty())
+    detail::require_size("joint_names", static_cast<Eigen::Index>(joint_names_.size()), amax_.size(), "one per joint, as amax");
   detail::require_not_nan("amin", amin_);
   detail::require_not_nan("amax", amax_);
   for (Eigen::Index j = 0; j < amax_.size(); ++j) {
+    const std::string which = joint_names_.empty() ? "" : " (" + joint(j) + ")";
     if (amax_[j] == -std::numeric_limits<double>::infinity())
-      detail::fail(detail::at("amax", j) + " = -inf must be > -inf");
+      detail::fail(detail::at("amax", j) + which + " = -inf must be > -inf");
     if (amin_[j] == std::numeric_limits<double>::infinity())
-      detail::fail(detail::at("amin", j) + " = inf must be < inf");
+      detail::fail(detail::at("amin", j) + which + " = inf must be < inf");
     if (!(amin_[j] <= amax_[j]))
-      detail::fail(detail::at("amin", j) + " = " + detail::fmt(amin_[j]) + " must be <= " + detail::at("amax", j) +
+      detail::fail(detail::at("amin", j) + which + " = " + detail::fmt(amin_[j]) + " must be <= " + detail::at("amax", j) +
                    " = " + detail::fmt(amax_[j]));
   }
+}
+
+std::string AccelerationLimits::joint(Eigen::Index j) const {
+  return joint_names_.empty() ? "joint " + std::to_string(j) : joint_names_[static_cast<size_t>(j)];
 }
 
 ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
@@ -30,8 +37,8 @@ ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
   ConstraintRows rows;
   rows.allocate(samples.size(), 2 * n);  // every entry is written below
   for (Eigen::Index j = 0; j < n; ++j) {
-    rows.labels[static_cast<size_t>(2 * j)] = "acceleration joint " + std::to_string(j) + " upper";
-    rows.labels[static_cast<size_t>(2 * j + 1)] = "acceleration joint " + std::to_string(j) + " lower";
+    rows.labels[static_cast<size_t>(2 * j)] = "acceleration " + joint(j) + " upper";
+    rows.labels[static_cast<size_t>(2 * j + 1)] = "acceleration " + joint(j) + " lower";
   }
   const double inf = std::numeric_limits<double>::infinity();
   for (Eigen::Index k = 0; k < samples.size(); ++k) {

@@ -6,16 +6,23 @@
 
 namespace pathpace {
 
-VelocityLimits::VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax)
-    : vmin_(std::move(vmin)), vmax_(std::move(vmax)) {
+VelocityLimits::VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax, std::vector<std::string> joint_names)
+    : vmin_(std::move(vmin)), vmax_(std::move(vmax)), joint_names_(std::move(joint_names)) {
   detail::require_size("vmin", vmin_.size(), vmax_.size(), "one entry per joint, as vmax");
+  if (!joint_names_.empty())
+    detail::require_size("joint_names", static_cast<Eigen::Index>(joint_names_.size()), vmax_.size(), "one per joint, as vmax");
   detail::require_not_nan("vmin", vmin_);
   detail::require_not_nan("vmax", vmax_);
   for (Eigen::Index j = 0; j < vmax_.size(); ++j) {
     // ṡ = 0 (rest at the ends) must be admissible, so each interval has to contain 0.
-    if (!(vmax_[j] >= 0.0)) detail::fail(detail::at("vmax", j) + " = " + detail::fmt(vmax_[j]) + " must be >= 0");
-    if (!(vmin_[j] <= 0.0)) detail::fail(detail::at("vmin", j) + " = " + detail::fmt(vmin_[j]) + " must be <= 0");
+    const std::string which = joint_names_.empty() ? "" : " (" + joint(j) + ")";
+    if (!(vmax_[j] >= 0.0)) detail::fail(detail::at("vmax", j) + which + " = " + detail::fmt(vmax_[j]) + " must be >= 0");
+    if (!(vmin_[j] <= 0.0)) detail::fail(detail::at("vmin", j) + which + " = " + detail::fmt(vmin_[j]) + " must be <= 0");
   }
+}
+
+std::string VelocityLimits::joint(Eigen::Index j) const {
+  return joint_names_.empty() ? "joint " + std::to_string(j) : joint_names_[static_cast<size_t>(j)];
 }
 
 ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
@@ -25,7 +32,7 @@ ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
                  std::to_string(samples.dof()) + " coordinates");
   ConstraintRows rows;
   rows.resize(samples.size(), n);
-  for (Eigen::Index j = 0; j < n; ++j) rows.labels[static_cast<size_t>(j)] = "velocity joint " + std::to_string(j);
+  for (Eigen::Index j = 0; j < n; ++j) rows.labels[static_cast<size_t>(j)] = "velocity " + joint(j);
   for (Eigen::Index k = 0; k < samples.size(); ++k) {
     for (Eigen::Index j = 0; j < n; ++j) {
       const double d = samples.dq(k, j);

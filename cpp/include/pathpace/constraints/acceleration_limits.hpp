@@ -2,6 +2,9 @@
 /// @file acceleration_limits.hpp
 /// Joint acceleration limits a_L <= p''(s)·ṡ² + p'(s)·s̈ <= a_U (eq. 14).
 
+#include <string>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
@@ -13,7 +16,9 @@ namespace pathpace {
 class AccelerationLimits : public Constraint {
  public:
   /// amin[j] <= amax[j]; amin[j] may be -inf, amax[j] +inf. No NaN.
-  AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax);
+  /// joint_names (optional, one per joint) name the joints in row labels and messages
+  /// ("acceleration panda_joint2 upper"); without them, "acceleration joint 1 upper".
+  AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax, std::vector<std::string> joint_names = {});
 
   std::string name() const override { return "acceleration limits"; }
   ConstraintRows evaluate(const PathSamples& samples) const override;
@@ -23,9 +28,12 @@ class AccelerationLimits : public Constraint {
 
   const Eigen::VectorXd& amin() const { return amin_; }
   const Eigen::VectorXd& amax() const { return amax_; }
+  const std::vector<std::string>& joint_names() const { return joint_names_; }
 
  private:
   Eigen::VectorXd amin_, amax_;
+  std::vector<std::string> joint_names_;
+  std::string joint(Eigen::Index j) const;  // "panda_joint2" or "joint 1"
 };
 
 }  // namespace pathpace

@@ -21,6 +21,12 @@ class LinearConstraint : public Constraint {
   std::string name() const override { return label_; }
   /// Throws InvalidInput if the arrays do not have N+1 rows for the samples' grid.
   ConstraintRows evaluate(const PathSamples& samples) const override;
+  const Eigen::MatrixXd& A() const { return A_; }
+  const Eigen::MatrixXd& B() const { return B_; }
+  const Eigen::MatrixXd& C() const { return C_; }
+  const Eigen::MatrixXd& lo() const { return lo_; }
+  const Eigen::MatrixXd& hi() const { return hi_; }
+  const std::string& label() const { return label_; }
 
  private:
   Eigen::MatrixXd A_, B_, C_, lo_, hi_;

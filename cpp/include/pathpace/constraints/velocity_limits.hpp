@@ -2,6 +2,9 @@
 /// @file velocity_limits.hpp
 /// Joint velocity limits v_L <= p'(s)·ṡ <= v_U (eq. 13), as the squared-rate bound of eq. (16).
 
+#include <string>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
@@ -14,7 +17,9 @@ namespace pathpace {
 class VelocityLimits : public Constraint {
  public:
   /// vmin[j] <= 0 <= vmax[j]; vmin[j] may be -inf and vmax[j] +inf (no limit). No NaN.
-  VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax);
+  /// joint_names (optional, one per joint) name the joints in row labels and messages
+  /// ("velocity panda_joint2"); without them, "velocity joint 1".
+  VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax, std::vector<std::string> joint_names = {});
 
   std::string name() const override { return "velocity limits"; }
   ConstraintRows evaluate(const PathSamples& samples) const override;
@@ -24,9 +29,12 @@ class VelocityLimits : public Constraint {
 
   const Eigen::VectorXd& vmin() const { return vmin_; }
   const Eigen::VectorXd& vmax() const { return vmax_; }
+  const std::vector<std::string>& joint_names() const { return joint_names_; }
 
  private:
   Eigen::VectorXd vmin_, vmax_;
+  std::vector<std::string> joint_names_;
+  std::string joint(Eigen::Index j) const;  // "panda_joint2" or "joint 1"
 };
 
 }  // namespace pathpace

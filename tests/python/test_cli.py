@@ -1,0 +1,228 @@
+"""The `pathpace` command, driven as a user would: a subprocess per call."""
+
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+import pathpace.robots
+
+DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
+
+
+def run(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "pathpace.cli", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, timeout=300)
+
+
+PENDULUM = f"""\
+name: swing
+robot:
+  urdf: {DATA / 'pendulum.urdf'}
+path:
+  waypoints: [[0.0], [-0.3], [0.4]]
+  boundary: clamped
+grid: 400
+limits:
+  velocity: [3.0]
+  acceleration: {{max: [20.0], min: [-15.0]}}
+  torque: {{from: urdf, scale: 0.9, margin: 0.1}}
+boundary: {{sdot: [0, 0]}}
+solver: {{tolerance: 1e-6}}
+"""
+
+
+@pytest.fixture
+def problem(tmp_path):
+    f = tmp_path / "swing.yaml"
+    f.write_text(PENDULUM)
+    return f
+
+
+def api_result():
+    robot = pp.RobotModel.from_urdf(DATA / "pendulum.urdf")
+    prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.array([[0.0], [-0.3], [0.4]]), boundary="clamped"), grid=400)
+    prob.add_velocity_limits([-3.0], [3.0])
+    prob.add_acceleration_limits([-15.0], [20.0])
+    prob.add_torque_limits(robot, scale=0.9, margin=0.1)
+    return prob.solve(tolerance=1e-6)
+
+
+def test_solve_writes_named_columns_and_the_result(problem, tmp_path):
+    out, js, jt = tmp_path / "t.csv", tmp_path / "r.json", tmp_path / "jt.json"
+    p = run("solve", problem, "--out", out, "--json", js, "--joint-trajectory", jt, "--dt", 0.005)
+    assert p.returncode == 0, p.stderr
+    summary = json.loads(p.stdout)
+    assert summary["status"] == "optimal" and summary["problem"] == "swing"
+    assert summary["duration"] == pytest.approx(api_result().duration, rel=1e-12)  # same problem as the API's
+    header = next(csv.reader(out.open()))
+    assert header == ["t", "q_hinge", "qd_hinge", "qdd_hinge"]
+    assert json.loads(js.read_text())["ok"] is True
+    msg = json.loads(jt.read_text())
+    assert msg["joint_names"] == ["hinge"] and len(msg["points"][0]["effort"]) == 1
+
+
+def test_check_passes_its_own_timing_and_flags_a_faster_one(problem, tmp_path):
+    out = tmp_path / "t.csv"
+    assert run("solve", problem, "--out", out).returncode == 0
+    p = run("check", problem, out, "--json", tmp_path / "audit.json")
+    assert p.returncode == 0, p.stdout + p.stderr
+    lines = p.stdout.splitlines()
+    assert [ln.split()[0] for ln in lines] == ["velocity", "acceleration", "torque"]  # a continuous joint: no position row
+    assert all(ln.endswith("ok") for ln in lines)
+    # The same motion 20 % faster: t -> t / 1.2 scales q̇ by 1.2 and q̈ by 1.44 (positions only in this CSV).
+    rows = list(csv.reader(out.open()))
+    fast = tmp_path / "fast.csv"
+    with fast.open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["t", "hinge"])
+        for r in rows[1:]:
+            w.writerow([float(r[0]) / 1.2, r[1]])
+    p = run("check", problem, fast)
+    assert p.returncode == 1
+    bad = [ln for ln in p.stdout.splitlines() if ln.endswith("VIOLATED")]
+    assert any(ln.startswith("torque") and "hinge" in ln for ln in bad), p.stdout
+    audit = json.loads((tmp_path / "audit.json").read_text())
+    assert {r["constraint"] for r in audit} == {"velocity", "acceleration", "torque"}
+
+
+def one_line_error(p, *needles):
+    assert p.returncode == 2, (p.returncode, p.stdout, p.stderr)
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1, p.stderr
+    assert lines[0].startswith("pathpace: error: ")
+    for n in needles:
+        assert n in lines[0], (n, lines[0])
+    return lines[0]
+
+
+@pytest.mark.parametrize(
+    "edit, needles",
+    [
+        (lambda t: t.replace("grid: 400", "grid: 400\nspeed: 3"), ["swing.yaml", "key 'speed'", "unknown key"]),
+        (lambda t: t.replace("velocity: [3.0]", "velocity: [3.0, 2.0]"), ["key 'limits.velocity'", "2 entries", "expected 1"]),
+        (lambda t: t.replace("velocity: [3.0]", "velocity: [-3.0]"), ["key 'limits.velocity'", "vmax[0] (hinge) = -3"]),
+        (lambda t: t.replace("pendulum.urdf", "nothere.urdf"), ["key 'robot.urdf'", "nothere.urdf", "does not exist"]),
+        (lambda t: t.replace("boundary: clamped", "boundary: tight"), ["key 'path'", "boundary = 'tight'"]),
+        (lambda t: t.replace("sdot: [0, 0]", "sdot: [0]"), ["key 'boundary.sdot'"]),
+        (lambda t: t.replace("tolerance: 1e-6", "tolerance: fast"), ["key 'solver.tolerance'", "'fast'"]),
+        (lambda t: t + "contacts: {points: [{link: nowhere}]}\n", ["key 'limits.torque'", "contacts include the torque"]),
+        (lambda t: "[1, 2", ["swing.yaml", "not valid YAML"]),
+    ],
+)
+def test_problem_file_errors_are_one_line_naming_the_key(tmp_path, edit, needles):
+    f = tmp_path / "swing.yaml"
+    f.write_text(edit(PENDULUM))
+    one_line_error(run("solve", f), *needles)
+
+
+def test_argument_and_file_errors_are_one_line(problem, tmp_path):
+    one_line_error(run("solve", tmp_path / "missing.yaml"), "missing.yaml", "cannot be read")
+    one_line_error(run("solve"), "the following arguments are required: problems")
+    one_line_error(run("solve", problem, "--dt", "fast"), "argument --dt", "'fast'")
+    one_line_error(run("solve", problem, "--vmax", "1"), "argument --vmax")
+    one_line_error(run("solve", problem, "--out", tmp_path / "t.csv", "--dt", "-1"), "dt = -1 must be > 0")
+    one_line_error(run("check", problem, tmp_path / "nothing.csv"), "nothing.csv", "cannot be read")
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,elbow\n0,1\n1,2\n")
+    one_line_error(run("check", problem, bad), "bad.csv", "no column 'q_hinge'")
+    one_line_error(run("frobnicate"), "invalid choice: 'frobnicate'")
+
+
+def test_progress_on_a_single_solve(problem):
+    p = run("solve", problem, "--progress")
+    assert p.returncode == 0, p.stderr
+    assert "solving swing done in" in p.stderr
+    assert json.loads(p.stdout)["status"] == "optimal"
+
+
+def test_infeasible_exits_1_with_where_and_why(problem, tmp_path):
+    f = tmp_path / "weak.yaml"
+    f.write_text(PENDULUM.replace("torque: {from: urdf, scale: 0.9, margin: 0.1}", "torque: {min: [-0.1], max: [0.1]}")
+                 .replace("[[0.0], [-0.3], [0.4]]", "[[1.0], [2.0]]"))
+    p = run("solve", f)
+    assert p.returncode == 1
+    out = json.loads(p.stdout)
+    assert out["status"] == "infeasible" and out["binding_constraints"] and out["infeasible_index"] >= 0
+    assert "torque hinge upper" in out["binding_constraints"]  # joints named, not numbered
+
+
+def test_batch_with_progress_bar(problem, tmp_path):
+    files = []
+    for i, g in enumerate((100, 200, 300)):
+        f = tmp_path / f"p{i}.json"  # JSON problem files, grid overridden per file
+        import yaml
+
+        d = yaml.safe_load(PENDULUM)
+        d["grid"] = g
+        f.write_text(json.dumps(d))
+        files.append(f)
+    p = run("solve", *files, "--out-dir", tmp_path / "out", "--progress", "--workers", 2)
+    assert p.returncode == 0, p.stderr
+    assert "solving [" in p.stderr and "3/3" in p.stderr
+    assert [json.loads(ln)["status"] for ln in p.stdout.splitlines()] == ["optimal"] * 3
+    assert sorted(x.name for x in (tmp_path / "out").iterdir()) == sorted(
+        [f"p{i}.{e}" for i in range(3) for e in ("csv", "json")])
+
+
+def test_plot_and_demo(problem, tmp_path):
+    pytest.importorskip("matplotlib")
+    png = tmp_path / "fig.png"
+    p = run("plot", problem, "--out", png, "--polygons-at", 0.2, 0.5)
+    assert p.returncode == 0, p.stderr
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    p = run("demo", "--out-dir", tmp_path / "demo")
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "optimal" in p.stdout and "VIOLATED" not in p.stdout
+    assert {"panda_demo.yaml", "panda_demo.csv", "panda_demo.json", "panda_demo.png"} <= {
+        x.name for x in (tmp_path / "demo").iterdir()}
+
+
+def test_quick_waypoint_form_with_locked_joints(tmp_path):
+    urdf = pp.robots.example_robot_urdf("panda_description/urdf/panda.urdf")
+    w = tmp_path / "w.csv"
+    rng = np.random.default_rng(1)
+    np.savetxt(w, rng.uniform(-0.5, 0.5, (4, 7)), delimiter=",")
+    p = run("solve", w, "--urdf", urdf, "--locked-joints", "panda_finger_joint1", "panda_finger_joint2=0",
+            "--torque", "--out", tmp_path / "t.csv")
+    assert p.returncode == 0, p.stderr
+    assert next(csv.reader((tmp_path / "t.csv").open()))[1] == "q_panda_joint1"
+
+
+def test_contact_problem_file_solves_and_checks(tmp_path):
+    """The rod of sec. IV.E standing on its end (tests/python/test_contact.py), |θ| <= 0.15 so that it can
+    rest at both ends: the CLI gives the API's timing, and the audit has a contact row."""
+    import sys as _sys
+
+    _sys.path.insert(0, str(pathlib.Path(__file__).parent))
+    from test_contact import rod_path
+
+    th = np.linspace(-0.15, 0.15, 101)
+    path = rod_path(th)
+    q, dq, ddq = path.evaluate(th)
+    problem = tmp_path / "rod.json"
+    problem.write_text(json.dumps({
+        "robot": {"urdf": str(DATA / "rod.urdf")},
+        "path": {"samples": {"s": th.tolist(), "q": q.tolist(), "dq": dq.tolist(), "ddq": ddq.tolist()}},
+        "grid": th.tolist(),
+        "contacts": {"points": [{"link": "rod", "point": [0, 0, -1], "normal": [0, 0, 1], "friction": 0.5}],
+                     "cone_edges": 4},
+    }))
+    robot = pp.RobotModel.from_urdf(DATA / "rod.urdf")
+    prob = pp.TimeScalingProblem(path, grid=th)
+    prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, -1], normal=[0, 0, 1], friction=0.5)], cone_edges=4)
+    expected = prob.solve()
+    assert expected.ok
+    out = tmp_path / "t.csv"
+    p = run("solve", problem, "--out", out)
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout)["duration"] == pytest.approx(expected.duration, rel=1e-12)
+    p = run("check", problem, out)
+    assert p.returncode == 0, p.stdout + p.stderr
+    contact = [ln for ln in p.stdout.splitlines() if ln.startswith("contact")]
+    assert len(contact) == 1 and contact[0].endswith("ok") and "force-distribution margin" in contact[0]
