@@ -13,14 +13,33 @@ import sys
 import numpy as np
 
 
-def _floats(text: str) -> np.ndarray:
-    return np.array([float(x) for x in text.split(",")], dtype=float)
+class _UsageError(Exception):
+    """A bad command-line value: reported on one line, exit status 2."""
+
+
+def _floats(text: str, option: str, n: int) -> np.ndarray:
+    """Comma-separated limits, each > 0 and finite; one value stands for all n joints."""
+    values = []
+    for i, item in enumerate(text.split(",")):
+        try:
+            v = float(item)
+        except ValueError:
+            raise _UsageError(f"{option}[{i}] = {item.strip()!r} is not a number") from None
+        if not (np.isfinite(v) and v > 0):
+            raise _UsageError(f"{option}[{i}] = {v} must be > 0 and finite")
+        values.append(v)
+    if len(values) not in (1, n):
+        raise _UsageError(f"{option} has {len(values)} values, expected 1 or {n} (one per joint)")
+    return np.array(values, dtype=float) * np.ones(n)
 
 
 def _solve(args: argparse.Namespace) -> int:
     import pathpace as pp
     from .io import load_waypoints_csv, result_to_dict, save_result_json, save_trajectory_csv
 
+    for option, value in (("--acc-factor", args.acc_factor), ("--torque-scale", args.torque_scale), ("--dt", args.dt)):
+        if not (np.isfinite(value) and value > 0):
+            raise _UsageError(f"{option} = {value} must be > 0 and finite")
     waypoints = load_waypoints_csv(args.waypoints)
     path = pp.CubicSplinePath(waypoints, knots=args.knots)
     prob = pp.TimeScalingProblem(path, grid=args.N)
@@ -32,9 +51,9 @@ def _solve(args: argparse.Namespace) -> int:
         vmax = robot.velocity_limits
         amax = args.acc_factor * vmax
     if args.vmax:
-        vmax = _floats(args.vmax) * np.ones(n)
+        vmax = _floats(args.vmax, "--vmax", n)
     if args.amax:
-        amax = _floats(args.amax) * np.ones(n)
+        amax = _floats(args.amax, "--amax", n)
     if vmax is not None:
         prob.add_velocity_limits(-vmax, vmax)
     if amax is not None:
@@ -72,7 +91,14 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--json", help="write the full result as JSON")
     args = parser.parse_args(argv)
     if args.command == "solve":
-        return _solve(args)
+        import pathpace as pp
+
+        # Bad input (ours, numpy's or the file system's) ends in one line on stderr, not a traceback.
+        try:
+            return _solve(args)
+        except (_UsageError, pp.Error, ValueError, TypeError, OSError) as e:
+            print(f"pathpace: error: {e}", file=sys.stderr)
+            return 2
     return 2
 
 

@@ -61,17 +61,27 @@ def save_trajectory_csv(traj: Trajectory, path: str | Path, dt: float, joint_nam
 
 def load_waypoints_csv(path: str | Path) -> np.ndarray:
     """A (K, n) array from a CSV of waypoints, one per row; a header row of names is skipped."""
+    from ._core import InvalidInputError
+
     rows = []
     with open(path, newline="") as f:
         for i, row in enumerate(csv.reader(f)):
             if not row:
                 continue
             try:
-                rows.append([float(x) for x in row])
+                values = [float(x) for x in row]
             except ValueError:
                 if i == 0:
                     continue  # header
-                from ._core import InvalidInputError
-
                 raise InvalidInputError(f"{path}: row {i + 1} is not numeric: {row}") from None
+            bad = [j for j, v in enumerate(values) if not math.isfinite(v)]
+            if bad:
+                raise InvalidInputError(f"{path}: row {i + 1}, column {bad[0] + 1} = {values[bad[0]]} must be finite")
+            if rows and len(values) != len(rows[0]):
+                raise InvalidInputError(
+                    f"{path}: row {i + 1} has {len(values)} values, the first waypoint has {len(rows[0])}"
+                )
+            rows.append(values)
+    if not rows:
+        raise InvalidInputError(f"{path}: no waypoints (expected one numeric row per waypoint)")
     return np.asarray(rows, dtype=float)

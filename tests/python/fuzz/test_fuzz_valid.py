@@ -1,0 +1,76 @@
+"""Random valid problems: every OPTIMAL timing is re-checked at every grid point by an independent
+checker (scipy's spline for p', p'', numpy for the limits), and T is recomputed from eq. (25)."""
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.interpolate import CubicSpline
+
+from fuzz_support import fuzz_settings, kinematic_violation, run_isolated
+
+import pathpace as pp
+
+
+@st.composite
+def problems(draw):
+    n = draw(st.integers(1, 4))
+    K = draw(st.integers(2, 7))
+    scale = 10.0 ** draw(st.integers(-2, 2))
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    waypoints = scale * rng.uniform(-1, 1, (K, n))
+    vmax = 10.0 ** rng.uniform(-1, 1, n)
+    amax = 10.0 ** rng.uniform(-1, 1, n)
+    N = draw(st.integers(2, 400))
+    return dict(waypoints=waypoints, vmax=vmax, amax=amax, N=N, method=draw(st.sampled_from(["auto", "slp"])))
+
+
+def solve(p):
+    path = pp.CubicSplinePath(p["waypoints"])
+    prob = pp.TimeScalingProblem(path, grid=p["N"])
+    prob.add_velocity_limits(-p["vmax"], p["vmax"])
+    prob.add_acceleration_limits(-p["amax"], p["amax"])
+    r = prob.solve(method=p["method"])
+    return dict(status=r.status.name, message=r.message, s=np.array(r.s), sdot=np.array(r.sdot),
+                duration=float(r.duration))
+
+
+@fuzz_settings(40)
+@given(problems())
+def test_random_valid_problems_are_optimal_and_meet_every_limit_at_every_grid_point(p):
+    kind, out = run_isolated(solve, p)
+    assert kind == "ok", out
+    # Rest to rest under finite positive limits is always feasible.
+    assert out["status"] == "OPTIMAL", out["message"]
+    s, sdot = out["s"], out["sdot"]
+    np.testing.assert_allclose(s, np.linspace(0, 1, p["N"] + 1), rtol=0, atol=1e-15)
+    assert np.all(sdot >= 0) and sdot[0] == 0 and sdot[-1] == 0
+    spline = CubicSpline(np.linspace(0, 1, len(p["waypoints"])), p["waypoints"])
+    dq, ddq = spline(s, 1), spline(s, 2)
+    viol = kinematic_violation(s, sdot, dq, ddq, p["vmax"], p["amax"])
+    assert viol <= 1e-6, f"a limit is exceeded by {viol:.3g} (relative)"
+    T = np.sum(2 * np.diff(s) / (sdot[:-1] + sdot[1:]))
+    assert out["duration"] == np.float64(out["duration"]) and abs(out["duration"] - T) <= 1e-9 * T
+
+
+def coarse_problem():
+    w = np.array([[0.27392337], [-0.46042657], [-0.91805295], [-0.96694473], [0.62654048]])
+    prob = pp.TimeScalingProblem(pp.CubicSplinePath(w), grid=6)
+    prob.add_velocity_limits([-6.69131006], [6.69131006])
+    prob.add_acceleration_limits([-1.63407337], [1.63407337])
+    r = prob.solve()
+    return r.status.name, r.message
+
+
+@pytest.mark.xfail(strict=True, reason="found by the long fuzz run: the solver reports INFEASIBLE although a slow "
+                                       "timing meets every row (sec. IV reachability, solver files of issue 8)")
+def test_coarse_grid_with_a_feasible_slow_timing_is_not_infeasible():
+    # Independent evidence that the problem is feasible: θ = 1e-3 at every interior grid point.
+    w = np.array([[0.27392337], [-0.46042657], [-0.91805295], [-0.96694473], [0.62654048]])
+    s = np.linspace(0, 1, 7)
+    spline = CubicSpline(np.linspace(0, 1, 5), w)
+    sdot = np.sqrt([0, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 0])
+    assert kinematic_violation(s, sdot, spline(s, 1), spline(s, 2), 6.69131006, 1.63407337) <= 0
+    kind, out = run_isolated(coarse_problem)
+    assert kind == "ok" and out[0] == "OPTIMAL", out
