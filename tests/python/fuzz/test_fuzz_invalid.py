@@ -158,7 +158,7 @@ def random_values(draw):
     ))
 
 
-@fuzz_settings(100)
+@fuzz_settings(250)
 @given(st.sampled_from(sorted(ENTRY_POINTS)), st.data())
 def test_random_bad_arguments_give_typed_errors_that_name_them(entry, data):
     arg = data.draw(st.sampled_from(sorted(ENTRY_POINTS[entry][1])))
