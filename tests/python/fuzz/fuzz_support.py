@@ -66,6 +66,7 @@ def run_isolated(fn, *args, timeout: float = 60.0):
                     "type_error": isinstance(e, TypeError),
                     "invalid_input": isinstance(e, pp.InvalidInputError),
                     "pp_error": isinstance(e, pp.Error),
+                    "os_error": isinstance(e, OSError),
                     "traceback": traceback.format_exc(limit=4),
                 })
             signal.alarm(0)

@@ -2,6 +2,7 @@
 error (pathpace.InvalidInputError, or a TypeError) whose message names the argument; never a crash,
 a hang, a pybind11 whole-signature TypeError or another exception type."""
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +13,7 @@ from hypothesis import strategies as st
 from fuzz_support import ChildCrashed, fuzz_settings, run_isolated
 
 import pathpace as pp
+from pathpace import io
 
 DATA = Path(__file__).resolve().parents[2] / "data"
 PENDULUM = pp.RobotModel.from_urdf(str(DATA / "pendulum.urdf"))  # 1 joint
@@ -80,6 +82,10 @@ ENTRY_POINTS = {
                      dict(robot=ROD, contacts=[CONTACT], cone_edges=4, friction_margin=0.0, min_normal_force=0.0,
                           torque_scale=1.0, torque_margin=0.0, drift_tolerance=1e9)),
     "add_constraint": (lambda **kw: problem().add_constraint(**kw), dict(constraint=pp.VelocityLimits([-1.0], [1.0]))),
+    "result_to_dict": (io.result_to_dict, dict(res=PROBLEM.solve())),
+    "trajectory_to_dict": (io.trajectory_to_dict, dict(traj=TRAJ, dt=0.1)),
+    "save_trajectory_csv": (io.save_trajectory_csv, dict(traj=TRAJ, path=os.devnull, dt=0.1, joint_names=["a"])),
+    "load_waypoints_csv": (io.load_waypoints_csv, dict(path=str(DATA / "waypoints_2x1.csv"))),
     "VelocityLimits": (pp.VelocityLimits, dict(vmin=[-1.0], vmax=[1.0])),
     "AccelerationLimits": (pp.AccelerationLimits, dict(amin=[-1.0], amax=[1.0])),
     "LinearConstraint": (pp.LinearConstraint, dict(A=ROWS, B=ROWS, C=0 * ROWS, lo=-ROWS, hi=ROWS, label="x")),
@@ -112,18 +118,23 @@ def call_each(entry, arg):
         except BaseException as e:  # noqa: BLE001 - judged by the parent
             out.append((i, "raised", {"type": type(e).__module__ + "." + type(e).__qualname__, "message": str(e),
                                       "type_error": isinstance(e, TypeError),
-                                      "invalid_input": isinstance(e, pp.InvalidInputError)}))
+                                      "invalid_input": isinstance(e, pp.InvalidInputError),
+                                      "os_error": isinstance(e, OSError)}))
     return out
 
 
 # Messages may name an argument by a more precise name: an index into it, or an item's field.
-ALIASES = {"waypoints": ["waypoint"], "coefficients": ["coefficients", "piece"], "xml": ["urdf"], "path": ["urdf", "file"]}
+ALIASES = {"waypoints": ["waypoint"], "coefficients": ["coefficients", "piece"], "xml": ["urdf"],
+           "path": ["urdf", "file", "No such file"]}
 
 
 def check(entry, arg, value, kind, out):
     if kind == "ok":
         return
-    assert out["type_error"] or out["invalid_input"], f"{entry}({arg}={value!r:.80}): {out['type']}: {out['message']}"
+    # A file path that cannot be opened is the file system's OSError, as everywhere in Python.
+    file_error = arg == "path" and out.get("os_error", False)
+    assert out["type_error"] or out["invalid_input"] or file_error, \
+        f"{entry}({arg}={value!r:.80}): {out['type']}: {out['message']}"
     msg = out["message"]
     assert "incompatible function arguments" not in msg and "C++ type" not in msg, msg
     assert any(name in msg for name in [arg] + ALIASES.get(arg, [])), \
