@@ -89,16 +89,17 @@ def run_isolated(fn, *args, timeout: float = 60.0):
     return pickle.loads(data)
 
 
-def kinematic_violation(s, sdot, dq, ddq, vmax, amax):
-    """Largest violation, relative to the limit, of |q̇| <= vmax and |q̈| <= amax at every grid point,
-    with s̈ of the interval on each side (eq. 26). Written from eq. (10)-(11) and (24)-(25): q̇ = p' ṡ,
-    q̈ = p'' ṡ² + p' s̈, s̈ constant on each interval. Symmetric limits; dq, ddq from scipy."""
+def kinematic_violation(s, sdot, dq, ddq, vmax, amax, amin=None):
+    """Largest violation, relative to the limit, of |q̇| <= vmax and amin <= q̈ <= amax (amin = -amax
+    when not given) at every grid point, with s̈ of the interval on each side (eq. 26). Written from
+    eq. (10)-(11) and (24)-(25): q̇ = p' ṡ, q̈ = p'' ṡ² + p' s̈, s̈ constant on each interval."""
+    amin = -np.asarray(amax, dtype=float) if amin is None else np.asarray(amin, dtype=float)
     theta = np.asarray(sdot, dtype=float) ** 2
     u = np.diff(theta) / (2 * np.diff(s))
     worst = 0.0
     v = np.abs(dq * np.asarray(sdot)[:, None]) / vmax - 1.0
     worst = max(worst, float(v.max()))
     for ks, us in ((np.arange(len(u)), u), (np.arange(1, len(s)), u)):
-        a = np.abs(ddq[ks] * theta[ks, None] + dq[ks] * us[:, None]) / amax - 1.0
-        worst = max(worst, float(a.max()))
+        qdd = ddq[ks] * theta[ks, None] + dq[ks] * us[:, None]
+        worst = max(worst, float(np.max(qdd / amax - 1.0)), float(np.max(qdd / amin - 1.0)))
     return worst

@@ -13,6 +13,17 @@ import pathpace as pp
 
 
 @st.composite
+def mixed_scale_problems(draw):
+    """Per-joint limits over many decades, asymmetric acceleration limits (amin != -amax)."""
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    n = 2
+    return dict(waypoints=rng.uniform(-1, 1, (5, n)), vmax=10.0 ** rng.uniform(-3, 9, n),
+                amax=10.0 ** rng.uniform(-6, 14, n), amin=-(10.0 ** rng.uniform(-6, 14, n)),
+                N=draw(st.integers(20, 300)), method="auto")
+
+
+@st.composite
 def problems(draw, min_N=20, max_N=400):
     n = draw(st.integers(1, 4))
     K = draw(st.integers(2, 7))
@@ -30,7 +41,7 @@ def solve(p):
     path = pp.CubicSplinePath(p["waypoints"])
     prob = pp.TimeScalingProblem(path, grid=p["N"])
     prob.add_velocity_limits(-p["vmax"], p["vmax"])
-    prob.add_acceleration_limits(-p["amax"], p["amax"])
+    prob.add_acceleration_limits(p.get("amin", -p["amax"]), p["amax"])
     r = prob.solve(method=p["method"])
     return dict(status=r.status.name, message=r.message, s=np.array(r.s), sdot=np.array(r.sdot),
                 duration=float(r.duration))
@@ -50,6 +61,17 @@ def test_random_valid_problems_on_coarse_grids(p):
     check_optimal_and_feasible(p)
 
 
+# Measured over seeds 0..299 of mixed_scale_problems: 30 of 300 break a limit or fail, e.g. OPTIMAL with
+# |q̈| 2.9x its limit (vmax ~ (3e8, 4e2), amax ~ (1e8, 7e12), amin ~ (-2e-6, -1e-6)), ITERATION_LIMIT
+# "the timing is feasible" with 3e3x. The solver's tolerances are absolute (sec. IV rows normalised
+# per grid point, LP tolerances): sequenced after the solver rewrite (issue 8).
+@pytest.mark.xfail(strict=True, reason="limits spanning many decades break the solver's absolute tolerances")
+@fuzz_settings(60)
+@given(mixed_scale_problems())
+def test_random_mixed_scale_problems(p):
+    check_optimal_and_feasible(p)
+
+
 def check_optimal_and_feasible(p):
     kind, out = run_isolated(solve, p)
     assert kind == "ok", out
@@ -62,7 +84,7 @@ def check_optimal_and_feasible(p):
     assert np.all(sdot >= 0) and sdot[0] == 0 and sdot[-1] == 0
     spline = CubicSpline(np.linspace(0, 1, len(p["waypoints"])), p["waypoints"])
     dq, ddq = spline(s, 1), spline(s, 2)
-    viol = kinematic_violation(s, sdot, dq, ddq, p["vmax"], p["amax"])
+    viol = kinematic_violation(s, sdot, dq, ddq, p["vmax"], p["amax"], p.get("amin"))
     assert viol <= 1e-6, f"a limit is exceeded by {viol:.3g} (relative)"
     T = np.sum(2 * np.diff(s) / (sdot[:-1] + sdot[1:]))
     assert out["duration"] == np.float64(out["duration"]) and abs(out["duration"] - T) <= 1e-9 * T
