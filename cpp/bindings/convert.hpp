@@ -47,8 +47,7 @@ inline py::array_t<double, py::array::c_style | py::array::forcecast> as_float_a
 
 /// A real number: int, float, a numpy scalar or a 0-d array. Not None, str, bool or a sequence.
 inline double to_double(py::handle h, const std::string& name) {
-  if (h.is_none() || py::isinstance<py::str>(h) || py::isinstance<py::bytes>(h) || py::isinstance<py::bool_>(h) ||
-      PyBool_Check(h.ptr()))
+  if (h.is_none() || py::isinstance<py::str>(h) || py::isinstance<py::bytes>(h) || PyBool_Check(h.ptr()))
     type_error(name, "a number", h);
   if (py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h)) {
     const double v = PyFloat_AsDouble(h.ptr());

@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import os
 import pickle
+import shutil
 import signal
+import tempfile
 import traceback
 
 import numpy as np
@@ -48,12 +50,14 @@ def run_isolated(fn, *args, timeout: float = 60.0):
     """fn(*args) in a forked child. Returns ("ok", value) or ("raised", info) where info is a dict with
     the exception's type name, message and its kind (TypeError, InvalidInputError, Error). A child
     that dies (signal, sanitizer abort) or runs past `timeout` seconds raises ChildCrashed."""
+    scratch = tempfile.mkdtemp(prefix="pathpace-fuzz-")  # files a bad "path" argument may create land here
     r, w = os.pipe()
     pid = os.fork()
     if pid == 0:  # the child: never return into pytest
         os.close(r)
         code = 0
         try:
+            os.chdir(scratch)
             signal.alarm(int(max(1, timeout)))
             try:
                 out = ("ok", fn(*args))
@@ -80,6 +84,7 @@ def run_isolated(fn, *args, timeout: float = 60.0):
     with os.fdopen(r, "rb") as f:
         data = f.read()
     _, status = os.waitpid(pid, 0)
+    shutil.rmtree(scratch, ignore_errors=True)
     if os.WIFSIGNALED(status):
         sig = os.WTERMSIG(status)
         what = "timed out" if sig == signal.SIGALRM else f"died with signal {signal.Signals(sig).name}"
