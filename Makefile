@@ -1,6 +1,7 @@
 # Two entry points for a newcomer (see README.md); each installs what is missing first.
 #   make demo   - solve a real problem (Panda arm path) and print the timing
-#   make test   - build the library, run the C++ tests (ctest) and the Python tests (pytest)
+#   make test   - build the library, run the C++ tests (ctest) and the Python tests (pytest), then
+#                 both once more under ASan + UBSan (build/asan)
 #   make bench  - peer comparison against toppra; writes bench/README.md's table
 #   make wheel  - build/wheel/dist/pathpace-*-manylinux_*.whl, installable without the Debian -dev packages
 SHELL := /bin/bash
@@ -9,7 +10,7 @@ PY := $(VENV)/bin/python
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 JOBS ?= 2
 
-.PHONY: setup cpp python wheel test test-cpp test-python test-packaging test-wheel demo bench clean
+.PHONY: setup cpp python wheel test test-cpp test-python test-packaging test-wheel test-sanitize fuzz-long demo bench clean
 
 setup:
 	@bash scripts/setup.sh
@@ -40,7 +41,15 @@ wheel: python
 test-wheel: wheel
 	@bash tests/packaging/wheel_test.sh
 
-test: test-cpp test-packaging test-python test-wheel
+# ASan + UBSan build of the library, its C++ tests and the extension in build/asan (scripts/sanitize.sh).
+test-sanitize: setup
+	@JOBS=$(JOBS) bash scripts/sanitize.sh
+
+# The fuzz suite with 20x the examples of `make test` and a fresh seed (PATHPACE_FUZZ_SEED to repeat).
+fuzz-long: python
+	@PATHPACE_FUZZ=long $(PY) -m pytest -q tests/python/fuzz
+
+test: test-cpp test-packaging test-python test-wheel test-sanitize
 
 demo: python
 	@$(PY) examples/demo.py

@@ -120,10 +120,11 @@ void bind_paths(py::module_& m) {
       });
 
   py::class_<CubicSplinePath, PiecewisePolynomialPath, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath")
-      .def(py::init([](py::handle waypoints, py::object knots, const std::string& boundary, py::handle start_derivative,
-                       py::handle end_derivative, double s_begin, double s_end) {
+      .def(py::init([](py::handle waypoints, py::object knots, py::handle boundary, py::handle start_derivative,
+                       py::handle end_derivative, py::handle s_begin_arg, py::handle s_end_arg) {
              const Eigen::MatrixXd w = to_matrix(waypoints, "waypoints");
-             const SplineBoundary b = parse_boundary(boundary);
+             const SplineBoundary b = parse_boundary(to_string_arg(boundary, "boundary"));
+             const double s_begin = to_double(s_begin_arg, "s_begin"), s_end = to_double(s_end_arg, "s_end");
              const Eigen::VectorXd d0 = optional_vector(start_derivative, "start_derivative");
              const Eigen::VectorXd d1 = optional_vector(end_derivative, "end_derivative");
              if (py::isinstance<py::str>(knots)) {
@@ -134,6 +135,7 @@ void bind_paths(py::module_& m) {
                else throw InvalidInput("knots = '" + k + "' must be 'uniform', 'chord' or an array of s");
                return std::make_shared<CubicSplinePath>(w, spacing, b, s_begin, s_end, d0, d1);
              }
+             if (knots.is_none()) type_error("knots", "'uniform', 'chord' or an array of s", knots);
              return std::make_shared<CubicSplinePath>(w, to_vector(knots, "knots"), b, d0, d1);
            }),
            "waypoints"_a, "knots"_a = "uniform", "boundary"_a = "not-a-knot", "start_derivative"_a = py::none(),

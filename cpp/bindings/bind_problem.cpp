@@ -5,6 +5,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <mutex>
+#include <unordered_map>
+
 #include "convert.hpp"
 #include "pathpace/auto_grid.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
@@ -63,6 +66,53 @@ std::shared_ptr<T> optional_ptr(py::handle h) {
   return h.is_none() ? std::shared_ptr<T>() : h.cast<std::shared_ptr<T>>();
 }
 
+// Python threads may share a problem: solve() releases the GIL while it reads the rows that add_*()
+// appends to (and add_torque_limits / add_contacts release it while they evaluate), so an add during a
+// solve freed the rows under the solver. A problem is therefore either read (any number of solves,
+// feasible sets) or modified (one add at a time), never both: the second caller gets pathpace.Error
+// at once instead of waiting (plain Python code that does this has a race it should know about).
+class ProblemUse {
+ public:
+  enum Kind { kRead, kWrite };
+  ProblemUse(const TimeScalingProblem& p, Kind kind, const char* what) : p_(&p), kind_(kind) {
+    std::lock_guard<std::mutex> lock(mutex());
+    auto& [readers, writers] = uses()[p_];
+    if (writers > 0 || (kind == kWrite && readers > 0)) {
+      if (readers == 0 && writers == 0) uses().erase(p_);
+      throw Error(std::string(what) + ": this TimeScalingProblem is being " + (writers > 0 ? "modified" : "solved") +
+                  " in another thread; add every constraint before solving from several threads");
+    }
+    (kind == kWrite ? writers : readers) += 1;
+  }
+  ~ProblemUse() {
+    std::lock_guard<std::mutex> lock(mutex());
+    auto it = uses().find(p_);
+    (kind_ == kWrite ? it->second.second : it->second.first) -= 1;
+    if (it->second.first == 0 && it->second.second == 0) uses().erase(it);
+  }
+  ProblemUse(const ProblemUse&) = delete;
+  ProblemUse& operator=(const ProblemUse&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::unordered_map<const TimeScalingProblem*, std::pair<int, int>>& uses() {
+    static std::unordered_map<const TimeScalingProblem*, std::pair<int, int>> u;
+    return u;
+  }
+  const TimeScalingProblem* p_;
+  Kind kind_;
+};
+
+// Adds a constraint with the GIL released (its rows may take long to evaluate), as the only user.
+void add_released(TimeScalingProblem& p, std::shared_ptr<Constraint> c, const char* what) {
+  ProblemUse use(p, ProblemUse::kWrite, what);
+  py::gil_scoped_release release;
+  p.add_constraint(std::move(c));
+}
+
 py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
@@ -111,10 +161,9 @@ void bind_constraints(py::module_& m) {
                       }));
 
   py::class_<LinearConstraint, Constraint, std::shared_ptr<LinearConstraint>>(m, "LinearConstraint")
-      .def(py::init([](py::handle A, py::handle B, py::handle C, py::handle lo, py::handle hi,
-                       const std::string& label) {
+      .def(py::init([](py::handle A, py::handle B, py::handle C, py::handle lo, py::handle hi, py::handle label) {
              return std::make_shared<LinearConstraint>(rows_arg(A, "A"), rows_arg(B, "B"), rows_arg(C, "C"),
-                                                       rows_arg(lo, "lo"), rows_arg(hi, "hi"), label);
+                                                       rows_arg(lo, "lo"), rows_arg(hi, "hi"), to_string_arg(label, "label"));
            }),
            "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear")
       .def(py::pickle([](const LinearConstraint& c) { return py::make_tuple(c.A(), c.B(), c.C(), c.lo(), c.hi(), c.label()); },
@@ -145,15 +194,18 @@ void bind_problem(py::module_& m) {
       .def_readonly("vertices", &FeasibleSet::vertices, "(v, 2) counter-clockwise vertices (x, u)")
       .def_readonly("empty", &FeasibleSet::empty)
       .def_readonly("bounded", &FeasibleSet::bounded)
-      .def("contains", &FeasibleSet::contains, "x"_a, "u"_a, "tol"_a = 1e-9)
+      .def("contains", [](const FeasibleSet& f, py::handle x, py::handle u, py::handle tol) {
+        return f.contains(to_double(x, "x"), to_double(u, "u"), to_double(tol, "tol"));
+      }, "x"_a, "u"_a, "tol"_a = 1e-9)
       .def("__repr__", [](const FeasibleSet& f) {
         return "<FeasibleSet k=" + std::to_string(f.index) + " halfplanes=" + std::to_string(f.halfplanes.rows()) +
                (f.empty ? " empty" : "") + ">";
       });
 
   py::class_<Trajectory, std::shared_ptr<Trajectory>>(m, "Trajectory", "q(t) = p(s(t)) with s(t) piecewise quadratic (eq. 24).")
-      .def(py::init([](std::shared_ptr<Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot) {
-             return std::make_shared<Trajectory>(std::move(path), std::move(s), std::move(sdot));
+      .def(py::init([](py::handle path, py::handle s, py::handle sdot) {
+             return std::make_shared<Trajectory>(to_object<Path>(path, "path", "Path"), to_vector(s, "s"),
+                                                 to_vector(sdot, "sdot"));
            }),
            "path"_a, "s"_a, "sdot"_a)
       .def_property_readonly("duration", &Trajectory::duration)
@@ -187,7 +239,23 @@ void bind_problem(py::module_& m) {
       .def("evaluate", [](const Trajectory& tr, py::handle t) {
         return py::make_tuple(at_times(tr, t, 0), at_times(tr, t, 1), at_times(tr, t, 2));
       }, "t"_a, "(q, qd, qdd) at each t")
-      .def("sample", [](const Trajectory& tr, double dt) {
+      .def("sample", [](const Trajectory& tr, py::handle dt_arg, py::handle max_memory_arg) {
+        const double dt = to_double(dt_arg, "dt");
+        const double max_memory = to_double(max_memory_arg, "max_memory");
+        if (!(max_memory > 0.0)) throw InvalidInput("max_memory = " + std::to_string(max_memory) + " must be > 0 (bytes)");
+        if (dt > 0.0 && std::isfinite(dt)) {
+          // t, q, qd and qdd as doubles, plus the path's own p, p', p'' while evaluating: refuse before allocating.
+          const double samples = std::floor(tr.duration() / dt) + 2.0;
+          const double bytes = samples * (1.0 + 6.0 * tr.path()->dof()) * 8.0;
+          if (bytes > max_memory) {
+            char msg[320];
+            std::snprintf(msg, sizeof msg,
+                          "dt = %g gives %.3g samples of a %d-coordinate trajectory of duration %g: about %.3g GB, more "
+                          "than max_memory = %.3g GB; use a larger dt or raise max_memory",
+                          dt, samples, tr.path()->dof(), tr.duration(), bytes / 1e9, max_memory / 1e9);
+            throw InvalidInput(msg);
+          }
+        }
         const Eigen::VectorXd t = tr.sample_times(dt);
         Eigen::MatrixXd q, qd, qdd;
         {
@@ -195,8 +263,8 @@ void bind_problem(py::module_& m) {
           tr.evaluate(t, q, qd, qdd);
         }
         return py::dict("t"_a = t, "q"_a = q, "qd"_a = qd, "qdd"_a = qdd);
-      }, "dt"_a, "uniform resampling: dict of t (m,), q, qd, qdd (m, n)")
-      .def("sample_times", &Trajectory::sample_times, "dt"_a)
+      }, "dt"_a, "max_memory"_a = 1e9, "uniform resampling: dict of t (m,), q, qd, qdd (m, n)")
+      .def("sample_times", [](const Trajectory& tr, py::handle dt) { return tr.sample_times(to_double(dt, "dt")); }, "dt"_a)
       .def("__call__", [](const Trajectory& tr, py::handle t, int order) {
         if (order < 0 || order > 2) throw InvalidInput("order = " + std::to_string(order) + " must be 0, 1 or 2");
         return at_times(tr, t, order);
@@ -228,7 +296,8 @@ void bind_problem(py::module_& m) {
                         tr->set_contacts(optional_ptr<ContactConstraint>(t[4]));
                         return tr;
                       }))
-      .def("torques", [](const Trajectory& tr, py::handle t, std::shared_ptr<RobotModel> robot) -> py::object {
+      .def("torques", [](const Trajectory& tr, py::handle t, py::handle robot_arg) -> py::object {
+        const auto robot = robot_arg.is_none() ? nullptr : to_object<RobotModel>(robot_arg, "robot", "RobotModel");
         const RobotModel* r = robot ? robot.get() : tr.robot().get();
         if (!r) throw InvalidInput("robot: this trajectory was not shaped by torque limits; pass robot=");
         const Eigen::VectorXd tv = to_vector(t, "t");
@@ -239,7 +308,7 @@ void bind_problem(py::module_& m) {
         }
         if (is_scalar(t)) return py::cast(Eigen::VectorXd(tau.row(0).transpose()));
         return py::cast(tau);
-      }, "t"_a, "robot"_a = nullptr, "τ(t) by inverse dynamics (the problem's robot unless one is given)");
+      }, "t"_a, "robot"_a = py::none(), "τ(t) by inverse dynamics (the problem's robot unless one is given)");
 
   py::class_<Result>(m, "Result")
       .def_readonly("status", &Result::status)
@@ -309,11 +378,11 @@ void bind_problem(py::module_& m) {
       });
 
   py::class_<TimeScalingProblem, std::shared_ptr<TimeScalingProblem>>(m, "TimeScalingProblem")
-      .def(py::init([](std::shared_ptr<Path> path, py::object grid, double grid_tolerance) {
+      .def(py::init([](py::handle path_arg, py::object grid, double grid_tolerance) {
+             auto path = to_object<Path>(path_arg, "path", "Path");
              if (py::isinstance<py::str>(grid)) {
                const std::string g = grid.cast<std::string>();
                if (g != "auto") throw InvalidInput("grid = '" + g + "' must be 'auto', an int or an array of s");
-               if (!path) throw InvalidInput("path must be a pathpace Path, not None");
                Eigen::VectorXd s;
                {
                  py::gil_scoped_release release;
@@ -321,14 +390,20 @@ void bind_problem(py::module_& m) {
                }
                return std::make_shared<TimeScalingProblem>(std::move(path), std::move(s));
              }
-             if (py::isinstance<py::int_>(grid)) {
-               const long long n = grid.cast<long long>();
-               if (n < 1 || n > 100000000)
-                 throw InvalidInput("grid = " + std::to_string(n) + " must be in [1, 1e8] (number of intervals N)");
+             if (py::isinstance<py::float_>(grid) || PyBool_Check(grid.ptr()))
+               throw InvalidInput("grid must be an int (number of intervals) or an array of s");
+             if (grid.is_none())
+               type_error("grid", "an int (number of intervals), an array of s or 'auto'", grid);
+             if (PyIndex_Check(grid.ptr()) && !py::isinstance<py::array>(grid)) {
+               long long n = 0;
+               try {
+                 n = to_int(grid, "grid", 1, 100000000);
+               } catch (const InvalidInput&) {
+                 throw InvalidInput("grid = " + py::str(grid).cast<std::string>() +
+                                    " must be in [1, 1e8] (number of intervals N)");
+               }
                return std::make_shared<TimeScalingProblem>(std::move(path), static_cast<int>(n));
              }
-             if (py::isinstance<py::float_>(grid) || py::isinstance<py::bool_>(grid))
-               throw InvalidInput("grid must be an int (number of intervals) or an array of s");
              Eigen::VectorXd g = to_vector(grid, "grid");
              return std::make_shared<TimeScalingProblem>(std::move(path), std::move(g));
            }),
@@ -337,52 +412,66 @@ void bind_problem(py::module_& m) {
            "(pathpace.auto_grid(path, grid_tolerance): refined where the path bends; the N used is "
            "problem.intervals).")
       .def("add_velocity_limits", [](TimeScalingProblem& p, py::handle vmin, py::handle vmax) {
+        ProblemUse use(p, ProblemUse::kWrite, "add_velocity_limits");
         p.add_velocity_limits(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"));
       }, "vmin"_a, "vmax"_a)
       .def("add_acceleration_limits", [](TimeScalingProblem& p, py::handle amin, py::handle amax) {
+        ProblemUse use(p, ProblemUse::kWrite, "add_acceleration_limits");
         p.add_acceleration_limits(to_vector(amin, "amin"), to_vector(amax, "amax"));
       }, "amin"_a, "amax"_a)
       .def("add_linear_constraint", [](TimeScalingProblem& p, py::handle A, py::handle B, py::handle C, py::handle lo,
-                                       py::handle hi, const std::string& label) {
+                                       py::handle hi, py::handle label) {
+        ProblemUse use(p, ProblemUse::kWrite, "add_linear_constraint");
         p.add_linear_constraint(rows_arg(A, "A"), rows_arg(B, "B"), rows_arg(C, "C"), rows_arg(lo, "lo"),
-                                rows_arg(hi, "hi"), label);
+                                rows_arg(hi, "hi"), to_string_arg(label, "label"));
       }, "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear")
-      .def("add_torque_limits", [](TimeScalingProblem& p, std::shared_ptr<RobotModel> robot, py::object tau_min,
-                                   py::object tau_max, double scale, double margin) {
+      .def("add_torque_limits", [](TimeScalingProblem& p, py::handle robot, py::object tau_min,
+                                   py::object tau_max, py::handle scale, py::handle margin) {
         Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
         Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
-        auto c = std::make_shared<TorqueLimits>(std::move(robot), lo, hi, scale, margin);
-        py::gil_scoped_release release;
-        p.add_constraint(std::move(c));
+        auto c = std::make_shared<TorqueLimits>(to_object<RobotModel>(robot, "robot", "RobotModel"), lo, hi,
+                                                to_double(scale, "scale"), to_double(margin, "margin"));
+        add_released(p, std::move(c), "add_torque_limits");
       }, "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0,
          "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
-      .def("add_contacts", [](TimeScalingProblem& p, std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts,
-                              int cone_edges, double friction_margin, double min_normal_force, double torque_scale,
-                              double torque_margin, double drift_tolerance) {
+      .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
+                              py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
+                              py::handle torque_margin, py::handle drift_tolerance_arg) {
         auto c = std::make_shared<ContactConstraint>(
-            std::move(robot), std::move(contacts),
-            contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+            to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"),
+            contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+        const double drift_tolerance = to_double(drift_tolerance_arg, "drift_tolerance");
+        if (!(drift_tolerance >= 0.0))
+          throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
+        if (p.samples().dof() != c->robot()->nq())
+          throw InvalidInput("path has " + std::to_string(p.samples().dof()) + " coordinates, robot '" +
+                             c->robot()->name() + "' has " + std::to_string(c->robot()->nq()) + " joints");
         int which = -1;
         const double drift = c->max_drift(p.samples(), &which);
-        if (drift > drift_tolerance) {
+        if (drift > drift_tolerance && which >= 0) {
           // The path must keep every contact in place (c(p(s)) = d); say which one it does not.
           const std::string msg = "contact " + std::to_string(which) + " (link '" + c->contacts()[static_cast<size_t>(which)].link +
                                   "') moves by " + std::to_string(drift) + " m along the path: the path does not keep it in place";
           py::module_::import("warnings").attr("warn")(msg, py::module_::import("builtins").attr("UserWarning"), 2);
         }
-        py::gil_scoped_release release;
-        p.add_constraint(std::move(c));
+        add_released(p, std::move(c), "add_contacts");
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6,
          "Torque limits with frictional contact forces (eq. 18), projected to (sdot^2, sddot) per grid point. "
          "Includes the torque limits: do not also add_torque_limits.")
-      .def("add_constraint", [](TimeScalingProblem& p, std::shared_ptr<Constraint> c) {
-        py::gil_scoped_release release;
-        p.add_constraint(std::move(c));
+      .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
+        add_released(p, to_object<Constraint>(c, "constraint", "Constraint"), "add_constraint");
       }, "constraint"_a)
-      .def("set_boundary_speeds", &TimeScalingProblem::set_boundary_speeds, "sdot_begin"_a = 0.0, "sdot_end"_a = 0.0)
-      .def("set_boundary_velocities", [](TimeScalingProblem& p, py::handle qd_begin, py::handle qd_end, double tolerance) {
-        p.set_boundary_velocities(to_vector(qd_begin, "qd_begin"), to_vector(qd_end, "qd_end"), tolerance);
+      .def("set_boundary_speeds", [](TimeScalingProblem& p, py::handle sdot_begin, py::handle sdot_end) {
+        const double b = to_double(sdot_begin, "sdot_begin"), e = to_double(sdot_end, "sdot_end");
+        ProblemUse use(p, ProblemUse::kWrite, "set_boundary_speeds");
+        p.set_boundary_speeds(b, e);
+      }, "sdot_begin"_a = 0.0, "sdot_end"_a = 0.0)
+      .def("set_boundary_velocities", [](TimeScalingProblem& p, py::handle qd_begin, py::handle qd_end, py::handle tolerance) {
+        const Eigen::VectorXd b = to_vector(qd_begin, "qd_begin"), e = to_vector(qd_end, "qd_end");
+        const double tol = to_double(tolerance, "tolerance");
+        ProblemUse use(p, ProblemUse::kWrite, "set_boundary_velocities");
+        p.set_boundary_velocities(b, e, tol);
       }, "qd_begin"_a, "qd_end"_a, "tolerance"_a = 1e-6,
          "Boundary conditions as joint velocities q̇ (rad/s or m/s) at s_begin and s_end.\n\n"
          "q̇ = p'(s) ṡ (eq. 10): each must be a non-negative multiple of the path tangent p'; the speeds\n"
@@ -414,13 +503,19 @@ void bind_problem(py::module_& m) {
       .def_property_readonly("intervals", &TimeScalingProblem::intervals)
       .def_property_readonly("path", [](const TimeScalingProblem& p) { return std::const_pointer_cast<Path>(p.path()); })
       .def_property_readonly("constraints", [](const TimeScalingProblem& p) {
+        ProblemUse use(p, ProblemUse::kRead, "constraints");
         std::vector<std::shared_ptr<Constraint>> out;
         for (const auto& c : p.constraints()) out.push_back(std::const_pointer_cast<Constraint>(c));
         return out;
       })
-      .def("feasible_set", &TimeScalingProblem::feasible_set, "k"_a)
+      .def("feasible_set", [](const TimeScalingProblem& p, py::handle k) {
+        const long long i = to_int(k, "k", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+        ProblemUse use(p, ProblemUse::kRead, "feasible_set");
+        return p.feasible_set(static_cast<Eigen::Index>(i));
+      }, "k"_a)
       .def("relaxation", [](const TimeScalingProblem& p, double max_scale, double tolerance, const std::string& guarantee) {
         const Guarantee g = parse_guarantee(guarantee);
+        ProblemUse use(p, ProblemUse::kRead, "relaxation");
         py::gil_scoped_release release;
         return p.relaxation(max_scale, tolerance, g);
       }, "max_scale"_a = 1e3, "tolerance"_a = 1e-3, "guarantee"_a = "grid",
@@ -429,24 +524,34 @@ void bind_problem(py::module_& m) {
          "together when there are several): the family's limit intervals widened by that factor about zero, the "
          "others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor; "
          "inf if `max_scale` is not enough. 1.0 for every family of a feasible problem.")
-      .def("restarted", &TimeScalingProblem::restarted, "s0"_a, "sdot0"_a,
+      .def("restarted", [](const TimeScalingProblem& p, py::handle s0, py::handle sdot0) {
+        const double a = to_double(s0, "s0"), b = to_double(sdot0, "sdot0");
+        ProblemUse use(p, ProblemUse::kRead, "restarted");
+        py::gil_scoped_release release;
+        return p.restarted(a, b);
+      }, "s0"_a, "sdot0"_a,
            "The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0): the "
            "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and end speed. Its result "
            "starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.")
-      .def("solve", [](const TimeScalingProblem& p, const std::string& method, int max_iterations,
-                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance, bool explain,
-                       const std::string& guarantee, int audit_points, double audit_tolerance, int max_audit_rounds) {
+      .def("solve", [](const TimeScalingProblem& p, py::handle method, py::handle max_iterations,
+                       py::handle tolerance, py::handle initial_trust_region, py::handle lp_feasibility_tolerance,
+                       py::handle explain, py::handle guarantee, py::handle audit_points, py::handle audit_tolerance,
+                       py::handle max_audit_rounds) {
         SolverOptions o;
-        o.explain = explain;
-        o.guarantee = parse_guarantee(guarantee);
-        o.audit_points = audit_points;
-        o.audit_tolerance = audit_tolerance;
-        o.max_audit_rounds = max_audit_rounds;
-        o.method = parse_method(method);
-        o.max_iterations = max_iterations;
-        o.tolerance = tolerance;
-        o.initial_trust_region = initial_trust_region;
-        o.lp_feasibility_tolerance = lp_feasibility_tolerance;
+        o.explain = to_bool(explain, "explain");
+        o.guarantee = parse_guarantee(to_string_arg(guarantee, "guarantee"));
+        o.audit_points = static_cast<int>(to_int(audit_points, "audit_points", std::numeric_limits<int>::min(),
+                                                 std::numeric_limits<int>::max()));
+        o.audit_tolerance = to_double(audit_tolerance, "audit_tolerance");
+        o.max_audit_rounds = static_cast<int>(to_int(max_audit_rounds, "max_audit_rounds", std::numeric_limits<int>::min(),
+                                                     std::numeric_limits<int>::max()));
+        o.method = parse_method(to_string_arg(method, "method"));
+        o.max_iterations = static_cast<int>(
+            to_int(max_iterations, "max_iterations", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+        o.tolerance = to_double(tolerance, "tolerance");
+        o.initial_trust_region = to_double(initial_trust_region, "initial_trust_region");
+        o.lp_feasibility_tolerance = to_double(lp_feasibility_tolerance, "lp_feasibility_tolerance");
+        ProblemUse use(p, ProblemUse::kRead, "solve");
         py::gil_scoped_release release;
         return p.solve(o);
       }, "method"_a = "auto", "max_iterations"_a = SolverOptions().max_iterations,

@@ -19,12 +19,16 @@ namespace pathpace::python {
 
 namespace {
 
-RobotModelOptions options(bool floating_base, py::object locked, py::handle gravity) {
+RobotModelOptions options(py::handle floating_base, py::object locked, py::handle gravity) {
   RobotModelOptions o;
-  o.floating_base = floating_base;
+  o.floating_base = to_bool(floating_base, "floating_base");
   if (!locked.is_none()) {
-    if (!py::isinstance<py::dict>(locked)) throw InvalidInput("locked_joints must be a dict {joint name: value}");
-    for (auto item : locked.cast<py::dict>()) o.locked_joints[item.first.cast<std::string>()] = item.second.cast<double>();
+    if (!py::isinstance<py::dict>(locked)) type_error("locked_joints", "a dict {joint name: value}", locked);
+    for (auto item : locked.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(item.first)) type_error("locked_joints key", "a joint name (str)", item.first);
+      const std::string joint = item.first.cast<std::string>();
+      o.locked_joints[joint] = to_double(item.second, "locked_joints['" + joint + "']");
+    }
   }
   const Eigen::VectorXd g = to_vector(gravity, "gravity");
   if (g.size() != 3) throw InvalidInput("gravity has size " + std::to_string(g.size()) + ", expected 3");
@@ -98,23 +102,26 @@ RobotModel::Source state_source(const py::tuple& t) {
 
 void bind_robot(py::module_& m) {
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", "A rigid-body tree from a URDF (immutable).")
-      .def_static("from_urdf", [](const std::filesystem::path& path, bool floating_base, py::object locked_joints, py::handle gravity) {
-        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path.string(), options(floating_base, locked_joints, gravity)));
+      .def_static("from_urdf", [](py::handle path, py::handle floating_base, py::object locked_joints, py::handle gravity) {
+        const std::string file = to_string_arg(path, "path", true);
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(file, options(floating_base, locked_joints, gravity)));
       }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
-      .def_static("from_urdf_string", [](const std::string& xml, bool floating_base, py::object locked_joints, py::handle gravity) {
-        return std::make_shared<RobotModel>(RobotModel::from_urdf_string(xml, options(floating_base, locked_joints, gravity)));
+      .def_static("from_urdf_string", [](py::handle xml, py::handle floating_base, py::object locked_joints, py::handle gravity) {
+        const std::string text = to_string_arg(xml, "xml");
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_string(text, options(floating_base, locked_joints, gravity)));
       }, "xml"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
-      .def_static("combine", [](const std::vector<std::shared_ptr<RobotModel>>& parts, const std::string& name) {
+      .def_static("combine", [](py::handle parts, py::handle name) {
+        const std::vector<py::object> items = to_items(parts, "parts", "a list of pathpace.RobotModel");
         std::vector<RobotModel> v;
-        for (size_t i = 0; i < parts.size(); ++i) {
-          if (!parts[i]) throw InvalidInput("parts[" + std::to_string(i) + "] must be a RobotModel, not None");
-          v.push_back(*parts[i]);
-        }
-        return std::make_shared<RobotModel>(RobotModel::combine(v, name));
+        for (size_t i = 0; i < items.size(); ++i)
+          v.push_back(*to_object<RobotModel>(items[i], "parts[" + std::to_string(i) + "]", "RobotModel"));
+        return std::make_shared<RobotModel>(RobotModel::combine(v, to_string_arg(name, "name")));
       }, "parts"_a, "name"_a = "",
          "One model of several independent trees (robots and free objects, sec. III.b); q concatenates the parts'. "
          "Link names must be unique; a joint name shared by parts becomes '<part>/<joint>'.")
-      .def_static("free_object", [](const std::string& name, double mass, py::handle com, py::handle inertia, py::handle gravity) {
+      .def_static("free_object", [](py::handle name_arg, py::handle mass_arg, py::handle com, py::handle inertia, py::handle gravity) {
+        const std::string name = to_string_arg(name_arg, "name");
+        const double mass = to_double(mass_arg, "mass");
         const Eigen::VectorXd c = to_vector(com, "com"), g = to_vector(gravity, "gravity");
         if (c.size() != 3) throw InvalidInput("com has size " + std::to_string(c.size()) + ", expected 3");
         if (g.size() != 3) throw InvalidInput("gravity has size " + std::to_string(g.size()) + ", expected 3");
@@ -163,13 +170,14 @@ void bind_robot(py::module_& m) {
       .def("mass_matrix", [](const RobotModel& r, py::handle q) { return r.mass_matrix(qvec(r, q, "q")); }, "q"_a)
       .def("gravity", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a,
            "g(q): the joint torques that hold the robot still at q")
-      .def("frame_placement", [](const RobotModel& r, py::handle q, const std::string& link) {
-        return r.frame_placement(qvec(r, q, "q"), link);
+      .def("frame_placement", [](const RobotModel& r, py::handle q, py::handle link) {
+        return r.frame_placement(qvec(r, q, "q"), to_string_arg(link, "link"));
       }, "q"_a, "link"_a, "4x4 world placement of the link frame")
-      .def("point_jacobian", [](const RobotModel& r, py::handle q, const std::string& link, py::handle point) {
+      .def("point_jacobian", [](const RobotModel& r, py::handle q, py::handle link, py::handle point) {
+        const std::string l = to_string_arg(link, "link");
         const Eigen::VectorXd p = to_vector(point, "point");
         if (p.size() != 3) throw InvalidInput("point has size " + std::to_string(p.size()) + ", expected 3");
-        return r.point_jacobian(qvec(r, q, "q"), link, p);
+        return r.point_jacobian(qvec(r, q, "q"), l, p);
       }, "q"_a, "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), "(3, nq) world-frame Jacobian of a point fixed in the link")
       .def("path_torque_coefficients", [](const RobotModel& r, py::handle q, py::handle dq, py::handle ddq) {
         const Eigen::MatrixXd Q = to_matrix(q, "q"), D = to_matrix(dq, "dq"), DD = to_matrix(ddq, "ddq");
@@ -193,10 +201,11 @@ void bind_robot(py::module_& m) {
       .def("__repr__", [](const RobotModel& r) { return "<RobotModel '" + r.name() + "' nq=" + std::to_string(r.nq()) + ">"; });
 
   py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits")
-      .def(py::init([](std::shared_ptr<RobotModel> robot, py::object tau_min, py::object tau_max, double scale, double margin) {
+      .def(py::init([](py::handle robot, py::object tau_min, py::object tau_max, py::handle scale, py::handle margin) {
+             auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
              Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
              Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
-             return std::make_shared<TorqueLimits>(std::move(robot), lo, hi, scale, margin);
+             return std::make_shared<TorqueLimits>(std::move(r), lo, hi, to_double(scale, "scale"), to_double(margin, "margin"));
            }),
            "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0)
       .def_property_readonly("tau_min", &TorqueLimits::tau_min)
@@ -214,16 +223,16 @@ void bind_robot(py::module_& m) {
   py::class_<Contact>(m, "Contact",
                       "A point fixed in a link (link coordinates) touching the world, or `other_link` when given. The "
                       "normal points into `link`: world coordinates for a world contact, other_link's frame otherwise.")
-      .def(py::init([](const std::string& link, py::handle point, py::handle normal, double friction, py::object other_link) {
+      .def(py::init([](py::handle link, py::handle point, py::handle normal, py::handle friction, py::object other_link) {
              Contact c;
-             c.link = link;
-             if (!other_link.is_none()) c.other_link = other_link.cast<std::string>();
+             c.link = to_string_arg(link, "link");
+             if (!other_link.is_none()) c.other_link = to_string_arg(other_link, "other_link");
              const Eigen::VectorXd p = to_vector(point, "point"), nrm = to_vector(normal, "normal");
              if (p.size() != 3) throw InvalidInput("point has size " + std::to_string(p.size()) + ", expected 3");
              if (nrm.size() != 3) throw InvalidInput("normal has size " + std::to_string(nrm.size()) + ", expected 3");
              c.point = p;
              c.normal = nrm;
-             c.friction = friction;
+             c.friction = to_double(friction, "friction");
              return c;
            }),
            "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), "normal"_a = py::make_tuple(0.0, 0.0, 1.0), "friction"_a = 0.5,
@@ -273,11 +282,11 @@ void bind_robot(py::module_& m) {
       }, "(samples, nq) joint torques with these forces");
 
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
-      .def(py::init([](std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts, int cone_edges, double friction_margin,
-                       double min_normal_force, double torque_scale, double torque_margin) {
+      .def(py::init([](py::handle robot, py::handle contacts, py::handle cone_edges, py::handle friction_margin,
+                       py::handle min_normal_force, py::handle torque_scale, py::handle torque_margin) {
              return std::make_shared<ContactConstraint>(
-                 std::move(robot), std::move(contacts),
-                 contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+                 to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"),
+                 contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
            "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)
@@ -306,7 +315,7 @@ void bind_robot(py::module_& m) {
                       }))
       .def_property_readonly("robot", [](const ContactConstraint& c) { return std::const_pointer_cast<RobotModel>(c.robot()); })
       .def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd) {
-        const bool scalar = py::array(py::reinterpret_borrow<py::object>(q)).ndim() == 1;
+        const bool scalar = as_float_array(q, "q").ndim() == 1;
         auto rows = [&](py::handle h, const char* name) {
           Eigen::MatrixXd a = to_matrix(h, name, true);
           if (scalar) a.transposeInPlace();  // a single configuration: one row
@@ -322,9 +331,15 @@ void bind_robot(py::module_& m) {
       }, "q"_a, "qd"_a, "qdd"_a,
          "The force-distribution LP at each row of q, qd, qdd (arrays (samples, nq), or one configuration): "
          "how a timing is audited between grid points.")
-      .def("max_drift", [](const ContactConstraint& c, const std::shared_ptr<Path>& path, py::handle s) {
+      .def("max_drift", [](const ContactConstraint& c, py::handle path_arg, py::handle s) {
+        const auto path = to_object<Path>(path_arg, "path", "Path");
+        if (path->dof() != c.robot()->nq())
+          throw InvalidInput("path has " + std::to_string(path->dof()) + " coordinates, robot '" + c.robot()->name() +
+                             "' has " + std::to_string(c.robot()->nq()) + " joints");
         Eigen::MatrixXd q, dq, ddq;
         const Eigen::VectorXd sv = to_vector(s, "s");
+        for (Eigen::Index i = 0; i < sv.size(); ++i)
+          if (std::isnan(sv[i])) throw InvalidInput("s[" + std::to_string(i) + "] = nan must be a number");
         path->evaluate(sv, q, dq, ddq);
         PathSamples ps;
         ps.s = sv;

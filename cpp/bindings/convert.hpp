@@ -5,7 +5,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <limits>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/contact_forces.hpp"
@@ -15,14 +18,130 @@ namespace pathpace::python {
 
 namespace py = pybind11;
 
+/// The Python type name of h, for "got <type>" in messages.
+inline std::string type_name(py::handle h) { return py::str(py::type::handle_of(h).attr("__name__")).cast<std::string>(); }
+
+/// A TypeError naming the argument and the expected type (instead of pybind11's whole signature).
+[[noreturn]] inline void type_error(const std::string& name, const std::string& expected, py::handle got) {
+  throw py::type_error(name + " must be " + expected + ", got " + (got.is_none() ? std::string("None") : type_name(got)));
+}
+
 inline py::array_t<double, py::array::c_style | py::array::forcecast> as_float_array(py::handle obj,
                                                                                      const std::string& name) {
   if (obj.is_none()) throw InvalidInput(name + " must be an array, got None");
+  if (py::isinstance<py::str>(obj) || py::isinstance<py::bytes>(obj) || py::isinstance<py::dict>(obj))
+    throw InvalidInput(name + " must be an array of numbers, got " + type_name(obj));
+  // ensure() returns an empty handle (not an exception) when numpy cannot convert the object
+  // (a string, a ragged list, a dict): dereferencing that crashed the interpreter.
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
   try {
-    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
   } catch (const py::error_already_set&) {
   }
-  throw InvalidInput(name + " must be an array of numbers");
+  if (!a) {
+    PyErr_Clear();
+    throw InvalidInput(name + " must be an array of numbers (not ragged), got " + type_name(obj));
+  }
+  return a;
+}
+
+/// A real number: int, float, a numpy scalar or a 0-d array. Not None, str, bool or a sequence.
+inline double to_double(py::handle h, const std::string& name) {
+  if (h.is_none() || py::isinstance<py::str>(h) || py::isinstance<py::bytes>(h) || PyBool_Check(h.ptr()))
+    type_error(name, "a number", h);
+  if (py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h)) {
+    const double v = PyFloat_AsDouble(h.ptr());
+    if (v == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      throw InvalidInput(name + " = " + py::repr(h).cast<std::string>() + " is too large for a float");
+    }
+    return v;
+  }
+  if (py::isinstance<py::array>(h)) {
+    py::array a = py::reinterpret_borrow<py::array>(h);
+    if (a.ndim() != 0) type_error(name, "a number (not an array of shape " + py::str(a.attr("shape")).cast<std::string>() + ")", h);
+  }
+  if (!PyObject_HasAttrString(h.ptr(), "__float__")) type_error(name, "a number", h);
+  const double v = PyFloat_AsDouble(h.ptr());
+  if (v == -1.0 && PyErr_Occurred()) {
+    PyErr_Clear();
+    type_error(name, "a number", h);
+  }
+  return v;
+}
+
+/// An integer (Python int or numpy integer; not bool or float) in [lo, hi].
+inline long long to_int(py::handle h, const std::string& name, long long lo, long long hi) {
+  if (h.is_none() || PyBool_Check(h.ptr()) || py::isinstance<py::float_>(h) || !PyIndex_Check(h.ptr()))
+    type_error(name, "an int", h);
+  py::object idx = py::reinterpret_steal<py::object>(PyNumber_Index(h.ptr()));
+  if (!idx) {
+    PyErr_Clear();
+    type_error(name, "an int", h);
+  }
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(idx.ptr(), &overflow);
+  if (overflow || v < lo || v > hi)
+    throw InvalidInput(name + " = " + py::str(idx).cast<std::string>() + " must be in [" + std::to_string(lo) + ", " +
+                       std::to_string(hi) + "]");
+  return v;
+}
+
+inline bool to_bool(py::handle h, const std::string& name) {
+  if (PyBool_Check(h.ptr())) return h.ptr() == Py_True;
+  if (py::hasattr(h, "dtype") && py::str(h.attr("dtype")).cast<std::string>() == "bool" && py::hasattr(h, "__bool__"))
+    return PyObject_IsTrue(h.ptr()) == 1;
+  type_error(name, "a bool", h);
+}
+
+/// A str (or, when path_like, anything os.fspath accepts).
+inline std::string to_string_arg(py::handle h, const std::string& name, bool path_like = false) {
+  if (py::isinstance<py::str>(h)) return h.cast<std::string>();
+  if (path_like && !h.is_none() && py::hasattr(h, "__fspath__")) {
+    py::object p = py::module_::import("os").attr("fspath")(h);
+    if (py::isinstance<py::str>(p)) return p.cast<std::string>();
+  }
+  type_error(name, path_like ? "a str or os.PathLike" : "a str", h);
+}
+
+/// A pathpace object (never None: a null shared_ptr would be dereferenced).
+template <typename T>
+std::shared_ptr<T> to_object(py::handle h, const std::string& name, const std::string& type) {
+  if (h.is_none() || !py::isinstance<T>(h)) type_error(name, "a pathpace." + type, h);
+  return h.cast<std::shared_ptr<T>>();
+}
+
+/// The items of a list or tuple (or any sized sequence: not a str, not a 0-d array).
+inline std::vector<py::object> to_items(py::handle h, const std::string& name, const std::string& expected) {
+  if (h.is_none() || py::isinstance<py::str>(h) || py::isinstance<py::bytes>(h) || !PySequence_Check(h.ptr()))
+    type_error(name, expected, h);
+  const Py_ssize_t n = PySequence_Size(h.ptr());
+  if (n < 0) {
+    PyErr_Clear();
+    type_error(name, expected, h);
+  }
+  std::vector<py::object> out;
+  for (Py_ssize_t i = 0; i < n; ++i) {
+    PyObject* item = PySequence_GetItem(h.ptr(), i);
+    if (!item) {
+      PyErr_Clear();
+      type_error(name, expected, h);
+    }
+    out.push_back(py::reinterpret_steal<py::object>(item));
+  }
+  return out;
+}
+
+/// A sequence of pathpace.Contact.
+inline std::vector<Contact> to_contacts(py::handle h, const std::string& name) {
+  if (py::isinstance<Contact>(h)) type_error(name, "a list of pathpace.Contact", h);
+  std::vector<Contact> out;
+  const std::vector<py::object> items = to_items(h, name, "a list of pathpace.Contact");
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (!py::isinstance<Contact>(items[i])) type_error(name + "[" + std::to_string(i) + "]", "a pathpace.Contact", items[i]);
+    out.push_back(items[i].cast<Contact>());
+  }
+  return out;
 }
 
 inline std::string shape_str(const py::array& a) {
@@ -59,6 +178,14 @@ inline ContactOptions contact_options(int cone_edges, double friction_margin, do
   o.torque_scale = torque_scale;
   o.torque_margin = torque_margin;
   return o;
+}
+
+/// contact_options from Python arguments, each checked and named.
+inline ContactOptions contact_options_arg(py::handle cone_edges, py::handle friction_margin, py::handle min_normal_force,
+                                          py::handle torque_scale, py::handle torque_margin) {
+  return contact_options(static_cast<int>(to_int(cone_edges, "cone_edges", std::numeric_limits<int>::min(), std::numeric_limits<int>::max())),
+                         to_double(friction_margin, "friction_margin"), to_double(min_normal_force, "min_normal_force"),
+                         to_double(torque_scale, "torque_scale"), to_double(torque_margin, "torque_margin"));
 }
 
 /// A Python scalar or 0-d array (functions of s or t then return one row instead of a matrix).

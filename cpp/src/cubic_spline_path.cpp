@@ -139,6 +139,12 @@ PiecewisePolynomialPath CubicSplinePath::build(const Eigen::MatrixXd& y, const E
     c.row(1) = delta.row(i) - h[i] * (2.0 * M.row(i) + M.row(i + 1)) / 6.0;
     c.row(2) = 0.5 * M.row(i);
     c.row(3) = (M.row(i + 1) - M.row(i)) / (6.0 * h[i]);
+    // Knots so close (or waypoints so far apart) that a derivative overflows: name the cause, not the
+    // coefficient it produced.
+    if (!c.allFinite())
+      detail::fail("knots[" + std::to_string(i + 1) + "] - knots[" + std::to_string(i) + "] = " + detail::fmt(h[i]) +
+                   " is too small for these waypoints: the spline's derivatives overflow (widen [s_begin, s_end] "
+                   "or the knots)");
   }
   return PiecewisePolynomialPath(t, std::move(coefficients));
 }

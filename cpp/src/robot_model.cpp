@@ -1,7 +1,9 @@
 #include "pathpace/robot_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <fstream>
 #include <sstream>
 
@@ -98,19 +100,79 @@ struct Builder {
     eff = as_vector(effort);
   }
 
+  // A link's inertial, checked: urdfdom reads "nan", "inf" and negative masses as numbers, and a NaN
+  // or negative mass silently corrupted (or dropped) the link's inertia.
+  static void check_inertial(const urdf::Link& link) {
+    const urdf::Inertial& in = *link.inertial;
+    const std::string where = "urdf link '" + link.name + "' inertial ";
+    if (!std::isfinite(in.mass) || in.mass < 0.0)
+      detail::fail(where + "mass = " + detail::fmt(in.mass) + " must be >= 0 and finite");
+    const double origin[7] = {in.origin.position.x, in.origin.position.y, in.origin.position.z, in.origin.rotation.x,
+                              in.origin.rotation.y, in.origin.rotation.z, in.origin.rotation.w};
+    const char* origin_names[7] = {"origin x", "origin y", "origin z", "origin rotation x", "origin rotation y",
+                                   "origin rotation z", "origin rotation w"};
+    for (int i = 0; i < 7; ++i)
+      if (!std::isfinite(origin[i])) detail::fail(where + origin_names[i] + " = " + detail::fmt(origin[i]) + " must be finite");
+    const double inertia[6] = {in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
+    const char* inertia_names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+    for (int i = 0; i < 6; ++i)
+      if (!std::isfinite(inertia[i])) detail::fail(where + inertia_names[i] + " = " + detail::fmt(inertia[i]) + " must be finite");
+    for (int i : {0, 3, 5})
+      if (inertia[i] < 0.0) detail::fail(where + inertia_names[i] + " = " + detail::fmt(inertia[i]) + " must be >= 0");
+  }
+
+  // One joint's limits and origin, checked: a negative effort became "tau_min[j] = 5 must be <= tau_max[j] = -5".
+  static void check_joint(const urdf::Joint& joint) {
+    const std::string where = "urdf joint '" + joint.name + "' ";
+    const urdf::Pose& o = joint.parent_to_joint_origin_transform;
+    for (double v : {o.position.x, o.position.y, o.position.z, o.rotation.x, o.rotation.y, o.rotation.z, o.rotation.w})
+      if (!std::isfinite(v)) detail::fail(where + "origin = " + detail::fmt(v) + " must be finite");
+    if (!joint.limits) return;
+    const urdf::JointLimits& l = *joint.limits;
+    if (std::isnan(l.effort) || l.effort < 0.0) detail::fail(where + "limit effort = " + detail::fmt(l.effort) + " must be >= 0");
+    if (std::isnan(l.velocity) || l.velocity < 0.0)
+      detail::fail(where + "limit velocity = " + detail::fmt(l.velocity) + " must be >= 0");
+    if (std::isnan(l.lower)) detail::fail(where + "limit lower = nan must be a number");
+    if (std::isnan(l.upper)) detail::fail(where + "limit upper = nan must be a number");
+  }
+
+  // Depth-first over the link tree with an explicit stack, in the order a recursion would take (so the
+  // joint order is the URDF's): a recursion overflowed the thread's stack at ~10,000 links in a chain.
   // `placement`: the link frame in the coordinates of body `body` (-1: the world).
-  void add_link(const urdf::LinkConstSharedPtr& link, int body, const Eigen::Isometry3d& placement) {
-    links[link->name] = {body, placement};
-    link_names.push_back(link->name);
-    if (link->inertial && body >= 0) {
-      const urdf::Inertial& in = *link->inertial;
-      const Eigen::Isometry3d frame = placement * to_isometry(in.origin);
-      Eigen::Matrix3d I;
-      I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-      const Eigen::Matrix3d Ic = frame.linear() * I * frame.linear().transpose();
-      bodies[static_cast<size_t>(body)].inertia += spatial_inertia(in.mass, frame.translation(), Ic);
-    }
-    for (const urdf::JointSharedPtr& joint : link->child_joints) {
+  void add_tree(const urdf::LinkConstSharedPtr& root, int root_body, const Eigen::Isometry3d& root_placement) {
+    struct Frame {
+      urdf::LinkConstSharedPtr link;
+      int body;
+      Eigen::Isometry3d placement;
+      size_t next_joint;
+    };
+    std::vector<Frame> stack;
+    auto visit = [&](const urdf::LinkConstSharedPtr& link, int body, const Eigen::Isometry3d& placement) {
+      links[link->name] = {body, placement};
+      link_names.push_back(link->name);
+      if (link->inertial) check_inertial(*link);
+      if (link->inertial && body >= 0) {
+        const urdf::Inertial& in = *link->inertial;
+        const Eigen::Isometry3d frame = placement * to_isometry(in.origin);
+        Eigen::Matrix3d I;
+        I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+        const Eigen::Matrix3d Ic = frame.linear() * I * frame.linear().transpose();
+        bodies[static_cast<size_t>(body)].inertia += spatial_inertia(in.mass, frame.translation(), Ic);
+      }
+      stack.push_back(Frame{link, body, placement, 0});
+    };
+    visit(root, root_body, root_placement);
+    while (!stack.empty()) {
+      Frame& top = stack.back();
+      if (top.next_joint == top.link->child_joints.size()) {
+        stack.pop_back();
+        continue;
+      }
+      const urdf::JointSharedPtr joint = top.link->child_joints[top.next_joint++];
+      const urdf::LinkConstSharedPtr link = top.link;  // copies: visit() may reallocate the stack
+      const int body = top.body;
+      const Eigen::Isometry3d placement = top.placement;
+      check_joint(*joint);
       urdf::LinkConstSharedPtr child_link;
       for (const auto& cl : link->child_links)
         if (cl->name == joint->child_link_name) child_link = cl;
@@ -132,7 +194,7 @@ struct Builder {
           if (prismatic) motion.translation() = axis.normalized() * value;
           else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
         }
-        add_link(child_link, body, origin * motion);
+        visit(child_link, body, origin * motion);
         continue;
       }
       if (joint->mimic) {
@@ -143,12 +205,12 @@ struct Builder {
           Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
           if (prismatic) motion.translation() = axis.normalized() * value;
           else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
-          add_link(child_link, body, origin * motion);
+          visit(child_link, body, origin * motion);
           continue;
         }
         mimics.push_back({joint->name, joint->mimic->joint_name, joint->mimic->multiplier, joint->mimic->offset});
       }
-      if (!(axis.norm() > 0.0)) detail::fail("joint '" + joint->name + "' has a zero axis");
+      if (!(axis.norm() > 0.0) || !axis.allFinite()) detail::fail("joint '" + joint->name + "' has a zero or non-finite axis");
       const double inf = std::numeric_limits<double>::infinity();
       double lo = -inf, hi = inf, vel = inf, eff = inf;
       if (joint->limits) {
@@ -161,7 +223,7 @@ struct Builder {
       }
       const int b = add_body(body, prismatic ? RobotModel::JointType::Prismatic : RobotModel::JointType::Revolute, axis,
                              origin, joint->name, lo, hi, vel, eff);
-      add_link(child_link, b, Eigen::Isometry3d::Identity());
+      visit(child_link, b, Eigen::Isometry3d::Identity());
     }
   }
 };
@@ -243,17 +305,45 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModel
   detail::require_finite("gravity", options.gravity);
   for (const auto& [name, value] : options.locked_joints)
     if (!std::isfinite(value)) detail::fail("locked_joints['" + name + "'] = " + detail::fmt(value) + " must be finite");
-  // urdfdom reports parse errors through console_bridge on stderr; the error is ours to report.
-  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
-  urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
-  if (!urdf || !urdf->getRoot()) detail::fail("urdf: the XML is not a valid URDF robot (urdfdom could not parse it)");
+  // urdfdom reports parse errors through console_bridge on stderr; the error is ours to report. It
+  // also keeps going past some: a <mass value="nan"/> (or "inf", or "abc") is logged, then the link
+  // is kept with mass 0. Every error it logs is therefore collected and turned into InvalidInput.
+  struct Collect : console_bridge::OutputHandler {
+    std::string first;
+    void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+      // urdfdom names the field first ("mass [nan] is not a float"), then the link: keep both.
+      if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && std::count(first.begin(), first.end(), ';') < 3)
+        first += (first.empty() ? "" : "; ") + text;
+    }
+  } collect;
+  urdf::ModelInterfaceSharedPtr urdf;
+  {
+    // console_bridge's handler and level are process-wide.
+    static std::mutex console_mutex;
+    std::lock_guard<std::mutex> lock(console_mutex);
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_ERROR);
+    console_bridge::useOutputHandler(&collect);
+    try {
+      urdf = urdf::parseURDF(xml);
+    } catch (...) {
+      console_bridge::restorePreviousOutputHandler();
+      console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+      throw;
+    }
+    console_bridge::restorePreviousOutputHandler();
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  }
+  if (!urdf || !urdf->getRoot())
+    detail::fail("urdf: the XML is not a valid URDF robot (urdfdom could not parse it" +
+                 (collect.first.empty() ? std::string(")") : ": " + collect.first + ")"));
+  if (!collect.first.empty()) detail::fail("urdf: " + collect.first);
 
   RobotModel m;
   m.name_ = urdf->getName();
   m.gravity_ = options.gravity;
   Builder b{options, m.bodies_, m.joint_names_, m.link_names_, m.links_, {}, {}, {}, {}, {}, {}};
   const int root_body = options.floating_base ? b.add_floating_base() : -1;
-  b.add_link(urdf->getRoot(), root_body, Eigen::Isometry3d::Identity());
+  b.add_tree(urdf->getRoot(), root_body, Eigen::Isometry3d::Identity());
   for (const auto& [name, value] : options.locked_joints)
     if (!b.locked_used.count(name))
       detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
@@ -690,6 +780,8 @@ int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body
 }
 
 void RobotModel::body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const {
+  // Every Jacobian and drift computation reads q[i] for each body: a shorter q was a heap overread.
+  check_q(q, "q");
   if (mimic_) {
     mimic_->bodies_model->body_placements(mimic_->E * q + mimic_->o, T);
     return;

@@ -23,8 +23,9 @@ Trajectory::Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eige
   times_.resize(n + 1);
   sddot_.resize(n);
   times_[0] = 0.0;
-  for (Eigen::Index k = 0; k < n; ++k) {
+  for (Eigen::Index k = 0; k <= n; ++k)
     if (sdot_[k] < 0.0) detail::fail(detail::at("sdot", k) + " = " + detail::fmt(sdot_[k]) + " must be >= 0");
+  for (Eigen::Index k = 0; k < n; ++k) {
     const double w = sdot_[k] + sdot_[k + 1];
     if (!(w > 0.0))
       detail::fail("sdot[" + std::to_string(k) + "] + sdot[" + std::to_string(k + 1) +
@@ -32,6 +33,14 @@ Trajectory::Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eige
     const double ds = s_[k + 1] - s_[k];
     times_[k + 1] = times_[k] + 2.0 * ds / w;                                        // eq. (25)
     sddot_[k] = (sdot_[k + 1] * sdot_[k + 1] - sdot_[k] * sdot_[k]) / (2.0 * ds);  // constant on the interval
+    // Speeds so large that ṡ² or s̈ overflows, or that an interval takes no time at all, give a
+    // trajectory whose t -> s map is not invertible: refuse them rather than return infinities.
+    if (!std::isfinite(sddot_[k]) || !(times_[k + 1] > times_[k])) {
+      const Eigen::Index j = sdot_[k] >= sdot_[k + 1] ? k : k + 1;
+      detail::fail(detail::at("sdot", j) + " = " + detail::fmt(sdot_[j]) + " is too large for interval " +
+                   std::to_string(k) + " of length " + detail::fmt(ds) + " (s̈ = " + detail::fmt(sddot_[k]) +
+                   ", time " + detail::fmt(times_[k + 1] - times_[k]) + ")");
+    }
   }
 }
 

@@ -40,11 +40,20 @@ class _Parser(argparse.ArgumentParser):
         fail(f"{self.prog}: {message}")
 
 
-def _floats(text: str, name: str) -> np.ndarray:
-    try:
-        return np.array([float(x) for x in text.split(",")], dtype=float)
-    except ValueError:
-        raise CliError(f"argument {name}: '{text}' is not a comma-separated list of numbers") from None
+def _floats(text: str, option: str, n: int) -> np.ndarray:
+    """Comma-separated limits, each > 0 and finite; one value stands for all n joints."""
+    values = []
+    for i, item in enumerate(text.split(",")):
+        try:
+            v = float(item)
+        except ValueError:
+            raise CliError(f"{option}[{i}] = {item.strip()!r} is not a number") from None
+        if not (np.isfinite(v) and v > 0):
+            raise CliError(f"{option}[{i}] = {v} must be > 0 and finite")
+        values.append(v)
+    if len(values) not in (1, n):
+        raise CliError(f"{option} has {len(values)} values, expected 1 or {n} (one per joint)")
+    return np.array(values, dtype=float) * np.ones(n)
 
 
 def _summary(res, name: str = "") -> dict:
@@ -74,6 +83,9 @@ def _solve_waypoints(args: argparse.Namespace) -> int:
 
     from .io import load_waypoints_csv
 
+    for option, value in (("--acc-factor", args.acc_factor), ("--torque-scale", args.torque_scale), ("--dt", args.dt)):
+        if not (np.isfinite(value) and value > 0):
+            raise CliError(f"{option} = {value} must be > 0 and finite")
     file = args.problems[0]
     try:
         waypoints = load_waypoints_csv(file)
@@ -89,9 +101,9 @@ def _solve_waypoints(args: argparse.Namespace) -> int:
         vmax = robot.velocity_limits
         amax = args.acc_factor * vmax
     if args.vmax:
-        vmax = _floats(args.vmax, "--vmax") * np.ones(n)
+        vmax = _floats(args.vmax, "--vmax", n)
     if args.amax:
-        amax = _floats(args.amax, "--amax") * np.ones(n)
+        amax = _floats(args.amax, "--amax", n)
     if vmax is not None:
         prob.add_velocity_limits(-vmax, vmax)
     if amax is not None:

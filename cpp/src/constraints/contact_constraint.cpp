@@ -40,7 +40,9 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     if (tau_min[j] == 0.0 && tau_max[j] == 0.0) tau_min_[j] = tau_max_[j] = 0.0;
   for (int j = 0; j < n; ++j)
     if (tau_min_[j] > tau_max_[j])
-      detail::fail("tau_min[" + std::to_string(j) + "] = " + detail::fmt(tau_min_[j]) + " must be <= tau_max[" +
+      detail::fail((tau_min[j] <= tau_max[j] ? "torque_margin = " + detail::fmt(options_.torque_margin) + " closes the range: "
+                                             : std::string()) +
+                   "tau_min[" + std::to_string(j) + "] = " + detail::fmt(tau_min_[j]) + " must be <= tau_max[" +
                    std::to_string(j) + "] = " + detail::fmt(tau_max_[j]) + " (after scale and margin)");
   const int k = options_.cone_edges;
   for (size_t i = 0; i < contacts_.size(); ++i) {
