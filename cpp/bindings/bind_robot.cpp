@@ -78,7 +78,7 @@ RobotModel::Source state_source(const py::tuple& t) {
     check_state(t, 5, "RobotModel (urdf)");
     s.kind = RobotModel::Source::Kind::Urdf;
     s.urdf = t[1].cast<std::string>();
-    s.options = options(t[2].cast<bool>(), t[3], t[4]);
+    s.options = options(t[2], t[3], t[4]);
   } else if (kind == "combine") {
     check_state(t, 3, "RobotModel (combine)");
     s.kind = RobotModel::Source::Kind::Combine;
@@ -153,8 +153,9 @@ void bind_robot(py::module_& m) {
            "(as pinocchio's centerOfMass).")
       .def_property_readonly("mass", &RobotModel::mass, "float: total mass of the moving bodies in kg")
       // The C++ names, so that code reads the same in both languages.
-      .def_static("from_urdf_file", [](const std::filesystem::path& path, bool floating_base, py::object locked_joints, py::handle gravity) {
-        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(path.string(), options(floating_base, locked_joints, gravity)));
+      .def_static("from_urdf_file", [](py::handle path, py::handle floating_base, py::object locked_joints, py::handle gravity) {
+        const std::string file = to_string_arg(path, "path", true);
+        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(file, options(floating_base, locked_joints, gravity)));
       }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
       .def("gravity_torques", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a)
       .def_property_readonly("mimic_joints", [](const RobotModel& r) {

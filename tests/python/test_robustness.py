@@ -285,7 +285,12 @@ def test_problem_methods_name_their_argument():
 
 
 def test_cli_reports_bad_values_in_one_line_naming_the_option(tmp_path, capsys):
-    from pathpace.cli import main
+    from pathpace.cli import main as cli_main
+
+    def main(argv):  # the CLI leaves through SystemExit(2) on a user error
+        with pytest.raises(SystemExit) as exit_info:
+            cli_main(argv)
+        return exit_info.value.code
 
     f = tmp_path / "w.csv"
     f.write_text("a,b\n0,0\n1,2\n")
