@@ -47,7 +47,7 @@ py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
                   "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
-                  "time_slp"_a = s.time_slp);
+                  "time_slp"_a = s.time_slp, "windows"_a = s.windows, "window_points"_a = s.window_points);
 }
 
 }  // namespace
@@ -88,7 +88,8 @@ void bind_problem(py::module_& m) {
       .value("INFEASIBLE", Status::Infeasible)
       .value("ITERATION_LIMIT", Status::IterationLimit)
       .value("NUMERICAL_ERROR", Status::NumericalError)
-      .value("UNBOUNDED", Status::Unbounded);
+      .value("UNBOUNDED", Status::Unbounded)
+      .value("TIME_LIMIT", Status::TimeLimit);
 
   py::class_<FeasibleSet>(m, "FeasibleSet", "The pruned feasible polygon of (x, u) = (sdot^2, sddot) at one grid point.")
       .def_readonly("index", &FeasibleSet::index)
@@ -256,19 +257,22 @@ void bind_problem(py::module_& m) {
       })
       .def("feasible_set", &TimeScalingProblem::feasible_set, "k"_a)
       .def("solve", [](const TimeScalingProblem& p, const std::string& method, int max_iterations,
-                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance) {
+                       double tolerance, double initial_trust_region, double lp_feasibility_tolerance,
+                       double time_limit) {
         SolverOptions o;
         o.method = parse_method(method);
         o.max_iterations = max_iterations;
         o.tolerance = tolerance;
         o.initial_trust_region = initial_trust_region;
         o.lp_feasibility_tolerance = lp_feasibility_tolerance;
+        o.time_limit = time_limit;
         py::gil_scoped_release release;
         return p.solve(o);
       }, "method"_a = "auto", "max_iterations"_a = SolverOptions().max_iterations,
          "tolerance"_a = SolverOptions().tolerance,
          "initial_trust_region"_a = SolverOptions().initial_trust_region,
-         "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance);
+         "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance,
+         "time_limit"_a = SolverOptions().time_limit);
 }
 
 }  // namespace pathpace::python

@@ -9,22 +9,27 @@ enum class Method {
   /// Reachability analysis, then: if no interval row couples θ_k and θ_{k+1} with two positive
   /// coefficients, the feasible set is closed under the componentwise max, and the greedy forward
   /// profile is its greatest element, hence the global optimum (T decreases in every θ_k). Otherwise the
-  /// relaxation without those rows brackets the optimum; SLP runs only if the bracket exceeds the
-  /// tolerance.
+  /// relaxation without those rows brackets the optimum; if the bracket exceeds the tolerance, SLP runs
+  /// on windows around the intervals where the relaxation's greatest element breaks a coupling row, the
+  /// rest of the grid keeping that element (see docs/method.md: the result is the global optimum).
   Auto,
-  /// Always run SLP from the reachability start (for checking, or if the shortcut is not wanted).
+  /// Always run SLP over the whole chain from the reachability start (for checking, or if the
+  /// shortcuts are not wanted).
   Slp,
 };
 
 struct SolverOptions {
   Method method = Method::Auto;
-  int max_iterations = 200;        ///< SLP iterations
+  int max_iterations = 200;        ///< SLP iterations per window
   /// Relative optimality tolerance: a result is Optimal when (T - T*) / T* is certified below it, by the
   /// Frank-Wolfe gap of the SLP or by the lattice relaxation's lower bound. The discretisation error of
   /// the grid itself is O(Δs), far above the default.
   double tolerance = 1e-7;
   double initial_trust_region = 0.5;   ///< trust-region half-width, relative to max θ of the start
   double lp_feasibility_tolerance = 1e-9;  ///< GLPK primal feasibility tolerance (tol_bnd)
+  /// Wall-clock budget of one solve in seconds (+inf: none). When it runs out during SLP the solve ends
+  /// with Status::TimeLimit, the best feasible timing found and its certified gap.
+  double time_limit = 60.0;
 };
 
 }  // namespace pathpace

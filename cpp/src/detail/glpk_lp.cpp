@@ -2,6 +2,7 @@
 
 #include "detail/glpk_guard.hpp"
 
+#include <algorithm>
 #include <csetjmp>
 #include <limits>
 #include <cstdlib>
@@ -93,7 +94,28 @@ void GlpkLp::set_row_upper(int row, double ub) {
   else glp_set_row_bnds(lp_, row + 1, GLP_UP, 0.0, ub);
 }
 
-GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
+void GlpkLp::set_col_bounds(int col, double lo, double hi) {
+  if (lo == hi) glp_set_col_bnds(lp_, col + 1, GLP_FX, lo, hi);
+  else glp_set_col_bnds(lp_, col + 1, GLP_DB, lo, hi);
+}
+
+void GlpkLp::set_basis(const std::vector<Stat>& rows, const std::vector<Stat>& cols) {
+  auto code = [](Stat st, int type) {
+    if (st == Stat::Basic) return GLP_BS;
+    if (type == GLP_FX) return GLP_NS;
+    if (type == GLP_FR) return GLP_NF;
+    if (type == GLP_UP) return GLP_NU;
+    if (type == GLP_LO) return GLP_NL;
+    return st == Stat::AtUpper ? GLP_NU : GLP_NL;
+  };
+  for (size_t i = 0; i < rows.size(); ++i)
+    glp_set_row_stat(lp_, static_cast<int>(i) + 1, code(rows[i], glp_get_row_type(lp_, static_cast<int>(i) + 1)));
+  for (size_t j = 0; j < cols.size(); ++j)
+    glp_set_col_stat(lp_, static_cast<int>(j) + 1, code(cols[j], glp_get_col_type(lp_, static_cast<int>(j) + 1)));
+  basis_ready_ = true;
+}
+
+GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
   if (!lp_) return Outcome::Failed;
   glp_term_out(GLP_OFF);
   int ret = 0, status = 0, iters_before = 0, iters_after = 0;
@@ -104,18 +126,19 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
     glp_smcp parm;
     glp_init_smcp(&parm);
     parm.msg_lev = GLP_MSG_OFF;
-    // Primal simplex: the SLP's LPs always contain d = 0, so the slack basis is feasible at the start and
-    // the previous basis is close to feasible later. (The dual simplex from an advanced basis was seen to
-    // declare such LPs infeasible when rows of very different scales meet GLPK's scaling.)
+    // Primal simplex: between two SLP iterations both the objective (the gradient) and the column bounds
+    // (the trust region) change, so the previous basis is neither primal nor dual feasible in general, and
+    // a phase 1 from a nearby basis is short. (The dual simplex from an advanced basis was seen to declare
+    // such LPs infeasible when rows of very different scales meet GLPK's scaling.)
     parm.meth = GLP_PRIMAL;
     parm.presolve = GLP_OFF;  // presolve would discard the warm-start basis
     parm.tol_bnd = tol_bnd;
     parm.it_lim = 100 * (glp_get_num_rows(lp) + glp_get_num_cols(lp)) + 1000;  // never a hang
+    if (time_limit_ms >= 0) parm.tm_lim = std::max(time_limit_ms, 1);
     iters_before = glp_get_it_cnt(lp);
     ret = glp_simplex(lp, &parm);
-    if (ret != 0 || glp_get_status(lp) != GLP_OPT) {
-      // The warm basis led astray (singular, or lost feasibility): restart from the slack basis, which
-      // is feasible by construction.
+    if (ret != GLP_ETMLIM && (ret != 0 || glp_get_status(lp) != GLP_OPT)) {
+      // The warm basis led astray (singular, or numerically lost): restart from the slack basis.
       glp_std_basis(lp);
       ret = glp_simplex(lp, &parm);
     }
@@ -128,6 +151,7 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd) {
   }
   basis_ready_ = true;
   iterations_ += iters_after - iters_before;
+  if (ret == GLP_ETMLIM) return Outcome::TimeLimit;
   if (ret != 0) return Outcome::Failed;
   if (status == GLP_OPT) return Outcome::Optimal;
   if (status == GLP_NOFEAS) return Outcome::Infeasible;
