@@ -46,6 +46,11 @@ class GlpkLp {
   /// (< 0: none) ends it with Outcome::TimeLimit.
   Outcome solve(double tol_bnd, int time_limit_ms = -1);
   void column_values(std::vector<double>& x) const;
+  /// A lower bound on the LP's optimum that does not trust the solver's optimality tolerances: with the
+  /// row multipliers λ = max(0, -dual) of the last solve, min over the column bounds of
+  /// c·x + λ·(A x - ub) (Lagrangian weak duality: valid for any λ >= 0). -inf if a column whose reduced
+  /// cost pulls it that way is unbounded.
+  double lagrangian_bound(const std::vector<double>& cost) const;
   int simplex_iterations() const { return iterations_; }
 
  private:

@@ -107,14 +107,21 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     const View<Line> all = chain.rows(a + k);
     kept.assign(all.begin(), all.end());
     if (k >= first && k + 1 <= last && all.n > 2) {
+      // Rows on one variable only (α or β exactly 0) are kept as they are: the polygon would fold them into
+      // its box and report the box's side, not the row.
       local.clear();
-      for (size_t i = 0; i < all.n; ++i) local.push_back({all[i].a, all[i].b, all[i].c, static_cast<int>(i)});
+      kept.clear();
+      for (size_t i = 0; i < all.n; ++i) {
+        if (all[i].a == 0.0 || all[i].b == 0.0) kept.push_back(all[i]);
+        else local.push_back({all[i].a, all[i].b, all[i].c, static_cast<int>(i)});
+      }
       if (!poly.build(lo[k], hi[k], lo[k + 1], hi[k + 1], local.data(), local.size())) {
         poly.reset(lo[k], hi[k], lo[k + 1], hi[k + 1]);
         for (const Line& l : local) poly.clip(l);
       }
-      if (!poly.empty()) {
-        kept.clear();
+      if (poly.empty()) {
+        kept.assign(all.begin(), all.end());
+      } else {
         for (const Line& e : poly.edges())
           if (e.id >= 0) kept.push_back(all[static_cast<size_t>(e.id)]);
       }
@@ -236,8 +243,11 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       global = true;
     }
     if (global) {
-      // Frank-Wolfe: T(θ) - min T <= ∇T(θ)·(θ - θ_lp) for convex T over the window's set.
-      out.gap = std::max(predicted, 0.0);
+      // Frank-Wolfe: T(θ) - min T <= ∇T(θ)·θ - min ∇T(θ)·θ' over the window's set, the minimum bounded
+      // from below by weak duality (not by GLPK's word that its vertex is optimal).
+      double g_theta = 0.0;
+      for (Eigen::Index j = first; j <= last; ++j) g_theta += g[j] * theta[j];
+      out.gap = std::max({g_theta - lp.lagrangian_bound(cost), predicted, 0.0});
       if (out.gap <= rel_target * T) {
         out.status = SlpOutcome::Status::Converged;
         return out;
