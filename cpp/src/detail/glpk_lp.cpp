@@ -8,6 +8,8 @@
 #include <limits>
 #include <cstdlib>
 
+#include <vector>
+
 #include <glpk.h>
 
 namespace pathpace::detail {
@@ -33,6 +35,24 @@ bool guarded(F&& f) {
   }
   f();
   glp_error_hook(nullptr, nullptr);
+  return true;
+}
+
+// Every upper-bounded row holds at the column values, to tol (1 + |ub|), computed from the matrix itself.
+bool rows_hold(glp_prob* lp, double tol) {
+  const int m = glp_get_num_rows(lp), n = glp_get_num_cols(lp);
+  std::vector<double> act(static_cast<size_t>(m) + 1, 0.0), val(static_cast<size_t>(m) + 1);
+  std::vector<int> ind(static_cast<size_t>(m) + 1);
+  for (int j = 1; j <= n; ++j) {
+    const double x = glp_get_col_prim(lp, j);
+    const int len = glp_get_mat_col(lp, j, ind.data(), val.data());
+    for (int t = 1; t <= len; ++t) act[static_cast<size_t>(ind[t])] += val[t] * x;
+  }
+  for (int i = 1; i <= m; ++i)
+    if (glp_get_row_type(lp, i) == GLP_UP) {
+      const double ub = glp_get_row_ub(lp, i);
+      if (act[static_cast<size_t>(i)] > ub + tol * (1.0 + std::abs(ub))) return false;
+    }
   return true;
 }
 
@@ -79,8 +99,8 @@ bool GlpkLp::load() {
     for (int i = 0; i < rows; ++i) glp_set_row_bnds(lp, i + 1, GLP_UP, 0.0, row_ub_[static_cast<size_t>(i)]);
     for (int j = 0; j < cols_; ++j) glp_set_col_bnds(lp, j + 1, GLP_FR, 0.0, 0.0);
     glp_load_matrix(lp, static_cast<int>(ar_.size()) - 1, ia_.data(), ja_.data(), ar_.data());
-    // Rows differ in scale by 1/(2Δs); GLPK's equilibration keeps the simplex well conditioned.
-    glp_scale_prob(lp, GLP_SF_AUTO);
+    // No glp_scale_prob: the caller poses the LP in normalised columns and rows (see slp.cpp), and GLPK's
+    // equilibration on top of that was seen to end a warm-started solve OPTIMAL with a row broken by 1 %.
   });
   lp_ = ok ? lp : nullptr;
   return ok;
@@ -145,6 +165,12 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
       // The warm basis led astray (singular, or numerically lost): restart from the slack basis.
       glp_std_basis(lp);
       ret = glp_simplex(lp, &parm);
+    }
+    if (ret == 0 && glp_get_status(lp) == GLP_OPT && !rows_hold(lp, 10.0 * tol_bnd)) {
+      // Never trust an OPTIMAL whose point breaks a row: once more from the slack basis.
+      glp_std_basis(lp);
+      ret = glp_simplex(lp, &parm);
+      if (ret == 0 && glp_get_status(lp) == GLP_OPT && !rows_hold(lp, 10.0 * tol_bnd)) ret = -1;
     }
     iters_after = glp_get_it_cnt(lp);
     status = glp_get_status(lp);

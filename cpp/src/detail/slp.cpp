@@ -1,6 +1,7 @@
 #include "detail/slp.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -53,6 +54,8 @@ struct WindowResult {
   Eigen::VectorXd theta;  // θ_a .. θ_b
   double T = 0.0;         // Σ_{k in [a, b)} f_k at theta
   double gap = std::numeric_limits<double>::infinity();  // Frank-Wolfe gap of theta (absolute), if computed
+  // Best lower bound on the window's optimum: max over the Frank-Wolfe checks of T(θ) - gap(θ).
+  double lower = -std::numeric_limits<double>::infinity();
   int iterations = 0, lp_solves = 0;
 };
 
@@ -88,9 +91,16 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   const int cols = static_cast<int>(last - first + 1);
   if (cols <= 0) {
     out.gap = 0.0;
+    out.lower = out.T;
     return out;
   }
   lp.reset(cols);
+  // The LP is posed in y_j = θ_j / σ_j with σ_j the start's θ_j (floored), and each row divided by its size
+  // at the start: ṡ² spans orders of magnitude along a path (1e-5 near a slow point, 1 elsewhere) and
+  // GLPK's tolerances are absolute in the problem it is given, so in θ itself a row with c ~ 1e-5 could be
+  // broken by 1e-9, 1e-4 of itself, which the repair would then pay for in T.
+  const double theta_max = std::max(theta.maxCoeff(), 1e-300);
+  Eigen::VectorXd sigma = theta.cwiseMax(1e-6 * theta_max);
   struct LpRow {
     Eigen::Index k;  // interval (local)
     double alpha, beta, c;
@@ -130,18 +140,22 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       idx.clear();
       val.clear();
       double rhs = r.c;
+      double size = 0.0;
       if (k >= first && k <= last) {
-        if (r.a != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.a); }
+        if (r.a != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.a * sigma[k]); }
       } else {
         rhs -= r.a * theta[k];
       }
       if (k + 1 >= first && k + 1 <= last) {
-        if (r.b != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.b); }
+        if (r.b != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.b * sigma[k + 1]); }
       } else {
         rhs -= r.b * theta[k + 1];
       }
       if (idx.empty()) continue;  // both ends fixed: nothing to decide
-      lp.add_row_upper(idx, val, rhs);
+      for (double v : val) size += std::abs(v);
+      size = std::max(size, std::abs(rhs));
+      for (double& v : val) v /= size;
+      lp.add_row_upper(idx, val, rhs / size);
       lp_rows.push_back({k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
                          k + 1 >= first && k + 1 <= last && r.b != 0.0});
     }
@@ -202,7 +216,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   auto solve_lp = [&](double radius) -> SlpOutcome::Status {
     for (Eigen::Index j = first; j <= last; ++j) {
       const double l = std::max(lo[j], theta[j] - radius), h = std::min(hi[j], theta[j] + radius);
-      lp.set_col_bounds(static_cast<int>(j - first), std::min(l, h), h);
+      lp.set_col_bounds(static_cast<int>(j - first), std::min(l, h) / sigma[j], h / sigma[j]);
     }
     if (first_lp) start_basis();
     first_lp = false;
@@ -214,7 +228,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     if (o != GlpkLp::Outcome::Optimal) return SlpOutcome::Status::LpFailed;
     lp.column_values(x);
     d.setZero();
-    for (Eigen::Index j = first; j <= last; ++j) d[j] = x[static_cast<size_t>(j - first)] - theta[j];
+    for (Eigen::Index j = first; j <= last; ++j) d[j] = sigma[j] * x[static_cast<size_t>(j - first)] - theta[j];
     return SlpOutcome::Status::Converged;
   };
 
@@ -224,7 +238,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       return out;
     }
     gradient(ds, theta, floor, g);
-    for (Eigen::Index j = first; j <= last; ++j) cost[static_cast<size_t>(j - first)] = g[j];
+    for (Eigen::Index j = first; j <= last; ++j) cost[static_cast<size_t>(j - first)] = g[j] * sigma[j];
     lp.set_objective(cost);
     SlpOutcome::Status st = solve_lp(global ? std::numeric_limits<double>::infinity() : rho);
     if (st != SlpOutcome::Status::Converged) {
@@ -248,6 +262,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       double g_theta = 0.0;
       for (Eigen::Index j = first; j <= last; ++j) g_theta += g[j] * theta[j];
       out.gap = std::max({g_theta - lp.lagrangian_bound(cost), predicted, 0.0});
+      out.lower = std::max(out.lower, T - out.gap);
       if (out.gap <= rel_target * T) {
         out.status = SlpOutcome::Status::Converged;
         return out;
@@ -366,7 +381,7 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
       z.segment(w.a, w.b - w.a + 1) = w.result.theta;
       const double t_up = duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
       // Every feasible y <= upper, so the window's part of T(y) is >= its part of T(upper) as well.
-      lower += std::max(t_up, w.result.T - w.result.gap) - t_up;
+      lower += std::max(t_up, w.result.lower) - t_up;
     }
     out.theta = forward_pass(full, theta_begin, &z);
     out.theta[0] = theta_begin;
