@@ -360,8 +360,11 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
   merge(ws);
 
   const double T_upper = duration(chain.ds, upper);
-  // Each window gets half the tolerance relative to its own T (Σ T_i <= T), the rest is for the repair.
-  const double rel_target = 0.5 * options.tolerance;
+  // The windows share half the tolerance on T (the rest is for the repair), each in proportion to its T:
+  // relative to its own T, a window may be off by 0.5 tol T / Σ_windows T_i.
+  double t_windows = 0.0;
+  for (const Window& w : ws) t_windows += duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
+  const double rel_target = 0.5 * options.tolerance * std::max(1.0, T_upper / std::max(t_windows, 1e-300));
   GlpkLp lp;
   Eigen::VectorXd z;
   for (;;) {
