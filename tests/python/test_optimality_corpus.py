@@ -110,3 +110,34 @@ def test_corpus_exercises_the_windows(results):
     assert sum(kinds) >= CASES // 2
     # The cvxpy oracle may be off on a case or two (see above), not on the corpus.
     assert len(results) - len(kinds) <= 2
+
+
+def test_time_limit_ends_with_a_feasible_timing_and_its_certified_gap(robots):
+    ours, _ = robots["panda"]
+    lo, hi = ours.position_limits
+    v = ours.velocity_limits
+    path = pp.CubicSplinePath(lo + (hi - lo) * np.random.default_rng(3).uniform(0.1, 0.9, (6, 7)))
+    prob = pp.TimeScalingProblem(path, grid=200)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-2 * v, 2 * v)
+    best = prob.solve()
+    assert best.status == pp.Status.OPTIMAL and best.stats["lp_solves"] > 0
+    res = prob.solve(time_limit=1e-12)
+    assert res.status == pp.Status.TIME_LIMIT and res.ok
+    assert "time_limit" in res.message
+    assert res.duration >= best.duration * (1 - 1e-9)
+    assert res.stats["gap"] >= (res.duration - best.duration) / best.duration - 1e-9
+    A, B, C = kinematic_rows(path.dq(prob.grid), path.ddq(prob.grid), -v, v, -2 * v, 2 * v)
+    assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
+    with pytest.raises(pp.InvalidInputError, match="time_limit"):
+        prob.solve(time_limit=0.0)
+
+
+def test_stationary_piece_is_rejected_naming_its_s_range():
+    # q = s on [0, 1], q = 1 on [1, 2], q = s - 1 on [2, 3]
+    path = pp.PiecewisePolynomialPath([0.0, 1.0, 2.0, 3.0], [np.array([[0.0], [1.0]]), np.array([[1.0], [0.0]]),
+                                                             np.array([[1.0], [1.0]])])
+    prob = pp.TimeScalingProblem(path, grid=30)
+    prob.add_velocity_limits([-1.0], [1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"does not move on s in \[1, 1\.9.*grid indices 10\.\.19"):
+        prob.solve()
