@@ -286,7 +286,15 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       T = T_next;
       out.theta = theta;
       out.T = T;
-      out.gap = std::numeric_limits<double>::infinity();  // the last gap was of the previous iterate
+      // The bound of an earlier check still holds: if the step has brought T within the target of it, the
+      // new iterate is certified without another LP (a small Frank-Wolfe step realises nearly all of the
+      // decrease the LP predicted, so this is the common end).
+      out.gap = T - out.lower;
+      if (out.gap <= rel_target * T) {
+        out.status = SlpOutcome::Status::Converged;
+        ++out.iterations;
+        return out;
+      }
     }
     const double step = (alpha * d).cwiseAbs().maxCoeff();
     // A full Frank-Wolfe step lands on a vertex of the window's set, where the optimum of a time-optimal
