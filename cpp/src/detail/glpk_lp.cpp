@@ -106,6 +106,20 @@ bool GlpkLp::load() {
   return ok;
 }
 
+void GlpkLp::append_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub) {
+  const int row = add_row_upper(idx, val, ub) + 1;
+  std::vector<int> ind(idx.size() + 1);
+  std::vector<double> v(val.size() + 1);
+  for (size_t i = 0; i < idx.size(); ++i) {
+    ind[i + 1] = idx[i] + 1;
+    v[i + 1] = val[i];
+  }
+  glp_add_rows(lp_, 1);
+  glp_set_mat_row(lp_, row, static_cast<int>(idx.size()), ind.data(), v.data());
+  glp_set_row_bnds(lp_, row, GLP_UP, 0.0, ub);
+  glp_set_row_stat(lp_, row, GLP_BS);
+}
+
 void GlpkLp::set_objective(const std::vector<double>& c) {
   for (int j = 0; j < cols_; ++j) glp_set_obj_coef(lp_, j + 1, c[static_cast<size_t>(j)]);
 }

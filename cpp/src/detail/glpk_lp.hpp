@@ -28,6 +28,8 @@ class GlpkLp {
   int add_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub);
   /// Loads the rows added so far into GLPK (call once after the last add_row_upper).
   bool load();
+  /// After load(): one more row, basic (so the current basis stays a basis; the next solve starts from it).
+  void append_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub);
 
   void set_objective(const std::vector<double>& c);
   /// Row `row` <= ub; ub = +inf frees the row.

@@ -105,8 +105,12 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     Eigen::Index k;  // interval (local)
     double alpha, beta, c;
     bool on_k, on_k1;  // coefficient on a column at point k / k+1
+    int n;             // LP coefficients (1 or 2), normalised
+    int col[2];
+    double val[2], rhs;
   };
-  std::vector<LpRow> lp_rows;
+  std::vector<LpRow> lp_rows;   // the rows in the LP, in its order
+  std::vector<LpRow> waiting;   // the rows not (yet) in it
   std::vector<int> idx;
   std::vector<double> val;
   // Only the rows that support interval k's polygon within the column bounds' box can bind in any of the
@@ -155,9 +159,25 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       for (double v : val) size += std::abs(v);
       size = std::max(size, std::abs(rhs));
       for (double& v : val) v /= size;
-      lp.add_row_upper(idx, val, rhs / size);
-      lp_rows.push_back({k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
-                         k + 1 >= first && k + 1 <= last && r.b != 0.0});
+      LpRow row{k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
+                k + 1 >= first && k + 1 <= last && r.b != 0.0, static_cast<int>(idx.size()), {idx[0], 0},
+                {val[0], 0.0}, rhs / size};
+      if (idx.size() > 1) {
+        row.col[1] = idx[1];
+        row.val[1] = val[1];
+      }
+      // Rows are added lazily: first those nearly tight at the start (slack within 1 % of the row's size),
+      // which the start basis and most LP vertices need; the others only once an LP solution breaks them
+      // (see solve_lp). The LP is then a relaxation until the last round, which still gives valid bounds,
+      // and its basis factorisations have a quarter of the rows.
+      const double ax = r.a * theta[k], by = r.b * theta[k + 1];
+      const double slack = (r.c - ax - by) / std::max({std::abs(r.c), std::abs(ax) + std::abs(by), 1e-300});
+      if (slack <= 1e-2) {
+        lp.add_row_upper(idx, val, row.rhs);
+        lp_rows.push_back(row);
+      } else {
+        waiting.push_back(row);
+      }
     }
   }
   if (!lp.load()) {
@@ -223,10 +243,32 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     ++out.lp_solves;
     const int ms = remaining_ms(deadline);
     if (ms <= 0) return SlpOutcome::Status::TimeLimit;
-    const GlpkLp::Outcome o = lp.solve(options.lp_feasibility_tolerance, ms);
-    if (o == GlpkLp::Outcome::TimeLimit) return SlpOutcome::Status::TimeLimit;
-    if (o != GlpkLp::Outcome::Optimal) return SlpOutcome::Status::LpFailed;
-    lp.column_values(x);
+    GlpkLp::Outcome o = lp.solve(options.lp_feasibility_tolerance, ms);
+    for (;;) {
+      if (o == GlpkLp::Outcome::TimeLimit) return SlpOutcome::Status::TimeLimit;
+      if (o != GlpkLp::Outcome::Optimal) return SlpOutcome::Status::LpFailed;
+      lp.column_values(x);
+      // Rows still waiting that the solution breaks join the LP, which is solved again from its basis.
+      size_t kept_waiting = 0;
+      bool added = false;
+      for (const LpRow& r : waiting) {
+        double act = 0.0;
+        for (int t = 0; t < r.n; ++t) act += r.val[t] * x[static_cast<size_t>(r.col[t])];
+        if (act > r.rhs + 10.0 * options.lp_feasibility_tolerance * (1.0 + std::abs(r.rhs))) {
+          idx.assign(r.col, r.col + r.n);
+          val.assign(r.val, r.val + r.n);
+          lp.append_row_upper(idx, val, r.rhs);
+          lp_rows.push_back(r);
+          added = true;
+        } else {
+          waiting[kept_waiting++] = r;
+        }
+      }
+      waiting.resize(kept_waiting);
+      if (!added) break;
+      ++out.lp_solves;
+      o = lp.solve(options.lp_feasibility_tolerance, std::max(remaining_ms(deadline), 1));
+    }
     d.setZero();
     for (Eigen::Index j = first; j <= last; ++j) d[j] = sigma[j] * x[static_cast<size_t>(j - first)] - theta[j];
     return SlpOutcome::Status::Converged;
