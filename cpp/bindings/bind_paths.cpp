@@ -74,12 +74,6 @@ std::vector<Eigen::MatrixXd> polynomial_pieces(py::handle coefficients) {
   return pieces;
 }
 
-void check_state(const py::tuple& t, size_t size, const char* what) {
-  if (t.size() != size)
-    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
-                       std::to_string(size));
-}
-
 }  // namespace
 
 void bind_paths(py::module_& m) {

@@ -55,12 +55,6 @@ py::object at_times(const Trajectory& tr, py::handle t, int which) {
   return py::cast(out);
 }
 
-void check_state(const py::tuple& t, size_t size, const char* what) {
-  if (t.size() != size)
-    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
-                       std::to_string(size));
-}
-
 template <typename T>
 std::shared_ptr<T> optional_ptr(py::handle h) {
   return h.is_none() ? std::shared_ptr<T>() : h.cast<std::shared_ptr<T>>();
@@ -118,7 +112,7 @@ py::dict stats_dict(const SolverStats& s) {
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
                   "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
                   "time_slp"_a = s.time_slp, "audit_rounds"_a = s.audit_rounds, "audit_cuts"_a = s.audit_cuts,
-                  "audit_worst"_a = s.audit_worst);
+                  "audit_worst"_a = s.audit_worst, "windows"_a = s.windows, "window_points"_a = s.window_points);
 }
 
 }  // namespace
@@ -181,7 +175,8 @@ void bind_problem(py::module_& m) {
       .value("INFEASIBLE", Status::Infeasible)
       .value("ITERATION_LIMIT", Status::IterationLimit)
       .value("NUMERICAL_ERROR", Status::NumericalError)
-      .value("UNBOUNDED", Status::Unbounded);
+      .value("UNBOUNDED", Status::Unbounded)
+      .value("TIME_LIMIT", Status::TimeLimit);
 
   py::class_<FeasibleSet>(m, "FeasibleSet", "The pruned feasible polygon of (x, u) = (sdot^2, sddot) at one grid point.")
       .def_readonly("index", &FeasibleSet::index)
@@ -337,12 +332,13 @@ void bind_problem(py::module_& m) {
                             static_cast<int>(r.status), r.message, r.duration, r.s, r.sdot, r.times, r.sddot,
                             py::make_tuple(r.infeasibility.grid_index, r.infeasibility.s, r.infeasibility.constraints),
                             py::make_tuple(st.slp_iterations, st.lp_solves, st.greatest_element, st.gap, st.average_halfplanes,
-                                           st.time_constraints, st.time_feasible_sets, st.time_reachability, st.time_slp),
+                                           st.time_constraints, st.time_feasible_sets, st.time_reachability, st.time_slp,
+                                           st.audit_rounds, st.audit_cuts, st.audit_worst, st.windows, st.window_points),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
-                            std::const_pointer_cast<ContactConstraint>(r.contacts));
+                            std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding);
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 12, "Result");
+                        check_state(t, 14, "Result");
                         Result r;
                         r.status = static_cast<Status>(t[0].cast<int>());
                         r.message = t[1].cast<std::string>();
@@ -356,6 +352,7 @@ void bind_problem(py::module_& m) {
                         r.infeasibility.s = inf[1].cast<double>();
                         r.infeasibility.constraints = inf[2].cast<std::vector<std::string>>();
                         const py::tuple st = t[8].cast<py::tuple>();
+                        check_state(st, 14, "Result stats");
                         r.stats.slp_iterations = st[0].cast<int>();
                         r.stats.lp_solves = st[1].cast<int>();
                         r.stats.greatest_element = st[2].cast<bool>();
@@ -365,9 +362,16 @@ void bind_problem(py::module_& m) {
                         r.stats.time_feasible_sets = st[6].cast<double>();
                         r.stats.time_reachability = st[7].cast<double>();
                         r.stats.time_slp = st[8].cast<double>();
+                        r.stats.audit_rounds = st[9].cast<int>();
+                        r.stats.audit_cuts = st[10].cast<int>();
+                        r.stats.audit_worst = st[11].cast<double>();
+                        r.stats.windows = st[12].cast<int>();
+                        r.stats.window_points = st[13].cast<int>();
                         r.path = optional_ptr<Path>(t[9]);
                         r.robot = optional_ptr<RobotModel>(t[10]);
                         r.contacts = optional_ptr<ContactConstraint>(t[11]);
+                        r.relaxation = t[12].cast<std::map<std::string, double>>();
+                        r.binding = t[13].cast<std::vector<std::string>>();
                         return r;
                       }))
       .def("__repr__", [](const Result& r) {
@@ -536,8 +540,9 @@ void bind_problem(py::module_& m) {
       .def("solve", [](const TimeScalingProblem& p, py::handle method, py::handle max_iterations,
                        py::handle tolerance, py::handle initial_trust_region, py::handle lp_feasibility_tolerance,
                        py::handle explain, py::handle guarantee, py::handle audit_points, py::handle audit_tolerance,
-                       py::handle max_audit_rounds) {
+                       py::handle max_audit_rounds, py::handle time_limit) {
         SolverOptions o;
+        o.time_limit = to_double(time_limit, "time_limit");
         o.explain = to_bool(explain, "explain");
         o.guarantee = parse_guarantee(to_string_arg(guarantee, "guarantee"));
         o.audit_points = static_cast<int>(to_int(audit_points, "audit_points", std::numeric_limits<int>::min(),
@@ -560,10 +565,12 @@ void bind_problem(py::module_& m) {
          "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance,
          "explain"_a = SolverOptions().explain, "guarantee"_a = "grid", "audit_points"_a = SolverOptions().audit_points,
          "audit_tolerance"_a = SolverOptions().audit_tolerance, "max_audit_rounds"_a = SolverOptions().max_audit_rounds,
+         "time_limit"_a = SolverOptions().time_limit,
          "Time-optimal timing. guarantee='grid': limits hold at the grid points (eq. 26); 'continuous': at every "
          "instant (velocity/acceleration by Bernstein bounds of a piecewise-polynomial path, torque/contact by "
          "audit at audit_points interior points per interval with exact cuts until the audit passes; "
-         "stats['audit_worst'] is the largest relative violation left, negative = the margin reached).");
+         "stats['audit_worst'] is the largest relative violation left, negative = the margin reached). "
+         "time_limit (s, inf for none) bounds the whole solve: TIME_LIMIT with the best feasible timing found.");
 }
 
 }  // namespace pathpace::python

@@ -44,12 +44,6 @@ Eigen::VectorXd qvec(const RobotModel& r, py::handle h, const char* name) {
   return v;
 }
 
-void check_state(const py::tuple& t, size_t size, const char* what) {
-  if (t.size() != size)
-    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
-                       std::to_string(size));
-}
-
 // A model pickles as the record of how it was built (RobotModel::Source), nested for combine().
 py::tuple source_state(const RobotModel::Source& s) {
   switch (s.kind) {

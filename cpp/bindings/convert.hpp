@@ -189,6 +189,13 @@ inline ContactOptions contact_options_arg(py::handle cone_edges, py::handle fric
 }
 
 /// A Python scalar or 0-d array (functions of s or t then return one row instead of a matrix).
+// A pickled state tuple of the expected length (a state from another version is refused, named).
+inline void check_state(const py::tuple& t, size_t size, const char* what) {
+  if (t.size() != size)
+    throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
+                       std::to_string(size));
+}
+
 inline bool is_scalar(py::handle h) {
   return py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h) ||
          (py::isinstance<py::array>(h) && py::array(py::reinterpret_borrow<py::object>(h)).ndim() == 0);

@@ -12,6 +12,7 @@ const char* to_string(Status status) {
     case Status::IterationLimit: return "iteration_limit";
     case Status::NumericalError: return "numerical_error";
     case Status::Unbounded: return "unbounded";
+    case Status::TimeLimit: return "time_limit";
   }
   return "unknown";
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "detail/binding.hpp"
@@ -152,6 +153,8 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   if (!(options.lp_feasibility_tolerance > 0.0 && options.lp_feasibility_tolerance < 1e-3))
     detail::fail("lp_feasibility_tolerance = " + detail::fmt(options.lp_feasibility_tolerance) +
                  " must be in (0, 1e-3)");
+  if (!(options.time_limit > 0.0))
+    detail::fail("time_limit = " + detail::fmt(options.time_limit) + " must be > 0 (seconds)");
   if (options.guarantee == Guarantee::Grid) return solve_rows(rows_, nullptr, options);
   if (options.audit_points < 1 || options.audit_points > 1000)
     detail::fail("audit_points = " + std::to_string(options.audit_points) + " must be in [1, 1000]");
@@ -173,9 +176,13 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   }
   Result res;
   int rounds = 0, cuts = 0;
+  // The time budget covers all rounds: each solve gets what is left.
+  const auto started = std::chrono::steady_clock::now();
+  SolverOptions round_options = options;
   for (;;) {
-    res = solve_rows(rows, &extra, options);
-    if (!res.ok()) break;
+    round_options.time_limit = std::max(options.time_limit - seconds_since(started), 1e-3);
+    res = solve_rows(rows, &extra, round_options);
+    if (!res.ok() || res.status == Status::TimeLimit) break;
     const Eigen::VectorXd theta = res.sdot.array().square();
     const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, offset,
                                                       options.audit_points, options.audit_tolerance, extra);
@@ -198,6 +205,11 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
 
 Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constraint_rows,
                                       const detail::IntervalExtra* extra, const SolverOptions& options) const {
+  const auto started = std::chrono::steady_clock::now();
+  const double budget = std::min(options.time_limit, 1e9);  // +inf: no limit (a billion seconds)
+  const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                      std::chrono::duration<double>(budget));
+
   Result res;
   res.path = path_;
   for (const auto& c : constraints_) {
@@ -235,6 +247,23 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     return res;
   };
 
+  // A stationary piece of path (p' = 0 on a stretch of the grid) that no constraint bounds would be crossed
+  // in zero time: the discretised problem has no optimum there (T* is not attained). That is an input
+  // error, named by its s-range; a single grid point with p' = 0 (a cusp) is just an unbounded point.
+  auto stationary_check = [&](Eigen::Index k) {
+    const double tol = 1e-12 * std::max(1.0, samples_.dq.cwiseAbs().maxCoeff());
+    auto still = [&](Eigen::Index i) { return samples_.dq.row(i).cwiseAbs().maxCoeff() <= tol; };
+    if (k < 0 || k > n || !still(k)) return;
+    Eigen::Index a = k, b = k;
+    while (a > 0 && still(a - 1)) --a;
+    while (b < n && still(b + 1)) ++b;
+    if (a == b) return;
+    detail::fail("path does not move on s in [" + detail::fmt(samples_.s[a]) + ", " + detail::fmt(samples_.s[b]) +
+                 "] (p'(s) = 0 at grid indices " + std::to_string(a) + ".." + std::to_string(b) +
+                 ") and no constraint bounds the speed there: it would be crossed in zero time; remove that piece "
+                 "from the path");
+  };
+
   for (Eigen::Index k = 0; k <= n; ++k) {
     const detail::PointSet& p = sets.points[static_cast<size_t>(k)];
     if (p.empty) return report(Status::Infeasible, k, p.certificate, "no (sdot^2, sddot) satisfies the constraints");
@@ -257,18 +286,16 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   res.status = Status::Optimal;
   bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
   Eigen::VectorXd theta;
-  double lower = 0.0;  // T of the lattice relaxation's greatest element: a lower bound on T*
-  detail::Reachability reach;
+  detail::Reachability relaxed, reach;
   bool have_full = false;
   if (!chain.lattice && options.method == Method::Auto) {
     // Rows coupling θ_k and θ_{k+1} positively appear wherever p'_j is small against p''_j (near a
     // joint's reversal). Without them the feasible set is max-closed and its greatest element θ' has
     // T(θ') <= T* (a lower bound); the full greedy θ is feasible (an upper bound). If θ' satisfies the
     // coupling rows it is the optimum; if the bracket is within the tolerance, θ is optimal to it.
-    detail::Reachability relaxed;
     if (detail::reachability_pair(chain, th0, thN, relaxed, reach)) {
       have_full = true;
-      lower = detail::duration(chain.ds, relaxed.theta);
+      const double lower = detail::duration(chain.ds, relaxed.theta);
       if (detail::coupled_violation(chain, relaxed.theta) <= 1e-12) {
         theta = relaxed.theta;
         proven = true;
@@ -286,8 +313,10 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     reach = detail::reachability(chain, th0, thN);
     if (reach.outcome == detail::Reachability::Outcome::Infeasible)
       return report(Status::Infeasible, reach.failed_index, reach.binding, reach.reason);
-    if (reach.outcome == detail::Reachability::Outcome::Unbounded)
+    if (reach.outcome == detail::Reachability::Outcome::Unbounded) {
+      stationary_check(reach.failed_index);
       return report(Status::Unbounded, reach.failed_index, reach.binding, reach.reason);
+    }
     theta = reach.theta;
     // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
     if (chain.lattice && options.method == Method::Auto) proven = true;
@@ -307,35 +336,39 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
 
   if (!proven) {
     t0 = std::chrono::steady_clock::now();
-    const detail::SlpOutcome out = detail::slp(chain, theta, options);
+    // SLP on windows around the intervals where θ' breaks a coupling row (see detail/slp.hpp); without
+    // θ' (Method::Slp, or the relaxed analysis did not end feasible) one window, the whole chain, under θ_hi.
+    const detail::SlpOutcome out = detail::windowed_slp(chain, reach, have_full ? relaxed.theta : chain.x_hi,
+                                                        have_full, th0, options, deadline);
     res.stats.time_slp = seconds_since(t0);
     res.stats.slp_iterations = out.iterations;
-    res.stats.gap = out.gap;
     res.stats.lp_solves = out.lp_solves;
-    // The LP's vertices satisfy rows only to GLPK's tolerance; a capped greedy pass returns the nearest
-    // point below the SLP iterate that satisfies every row to rounding.
-    theta = detail::forward_pass(reach, th0, &out.theta);
-    // The repair can only slow the iterate down; the certified gap grows by what it cost.
-    const double t_slp = detail::duration(chain.ds, out.theta), t_final = detail::duration(chain.ds, theta);
-    if (t_final > t_slp) res.stats.gap += (t_final - t_slp) / t_slp;
+    res.stats.windows = out.windows;
+    res.stats.window_points = static_cast<int>(out.window_points);
+    theta = out.theta;
+    const double T = detail::duration(chain.ds, theta);
+    res.stats.gap = out.lower > 0.0 ? std::max(0.0, T - out.lower) / out.lower : std::numeric_limits<double>::infinity();
+    const std::string bound = "the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
+                              " (relative, certified)";
     switch (out.status) {
       case detail::SlpOutcome::Status::Converged:
         if (res.stats.gap > options.tolerance) {
           res.status = Status::IterationLimit;
-          res.message = "SLP converged, but making its LP solution exactly feasible cost " + detail::fmt(res.stats.gap) +
-                        " (relative), more than the tolerance; the timing is feasible";
+          res.message = "SLP converged on its windows, but the certified gap stayed above the tolerance; " + bound;
         }
         break;
       case detail::SlpOutcome::Status::IterationLimit:
         res.status = Status::IterationLimit;
-        res.message = "SLP stopped after " + std::to_string(out.iterations) +
-                      " iterations; the timing is feasible, T exceeds the optimum by at most " +
-                      detail::fmt(out.gap) + " (relative)";
+        res.message = "SLP stopped after max_iterations = " + std::to_string(options.max_iterations) +
+                      " iterations in a window; " + bound;
+        break;
+      case detail::SlpOutcome::Status::TimeLimit:
+        res.status = Status::TimeLimit;
+        res.message = "time_limit = " + detail::fmt(options.time_limit) + " s reached during SLP; " + bound;
         break;
       case detail::SlpOutcome::Status::LpFailed:
         res.status = Status::NumericalError;
-        res.message = "GLPK failed in SLP iteration " + std::to_string(out.iterations) +
-                      "; the timing returned is the last feasible one";
+        res.message = "GLPK failed in SLP; the timing returned is the last feasible one, " + bound;
         break;
     }
   }

@@ -189,6 +189,7 @@ class Status(Enum):
     ITERATION_LIMIT = ...
     NUMERICAL_ERROR = ...
     UNBOUNDED = ...
+    TIME_LIMIT = ...
 
 class FeasibleSet:
     index: int
@@ -314,6 +315,16 @@ class TimeScalingProblem:
         audit_points: int = 8,
         audit_tolerance: float = 1e-10,
         max_audit_rounds: int = 30,
-    ) -> Result: ...
+        time_limit: float = 60.0,
+    ) -> Result:
+        """The optimum of eq. (26)-(27), OPTIMAL when its certified gap is <= `tolerance` (relative).
+
+        `max_iterations` bounds the SLP iterations per window, `time_limit` (seconds, inf for none) the whole
+        solve: either ends with the best feasible timing found (ITERATION_LIMIT / TIME_LIMIT, stats["gap"]
+        is its certified bound). UNBOUNDED means that nothing bounds the speed at a grid point where the
+        path moves (the ends, whose speeds are given, never count). A stationary piece of path (p'(s) = 0
+        on a stretch of the grid) that no constraint bounds raises InvalidInputError naming its s-range:
+        it would be crossed in zero time; remove it from the path.
+        """
 
 def auto_grid(path: Path, tolerance: float = 1e-3, min_intervals: int = 16, max_intervals: int = 1000000) -> Array: ...

@@ -45,6 +45,22 @@ class CirclePath : public Path {
   }
 };
 
+// q(s) = (sin 3πs, s): the first coordinate reverses three times, where p' is small against p'': the
+// acceleration rows there couple θ_k and θ_{k+1} positively (no lattice), so SLP windows are needed.
+class ReversingPath : public Path {
+ public:
+  int dof() const override { return 2; }
+  double s_begin() const override { return 0.0; }
+  double s_end() const override { return 1.0; }
+  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
+                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+    const double w = 3 * M_PI;
+    q << std::sin(w * s), s;
+    dq << w * std::cos(w * s), 1.0;
+    ddq << -w * w * std::sin(w * s), 0.0;
+  }
+};
+
 std::shared_ptr<Path> line1d(double length) {
   return std::make_shared<LinePath>(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, length));
 }
@@ -200,4 +216,104 @@ TEST(Trajectory, TimesFollowEquation25AndEndsAtRest) {
   EXPECT_NEAR(qd(1, 0), 1.0, 1e-9);  // cruising at the velocity limit
   EXPECT_NEAR(qd(2, 0), 0.0, 1e-12);
   EXPECT_THROW(t.sample_times(0.0), InvalidInput);
+}
+
+namespace {
+
+TimeScalingProblem reversing_problem(int N) {
+  TimeScalingProblem prob(std::make_shared<ReversingPath>(), N);
+  prob.add_velocity_limits(Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, 2));
+  prob.add_acceleration_limits(Eigen::Vector2d(-3, -10), Eigen::Vector2d(3, 10));
+  return prob;
+}
+
+}  // namespace
+
+TEST(Solver, WindowsGiveTheWholeChainOptimum) {
+  // The window argument (detail/slp.hpp): SLP on windows only must find the optimum of the whole chain,
+  // which Method::Slp finds by SLP over every grid point. Both are certified to the tolerance.
+  for (int N : {60, 300, 1000}) {
+    const TimeScalingProblem prob = reversing_problem(N);
+    const Result win = prob.solve();
+    SolverOptions o;
+    o.method = Method::Slp;
+    const Result whole = prob.solve(o);
+    ASSERT_EQ(win.status, Status::Optimal) << win.message;
+    ASSERT_EQ(whole.status, Status::Optimal) << whole.message;
+    EXPECT_GT(win.stats.lp_solves, 0) << N;
+    EXPECT_GT(win.stats.windows, 0) << N;
+    EXPECT_LT(win.stats.window_points, N + 1) << N;
+    EXPECT_EQ(whole.stats.window_points, N + 1) << N;
+    EXPECT_LE(win.stats.gap, 1e-7);
+    EXPECT_NEAR(win.duration, whole.duration, 2e-7 * whole.duration) << N;
+  }
+}
+
+TEST(Solver, TimeLimitEndsWithAFeasibleTimingAndItsGap) {
+  const TimeScalingProblem prob = reversing_problem(300);
+  const Result best = prob.solve();
+  ASSERT_EQ(best.status, Status::Optimal) << best.message;
+  SolverOptions o;
+  o.time_limit = 1e-12;  // over before the first LP
+  const Result r = prob.solve(o);
+  ASSERT_EQ(r.status, Status::TimeLimit) << r.message;
+  EXPECT_TRUE(r.ok());
+  EXPECT_NE(r.message.find("time_limit"), std::string::npos) << r.message;
+  EXPECT_GE(r.duration, best.duration * (1 - 1e-9));
+  // The certified gap is an upper bound on the true one.
+  EXPECT_TRUE(std::isfinite(r.stats.gap));
+  EXPECT_GE(r.stats.gap, (r.duration - best.duration) / best.duration - 1e-9);
+  o.time_limit = 0.0;
+  EXPECT_THROW(prob.solve(o), InvalidInput);
+}
+
+TEST(Solver, ClampedEndsWithVelocityLimitsOnlySolve) {
+  // p'(0) = p'(1) = 0: at s_0 and s_N nothing bounds ṡ, but ṡ is given there (0), so the problem is
+  // bounded; it used to be reported UNBOUNDED at grid index 0.
+  Eigen::MatrixXd wp(4, 2);
+  wp << 0, 0, 1, 0.5, 0.5, 1.5, 2, 2;
+  auto path = std::make_shared<CubicSplinePath>(wp, KnotSpacing::Uniform, SplineBoundary::Clamped, 0.0, 1.0,
+                                                Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
+  TimeScalingProblem prob(path, 200);
+  prob.add_velocity_limits(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
+  const Result r = prob.solve();
+  ASSERT_EQ(r.status, Status::Optimal) << r.message;
+  EXPECT_EQ(r.sdot[0], 0.0);
+  EXPECT_EQ(r.sdot[200], 0.0);
+  EXPECT_TRUE(std::isfinite(r.duration));
+}
+
+TEST(Solver, StationaryPieceIsRejectedWithItsRange) {
+  // q = s on [0, 1], q = 1 on [1, 2] (the path does not move), q = s - 1 on [2, 3].
+  Eigen::MatrixXd c0(2, 1), c1(2, 1), c2(2, 1);
+  c0 << 0, 1;
+  c1 << 1, 0;
+  c2 << 1, 1;
+  auto path = std::make_shared<PiecewisePolynomialPath>(Eigen::Vector4d(0, 1, 2, 3), std::vector<Eigen::MatrixXd>{c0, c1, c2});
+  TimeScalingProblem prob(path, 30);
+  prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+  try {
+    prob.solve();
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("does not move on s in [1, 1.9"), std::string::npos) << m;
+    EXPECT_NE(m.find("grid indices 10..19"), std::string::npos) << m;
+  }
+  // A constraint that bounds the speed there makes it an ordinary (slow) piece.
+  Eigen::MatrixXd A = Eigen::MatrixXd::Ones(31, 1), Z = Eigen::MatrixXd::Zero(31, 1);
+  prob.add_linear_constraint(A, Z, Z, Eigen::MatrixXd::Constant(31, 1, -1.0), Eigen::MatrixXd::Constant(31, 1, 4.0), "cap");
+  const Result r = prob.solve();
+  EXPECT_EQ(r.status, Status::Optimal) << r.message;
+}
+
+TEST(Solver, UnboundedOnlyWhereThePathMovesFreely) {
+  // A moving path with no constraint at all: nothing bounds ṡ at the interior grid points.
+  TimeScalingProblem prob(line1d(1.0), 10);
+  prob.add_acceleration_limits(Eigen::VectorXd::Constant(1, -std::numeric_limits<double>::infinity()),
+                               Eigen::VectorXd::Constant(1, std::numeric_limits<double>::infinity()));
+  const Result r = prob.solve();
+  EXPECT_EQ(r.status, Status::Unbounded);
+  EXPECT_GT(r.infeasibility.grid_index, 0);
+  EXPECT_LT(r.infeasibility.grid_index, 10);
 }

@@ -90,3 +90,44 @@ def duration(s, theta):
     """T of eq. (27) for squared speeds θ at the grid s."""
     w = np.sqrt(np.maximum(theta, 0.0))
     return float(np.sum(2 * np.diff(s) / (w[:-1] + w[1:])))
+
+
+def frank_wolfe_gap(s, theta, A, B, C, theta_begin=0.0, theta_end=0.0):
+    """An upper bound on T(θ) - T* for a feasible θ, by scipy's HiGHS: T is convex in θ (eq. 27) and the rows
+    of eq. (26) are linear in θ, so T(θ) - T* <= ∇T(θ)·(θ - θ_lp) where θ_lp minimises ∇T(θ)·θ over the
+    feasible set (the Frank-Wolfe gap). Independent of pathpace and of cvxpy."""
+    from scipy.optimize import linprog
+    from scipy.sparse import coo_matrix
+
+    N = len(s) - 1
+    ds = np.diff(s)
+    w = np.sqrt(np.maximum(theta, 0.0))
+    term = ds / (w[:-1] + w[1:]) ** 2
+    g = np.zeros(N + 1)
+    g[:-1] -= term
+    g[1:] -= term
+    g /= np.maximum(w, 1e-300)
+    g[0] = g[N] = 0.0  # fixed ends
+    rows, cols, vals, rhs = [], [], [], []
+    r = 0
+    h = 1.0 / (2 * ds)
+    for side in (0, 1):  # 0: the row of grid point k with interval k; 1: of grid point k+1 with interval k
+        a, b, c = A[side:N + side], B[side:N + side], C[side:N + side]
+        for j in range(A.shape[1]):
+            fin = np.isfinite(c[:, j])
+            k = np.flatnonzero(fin)
+            ck = a[k, j] * (1 - side) - b[k, j] * h[k]      # coefficient of θ_k
+            ck1 = a[k, j] * side + b[k, j] * h[k]           # coefficient of θ_{k+1}
+            idx = r + np.arange(len(k))
+            rows += [idx, idx]
+            cols += [k, k + 1]
+            vals += [ck, ck1]
+            rhs.append(c[k, j])
+            r += len(k)
+    M = coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(r, N + 1)).tocsr()
+    bounds = [(0, None)] * (N + 1)
+    bounds[0] = (theta_begin, theta_begin)
+    bounds[N] = (theta_end, theta_end)
+    lp = linprog(g, A_ub=M, b_ub=np.concatenate(rhs), bounds=bounds, method="highs")
+    assert lp.status == 0, lp.message
+    return float(g @ (theta - lp.x))

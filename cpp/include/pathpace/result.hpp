@@ -21,9 +21,12 @@ class ContactConstraint;
 enum class Status {
   Optimal,         ///< the optimum of the discretised problem (eq. 26-27)
   Infeasible,      ///< no timing satisfies the constraints; see Result::infeasibility
-  IterationLimit,  ///< SLP stopped at max_iterations; the timing is feasible but maybe not optimal
+  IterationLimit,  ///< SLP stopped at max_iterations (or could not certify the tolerance); the timing is
+                   ///< feasible, SolverStats::gap bounds its distance to the optimum
   NumericalError,  ///< the LP solver failed; the timing (if any) is the last feasible one
-  Unbounded,       ///< nothing bounds the speed somewhere along the path (T would be 0)
+  Unbounded,       ///< nothing bounds the speed at some grid point where the path moves (T* not attained)
+  TimeLimit,       ///< SolverOptions::time_limit reached; the timing is feasible, SolverStats::gap bounds
+                   ///< its distance to the optimum
 };
 
 const char* to_string(Status status);
@@ -40,6 +43,8 @@ struct SolverStats {
   int lp_solves = 0;
   bool greatest_element = false;  ///< the optimum is a max-closed set's greatest element (exact, no SLP)
   double gap = 0.0;               ///< certified bound on (T - T*) / T* (0 when exact)
+  int windows = 0;                ///< SLP windows (disjoint stretches of the grid solved by LPs)
+  int window_points = 0;          ///< grid points inside them (N + 1 for Method::Slp)
   double average_halfplanes = 0;  ///< supporting half-planes per grid point after pruning
   double time_constraints = 0;    ///< seconds: path samples and constraint rows
   double time_feasible_sets = 0;  ///< seconds: polygons and pruning
@@ -75,8 +80,10 @@ class Result {
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any
   std::shared_ptr<const ContactConstraint> contacts;  ///< the problem's contact constraint, if any
 
-  /// True for Optimal (and for IterationLimit, whose timing is feasible).
-  bool ok() const { return status == Status::Optimal || status == Status::IterationLimit; }
+  /// True for Optimal (and for IterationLimit and TimeLimit, whose timing is feasible).
+  bool ok() const {
+    return status == Status::Optimal || status == Status::IterationLimit || status == Status::TimeLimit;
+  }
   /// The timed trajectory; throws pathpace::Error if there is no timing (e.g. infeasible).
   Trajectory trajectory() const;
 };

@@ -9,10 +9,12 @@ enum class Method {
   /// Reachability analysis, then: if no interval row couples θ_k and θ_{k+1} with two positive
   /// coefficients, the feasible set is closed under the componentwise max, and the greedy forward
   /// profile is its greatest element, hence the global optimum (T decreases in every θ_k). Otherwise the
-  /// relaxation without those rows brackets the optimum; SLP runs only if the bracket exceeds the
-  /// tolerance.
+  /// relaxation without those rows brackets the optimum; if the bracket exceeds the tolerance, SLP runs
+  /// on windows around the intervals where the relaxation's greatest element breaks a coupling row, the
+  /// rest of the grid keeping that element (see docs/method.md: the result is the global optimum).
   Auto,
-  /// Always run SLP from the reachability start (for checking, or if the shortcut is not wanted).
+  /// Always run SLP over the whole chain from the reachability start (for checking, or if the
+  /// shortcuts are not wanted).
   Slp,
 };
 
@@ -29,7 +31,7 @@ enum class Guarantee {
 
 struct SolverOptions {
   Method method = Method::Auto;
-  int max_iterations = 200;        ///< SLP iterations
+  int max_iterations = 200;        ///< SLP iterations per window
   /// Relative optimality tolerance: a result is Optimal when (T - T*) / T* is certified below it, by the
   /// Frank-Wolfe gap of the SLP or by the lattice relaxation's lower bound. The discretisation error of
   /// the grid itself is O(Δs), far above the default.
@@ -45,6 +47,9 @@ struct SolverOptions {
   /// can be larger than the limit itself: 1e-10 keeps violations of the limits below 1e-9 relative.
   double audit_tolerance = 1e-10;
   int max_audit_rounds = 30;       ///< solve-audit-cut rounds before giving up (status IterationLimit)
+  /// Wall-clock budget of one solve in seconds (+inf: none). When it runs out during SLP the solve ends
+  /// with Status::TimeLimit, the best feasible timing found and its certified gap.
+  double time_limit = 60.0;
 };
 
 }  // namespace pathpace

@@ -13,31 +13,46 @@ namespace pathpace::detail {
 
 class GlpkLp {
  public:
-  enum class Outcome { Optimal, Infeasible, Unbounded, Failed };
+  enum class Outcome { Optimal, Infeasible, Unbounded, TimeLimit, Failed };
 
   GlpkLp();
   ~GlpkLp();
   GlpkLp(const GlpkLp&) = delete;
   GlpkLp& operator=(const GlpkLp&) = delete;
 
-  /// Minimisation problem with `cols` free columns; rows are added as sparse upper-bounded rows.
-  /// The first solve starts from the slack basis (all columns nonbasic at 0), which is primal feasible
-  /// whenever every row's bound is >= 0: the SLP writes its LPs in the step d = θ' - θ from a feasible θ
-  /// so that this holds and the simplex never needs a phase 1.
+  /// Minimisation problem with `cols` columns (free until set_col_bounds); rows are added as sparse
+  /// upper-bounded rows. The first solve starts from the slack basis (columns nonbasic at a bound), made
+  /// feasible by the primal simplex's phase 1 if need be; later solves start from the previous basis.
   void reset(int cols);
   /// Adds sum_i val[i] * x[idx[i]] <= ub (idx 0-based). Returns the row index.
   int add_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub);
   /// Loads the rows added so far into GLPK (call once after the last add_row_upper).
   bool load();
+  /// After load(): one more row, basic (so the current basis stays a basis; the next solve starts from it).
+  void append_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub);
 
   void set_objective(const std::vector<double>& c);
   /// Row `row` <= ub; ub = +inf frees the row.
   void set_row_upper(int row, double ub);
+  /// lo <= x[col] <= hi (lo == hi fixes it). Bounds on columns cost the simplex nothing, where the same
+  /// bounds as rows would add two rows per column to every basis factorisation.
+  void set_col_bounds(int col, double lo, double hi);
 
-  /// Simplex from the current basis (the previous solve's, so a warm start). `tol_bnd` is GLPK's
-  /// primal feasibility tolerance.
-  Outcome solve(double tol_bnd);
+  enum class Stat { Basic, AtLower, AtUpper };
+  /// Installs a basis (row and column statuses; a nonbasic variable sits at the named bound, a fixed
+  /// one at its value). The next solve starts from it; if it is singular, from the slack basis.
+  void set_basis(const std::vector<Stat>& rows, const std::vector<Stat>& cols);
+
+  /// Simplex from the current basis (the previous solve's, so a warm start: a change of bounds or
+  /// objective keeps the basis valid). `tol_bnd` is GLPK's primal feasibility tolerance; `time_limit_ms`
+  /// (< 0: none) ends it with Outcome::TimeLimit.
+  Outcome solve(double tol_bnd, int time_limit_ms = -1);
   void column_values(std::vector<double>& x) const;
+  /// A lower bound on the LP's optimum that does not trust the solver's optimality tolerances: with the
+  /// row multipliers λ = max(0, -dual) of the last solve, min over the column bounds of
+  /// c·x + λ·(A x - ub) (Lagrangian weak duality: valid for any λ >= 0). -inf if a column whose reduced
+  /// cost pulls it that way is unbounded.
+  double lagrangian_bound(const std::vector<double>& cost) const;
   int simplex_iterations() const { return iterations_; }
 
  private:

@@ -189,7 +189,9 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     out.vertices.insert(out.vertices.end(), poly.vertices().begin(), poly.vertices().end());
     out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
     out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
-    if (out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
+    // θ_0 is the given start speed, so an unbounded K_0 (e.g. p'(s_0) = 0 with velocity limits only)
+    // bounds nothing that is free; elsewhere it means the speed has no limit there.
+    if (k > 0 && out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
       out.outcome = Reachability::Outcome::Unbounded;
       out.failed_index = k;
       out.reason = "nothing bounds the speed here";
@@ -280,7 +282,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
       o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());
       outs[i]->k_lo[k] = p.vertices()[static_cast<size_t>(p.argmin_x())].x;
       outs[i]->k_hi[k] = p.vertices()[static_cast<size_t>(p.argmax_x())].x;
-      if (outs[i]->k_hi[k] >= kInfinityCap * (1 - 1e-9)) return false;
+      if (k > 0 && outs[i]->k_hi[k] >= kInfinityCap * (1 - 1e-9)) return false;  // K_0: θ_0 is given
     }
   }
   for (int i = 0; i < 2; ++i) {

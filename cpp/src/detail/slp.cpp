@@ -1,6 +1,7 @@
 #include "detail/slp.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -46,126 +47,418 @@ double slope(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, const Eige
 
 }  // namespace
 
-SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const SolverOptions& options) {
-  SlpOutcome out;
-  out.theta = theta_start;
-  const Eigen::Index n = chain.ds.size();
-  const int cols = static_cast<int>(n) - 1;  // θ_1 .. θ_{N-1}; the ends are fixed
-  if (cols <= 0) return out;
+namespace {
 
-  const double scale = std::max(theta_start.maxCoeff(), 1e-300);
-  const double floor = 1e-24 * scale * scale + 1e-300;
+struct WindowResult {
+  SlpOutcome::Status status = SlpOutcome::Status::Converged;
+  Eigen::VectorXd theta;  // θ_a .. θ_b
+  double T = 0.0;         // Σ_{k in [a, b)} f_k at theta
+  double gap = std::numeric_limits<double>::infinity();  // Frank-Wolfe gap of theta (absolute), if computed
+  // Best lower bound on the window's optimum: max over the Frank-Wolfe checks of T(θ) - gap(θ).
+  double lower = -std::numeric_limits<double>::infinity();
+  int iterations = 0, lp_solves = 0;
+};
 
-  // The LP is written in the step d = θ' - θ (columns free): each row α θ'_k + β θ'_{k+1} <= c becomes
-  // α d_k + β d_{k+1} <= c - α θ_k - β θ_{k+1} >= 0, and the trust region and the bounds on θ are rows
-  // d_j <= ub_j, -d_j <= lb_j with ub_j, lb_j >= 0. So d = 0 is always feasible and the slack basis is a
-  // primal-feasible start (the "first basis built from the feasible start").
-  struct LpRow {
-    Eigen::Index k;
-    double alpha, beta, c;
-  };
-  std::vector<LpRow> rows;
-  GlpkLp lp;
+int remaining_ms(Clock::time_point deadline) {
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+  return static_cast<int>(std::clamp<long long>(left, 0, 1000000000LL));
+}
+
+// The paper's SLP (sec. V.C) on window [a, b]: minimise Σ_{k in [a, b)} f_k over θ_a..θ_b subject to the rows
+// of those intervals and lo <= θ <= hi, θ_a (θ_b) fixed at the start value if fix_a (fix_b). The LP is in θ
+// itself, so its rows never change; the trust region and the bounds are column bounds; each LP starts from
+// the previous one's basis. The first LP has no trust region: it is the Frank-Wolfe check, and at a start
+// that is already optimal (the common case: the greedy profile) it certifies it at once. `target` is the
+// absolute gap to reach.
+WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, const Eigen::VectorXd& hi_all,
+                        const Eigen::VectorXd& start, bool fix_a, bool fix_b, double rel_target,
+                        const SolverOptions& options, Clock::time_point deadline, GlpkLp& lp) {
+  WindowResult out;
+  const Eigen::Index m = b - a;  // intervals
+  const Eigen::VectorXd ds = chain.ds.segment(a, m);
+  Eigen::VectorXd theta = start.segment(a, m + 1);
+  Eigen::VectorXd lo = chain.x_lo.segment(a, m + 1), hi = hi_all.segment(a, m + 1);
+  for (Eigen::Index j = 0; j <= m; ++j) {
+    hi[j] = std::max(hi[j], lo[j]);
+    theta[j] = std::clamp(theta[j], lo[j], hi[j]);  // rounding only: the start is feasible
+  }
+  if (fix_a) lo[0] = hi[0] = theta[0] = start[a];
+  if (fix_b) lo[m] = hi[m] = theta[m] = start[b];
+  out.theta = theta;
+  out.T = duration(ds, theta);
+  // Columns: the points that are not fixed.
+  const Eigen::Index first = fix_a ? 1 : 0, last = fix_b ? m - 1 : m;
+  const int cols = static_cast<int>(last - first + 1);
+  if (cols <= 0) {
+    out.gap = 0.0;
+    out.lower = out.T;
+    return out;
+  }
   lp.reset(cols);
+  // The LP is posed in y_j = θ_j / σ_j with σ_j the start's θ_j (floored), and each row divided by its size
+  // at the start: ṡ² spans orders of magnitude along a path (1e-5 near a slow point, 1 elsewhere) and
+  // GLPK's tolerances are absolute in the problem it is given, so in θ itself a row with c ~ 1e-5 could be
+  // broken by 1e-9, 1e-4 of itself, which the repair would then pay for in T.
+  const double theta_max = std::max(theta.maxCoeff(), 1e-300);
+  Eigen::VectorXd sigma = theta.cwiseMax(1e-6 * theta_max);
+  struct LpRow {
+    Eigen::Index k;  // interval (local)
+    double alpha, beta, c;
+    bool on_k, on_k1;  // coefficient on a column at point k / k+1
+    int n;             // LP coefficients (1 or 2), normalised
+    int col[2];
+    double val[2], rhs;
+  };
+  std::vector<LpRow> lp_rows;   // the rows in the LP, in its order
+  std::vector<LpRow> waiting;   // the rows not (yet) in it
   std::vector<int> idx;
   std::vector<double> val;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    for (const Line& r : chain.rows(k)) {
+  // Only the rows that support interval k's polygon within the column bounds' box can bind in any of the
+  // window's LPs (every trust region lies inside that box): typically two or three of the ~5 per interval.
+  Polygon2d poly;
+  std::vector<Line> local, kept;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const View<Line> all = chain.rows(a + k);
+    kept.assign(all.begin(), all.end());
+    if (k >= first && k + 1 <= last && all.n > 2) {
+      // Rows on one variable only (α or β exactly 0) are kept as they are: the polygon would fold them into
+      // its box and report the box's side, not the row.
+      local.clear();
+      kept.clear();
+      for (size_t i = 0; i < all.n; ++i) {
+        if (all[i].a == 0.0 || all[i].b == 0.0) kept.push_back(all[i]);
+        else local.push_back({all[i].a, all[i].b, all[i].c, static_cast<int>(i)});
+      }
+      if (!poly.build(lo[k], hi[k], lo[k + 1], hi[k + 1], local.data(), local.size())) {
+        poly.reset(lo[k], hi[k], lo[k + 1], hi[k + 1]);
+        for (const Line& l : local) poly.clip(l);
+      }
+      if (poly.empty()) {
+        kept.assign(all.begin(), all.end());
+      } else {
+        for (const Line& e : poly.edges())
+          if (e.id >= 0) kept.push_back(all[static_cast<size_t>(e.id)]);
+      }
+    }
+    for (const Line& r : kept) {
       idx.clear();
       val.clear();
-      if (k > 0 && r.a != 0.0) { idx.push_back(static_cast<int>(k) - 1); val.push_back(r.a); }
-      if (k + 1 < n && r.b != 0.0) { idx.push_back(static_cast<int>(k)); val.push_back(r.b); }
+      double rhs = r.c;
+      double size = 0.0;
+      if (k >= first && k <= last) {
+        if (r.a != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.a * sigma[k]); }
+      } else {
+        rhs -= r.a * theta[k];
+      }
+      if (k + 1 >= first && k + 1 <= last) {
+        if (r.b != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.b * sigma[k + 1]); }
+      } else {
+        rhs -= r.b * theta[k + 1];
+      }
       if (idx.empty()) continue;  // both ends fixed: nothing to decide
-      lp.add_row_upper(idx, val, 0.0);
-      rows.push_back({k, r.a, r.b, r.c});
+      for (double v : val) size += std::abs(v);
+      size = std::max(size, std::abs(rhs));
+      for (double& v : val) v /= size;
+      LpRow row{k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
+                k + 1 >= first && k + 1 <= last && r.b != 0.0, static_cast<int>(idx.size()), {idx[0], 0},
+                {val[0], 0.0}, rhs / size};
+      if (idx.size() > 1) {
+        row.col[1] = idx[1];
+        row.val[1] = val[1];
+      }
+      // Rows are added lazily: first those nearly tight at the start (slack within 1 % of the row's size),
+      // which the start basis and most LP vertices need; the others only once an LP solution breaks them
+      // (see solve_lp). The LP is then a relaxation until the last round, which still gives valid bounds,
+      // and its basis factorisations have a quarter of the rows.
+      const double ax = r.a * theta[k], by = r.b * theta[k + 1];
+      const double slack = (r.c - ax - by) / std::max({std::abs(r.c), std::abs(ax) + std::abs(by), 1e-300});
+      if (slack <= 1e-2) {
+        lp.add_row_upper(idx, val, row.rhs);
+        lp_rows.push_back(row);
+      } else {
+        waiting.push_back(row);
+      }
     }
-  }
-  const int first_box_row = static_cast<int>(rows.size());
-  for (int j = 0; j < cols; ++j) {
-    lp.add_row_upper({j}, {1.0}, 0.0);
-    lp.add_row_upper({j}, {-1.0}, 0.0);
   }
   if (!lp.load()) {
     out.status = SlpOutcome::Status::LpFailed;
     return out;
   }
 
-  Eigen::VectorXd theta = theta_start, g, d(n + 1), tmp, gtmp;
+  const double scale = std::max(theta.maxCoeff(), 1e-300);
+  const double floor = 1e-24 * scale * scale + 1e-300;
+  Eigen::VectorXd g, d(m + 1), tmp, gtmp;
   std::vector<double> cost(static_cast<size_t>(cols)), x;
-  double T = duration(chain.ds, theta);
+  double T = out.T;
   double rho = options.initial_trust_region * scale;
+  bool global = true;  // next LP without trust region (Frank-Wolfe)
 
-  // Minimises g·d over the step LP around θ with trust-region radius `radius` (inf: the whole set).
-  auto solve_lp = [&](double radius, Eigen::VectorXd& step) -> bool {
-    for (size_t i = 0; i < rows.size(); ++i) {
-      const LpRow& r = rows[i];
-      const double slack = r.c - r.alpha * theta[r.k] - r.beta * theta[r.k + 1];
-      // θ is feasible up to rounding; a -1e-17 slack must not make d = 0 infeasible.
-      lp.set_row_upper(static_cast<int>(i), std::max(slack, 0.0));
+  // The start basis: the greedy profile is a vertex of the window's set (each θ_j is the top of a slice of
+  // a polygon, so a row of interval j-1 or j, or a bound, is tight there), so a basis with one tight
+  // constraint per column is primal feasible and the first LP needs no phase 1 and, at a nearly optimal
+  // start, few pivots (instead of a climb from the slack basis over every column). Columns are matched
+  // left to right to a tight bound, else a tight unused row of interval j-1, else of interval j; if some
+  // column finds none, or the basis is singular, GLPK starts from the slack basis instead.
+  auto start_basis = [&]() {
+    std::vector<GlpkLp::Stat> rs(lp_rows.size(), GlpkLp::Stat::Basic), cs(static_cast<size_t>(cols), GlpkLp::Stat::Basic);
+    std::vector<char> tight(lp_rows.size(), 0);
+    std::vector<size_t> row_begin(static_cast<size_t>(m) + 1, lp_rows.size());
+    for (size_t i = lp_rows.size(); i-- > 0;) row_begin[static_cast<size_t>(lp_rows[i].k)] = i;
+    for (Eigen::Index k = m - 1; k >= 0; --k)
+      row_begin[static_cast<size_t>(k)] = std::min(row_begin[static_cast<size_t>(k)], row_begin[static_cast<size_t>(k) + 1]);
+    for (size_t i = 0; i < lp_rows.size(); ++i) {
+      const LpRow& r = lp_rows[i];
+      const double ax = r.alpha * theta[r.k], by = r.beta * theta[r.k + 1];
+      tight[i] = r.c - ax - by <= 1e-9 * std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)});
     }
-    for (int j = 0; j < cols; ++j) {
-      const Eigen::Index k = j + 1;
-      const double up = std::min(radius, chain.x_hi[k] - theta[k]);
-      const double down = std::min(radius, theta[k] - chain.x_lo[k]);
-      lp.set_row_upper(first_box_row + 2 * j, std::max(up, 0.0));
-      lp.set_row_upper(first_box_row + 2 * j + 1, std::max(down, 0.0));
+    auto take = [&](Eigen::Index k, Eigen::Index j) {  // a tight unused row of interval k acting on column j
+      if (k < 0 || k >= m) return false;
+      for (size_t i = row_begin[static_cast<size_t>(k)]; i < row_begin[static_cast<size_t>(k) + 1]; ++i) {
+        const LpRow& r = lp_rows[i];
+        if (!tight[i] || rs[i] != GlpkLp::Stat::Basic || !(j == r.k ? r.on_k : r.on_k1)) continue;
+        rs[i] = GlpkLp::Stat::AtUpper;
+        return true;
+      }
+      return false;
+    };
+    for (Eigen::Index j = first; j <= last; ++j) {
+      const double tol = 1e-9 * std::max(std::abs(hi[j]), 1e-300);
+      GlpkLp::Stat& c = cs[static_cast<size_t>(j - first)];
+      if (theta[j] >= hi[j] - tol) c = GlpkLp::Stat::AtUpper;
+      else if (theta[j] <= lo[j] + tol) c = GlpkLp::Stat::AtLower;
+      else if (!take(j - 1, j) && !take(j, j)) return;
     }
+    lp.set_basis(rs, cs);
+  };
+  bool first_lp = true;
+
+  // Minimises g·θ over the window's LP, within `radius` of θ (inf: the whole set); d = θ_lp - θ.
+  auto solve_lp = [&](double radius) -> SlpOutcome::Status {
+    for (Eigen::Index j = first; j <= last; ++j) {
+      const double l = std::max(lo[j], theta[j] - radius), h = std::min(hi[j], theta[j] + radius);
+      lp.set_col_bounds(static_cast<int>(j - first), std::min(l, h) / sigma[j], h / sigma[j]);
+    }
+    if (first_lp) start_basis();
+    first_lp = false;
     ++out.lp_solves;
-    if (lp.solve(options.lp_feasibility_tolerance) != GlpkLp::Outcome::Optimal) return false;
-    lp.column_values(x);
-    step.setZero(n + 1);
-    for (int j = 0; j < cols; ++j) step[j + 1] = x[static_cast<size_t>(j)];
-    return true;
+    const int ms = remaining_ms(deadline);
+    if (ms <= 0) return SlpOutcome::Status::TimeLimit;
+    GlpkLp::Outcome o = lp.solve(options.lp_feasibility_tolerance, ms);
+    for (;;) {
+      if (o == GlpkLp::Outcome::TimeLimit) return SlpOutcome::Status::TimeLimit;
+      if (o != GlpkLp::Outcome::Optimal) return SlpOutcome::Status::LpFailed;
+      lp.column_values(x);
+      // Rows still waiting that the solution breaks join the LP, which is solved again from its basis.
+      size_t kept_waiting = 0;
+      bool added = false;
+      for (const LpRow& r : waiting) {
+        double act = 0.0;
+        for (int t = 0; t < r.n; ++t) act += r.val[t] * x[static_cast<size_t>(r.col[t])];
+        if (act > r.rhs + 10.0 * options.lp_feasibility_tolerance * (1.0 + std::abs(r.rhs))) {
+          idx.assign(r.col, r.col + r.n);
+          val.assign(r.val, r.val + r.n);
+          lp.append_row_upper(idx, val, r.rhs);
+          lp_rows.push_back(r);
+          added = true;
+        } else {
+          waiting[kept_waiting++] = r;
+        }
+      }
+      waiting.resize(kept_waiting);
+      if (!added) break;
+      ++out.lp_solves;
+      o = lp.solve(options.lp_feasibility_tolerance, std::max(remaining_ms(deadline), 1));
+    }
+    d.setZero();
+    for (Eigen::Index j = first; j <= last; ++j) d[j] = sigma[j] * x[static_cast<size_t>(j - first)] - theta[j];
+    return SlpOutcome::Status::Converged;
   };
 
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
-    gradient(chain.ds, theta, floor, g);
-    for (int j = 0; j < cols; ++j) cost[static_cast<size_t>(j)] = g[j + 1];
+    if (Clock::now() >= deadline) {
+      out.status = SlpOutcome::Status::TimeLimit;
+      return out;
+    }
+    gradient(ds, theta, floor, g);
+    for (Eigen::Index j = first; j <= last; ++j) cost[static_cast<size_t>(j - first)] = g[j] * sigma[j];
     lp.set_objective(cost);
-
-    if (!solve_lp(rho, d)) {
-      out.status = SlpOutcome::Status::LpFailed;
-      break;
+    SlpOutcome::Status st = solve_lp(global ? std::numeric_limits<double>::infinity() : rho);
+    if (st != SlpOutcome::Status::Converged) {
+      out.status = st;
+      return out;
     }
     double predicted = -g.dot(d);
-    bool frank_wolfe = false;
-    if (predicted <= options.tolerance * T || rho <= 1e-13 * scale) {
-      // The trust-region step promises nothing more: check optimality over the whole feasible set.
-      if (!solve_lp(std::numeric_limits<double>::infinity(), d)) {
-        out.status = SlpOutcome::Status::LpFailed;
-        break;
-      }
-      out.gap = -g.dot(d) / T;
-      if (out.gap <= options.tolerance) {
-        out.status = SlpOutcome::Status::Converged;
-        out.theta = theta;
+    if (!global && (predicted <= rel_target * T || rho <= 1e-13 * scale)) {
+      // The trust-region step promises nothing more: check optimality over the whole window.
+      st = solve_lp(std::numeric_limits<double>::infinity());
+      if (st != SlpOutcome::Status::Converged) {
+        out.status = st;
         return out;
       }
-      frank_wolfe = true;
+      predicted = -g.dot(d);
+      global = true;
+    }
+    if (global) {
+      // Frank-Wolfe: T(θ) - min T <= ∇T(θ)·θ - min ∇T(θ)·θ' over the window's set, the minimum bounded
+      // from below by weak duality (not by GLPK's word that its vertex is optimal).
+      double g_theta = 0.0;
+      for (Eigen::Index j = first; j <= last; ++j) g_theta += g[j] * theta[j];
+      out.gap = std::max({g_theta - lp.lagrangian_bound(cost), predicted, 0.0});
+      out.lower = std::max(out.lower, T - out.gap);
+      if (out.gap <= rel_target * T) {
+        out.status = SlpOutcome::Status::Converged;
+        return out;
+      }
     }
     // Exact line search on the convex 1-D restriction: bisection on the sign of the slope.
     double alpha = 1.0;
-    if (slope(chain.ds, theta, d, 1.0, floor, tmp, gtmp) > 0.0) {
-      double lo = 0.0, hi = 1.0;
+    if (slope(ds, theta, d, 1.0, floor, tmp, gtmp) > 0.0) {
+      double l = 0.0, h = 1.0;
       for (int it = 0; it < 60; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (slope(chain.ds, theta, d, mid, floor, tmp, gtmp) > 0.0 ? hi : lo) = mid;
+        const double mid = 0.5 * (l + h);
+        (slope(ds, theta, d, mid, floor, tmp, gtmp) > 0.0 ? h : l) = mid;
       }
-      alpha = lo;
+      alpha = l;
     }
     Eigen::VectorXd next = theta + alpha * d;
-    const double T_next = duration(chain.ds, next);
+    for (Eigen::Index j = 0; j <= m; ++j) next[j] = std::clamp(next[j], lo[j], hi[j]);
+    const double T_next = duration(ds, next);
     if (T_next < T) {
       theta = next;
       T = T_next;
+      out.theta = theta;
+      out.T = T;
+      // The bound of an earlier check still holds: if the step has brought T within the target of it, the
+      // new iterate is certified without another LP (a small Frank-Wolfe step realises nearly all of the
+      // decrease the LP predicted, so this is the common end).
+      out.gap = T - out.lower;
+      if (out.gap <= rel_target * T) {
+        out.status = SlpOutcome::Status::Converged;
+        ++out.iterations;
+        return out;
+      }
     }
     const double step = (alpha * d).cwiseAbs().maxCoeff();
-    if (frank_wolfe) rho = std::max(step, 1e-6 * scale);
+    // A full Frank-Wolfe step lands on a vertex of the window's set, where the optimum of a time-optimal
+    // problem usually is: check it with another Frank-Wolfe LP first; otherwise continue with a trust region.
+    const bool full_fw_step = global && alpha >= 0.999;
+    if (global) rho = std::max(step, 1e-6 * scale);
     else if (alpha >= 0.999) rho *= 2.0;
     else rho = std::max(0.5 * step, 0.25 * rho);
+    global = full_fw_step;
   }
-  out.theta = theta;
-  if (out.status == SlpOutcome::Status::Converged) out.status = SlpOutcome::Status::IterationLimit;
+  out.status = SlpOutcome::Status::IterationLimit;
+  return out;
+}
+
+struct Window {
+  Eigen::Index a, b;
+  bool solved = false;
+  WindowResult result;
+};
+
+// Sorts by start and merges windows that overlap or touch (a shared point would need one value from two
+// problems); a merged window is solved again.
+void merge(std::vector<Window>& ws) {
+  std::sort(ws.begin(), ws.end(), [](const Window& x, const Window& y) { return x.a < y.a; });
+  std::vector<Window> out;
+  for (Window& w : ws) {
+    if (!out.empty() && w.a <= out.back().b) {
+      out.back().b = std::max(out.back().b, w.b);
+      out.back().solved = false;
+      continue;
+    }
+    out.push_back(std::move(w));
+  }
+  ws = std::move(out);
+}
+
+}  // namespace
+
+SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eigen::VectorXd& upper, bool relaxed,
+                        double theta_begin, const SolverOptions& options, Clock::time_point deadline) {
+  SlpOutcome out;
+  const Eigen::Index n = chain.intervals();
+  std::vector<Window> ws;
+  const Eigen::Index margin = 2 + n / 500;
+  if (relaxed) {
+    // Where the greedy feasible profile θ_g meets θ' the optimum does too, in the common case (it never
+    // departs from θ' except to slow down for a coupling row, and θ_g already does so, with the deceleration
+    // ramps before and after): the stretches where θ_g < θ', widened by a margin, are the first windows.
+    // Each contains the intervals it must (where θ' breaks a coupling row, θ_g, which is feasible, differs
+    // from it at one end at least).
+    const Eigen::VectorXd& g = full.theta;
+    auto below = [&](Eigen::Index j) { return g[j] < upper[j] - 1e-12 * std::max(upper[j], 1e-300); };
+    for (Eigen::Index j = 0; j <= n; ++j) {
+      if (!below(j)) continue;
+      Eigen::Index e = j;
+      while (e < n && below(e + 1)) ++e;
+      ws.push_back({std::max<Eigen::Index>(0, j - margin), std::min(n, e + margin), false, {}});
+      j = e;
+    }
+    for (Eigen::Index k = 0; k < n; ++k) {
+      bool violated = false;
+      for (const Line& r : chain.coupled_rows(k)) {
+        const double ax = r.a * upper[k], by = r.b * upper[k + 1];
+        if (ax + by - r.c > 1e-12 * std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)})) violated = true;
+      }
+      if (violated) ws.push_back({std::max<Eigen::Index>(0, k - margin), std::min(n, k + 1 + margin), false, {}});
+    }
+  } else {
+    ws.push_back({0, n, false, {}});
+  }
+  merge(ws);
+
+  const double T_upper = duration(chain.ds, upper);
+  // The windows share half the tolerance on T (the rest is for the repair), each in proportion to its T:
+  // relative to its own T, a window may be off by 0.5 tol T / Σ_windows T_i.
+  double t_windows = 0.0;
+  for (const Window& w : ws) t_windows += duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
+  const double rel_target = 0.5 * options.tolerance * std::max(1.0, T_upper / std::max(t_windows, 1e-300));
+  GlpkLp lp;
+  Eigen::VectorXd z;
+  for (;;) {
+    for (Window& w : ws) {
+      if (w.solved) continue;
+      w.result = slp_window(chain, w.a, w.b, upper, full.theta, w.a == 0, w.b == n, rel_target, options, deadline, lp);
+      w.solved = true;
+      out.iterations += w.result.iterations;
+      out.lp_solves += w.result.lp_solves;
+      if (w.result.status != SlpOutcome::Status::Converged && out.status == SlpOutcome::Status::Converged)
+        out.status = w.result.status;
+    }
+    // Assemble, repair, bound.
+    z = upper;
+    double lower = T_upper;
+    for (const Window& w : ws) {
+      z.segment(w.a, w.b - w.a + 1) = w.result.theta;
+      const double t_up = duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
+      // Every feasible y <= upper, so the window's part of T(y) is >= its part of T(upper) as well.
+      lower += std::max(t_up, w.result.lower) - t_up;
+    }
+    out.theta = forward_pass(full, theta_begin, &z);
+    out.theta[0] = theta_begin;
+    out.lower = lower;
+    const double T = duration(chain.ds, out.theta);
+    if (T - lower <= options.tolerance * lower || out.status != SlpOutcome::Status::Converged) break;
+    // Widen the windows whose optimum presses an edge below θ': there the seam with θ' is not feasible.
+    bool widened = false;
+    for (Window& w : ws) {
+      const Eigen::Index width = std::max(w.b - w.a, margin);
+      const auto pressed = [&](Eigen::Index j, double v) { return v < upper[j] - 1e-10 * std::max(upper[j], 1e-300); };
+      const bool left = w.a > 0 && pressed(w.a, w.result.theta[0]);
+      const bool right = w.b < n && pressed(w.b, w.result.theta[w.b - w.a]);
+      if (left) w.a = std::max<Eigen::Index>(0, w.a - width);
+      if (right) w.b = std::min(n, w.b + width);
+      if (left || right) w.solved = false;
+      widened = widened || !w.solved;
+    }
+    if (!widened) break;
+    ++out.widenings;
+    merge(ws);
+  }
+  out.windows = static_cast<int>(ws.size());
+  for (const Window& w : ws) out.window_points += w.b - w.a + 1;
   return out;
 }
 

@@ -1,7 +1,22 @@
 #pragma once
-// Sequential linear programming on eq. (26)-(27) with a trust region, warm-started GLPK simplex and an
-// exact line search along each LP step. Convergence is certified by the Frank-Wolfe gap: for convex T,
-// T(θ) - T* <= ∇T(θ)·(θ - θ_lp) where θ_lp minimises the linearisation over the whole feasible set.
+// Sequential linear programming on eq. (26)-(27) (sec. V.C), run only on windows of the grid where the
+// relaxation without the positively coupling rows (see Chain) is not already optimal.
+//
+// Why windows suffice. Let R be the feasible set without the coupling rows (max-closed, greatest element
+// θ'), F ⊆ R the full one, so every feasible θ has θ <= θ'. T = Σ_k f_k(θ_k, θ_{k+1}) with every f_k
+// decreasing in both arguments. Cover the intervals where θ' violates a coupling row by disjoint windows
+// W_i = [a_i, b_i] and let P_i minimise Σ_{k in [a_i, b_i)} f_k subject to all rows of those intervals and
+// θ_lo <= θ <= min(θ_hi, θ') on the window's points (its edge points free, except at the path's ends).
+// For any feasible y: y <= θ' makes every f_k outside the windows >= f_k(θ'), and y restricted to W_i is
+// feasible for P_i, so
+//     T(y) >= LB := Σ_{k outside} f_k(θ') + Σ_i opt(P_i),     opt(P_i) >= T_i(z_i) - gap_i
+// where gap_i is the Frank-Wolfe gap of the window's iterate z_i (convexity of T). If each z_i meets θ'
+// at its edges, z = (θ' outside, z_i inside) is feasible (outside the windows θ' violates no row) and
+// attains the bound up to Σ gap_i: the global optimum, certified, without a whole-chain LP. If an edge is
+// pressed below θ', the window is widened and solved again. LB is valid in every case; the profile that
+// is returned is made exactly feasible by the capped forward pass, and its T - LB is the certified gap.
+
+#include <chrono>
 
 #include <Eigen/Core>
 
@@ -10,19 +25,30 @@
 
 namespace pathpace::detail {
 
+using Clock = std::chrono::steady_clock;
+
 struct SlpOutcome {
-  enum class Status { Converged, IterationLimit, LpFailed };
+  enum class Status { Converged, IterationLimit, TimeLimit, LpFailed };
   Status status = Status::Converged;
-  Eigen::VectorXd theta;
-  int iterations = 0;
+  Eigen::VectorXd theta;  // feasible profile (repaired by the capped forward pass)
+  double lower = 0.0;     // certified lower bound on T*
+  int iterations = 0;     // SLP iterations, all windows
   int lp_solves = 0;
-  double gap = 0.0;  // last Frank-Wolfe gap over T (bound on (T - T*) / T)
+  int windows = 0;        // windows in the final cover
+  Eigen::Index window_points = 0;  // grid points in the final cover
+  int widenings = 0;      // rounds in which a window whose optimum pressed an edge was widened
 };
 
 /// T(θ) = Σ 2Δs_k / (√θ_k + √θ_{k+1}) (eq. 27); +inf if some interval has θ_k = θ_{k+1} = 0.
 double duration(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta);
 
-/// Starts from the feasible θ (θ_0 and θ_N are kept fixed).
-SlpOutcome slp(const Chain& chain, const Eigen::VectorXd& theta_start, const SolverOptions& options);
+/// The optimum of eq. (26)-(27) by SLP on windows (see above). `upper` bounds every feasible θ
+/// componentwise and satisfies every row except on the intervals the first windows must cover: the relaxed
+/// greatest element θ' with `relaxed` = true (windows around the intervals where it violates a coupling
+/// row), or any bound (e.g. θ_hi) with `relaxed` = false (one window, the whole chain). `full` is the full
+/// reachability analysis: its greedy profile is each window's feasible start and its polygons repair the
+/// result. Stops at `deadline` with the best feasible profile and its bound.
+SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eigen::VectorXd& upper, bool relaxed,
+                        double theta_begin, const SolverOptions& options, Clock::time_point deadline);
 
 }  // namespace pathpace::detail

@@ -48,7 +48,8 @@ CAP = "internal cap ṡ² <= 1e15 (detail::kInfinityCap): needs rescaling inside
 # Under acceleration limits alone the solver is not scale-invariant beyond ~1e3 either way: measured
 # (seed 0, N = 60) T·sqrt(a) = 8.56720 at a = 1e-3..1e3 but 8.56825 (OPTIMAL, 1.2e-4 long) at a = 1e6,
 # ITERATION_LIMIT at a = 1e-6, and OPTIMAL with the limits exceeded by 1 % at a = 1e-12: absolute
-# tolerances in the reachability/SLP code, sequenced after the solver rewrite (issue 8).
+# tolerances in the reachability/SLP code. The windowed SLP of issue 8 (normalised LP columns and rows)
+# fixed 1e±6 and the large ones; a <= 1e-9 and coordinates >= 1e9 still fail.
 ACC = "solver tolerances are absolute, not scale-invariant (T 1.2e-4 long at a = 1e6; 1 % violation at 1e-12)"
 
 
@@ -71,14 +72,14 @@ def test_velocity_limits_time_scales_inversely_with_the_limit(seed, e):
 
 
 @pytest.mark.parametrize("seed", [0, 1])
-@pytest.mark.parametrize("e", [mark(e, {-12, -9, -6, 6, 9, 12}, ACC) for e in EXPONENTS])
+@pytest.mark.parametrize("e", [mark(e, {-12, -9}, ACC) for e in EXPONENTS])
 def test_acceleration_limits_time_scales_with_one_over_sqrt_a(seed, e):
     a = 10.0**e
     law(seed, (1.0, None, 1.0), (1.0, None, a), 1.0 / np.sqrt(a))
 
 
 @pytest.mark.parametrize("seed", [0, 1])
-@pytest.mark.parametrize("e", [mark(e, {-12, -9, -6, 6, 9, 12}, ACC) for e in EXPONENTS])
+@pytest.mark.parametrize("e", [mark(e, {9, 12}, ACC) for e in EXPONENTS])
 def test_acceleration_limits_time_scales_with_sqrt_path_length(seed, e):
     L = 10.0**e
     law(seed, (1.0, None, 1.0), (L, None, 1.0), np.sqrt(L))

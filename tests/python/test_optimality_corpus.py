@@ -1,0 +1,143 @@
+"""Seeded property test of the solver on random arm paths: the optimum of eq. (26)-(27) against an independent
+transcription (cvxpy + Clarabel, tests/python/oracles.py) and an independent optimality certificate (a
+Frank-Wolfe gap by scipy's HiGHS), every grid-point limit checked by numpy, with the torque rows from pinocchio. At N = 50-200 the relaxation's bracket is rarely within the tolerance, so nearly every
+case runs SLP on windows (asserted for at least half), with and without torque limits."""
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+from oracles import cvxpy_optimum, frank_wolfe_gap, kinematic_rows, max_violation
+from pathpace.robots import example_robot_urdf
+
+pin = pytest.importorskip("pinocchio")
+
+ARMS = {
+    "panda": ("panda_description/urdf/panda.urdf", ("panda_finger_joint1", "panda_finger_joint2")),
+    "ur5": ("ur_description/urdf/ur5_joint_limited_robot.urdf", ()),
+    "ur10": ("ur_description/urdf/ur10_joint_limited_robot.urdf", ()),
+    "xarm7": ("xarm_description/urdf/xarm7.urdf", ()),
+}
+CASES = 30
+
+
+def arm(name):
+    urdf, lock = ARMS[name]
+    urdf = str(example_robot_urdf(urdf))
+    ours = pp.RobotModel.from_urdf(urdf, locked_joints={n: 0.0 for n in lock})
+    full = pin.buildModelFromUrdf(urdf)
+    theirs = pin.buildReducedModel(full, [full.getJointId(n) for n in lock], pin.neutral(full)) if lock else full
+    return ours, theirs
+
+
+def torque_rows(model, path, grid, scale):
+    """τ = a x + b u + c along the path (eq. 12) from pinocchio's RNEA, as rows a x + b u <= τ_max - c and
+    -a x - b u <= τ_max + c."""
+    data = model.createData()
+    q, dq, ddq = path.q(grid), path.dq(grid), path.ddq(grid)
+    zero = np.zeros(model.nv)
+    c = np.array([pin.computeGeneralizedGravity(model, data, qk) for qk in q])
+    a = np.array([pin.rnea(model, data, q[k], dq[k], ddq[k]) for k in range(len(grid))]) - c
+    b = np.array([pin.rnea(model, data, q[k], zero, dq[k]) for k in range(len(grid))]) - c
+    tau_max = scale * model.effortLimit
+    return np.hstack([a, -a]), np.hstack([b, -b]), np.hstack([tau_max - c, c + tau_max])
+
+
+def case(i):
+    rng = np.random.default_rng(1000 + i)
+    name = list(ARMS)[i % len(ARMS)]
+    return name, rng, int(rng.integers(50, 201)), i % 2 == 1
+
+
+@pytest.fixture(scope="module")
+def robots():
+    return {name: arm(name) for name in ARMS}
+
+
+@pytest.fixture(scope="module")
+def results():
+    return []
+
+
+@pytest.mark.parametrize("i", range(CASES))
+def test_optimum_matches_cvxpy_and_meets_every_limit(i, robots, results):
+    name, rng, N, with_torque = case(i)
+    ours, theirs = robots[name]
+    lo, hi = ours.position_limits
+    v = ours.velocity_limits
+    waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (int(rng.integers(5, 9)), len(v)))
+    path = pp.CubicSplinePath(waypoints, knots="uniform", boundary="not-a-knot")
+    prob = pp.TimeScalingProblem(path, grid=N)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-2 * v, 2 * v)
+    grid = prob.grid
+    A, B, C = kinematic_rows(path.dq(grid), path.ddq(grid), -v, v, -2 * v, 2 * v)
+    if with_torque:
+        # 0.6 x effort where the arm can hold the path against gravity at that, else the next that it can.
+        for scale in (0.6, 0.8, 1.0, 1.5):
+            trial = pp.TimeScalingProblem(path, grid=N)
+            trial.add_velocity_limits(-v, v)
+            trial.add_acceleration_limits(-2 * v, 2 * v)
+            trial.add_torque_limits(ours, scale=scale)
+            if trial.solve().ok:
+                break
+        prob = trial
+        At, Bt, Ct = torque_rows(theirs, path, grid, scale)
+        A, B, C = np.hstack([A, At]), np.hstack([B, Bt]), np.hstack([C, Ct])
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    assert res.stats["gap"] <= 1e-7
+    assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
+    # Within 1e-6 of the optimum, certified independently: a Frank-Wolfe gap by scipy's HiGHS.
+    theta = res.sdot**2
+    assert frank_wolfe_gap(grid, theta, A, B, C) <= 1e-6 * res.duration
+    ref, _ = cvxpy_optimum(grid, A, B, C)
+    assert res.duration <= ref * (1 + 1e-6)
+    if res.duration < ref * (1 - 1e-6):
+        # Clarabel reported OPTIMAL above the optimum: near the rest ends (√θ -> 0) it sometimes stops 1e-5
+        # to 1e-4 high (seen on one case of the 30, and its answer moves by as much when θ is rescaled).
+        # The certificate above and the feasibility check bound our T from both sides there.
+        results.append(("oracle high", i))
+    # SLP on windows, not on the whole chain.
+    results.append(res.stats["lp_solves"] > 0 and 0 < res.stats["window_points"] < N + 1)
+
+
+def test_corpus_exercises_the_windows(results):
+    """The corpus is only worth something if it exercises SLP windows (run after the cases)."""
+    kinds = [r for r in results if isinstance(r, bool)]
+    if len(kinds) < CASES:
+        pytest.skip("run together with the corpus cases")
+    assert sum(kinds) >= CASES // 2
+    # The cvxpy oracle may be off on a case or two (see above), not on the corpus.
+    assert len(results) - len(kinds) <= 2
+
+
+def test_time_limit_ends_with_a_feasible_timing_and_its_certified_gap(robots):
+    ours, _ = robots["panda"]
+    lo, hi = ours.position_limits
+    v = ours.velocity_limits
+    path = pp.CubicSplinePath(lo + (hi - lo) * np.random.default_rng(3).uniform(0.1, 0.9, (6, 7)))
+    prob = pp.TimeScalingProblem(path, grid=200)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-2 * v, 2 * v)
+    best = prob.solve()
+    assert best.status == pp.Status.OPTIMAL and best.stats["lp_solves"] > 0
+    res = prob.solve(time_limit=1e-12)
+    assert res.status == pp.Status.TIME_LIMIT and res.ok
+    assert "time_limit" in res.message
+    assert res.duration >= best.duration * (1 - 1e-9)
+    assert res.stats["gap"] >= (res.duration - best.duration) / best.duration - 1e-9
+    A, B, C = kinematic_rows(path.dq(prob.grid), path.ddq(prob.grid), -v, v, -2 * v, 2 * v)
+    assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
+    with pytest.raises(pp.InvalidInputError, match="time_limit"):
+        prob.solve(time_limit=0.0)
+
+
+def test_stationary_piece_is_rejected_naming_its_s_range():
+    # q = s on [0, 1], q = 1 on [1, 2], q = s - 1 on [2, 3]
+    path = pp.PiecewisePolynomialPath([0.0, 1.0, 2.0, 3.0], [np.array([[0.0], [1.0]]), np.array([[1.0], [0.0]]),
+                                                             np.array([[1.0], [1.0]])])
+    prob = pp.TimeScalingProblem(path, grid=30)
+    prob.add_velocity_limits([-1.0], [1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"does not move on s in \[1, 1\.9.*grid indices 10\.\.19"):
+        prob.solve()
