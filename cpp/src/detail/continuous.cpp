@@ -127,11 +127,13 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     for (Eigen::Index k = 0; k < N; ++k) {
       const double u = u_of(k);
       for (Eigen::Index j = 0; j < cr.rows(); ++j) {
-        double worst = -std::numeric_limits<double>::infinity();
+        double worst = -std::numeric_limits<double>::infinity(), step = 0.0, prev = 0.0;
         int at = -1;
         for (int m = 0; m < points; ++m) {
           const Eigen::Index r = k * points + m;
           const double v = violation(cr.a(r, j), cr.b(r, j), cr.c(r, j), lam[static_cast<size_t>(m)], theta[k], theta[k + 1], u);
+          if (m > 0 && std::isfinite(v) && std::isfinite(prev)) step = std::max(step, std::abs(v - prev));
+          prev = v;
           if (v > worst) {
             worst = v;
             at = m;
@@ -139,8 +141,9 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
         }
         if (at < 0) continue;
         audit.worst = std::max(audit.worst, worst);
-        // A row within 1 % of its limit somewhere: find its peak between the neighbouring audit points.
-        if (worst > -1e-2) {
+        // A row that comes within 1 % of its limit, or within twice its largest change between two audit
+        // points (it can rise that much between them): find its peak between the neighbouring points.
+        if (worst > -std::max(1e-2, 2.0 * step)) {
           const double lo = at == 0 ? 0.0 : lam[static_cast<size_t>(at - 1)];
           const double hi = at == points - 1 ? 1.0 : lam[static_cast<size_t>(at + 1)];
           cand.push_back({k, j, lo, hi, hi - g * (hi - lo), lo + g * (hi - lo), 0.0, 0.0});
