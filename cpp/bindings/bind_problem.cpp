@@ -501,6 +501,13 @@ void bind_problem(py::module_& m) {
                         p->set_boundary_speeds(t[3].cast<double>(), t[4].cast<double>());
                         return p;
                       }))
+      .def("set_joint_names", [](TimeScalingProblem& p, std::vector<std::string> names) {
+        ProblemUse use(p, ProblemUse::kWrite, "set_joint_names");
+        p.set_joint_names(std::move(names));
+      }, "names"_a,
+         "Names of the path's coordinates for the labels and messages of velocity and acceleration limits\n"
+         "(set automatically from the robot of add_torque_limits / add_contacts when it has one joint per coordinate).")
+      .def_property_readonly("joint_names", &TimeScalingProblem::joint_names, "list of str: see set_joint_names")
       .def_property_readonly("sdot_begin", &TimeScalingProblem::sdot_begin)
       .def_property_readonly("sdot_end", &TimeScalingProblem::sdot_end)
       .def_property_readonly("grid", &TimeScalingProblem::grid)

@@ -64,11 +64,11 @@ void TimeScalingProblem::init_samples() {
 }
 
 void TimeScalingProblem::add_velocity_limits(const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax) {
-  add_constraint(std::make_shared<VelocityLimits>(vmin, vmax));
+  add_constraint(std::make_shared<VelocityLimits>(vmin, vmax, joint_names_));
 }
 
 void TimeScalingProblem::add_acceleration_limits(const Eigen::VectorXd& amin, const Eigen::VectorXd& amax) {
-  add_constraint(std::make_shared<AccelerationLimits>(amin, amax));
+  add_constraint(std::make_shared<AccelerationLimits>(amin, amax, joint_names_));
 }
 
 void TimeScalingProblem::add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
@@ -97,6 +97,30 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
                        "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
   constraints_.push_back(std::move(constraint));
   rows_.push_back(std::move(rows));
+  if (joint_names_.empty()) {
+    std::shared_ptr<const RobotModel> robot;
+    if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_.back())) robot = t->robot();
+    if (auto c = std::dynamic_pointer_cast<const ContactConstraint>(constraints_.back())) robot = c->robot();
+    if (robot && robot->nq() == samples_.dof()) set_joint_names(robot->joint_names());
+  }
+}
+
+void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
+  if (static_cast<Eigen::Index>(names.size()) != samples_.dof())
+    detail::fail("joint_names has " + std::to_string(names.size()) + " entries, the path has " +
+                 std::to_string(samples_.dof()) + " coordinates");
+  joint_names_ = std::move(names);
+  // Limits added before the names were known take them now (labels and messages name the joint).
+  for (size_t i = 0; i < constraints_.size(); ++i) {
+    std::shared_ptr<const Constraint> named;
+    if (auto v = std::dynamic_pointer_cast<const VelocityLimits>(constraints_[i]); v && v->joint_names().empty())
+      named = std::make_shared<VelocityLimits>(v->vmin(), v->vmax(), joint_names_);
+    else if (auto a = std::dynamic_pointer_cast<const AccelerationLimits>(constraints_[i]); a && a->joint_names().empty())
+      named = std::make_shared<AccelerationLimits>(a->amin(), a->amax(), joint_names_);
+    if (!named) continue;
+    rows_[i] = named->evaluate(samples_);
+    constraints_[i] = std::move(named);
+  }
 }
 
 void TimeScalingProblem::set_boundary_speeds(double sdot_begin, double sdot_end) {

@@ -212,3 +212,20 @@ def test_restart_validates_its_arguments():
     # s0 a hair before a grid point does not create a degenerate interval.
     tail = prob.restarted(0.3 - 1e-12, 0.0)
     assert tail.grid[1] == pytest.approx(0.4) and tail.intervals == 7
+
+
+def test_limits_added_before_the_robot_take_its_joint_names():
+    robot = pp.RobotModel.from_urdf(str(DATA / "pendulum.urdf"))
+    path = pp.CubicSplinePath(np.array([[1.2], [1.25], [1.3]]))
+    prob = pp.TimeScalingProblem(path, grid=50)
+    prob.add_velocity_limits([-5.0], [5.0])          # before the robot: labelled by index until then
+    prob.add_acceleration_limits([-1e-3], [1e-3])
+    assert prob.joint_names == []
+    prob.add_torque_limits(robot)
+    assert prob.joint_names == ["hinge"]
+    res = prob.solve()
+    assert res.status == pp.Status.INFEASIBLE
+    assert all("joint 0" not in c for c in res.binding_constraints), res.binding_constraints
+    assert any("hinge" in c for c in res.binding_constraints), res.binding_constraints
+    with pytest.raises(pp.InvalidInputError, match=r"^joint_names has 2 entries, the path has 1 coordinates$"):
+        prob.set_joint_names(["a", "b"])

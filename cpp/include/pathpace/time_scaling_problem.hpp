@@ -46,6 +46,12 @@ class TimeScalingProblem {
   /// Any constraint; its rows are evaluated now, so errors surface here.
   void add_constraint(std::shared_ptr<const Constraint> constraint);
 
+  /// Names of the path's coordinates, used in the row labels and messages of the velocity and
+  /// acceleration limits (those added before as well as after). Set automatically from the robot of the
+  /// first torque or contact constraint whose robot has one joint per path coordinate.
+  void set_joint_names(std::vector<std::string> names);
+  const std::vector<std::string>& joint_names() const { return joint_names_; }
+
   /// ṡ at s_begin and s_end (default 0, rest to rest). Must be >= 0 and finite.
   void set_boundary_speeds(double sdot_begin, double sdot_end);
   /// The boundary speeds from joint velocities q̇ at s_begin and s_end (rad/s or m/s): q̇ = p'(s) ṡ
@@ -104,6 +110,7 @@ class TimeScalingProblem {
   std::vector<std::shared_ptr<const Constraint>> constraints_;
   std::vector<ConstraintRows> rows_;
   double sdot_begin_ = 0.0, sdot_end_ = 0.0;
+  std::vector<std::string> joint_names_;
 };
 
 }  // namespace pathpace

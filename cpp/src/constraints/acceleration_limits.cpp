@@ -63,7 +63,7 @@ std::shared_ptr<const Constraint> AccelerationLimits::relaxed(double scale) cons
     lo[j] = widen_lower(lo[j], scale);
     hi[j] = widen_upper(hi[j], scale);
   }
-  return std::make_shared<AccelerationLimits>(lo, hi);
+  return std::make_shared<AccelerationLimits>(lo, hi, joint_names_);
 }
 
 }  // namespace pathpace

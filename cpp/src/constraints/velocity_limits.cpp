@@ -48,7 +48,7 @@ ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
 }
 
 std::shared_ptr<const Constraint> VelocityLimits::relaxed(double scale) const {
-  return std::make_shared<VelocityLimits>(vmin_ * scale, vmax_ * scale);
+  return std::make_shared<VelocityLimits>(vmin_ * scale, vmax_ * scale, joint_names_);
 }
 
 }  // namespace pathpace
