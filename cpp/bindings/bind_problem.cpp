@@ -47,7 +47,9 @@ py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
                   "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
-                  "time_slp"_a = s.time_slp);
+                  "time_slp"_a = s.time_slp, "time_constraints"_a = s.time_constraints,
+                  "time_projection"_a = s.time_projection, "projection_lp_solves"_a = s.projection_lp_solves,
+                  "inexact_points"_a = s.inexact_points);
 }
 
 }  // namespace
@@ -101,6 +103,7 @@ void bind_problem(py::module_& m) {
       .def_readonly("vertices", &FeasibleSet::vertices, "(v, 2) counter-clockwise vertices (x, u)")
       .def_readonly("empty", &FeasibleSet::empty)
       .def_readonly("bounded", &FeasibleSet::bounded)
+      .def_readonly("exact", &FeasibleSet::exact, "False where the contact polygon is only an inner approximation")
       .def("contains", &FeasibleSet::contains, "x"_a, "u"_a, "tol"_a = 1e-9)
       .def("__repr__", [](const FeasibleSet& f) {
         return "<FeasibleSet k=" + std::to_string(f.index) + " halfplanes=" + std::to_string(f.halfplanes.rows()) +
@@ -221,10 +224,15 @@ void bind_problem(py::module_& m) {
          "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
       .def("add_contacts", [](TimeScalingProblem& p, std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts,
                               int cone_edges, double friction_margin, double min_normal_force, double torque_scale,
-                              double torque_margin, double drift_tolerance) {
+                              double torque_margin, double drift_tolerance, py::object tau_min, py::object tau_max,
+                              double min_link_normal_force, int max_lps) {
+        ContactOptions o = contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
+        o.min_link_normal_force = min_link_normal_force;
+        o.max_lps = max_lps;
         auto c = std::make_shared<ContactConstraint>(
-            std::move(robot), std::move(contacts),
-            contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+            std::move(robot), std::move(contacts), o,
+            tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min"),
+            tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max"));
         int which = -1;
         const double drift = c->max_drift(p.samples(), &which);
         if (drift > drift_tolerance) {
@@ -236,9 +244,19 @@ void bind_problem(py::module_& m) {
         py::gil_scoped_release release;
         p.add_constraint(std::move(c));
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
-         "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6,
-         "Torque limits with frictional contact forces (eq. 18), projected to (sdot^2, sddot) per grid point. "
-         "Includes the torque limits: do not also add_torque_limits.")
+         "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000,
+         "Torque limits with frictional contact forces (eq. 17-18), projected to (sdot^2, sddot) per grid point "
+         "(sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP).\n"
+         "Contact points are in their link's frame, normals in the world frame (other_link's for a robot-robot "
+         "contact). tau_min/tau_max: torque limits (default -/+ URDF effort; 0 on a floating base), shrunk by "
+         "torque_scale and torque_margin (N m per side). add_torque_limits on the same robot, before or after, "
+         "merges into this one projection (both limits hold).\n"
+         "Margins (sec. V.D): friction_margin: the cone of mu (1 - friction_margin), i.e. every force keeps this "
+         "fraction of its friction in reserve; min_normal_force: N per contact point; min_link_normal_force: N per "
+         "link, the sum of the normal forces of the link's points (e.g. a whole sole). cone_edges: edges of the "
+         "inscribed friction pyramid. max_lps: LPs per grid point before the polygon is reported inexact "
+         "(FeasibleSet.exact, stats['inexact_points']).")
       .def("add_constraint", [](TimeScalingProblem& p, std::shared_ptr<Constraint> c) {
         py::gil_scoped_release release;
         p.add_constraint(std::move(c));

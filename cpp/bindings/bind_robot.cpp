@@ -177,13 +177,25 @@ void bind_robot(py::module_& m) {
 
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
       .def(py::init([](std::shared_ptr<RobotModel> robot, std::vector<Contact> contacts, int cone_edges, double friction_margin,
-                       double min_normal_force, double torque_scale, double torque_margin) {
+                       double min_normal_force, double torque_scale, double torque_margin, py::object tau_min,
+                       py::object tau_max, double min_link_normal_force, int max_lps) {
+             ContactOptions o = contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
+             o.min_link_normal_force = min_link_normal_force;
+             o.max_lps = max_lps;
              return std::make_shared<ContactConstraint>(
-                 std::move(robot), std::move(contacts),
-                 contact_options(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+                 std::move(robot), std::move(contacts), o,
+                 tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min"),
+                 tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max"));
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
-           "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)
+           "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "tau_min"_a = py::none(), "tau_max"_a = py::none(),
+           "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000,
+           "See TimeScalingProblem.add_contacts: points in link frames, normals in the world frame; margins per "
+           "point (min_normal_force) and per link (min_link_normal_force).")
+      .def_property_readonly("tau_min", &ContactConstraint::tau_min, "after scale and margin (and any merged TorqueLimits)")
+      .def_property_readonly("tau_max", &ContactConstraint::tau_max)
+      .def_property_readonly("projected_contacts", &ContactConstraint::projected_contacts,
+                             "indices of the contacts whose forces enter the projection LPs (flat groups: hull vertices)")
       .def_property_readonly("contacts", &ContactConstraint::contacts)
       .def_property_readonly("robot", [](const ContactConstraint& c) { return std::const_pointer_cast<RobotModel>(c.robot()); })
       .def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd) {

@@ -44,6 +44,10 @@ struct SolverStats {
   double time_feasible_sets = 0;  ///< seconds: polygons and pruning
   double time_reachability = 0;   ///< seconds: controllable sets and forward pass
   double time_slp = 0;            ///< seconds
+  /// Contact polygons (sec. IV.C): computed when the contacts were added (add_constraint), reported here.
+  double time_projection = 0;     ///< seconds, included in time_constraints
+  int projection_lp_solves = 0;   ///< LPs of the projection
+  int inexact_points = 0;         ///< grid points whose polygon is only an inner approximation (see FeasibleSet::exact)
 };
 
 class Result {
