@@ -5,6 +5,7 @@
 #include <random>
 
 #include "detail/projection.hpp"
+#include "pathpace/pathpace.hpp"
 
 using namespace pathpace::detail;
 
@@ -237,4 +238,41 @@ TEST(Projection, ConvexHullDropsInteriorCollinearAndDuplicatePoints) {
   EXPECT_EQ(order[1], 1);
   EXPECT_EQ(order[2], 2);
   EXPECT_EQ(order[3], 3);
+}
+
+TEST(Projection, A160GonWithMicrometreEdgesSurvivesPruningIntoTheFeasibleSet) {
+  // The projected rounded square, shifted to x in [1, 3], as a constraint of a time-scaling problem:
+  // the per-grid-point pruning (sec. IV.A) keeps every one of its edges.
+  std::vector<Vertex> truth = rounded_square(40, 3e-5);
+  for (Vertex& v : truth) v.x += 2.0;
+  const Projection p = project_polytope(lifted_polygon(truth));
+  ASSERT_TRUE(p.complete);
+  const Eigen::Index r = static_cast<Eigen::Index>(p.halfplanes.size());
+  ASSERT_GE(r, 160);
+  Eigen::MatrixXd A(2, r), B(2, r), C = Eigen::MatrixXd::Zero(2, r), lo(2, r), hi(2, r);
+  for (Eigen::Index j = 0; j < r; ++j) {
+    const Line& h = p.halfplanes[static_cast<size_t>(j)];
+    A.col(j).setConstant(h.a);
+    B.col(j).setConstant(h.b);
+    hi.col(j).setConstant(h.c);
+  }
+  lo.setConstant(-INFINITY);
+  Eigen::MatrixXd q(2, 1), dq(2, 1), ddq = Eigen::MatrixXd::Zero(2, 1);
+  q << 0, 1;
+  dq << 1, 1;
+  auto path = std::make_shared<pathpace::SampledPath>(Eigen::Vector2d(0, 1), q, dq, ddq);
+  pathpace::TimeScalingProblem prob(path, 1);
+  prob.add_linear_constraint(A, B, C, lo, hi);
+  const pathpace::FeasibleSet fs = prob.feasible_set(0);
+  ASSERT_FALSE(fs.empty);
+  // Two sides are bounds on x alone (folded into x_min / x_max), every other edge is a half-plane.
+  EXPECT_GE(fs.halfplanes.rows() + 2, 160);
+  EXPECT_EQ(fs.vertices.rows(), r);
+  for (int d = 0; d < 256; ++d) {
+    const double dx = std::cos(2 * M_PI * d / 256), du = std::sin(2 * M_PI * d / 256);
+    double ref = -INFINITY, got = -INFINITY;
+    for (const Vertex& t : truth) ref = std::max(ref, dx * t.x + du * t.y);
+    for (Eigen::Index i = 0; i < fs.vertices.rows(); ++i) got = std::max(got, dx * fs.vertices(i, 0) + du * fs.vertices(i, 1));
+    EXPECT_NEAR(got, ref, 2e-9);
+  }
 }

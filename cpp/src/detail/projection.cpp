@@ -285,6 +285,11 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const double len = std::hypot(nx, nu);
     nx /= len;
     nu /= len;
+    // An edge between two LP optima whose x (or u) differ by rounding is a bound on x (u) alone: a
+    // normal 1e-14 off the axis would otherwise be a line of slope 1e14 for the pruning (sec. IV.A),
+    // whose envelope arithmetic it ruins. The turn is below 1e-9 rad (the tolerance), and c keeps every vertex inside.
+    if (std::abs(nu) < 1e-9) nx = nx > 0 ? 1.0 : -1.0, nu = 0.0;
+    if (std::abs(nx) < 1e-9) nu = nu > 0 ? 1.0 : -1.0, nx = 0.0;
     double c = nx * on.x + nu * on.y;
     for (const Vertex& v : out.vertices) c = std::max(c, nx * v.x + nu * v.y);  // never cut a hull vertex
     out.halfplanes.push_back({nx, nu, c, static_cast<int>(out.halfplanes.size())});
