@@ -52,7 +52,7 @@ HUMANOIDS = {
     "romeo": dict(urdf="romeo_description/urdf/romeo.urdf", soles=("l_sole", "r_sole"), sole_size=(0.16, 0.08),
                   posture={"LHipPitch": -0.25, "LKneePitch": 0.5, "LAnklePitch": -0.25,
                            "RHipPitch": -0.25, "RKneePitch": 0.5, "RAnklePitch": -0.25,
-                           "LShoulderPitch": 1.2, "RShoulderPitch": 1.2},
+                           "LShoulderPitch": 1.2, "RShoulderPitch": 1.2, "LElbowYaw": -1.0},
                   legs=["LHip", "LKnee", "LAnkle", "RHip", "RKnee", "RAnkle"],
                   arm=["LShoulder", "LElbow", "LWrist"], hand="l_wrist", locked=["LHand", "RHand"]),
 }
@@ -141,12 +141,11 @@ def make_path(h: Humanoid, kind: str, knots: int = 21) -> pp.CubicSplinePath:
     return pp.CubicSplinePath(np.array(wp), knots=s)
 
 
-def contacts(h: Humanoid, kind: str, per_side: int = 4, friction: float = 0.5) -> list[pp.Contact]:
-    """Points on a regular grid over each sole (per_side = n², 4: the corners), plus the hand on a wall
+def contacts(h: Humanoid, kind: str, grid: tuple[int, int] = (2, 2), friction: float = 0.5) -> list[pp.Contact]:
+    """Points on a regular nx x ny grid over each sole ((2, 2): the corners), plus the hand on a wall
     beside the robot (normal -y in the world: the wall at +y pushes the hand towards the robot)."""
-    side = int(round(np.sqrt(per_side)))
     lx, ly = h.sole_size
-    xs, ys = np.linspace(-lx / 2, lx / 2, side), np.linspace(-ly / 2, ly / 2, side)
+    xs, ys = np.linspace(-lx / 2, lx / 2, grid[0]), np.linspace(-ly / 2, ly / 2, grid[1])
     out = [pp.Contact(link, point=(x, y, 0.0), normal=(0, 0, 1), friction=friction)
            for link in h.soles for x in xs for y in ys]
     if kind == "wall":
@@ -238,7 +237,12 @@ def directions(count: int = 64) -> np.ndarray:
 
 
 def polygon_support(fs, dirs):
-    return (fs.vertices @ dirs.T).max(axis=0)
+    """Support values in each direction; nan where attained on a stand-in bound or pathpace's 1e15 cut of
+    an unbounded set (nothing about the limits there)."""
+    vals = fs.vertices @ dirs.T
+    out = vals.max(axis=0)
+    on_cut = np.any(np.abs(fs.vertices[vals.argmax(axis=0)]) > 0.5 * CAP, axis=1)
+    return np.where(on_cut, np.nan, out)
 
 
 def polygon_size(fs) -> float:
@@ -270,8 +274,8 @@ def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, point
         assert not fs.empty, f"k = {k}: pathpace's set is empty, the exact polytope is not (false INFEASIBLE)"
         assert fs.exact
         got = polygon_support(fs, dirs)
+        ok = np.isfinite(ref) & np.isfinite(got)
         size = max(polygon_size(fs), 1e-12)
-        ok = np.isfinite(ref)
         err = np.max(np.abs(got[ok] - ref[ok])) / size if ok.any() else 0.0
         worst = max(worst, err)
     return worst, len(ks), empty

@@ -244,6 +244,10 @@ void ContactConstraint::lp_point(const std::vector<int>& use, const Eigen::Ref<c
     lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
   lp.row_lo.head(n) = tau_min_ - c;
   lp.row_hi.head(n) = tau_max_ - c;
+  // Rounding residue (1e-17 where a joint axis is orthogonal to a force) is not a coefficient: as a
+  // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5.
+  const double tiny = 1e-13 * lp.A.topRows(n).cwiseAbs().maxCoeff();
+  lp.A.topRows(n) = (lp.A.topRows(n).array().abs() < tiny).select(0.0, lp.A.topRows(n));
 }
 
 ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
