@@ -269,7 +269,8 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     lp_point(projected_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
     detail::Projection pr = projector.project(lp, 1e-9, options_.max_lps);
-    if (pr.outcome == detail::Projection::Outcome::Failed || !pr.complete) {
+    if (pr.outcome == detail::Projection::Outcome::Failed ||
+        (pr.outcome == detail::Projection::Outcome::Polygon && !pr.complete)) {
       // Once more from a cold start (a fresh basis), keeping the larger result.
       detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps);
       r.lp_solves += pr.lp_solves;

@@ -25,15 +25,18 @@ void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& i
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
 }
 
-int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm) {
+int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation) {
   int ret = glp_simplex(lp, &parm);
   int st = glp_get_status(lp);
-  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS)) {
+  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS) || (st == GLP_NOFEAS && !exact_confirmation)) {
     glp_std_basis(lp);
     ret = glp_simplex(lp, &parm);
     st = glp_get_status(lp);
   }
   if (ret == 0 && st == GLP_OPT) return GLP_OPT;
+  // Two simplex runs from different bases agree (the warm one and the slack basis): enough for a
+  // projection, whose infeasibility claims solve() re-checks exactly before reporting them.
+  if (ret == 0 && st == GLP_NOFEAS && !exact_confirmation) return GLP_NOFEAS;
   glp_std_basis(lp);
   if (glp_exact(lp, &parm) != 0) return -1;
   st = glp_get_status(lp);

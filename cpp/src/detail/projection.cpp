@@ -162,7 +162,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     glp_set_obj_coef(lp, 1, vx);
     glp_set_obj_coef(lp, 2, vu);
     ++out.lp_solves;
-    const int st = glpk_solve_robust(lp, parm);
+    const int st = glpk_solve_robust(lp, parm, false);
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {glp_get_col_prim(lp, 1), glp_get_col_prim(lp, 2)};
     return 1;
