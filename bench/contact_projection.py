@@ -149,7 +149,7 @@ def part_speed(args):
               f"{res.status.name} {res.duration:.4f} |", flush=True)
 
 
-def transcription(h, path, cons, N, margins):
+def transcription(h, path, cons, N, margins, fix_theta=None):
     """Direct transcription: θ_k = ṡ², u_k = s̈ per interval, contact forces at both ends of every
     interval (eq. 26's two sides) as variables in each contact's frame, exact second-order friction
     cones, the same torque limits and minimum normal forces; T = Σ 2Δs / (√θ_k + √θ_k+1)."""
@@ -208,6 +208,8 @@ def transcription(h, path, cons, N, margins):
                 for ln in links:
                     idx = [i for i, con in enumerate(cons) if con.link == ln]
                     cst.append(cp.sum(f[2, idx]) >= flink)
+    if fix_theta is not None:  # a feasibility check of another solver's timing
+        cst.append(theta == fix_theta)
     obj = cp.Minimize(cp.sum(2 * ds * cp.inv_pos(sq[:-1] + sq[1:])))
     prob = cp.Problem(obj, cst)
     prob.solve(solver=cp.CLARABEL)
