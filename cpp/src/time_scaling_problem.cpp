@@ -106,24 +106,21 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   if (!constraint) detail::fail("constraint must not be None");
   // Torque limits and contacts of one robot are one projection (eq. 17-18): alone, the torque limits
   // would demand τ = 0 of an unactuated floating base that only contact forces can hold. Both limits
-  // hold; the merged constraint takes the contacts' place (or the torque limits' one).
+  // hold; the merged constraint replaces the ones it absorbs (once it has evaluated without error).
+  std::vector<size_t> replaced;
   if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(constraint)) {
     for (size_t i = 0; i < constraints_.size(); ++i)
       if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
           contact && contact->robot() == torque->robot()) {
-        constraints_.erase(constraints_.begin() + static_cast<long>(i));
-        rows_.erase(rows_.begin() + static_cast<long>(i));
         constraint = contact->with_torque_limits(torque->tau_min(), torque->tau_max());
+        replaced.push_back(i);
         break;
       }
   } else if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraint)) {
-    for (size_t i = 0; i < constraints_.size();)
+    for (size_t i = 0; i < constraints_.size(); ++i)
       if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_[i]); t && t->robot() == contact->robot()) {
         contact = contact->with_torque_limits(t->tau_min(), t->tau_max());
-        constraints_.erase(constraints_.begin() + static_cast<long>(i));
-        rows_.erase(rows_.begin() + static_cast<long>(i));
-      } else {
-        ++i;
+        replaced.push_back(i);
       }
     constraint = contact;
   }
@@ -145,6 +142,10 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
         if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
           detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
                        "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
+  for (size_t t = replaced.size(); t-- > 0;) {
+    constraints_.erase(constraints_.begin() + static_cast<long>(replaced[t]));
+    rows_.erase(rows_.begin() + static_cast<long>(replaced[t]));
+  }
   constraints_.push_back(std::move(constraint));
   rows_.push_back(std::move(rows));
 }

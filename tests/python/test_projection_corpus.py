@@ -159,6 +159,7 @@ def test_add_contacts_validates_its_new_arguments(paths):
     lo[8] = 1e6
     with pytest.raises(pp.InvalidInputError, match=r"torque limits of joint 8 .* do not intersect"):
         prob.add_torque_limits(h.robot, lo, np.full(n, 2e6))
+    assert len(prob.constraints) == 1 and isinstance(prob.constraints[0], pp.ContactConstraint)  # unchanged
 
 
 def test_infeasibility_is_rechecked_on_the_full_polytope(paths):
