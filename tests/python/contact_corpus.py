@@ -222,8 +222,13 @@ def exact_support(A, lo, hi, bounds, directions):
     for d in directions:
         obj = np.zeros(A.shape[1])
         obj[:2] = -d
-        r = linprog(obj, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq, bounds=bounds, method="highs",
-                    options={"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10})
+        # HiGHS at tight tolerances; once or twice in thousands of LPs it stops without a status
+        # ("Not Set"): then its defaults, then its interior-point method.
+        for method, options in (("highs", {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}),
+                                ("highs-ds", {}), ("highs-ipm", {})):
+            r = linprog(obj, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq, bounds=bounds, method=method, options=options)
+            if r.status in (0, 2):
+                break
         if r.status == 2:
             return None
         assert r.status == 0, r.message
