@@ -2,7 +2,8 @@
 direct transcription for comparison.
 
 The corpus (tests/python/contact_corpus.py): Talos and Romeo (example-robot-data, floating base) on paths
-of our own (sway, squat, sway with the left hand on a wall), 4-32 cone edges, with and without friction
+of our own (sway, squat, sway with the left hand on a wall; Talos also carrying a 3 kg box squeezed
+between its hands, a free object with robot–robot contacts), 4-32 cone edges, with and without friction
 margin, per-point and per-link minimum normal force.
 
     .venv/bin/python bench/contact_projection.py --part exact [--configs 16] [--grid 100]
@@ -100,13 +101,19 @@ def part_solve(args):
         counts = {"OPTIMAL": 0, "INFEASIBLE": 0, "other": 0}
         broken, inexact, total = 0, 0, 0
         notes = []
-        for robot, kind, mname in itertools.product(ROBOTS, KINDS, MARGINS):
-            h, path = path_of(robot, kind)
-            cons = cc.contacts(h, kind)
+        for robot, kind, mname in itertools.chain(itertools.product(ROBOTS, KINDS, MARGINS),
+                                                  itertools.product(["talos"], ["box"], MARGINS)):
+            if kind == "box":
+                if ("talos", "box") not in _paths:
+                    _paths[("talos", "box")] = cc.box_problem(cc.load("talos"))
+                model, path, cons = _paths[("talos", "box")]
+            else:
+                h, path = path_of(robot, kind)
+                model, cons = h.robot, cc.contacts(h, kind)
             ok = {}
             for k in EDGES:
                 prob = pp.TimeScalingProblem(path, grid=N)
-                prob.add_contacts(h.robot, cons, cone_edges=k, drift_tolerance=1e-4, **MARGINS[mname])
+                prob.add_contacts(model, cons, cone_edges=k, drift_tolerance=1e-4, **MARGINS[mname])
                 res = prob.solve()
                 total += 1
                 inexact += res.stats["inexact_points"]

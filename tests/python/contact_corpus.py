@@ -284,3 +284,27 @@ def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, point
         err = np.max(np.abs(got[ok] - ref[ok])) / size if ok.any() else 0.0
         worst = max(worst, err)
     return worst, len(ks), empty
+
+
+def box_problem(h: Humanoid, mass: float = 3.0, knots: int = 21):
+    """The sway carrying a box squeezed between the hands: a free object (6 more coordinates) combined
+    with the robot, two contact points per hand against the box's sides (normals in the box's frame,
+    pushing each hand outwards), μ = 0.7. The feet-fixed IK moves the legs only, so the upper body and
+    the box translate with the pelvis. Returns (robot, path, contacts); no pinocchio oracle (statuses,
+    nesting and speed only)."""
+    hands = {"talos": ("arm_left_7_link", "arm_right_7_link"), "romeo": ("l_wrist", "r_wrist")}[h.name]
+    q0 = standing_posture(h)
+    s = np.linspace(0.0, 1.0, knots)
+    body = [q0] + [ik(h, q0, base_y=0.05 * np.sin(2 * np.pi * si)) for si in s[1:]]
+    centre = 0.5 * (h.robot.frame_placement(q0, hands[0])[:3, 3] + h.robot.frame_placement(q0, hands[1])[:3, 3])
+    box = pp.RobotModel.free_object("box", mass, inertia=np.diag([0.05, 0.02, 0.05]))
+    robot = pp.RobotModel.combine([h.robot, box])
+    wp = [np.concatenate([q, centre + (q[:3] - q0[:3]), np.zeros(3)]) for q in body]
+    path = pp.CubicSplinePath(np.array(wp), knots=s)
+    cons = []
+    for hand, side in zip(hands, (1.0, -1.0)):
+        R = h.robot.frame_placement(q0, hand)[:3, :3]
+        for dx in (-0.03, 0.03):
+            cons.append(pp.Contact(hand, point=R.T @ np.array([dx, 0.0, 0.0]), normal=(0.0, side, 0.0),
+                                   friction=0.7, other_link="box"))
+    return robot, path, contacts(h, "sway") + cons

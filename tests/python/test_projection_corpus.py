@@ -89,6 +89,20 @@ def test_k_edge_polygons_nest_in_2k_edge_ones_and_feasibility_carries_over(robot
                 assert results[2 * k].duration <= results[k].duration * (1 + 1e-9)
 
 
+def test_carrying_a_box_nests_in_the_cone_edges_too():
+    """Talos sways with a 3 kg box squeezed between its hands (robot–robot contacts with a free object):
+    feasible, k ⊆ 2k, and a budget-free projection at every point."""
+    robot, path, cons = cc.box_problem(cc.load("talos"))
+    res = {}
+    for k in (4, 8):
+        prob = pp.TimeScalingProblem(path, grid=30)
+        prob.add_contacts(robot, cons, cone_edges=k, drift_tolerance=1e-4, friction_margin=0.3, min_normal_force=2.0)
+        res[k] = prob.solve()
+        assert res[k].ok, res[k].message
+        assert res[k].stats["inexact_points"] == 0
+    assert res[8].duration <= res[4].duration * (1 + 1e-9)
+
+
 def test_flat_soles_reduce_exactly_to_their_corners(paths):
     """30 points per sole (6 x 5 grid): without a per-point minimum only the 4 corners of each sole enter
     the LPs, and every polygon still equals the exact projection over all 60 points (also with a per-link

@@ -29,8 +29,12 @@ int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmatio
   int ret = glp_simplex(lp, &parm);
   int st = glp_get_status(lp);
   if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS) || (st == GLP_NOFEAS && !exact_confirmation)) {
+    // From the slack basis, with the dual simplex when the primal one stalled (a degenerate cycle
+    // was seen to use the whole iteration limit on a humanoid carrying a box).
+    glp_smcp retry = parm;
+    if (ret != 0) retry.meth = GLP_DUALP;
     glp_std_basis(lp);
-    ret = glp_simplex(lp, &parm);
+    ret = glp_simplex(lp, &retry);
     st = glp_get_status(lp);
   }
   if (ret == 0 && st == GLP_OPT) return GLP_OPT;

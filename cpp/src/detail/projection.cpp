@@ -100,7 +100,9 @@ glp_smcp simplex_parameters(int rows, int cols) {
   // No scaling, no presolve: GLPK's automatic scaling was seen to make the primal simplex declare small,
   // plainly feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
   parm.presolve = GLP_OFF;
-  parm.it_lim = 100 * (rows + cols) + 1000;  // never a hang: a cycling simplex ends as a failure
+  // Never a hang: a cycling simplex ends as a failure, and is retried (glpk_solve_robust). A warm
+  // solve takes a few dozen pivots, a cold one at most a few times rows + cols.
+  parm.it_lim = 10 * (rows + cols) + 100;
   // GLPK's default bound tolerance (1e-7, relative to each bound) lets an optimum lie outside the
   // polytope by more than the 1e-9 of the polygon's size that the projection certifies, and hides
   // vertices of short edges; these small dense LPs solve as reliably at 1e-10.
