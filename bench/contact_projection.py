@@ -1,50 +1,262 @@
-"""Contact projection cost for a humanoid: the contact issue's benchmark.
+"""Contact polygons on humanoids (issue 9): exactness over a seeded corpus, false INFEASIBLE, speed, and a
+direct transcription for comparison.
 
-Talos (example-robot-data, floating base, gripper mimic joints locked) sways its pelvis ±7 cm over each
-foot with both soles flat (feet-fixed IK path of examples/talos_sway.py): four corner contacts per sole
-(8 contacts) or a 4 x 4 grid per sole (32), μ = 0.5 with a 50 % friction margin, 10 N minimum normal
-force, 8-edge cones, N = 100. Reports the projection time per grid point and in total, the polygon
-edges per grid point, LPs per grid point, and the whole solve (sets + reachability + SLP), median of
---repeat runs on one core.
+The corpus (tests/python/contact_corpus.py): Talos and Romeo (example-robot-data, floating base) on paths
+of our own (sway, squat, sway with the left hand on a wall; Talos also carrying a 3 kg box squeezed
+between its hands, a free object with robot–robot contacts), 4-32 cone edges, with and without friction
+margin, per-point and per-link minimum normal force.
 
-    .venv/bin/python bench/contact_projection.py [--repeat 5]
+    .venv/bin/python bench/contact_projection.py --part exact [--configs 16] [--grid 100]
+        every polygon of `configs` seeded cases against pinocchio + HiGHS support values (64 directions)
+    .venv/bin/python bench/contact_projection.py --part solve
+        every case at N = 50, 100, 200, 400: statuses, k ⊆ 2k feasibility
+    .venv/bin/python bench/contact_projection.py --part speed [--repeat 7]
+        Talos, 30 points per sole (60 contacts), N = 100, 8 edges, with margins: projection + solve
+    .venv/bin/python bench/contact_projection.py --part transcription [--repeat 3]
+        pathpace against a direct transcription (cvxpy + Clarabel, forces as variables, exact cones)
+
+Timings: median (and worst) of --repeat runs, wall and CPU (thread) time, one thread.
 """
 
+from __future__ import annotations
+
 import argparse
+import itertools
+import os
 import statistics
 import sys
 import time
 from pathlib import Path
 
-import numpy as np
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
+import contact_corpus as cc  # noqa: E402
+
 import pathpace as pp  # noqa: E402
-from talos_sway import CONTACT_OPTIONS, load_talos, sole_contacts, sway_path  # noqa: E402
 
-ap = argparse.ArgumentParser()
-ap.add_argument("--repeat", type=int, default=5)
-ap.add_argument("--grid", type=int, default=100)
-args = ap.parse_args()
+MARGINS = {
+    "bare": {},
+    "fm0.5": {"friction_margin": 0.5},
+    "fn5": {"min_normal_force": 5.0},
+    "link100": {"min_link_normal_force": 100.0},
+    "fm0.3+fn2": {"friction_margin": 0.3, "min_normal_force": 2.0},
+}
+ROBOTS, KINDS, EDGES = ("talos", "romeo"), ("sway", "squat", "wall"), (4, 8, 16, 32)
 
-robot = load_talos()
-path = sway_path(robot)
-N = args.grid
-print(f"Talos nq = {robot.nq}, sway path, N = {N}, median of {args.repeat}")
-print("| contacts | LP columns | projection total (ms) | per grid point (ms) | edges per point | solve (ms) | total (ms) | T (s) |")
-print("|---:|---:|---:|---:|---:|---:|---:|---:|")
-for per_side in (4, 16):
-    contacts = sole_contacts(per_side)
-    t_proj, t_solve = [], []
-    for _ in range(args.repeat):
-        prob = pp.TimeScalingProblem(path, grid=N)
-        t0 = time.perf_counter()
-        prob.add_contacts(robot, contacts, drift_tolerance=1e-4, **CONTACT_OPTIONS)
-        t_proj.append(time.perf_counter() - t0)
-        t0 = time.perf_counter()
+_paths = {}
+
+
+def path_of(robot, kind):
+    if (robot, kind) not in _paths:
+        h = cc.load(robot)
+        _paths[(robot, kind)] = (h, cc.make_path(h, kind))
+    return _paths[(robot, kind)]
+
+
+def timed(fn, repeat):
+    wall, cpu, out = [], [], None
+    for _ in range(repeat):
+        c0, w0 = time.thread_time(), time.perf_counter()
+        out = fn()
+        wall.append(time.perf_counter() - w0)
+        cpu.append(time.thread_time() - c0)
+    return wall, cpu, out
+
+
+def fmt_ms(xs):
+    return f"{statistics.median(xs) * 1e3:.1f} ({max(xs) * 1e3:.1f})"
+
+
+def part_exact(args):
+    rng = np.random.default_rng(args.seed)
+    cases = list(itertools.product(ROBOTS, KINDS, EDGES, MARGINS))
+    pick = rng.choice(len(cases), size=min(args.configs, len(cases)), replace=False)
+    print(f"every polygon against the exact projection, N = {args.grid}, 64 directions, seed {args.seed}")
+    print("| robot | path | edges | margins | points | empty | worst error / size | status | T (s) |")
+    print("|---|---|---:|---|---:|---:|---:|---|---:|")
+    worst_all = 0.0
+    for i in sorted(pick):
+        robot, kind, k, mname = cases[i]
+        h, path = path_of(robot, kind)
+        cons = cc.contacts(h, kind)
+        opts = dict(cone_edges=k, **MARGINS[mname])
+        prob = pp.TimeScalingProblem(path, grid=args.grid)
+        prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+        worst, n, empty = cc.compare(h, prob, cons, opts)
+        worst_all = max(worst_all, worst)
         res = prob.solve()
-        t_solve.append(time.perf_counter() - t0)
-    edges = [prob.feasible_set(k).halfplanes.shape[0] for k in range(N + 1)]
-    tp, ts = statistics.median(t_proj), statistics.median(t_solve)
-    print(f"| {len(contacts)} | {2 + len(contacts) * CONTACT_OPTIONS['cone_edges']} | {tp * 1e3:.1f} | {tp / (N + 1) * 1e3:.3f} | "
-          f"{np.mean(edges):.2f} | {ts * 1e3:.1f} | {(tp + ts) * 1e3:.1f} | {res.duration:.4f} ({res.status.name}) |")
+        print(f"| {robot} | {kind} | {k} | {mname} | {n} | {empty} | {worst:.1e} | {res.status.name} | "
+              f"{res.duration:.4f} |", flush=True)
+    print(f"worst over the corpus: {worst_all:.1e} of the polygon's size")
+
+
+def part_solve(args):
+    print("| N | cases | OPTIMAL | INFEASIBLE | other | k feasible, 2k not | inexact points |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    for N in (50, 100, 200, 400):
+        counts = {"OPTIMAL": 0, "INFEASIBLE": 0, "other": 0}
+        broken, inexact, total = 0, 0, 0
+        notes = []
+        for robot, kind, mname in itertools.chain(itertools.product(ROBOTS, KINDS, MARGINS),
+                                                  itertools.product(["talos"], ["box"], MARGINS)):
+            if kind == "box":
+                if ("talos", "box") not in _paths:
+                    _paths[("talos", "box")] = cc.box_problem(cc.load("talos"))
+                model, path, cons = _paths[("talos", "box")]
+            else:
+                h, path = path_of(robot, kind)
+                model, cons = h.robot, cc.contacts(h, kind)
+            ok = {}
+            for k in EDGES:
+                prob = pp.TimeScalingProblem(path, grid=N)
+                prob.add_contacts(model, cons, cone_edges=k, drift_tolerance=1e-4, **MARGINS[mname])
+                res = prob.solve()
+                total += 1
+                inexact += res.stats["inexact_points"]
+                name = res.status.name if res.status.name in counts else "other"
+                counts[name] += 1
+                ok[k] = res.ok
+                if not res.ok:
+                    notes.append(f"N={N} {robot} {kind} k={k} {mname}: {res.message}")
+            broken += sum(ok[k] and not ok[2 * k] for k in (4, 8, 16))
+        print(f"| {N} | {total} | {counts['OPTIMAL']} | {counts['INFEASIBLE']} | {counts['other']} | {broken} | {inexact} |",
+              flush=True)
+        for n in notes[: args.notes]:
+            print("   ", n)
+
+
+def part_speed(args):
+    h, path = path_of("talos", "sway")
+    print(f"Talos sway (nq = {h.robot.nq}), N = 100, 8 edges, median (worst) of {args.repeat}, ms")
+    print("| sole points | margins | LP contacts | projection wall | projection CPU | solve wall | total wall | "
+          "LPs per point | status, T (s) |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|---|")
+    configs = [((2, 2), {"friction_margin": 0.5, "min_normal_force": 10.0}, "fm0.5 + 10 N per point"),
+               ((6, 5), {"friction_margin": 0.5, "min_link_normal_force": 150.0}, "fm0.5 + 150 N per sole"),
+               ((6, 5), {"friction_margin": 0.5, "min_normal_force": 5.0}, "fm0.5 + 5 N per point"),
+               ((6, 5), {}, "none")]
+    for grid, margins, label in configs:
+        cons = cc.contacts(h, "sway", grid=grid)
+        cons_obj = pp.ContactConstraint(h.robot, cons, cone_edges=8, **margins)
+
+        def build():
+            prob = pp.TimeScalingProblem(path, grid=100)
+            prob.add_contacts(h.robot, cons, cone_edges=8, drift_tolerance=1e-4, **margins)
+            return prob
+
+        wb, cb, prob = timed(build, args.repeat)
+        ws, cs, res = timed(prob.solve, args.repeat)
+        tot = [a + b for a, b in zip(wb, ws)]
+        print(f"| {len(cons)} | {label} | {len(cons_obj.projected_contacts)} | {fmt_ms(wb)} | {fmt_ms(cb)} | "
+              f"{fmt_ms(ws)} | {fmt_ms(tot)} | {res.stats['projection_lp_solves'] / 101:.1f} | "
+              f"{res.status.name} {res.duration:.4f} |", flush=True)
+
+
+def transcription(h, path, cons, N, margins, fix_theta=None):
+    """Direct transcription: θ_k = ṡ², u_k = s̈ per interval, contact forces at both ends of every
+    interval (eq. 26's two sides) as variables in each contact's frame, exact second-order friction
+    cones, the same torque limits and minimum normal forces; T = Σ 2Δs / (√θ_k + √θ_k+1)."""
+    import cvxpy as cp
+    import pinocchio as pin
+    s = np.linspace(0.0, 1.0, N + 1)
+    ds = s[1] - s[0]
+    m, n = len(cons), h.robot.nq
+    fm = margins.get("friction_margin", 0.0)
+    fmin = margins.get("min_normal_force", 0.0)
+    flink = margins.get("min_link_normal_force", 0.0)
+    model, P = h.model, h.perm
+    data = model.createData()
+    eff = h.robot.effort_limits
+    frames = []
+    for con in cons:
+        nrm = np.asarray(con.normal, float) / np.linalg.norm(con.normal)
+        e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
+        t1 = np.cross(nrm, e)
+        t1 /= np.linalg.norm(t1)
+        frames.append(np.stack([t1, np.cross(nrm, t1), nrm], axis=1))  # local (t1, t2, n) -> world
+    theta, u = cp.Variable(N + 1), cp.Variable(N)
+    sq = cp.Variable(N + 1)
+    F = {side: cp.Variable((3, N * m)) for side in ("+", "-")}
+    cst = [theta >= 0, theta[0] == 0, theta[N] == 0, theta[1:] == theta[:-1] + 2 * ds * u, sq <= cp.sqrt(theta)]
+    mus = np.tile([c.friction * (1 - fm) for c in cons], N)
+    for side in ("+", "-"):
+        cst.append(cp.SOC(cp.multiply(mus, F[side][2, :]), F[side][0:2, :], axis=0))
+        if fmin > 0:
+            cst.append(F[side][2, :] >= fmin)
+    links = sorted({c.link for c in cons})
+    for k in range(N + 1):
+        qp, dqp, ddqp = (np.empty(n) for _ in range(3))
+        qp[P], dqp[P], ddqp[P] = path.q(s[k]), path.dq(s[k]), path.ddq(s[k])
+        cg = pin.computeGeneralizedGravity(model, data, qp)
+        a = (pin.rnea(model, data, qp, dqp, ddqp) - cg)[P]
+        b = (pin.rnea(model, data, qp, np.zeros(n), dqp) - cg)[P]
+        c = cg[P]
+        pin.forwardKinematics(model, data, qp)
+        pin.updateFramePlacements(model, data)
+        JR = []
+        for con, R in zip(cons, frames):
+            fid = model.getFrameId(con.link)
+            J6 = pin.computeFrameJacobian(model, data, qp, fid, pin.LOCAL)
+            J = data.oMf[fid].rotation @ (J6[:3] - np.cross(np.asarray(con.point), J6[3:].T).T)
+            JR.append((J.T @ R)[P])
+        JR = np.hstack(JR)
+        for side, (interval, col) in (("+", (k, k)), ("-", (k - 1, k - 1))):
+            if interval < 0 or interval >= N:
+                continue
+            f = F[side][:, col * m:(col + 1) * m]
+            tau = a * theta[k] + b * u[interval] + c - JR @ cp.vec(f, order="F")
+            act = eff > 0
+            cst += [tau[~act] == 0, tau[act] <= eff[act], tau[act] >= -eff[act]]
+            if flink > 0:
+                for ln in links:
+                    idx = [i for i, con in enumerate(cons) if con.link == ln]
+                    cst.append(cp.sum(f[2, idx]) >= flink)
+    if fix_theta is not None:  # a feasibility check of another solver's timing
+        cst.append(theta == fix_theta)
+    obj = cp.Minimize(cp.sum(2 * ds * cp.inv_pos(sq[:-1] + sq[1:])))
+    prob = cp.Problem(obj, cst)
+    prob.solve(solver=cp.CLARABEL)
+    return prob.status, prob.value, prob.solver_stats.solve_time
+
+
+def part_transcription(args):
+    print(f"pathpace (8-edge pyramids) vs direct transcription (cvxpy + Clarabel, exact cones), N = {args.grid}, "
+          f"median (worst) of {args.repeat}, s")
+    print("| robot | path | contacts | margins | pathpace total | transcription total | Clarabel alone | ratio (total) | "
+          "T pathpace | T transcription |")
+    print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|")
+    margins = {"friction_margin": 0.5, "min_link_normal_force": 100.0}
+    for robot, kind in itertools.product(ROBOTS, KINDS):
+        h, path = path_of(robot, kind)
+        cons = cc.contacts(h, kind)
+
+        def ours():
+            prob = pp.TimeScalingProblem(path, grid=args.grid)
+            prob.add_contacts(h.robot, cons, cone_edges=8, drift_tolerance=1e-4, **margins)
+            return prob.solve()
+
+        wp, _, res = timed(ours, max(args.repeat, 5))
+        wt, _, tr = timed(lambda: transcription(h, path, cons, args.grid, margins), args.repeat)
+        print(f"| {robot} | {kind} | {len(cons)} | fm0.5 + 100 N per link | {statistics.median(wp):.4f} ({max(wp):.4f}) | "
+              f"{statistics.median(wt):.2f} ({max(wt):.2f}) | {tr[2]:.2f} | {statistics.median(wt) / statistics.median(wp):.0f}x | "
+              f"{res.duration:.4f} {res.status.name} | {tr[1]:.4f} {tr[0]} |", flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--part", choices=["exact", "solve", "speed", "transcription"], required=True)
+    ap.add_argument("--configs", type=int, default=16)
+    ap.add_argument("--grid", type=int, default=100)
+    ap.add_argument("--repeat", type=int, default=7)
+    ap.add_argument("--seed", type=int, default=2026)
+    ap.add_argument("--notes", type=int, default=10)
+    args = ap.parse_args()
+    {"exact": part_exact, "solve": part_solve, "speed": part_speed, "transcription": part_transcription}[args.part](args)
+
+
+if __name__ == "__main__":
+    main()

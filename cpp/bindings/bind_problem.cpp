@@ -112,7 +112,9 @@ py::dict stats_dict(const SolverStats& s) {
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
                   "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
                   "time_slp"_a = s.time_slp, "audit_rounds"_a = s.audit_rounds, "audit_cuts"_a = s.audit_cuts,
-                  "audit_worst"_a = s.audit_worst, "windows"_a = s.windows, "window_points"_a = s.window_points);
+                  "audit_worst"_a = s.audit_worst, "windows"_a = s.windows, "window_points"_a = s.window_points,
+                  "time_constraints"_a = s.time_constraints, "time_projection"_a = s.time_projection,
+                  "projection_lp_solves"_a = s.projection_lp_solves, "inexact_points"_a = s.inexact_points);
 }
 
 }  // namespace
@@ -189,6 +191,7 @@ void bind_problem(py::module_& m) {
       .def_readonly("vertices", &FeasibleSet::vertices, "(v, 2) counter-clockwise vertices (x, u)")
       .def_readonly("empty", &FeasibleSet::empty)
       .def_readonly("bounded", &FeasibleSet::bounded)
+      .def_readonly("exact", &FeasibleSet::exact, "False where the contact polygon is only an inner approximation")
       .def("contains", [](const FeasibleSet& f, py::handle x, py::handle u, py::handle tol) {
         return f.contains(to_double(x, "x"), to_double(u, "u"), to_double(tol, "tol"));
       }, "x"_a, "u"_a, "tol"_a = 1e-9)
@@ -333,7 +336,8 @@ void bind_problem(py::module_& m) {
                             py::make_tuple(r.infeasibility.grid_index, r.infeasibility.s, r.infeasibility.constraints),
                             py::make_tuple(st.slp_iterations, st.lp_solves, st.greatest_element, st.gap, st.average_halfplanes,
                                            st.time_constraints, st.time_feasible_sets, st.time_reachability, st.time_slp,
-                                           st.audit_rounds, st.audit_cuts, st.audit_worst, st.windows, st.window_points),
+                                           st.audit_rounds, st.audit_cuts, st.audit_worst, st.windows, st.window_points,
+                                           st.time_projection, st.projection_lp_solves, st.inexact_points),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
                             std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding);
                       },
@@ -352,7 +356,7 @@ void bind_problem(py::module_& m) {
                         r.infeasibility.s = inf[1].cast<double>();
                         r.infeasibility.constraints = inf[2].cast<std::vector<std::string>>();
                         const py::tuple st = t[8].cast<py::tuple>();
-                        check_state(st, 14, "Result stats");
+                        check_state(st, 17, "Result stats");
                         r.stats.slp_iterations = st[0].cast<int>();
                         r.stats.lp_solves = st[1].cast<int>();
                         r.stats.greatest_element = st[2].cast<bool>();
@@ -367,6 +371,9 @@ void bind_problem(py::module_& m) {
                         r.stats.audit_worst = st[11].cast<double>();
                         r.stats.windows = st[12].cast<int>();
                         r.stats.window_points = st[13].cast<int>();
+                        r.stats.time_projection = st[14].cast<double>();
+                        r.stats.projection_lp_solves = st[15].cast<int>();
+                        r.stats.inexact_points = st[16].cast<int>();
                         r.path = optional_ptr<Path>(t[9]);
                         r.robot = optional_ptr<RobotModel>(t[10]);
                         r.contacts = optional_ptr<ContactConstraint>(t[11]);
@@ -440,10 +447,15 @@ void bind_problem(py::module_& m) {
          "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
       .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
                               py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
-                              py::handle torque_margin, py::handle drift_tolerance_arg) {
+                              py::handle torque_margin, py::handle drift_tolerance_arg, py::handle tau_min,
+                              py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps) {
+        ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
+        o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
+        o.max_lps = static_cast<int>(to_int(max_lps, "max_lps", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
         auto c = std::make_shared<ContactConstraint>(
-            to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"),
-            contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+            to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
+            tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min"),
+            tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max"));
         const double drift_tolerance = to_double(drift_tolerance_arg, "drift_tolerance");
         if (!(drift_tolerance >= 0.0))
           throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
@@ -460,9 +472,19 @@ void bind_problem(py::module_& m) {
         }
         add_released(p, std::move(c), "add_contacts");
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
-         "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6,
-         "Torque limits with frictional contact forces (eq. 18), projected to (sdot^2, sddot) per grid point. "
-         "Includes the torque limits: do not also add_torque_limits.")
+         "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000,
+         "Torque limits with frictional contact forces (eq. 17-18), projected to (sdot^2, sddot) per grid point "
+         "(sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP).\n"
+         "Contact points are in their link's frame, normals in the world frame (other_link's for a robot-robot "
+         "contact). tau_min/tau_max: torque limits (default -/+ URDF effort; 0 on a floating base), shrunk by "
+         "torque_scale and torque_margin (N m per side). add_torque_limits on the same robot, before or after, "
+         "merges into this one projection (both limits hold).\n"
+         "Margins (sec. V.D): friction_margin: the cone of mu (1 - friction_margin), i.e. every force keeps this "
+         "fraction of its friction in reserve; min_normal_force: N per contact point; min_link_normal_force: N per "
+         "link, the sum of the normal forces of the link's points (e.g. a whole sole). cone_edges: edges of the "
+         "inscribed friction pyramid. max_lps: LPs per grid point before the polygon is reported inexact "
+         "(FeasibleSet.exact, stats['inexact_points']).")
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         add_released(p, to_object<Constraint>(c, "constraint", "Constraint"), "add_constraint");
       }, "constraint"_a)

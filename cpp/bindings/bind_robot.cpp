@@ -278,25 +278,40 @@ void bind_robot(py::module_& m) {
 
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
       .def(py::init([](py::handle robot, py::handle contacts, py::handle cone_edges, py::handle friction_margin,
-                       py::handle min_normal_force, py::handle torque_scale, py::handle torque_margin) {
+                       py::handle min_normal_force, py::handle torque_scale, py::handle torque_margin, py::handle tau_min,
+                       py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps) {
+             ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
+             o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
+             o.max_lps = static_cast<int>(to_int(max_lps, "max_lps", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
              return std::make_shared<ContactConstraint>(
-                 to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"),
-                 contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin));
+                 to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
+                 tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min"),
+                 tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max"));
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
-           "torque_scale"_a = 1.0, "torque_margin"_a = 0.0)
+           "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "tau_min"_a = py::none(), "tau_max"_a = py::none(),
+           "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000,
+           "See TimeScalingProblem.add_contacts: points in link frames, normals in the world frame; margins per "
+           "point (min_normal_force) and per link (min_link_normal_force).")
+      .def_property_readonly("tau_min", &ContactConstraint::tau_min, "after scale and margin (and any merged TorqueLimits)")
+      .def_property_readonly("tau_max", &ContactConstraint::tau_max)
+      .def_property_readonly("projected_contacts", &ContactConstraint::projected_contacts,
+                             "indices of the contacts whose forces enter the projection LPs (flat groups: hull vertices)")
       .def_property_readonly("contacts", &ContactConstraint::contacts)
       // Rebuilt from the robot, contacts, options and the stored limits (which include torque_scale and
       // torque_margin, so those are 1 and 0 in the copy).
       .def(py::pickle([](const ContactConstraint& c) {
                         const ContactOptions& o = c.options();
                         return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.contacts(), o.cone_edges,
-                                              o.friction_margin, o.min_normal_force, o.cap, c.tau_min(), c.tau_max());
+                                              o.friction_margin, o.min_normal_force, o.cap, c.tau_min(), c.tau_max(),
+                                              o.min_link_normal_force, o.max_lps);
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 8, "ContactConstraint");
+                        check_state(t, 10, "ContactConstraint");
                         ContactOptions o = contact_options(t[2].cast<int>(), t[3].cast<double>(), t[4].cast<double>(), 1.0, 0.0);
                         o.cap = t[5].cast<double>();
+                        o.min_link_normal_force = t[8].cast<double>();
+                        o.max_lps = t[9].cast<int>();
                         auto robot = t[0].cast<std::shared_ptr<RobotModel>>();
                         auto contacts = t[1].cast<std::vector<Contact>>();
                         Eigen::VectorXd lo = to_vector(t[6], "tau_min"), hi = to_vector(t[7], "tau_max");

@@ -28,6 +28,36 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// An infeasibility with contacts is a claim about the robot, and the polygons are projections: before
+// it is reported, one LP on the full (ṡ², s̈, τ, f) polytope at the binding grid point, with every other
+// constraint's half-planes there, re-checks it; the message says whether the rest state (0, 0) is
+// feasible there. A point whose polygon is empty but whose full LP is not is a projection failure.
+void recheck_contacts(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows, Eigen::Index k,
+                      bool point_empty, Result& res) {
+  Eigen::Matrix<double, Eigen::Dynamic, 3> extra(0, 3);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const ConstraintRows& cr = rows[i];
+    if (problem.constraints()[i] == res.contacts) continue;
+    for (Eigen::Index j = 0; j < cr.rows(); ++j)
+      if (std::isfinite(cr.c(k, j))) {
+        extra.conservativeResize(extra.rows() + 1, 3);
+        extra.row(extra.rows() - 1) << cr.a(k, j), cr.b(k, j), cr.c(k, j);
+      }
+  }
+  const ContactConstraint::PointCheck check = res.contacts->check_point(problem.samples(), k, extra);
+  auto word = [](int v, const char* yes, const char* no) { return v > 0 ? yes : v == 0 ? no : "unknown (LP failed)"; };
+  if (point_empty && check.feasible > 0) {
+    res.status = Status::NumericalError;
+    res.message = "the feasible set is empty at grid index " + std::to_string(k) + " (s = " +
+                  detail::fmt(problem.samples().s[k]) +
+                  "), but one LP on the full (sdot^2, sddot, torque, force) polytope there is feasible: the projection failed";
+    return;
+  }
+  res.message += std::string("; re-checked by one LP on the full (sdot^2, sddot, torque, force) polytope at that point: ") +
+                 word(check.feasible, "feasible", "infeasible") + ", rest state (0, 0) " +
+                 word(check.rest_feasible, "feasible", "infeasible");
+}
+
 }  // namespace
 
 TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, int intervals) : path_(std::move(path)) {
@@ -79,7 +109,29 @@ void TimeScalingProblem::add_linear_constraint(const Eigen::MatrixXd& A, const E
 
 void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constraint) {
   if (!constraint) detail::fail("constraint must not be None");
+  // Torque limits and contacts of one robot are one projection (eq. 17-18): alone, the torque limits
+  // would demand τ = 0 of an unactuated floating base that only contact forces can hold. Both limits
+  // hold; the merged constraint replaces the ones it absorbs (once it has evaluated without error).
+  std::vector<size_t> replaced;
+  if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(constraint)) {
+    for (size_t i = 0; i < constraints_.size(); ++i)
+      if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
+          contact && contact->robot() == torque->robot()) {
+        constraint = contact->with_torque_limits(torque->tau_min(), torque->tau_max());
+        replaced.push_back(i);
+        break;
+      }
+  } else if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraint)) {
+    for (size_t i = 0; i < constraints_.size(); ++i)
+      if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_[i]); t && t->robot() == contact->robot()) {
+        contact = contact->with_torque_limits(t->tau_min(), t->tau_max());
+        replaced.push_back(i);
+      }
+    constraint = contact;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
   ConstraintRows rows = constraint->evaluate(samples_);
+  rows.seconds = seconds_since(t0);
   // A constraint of ours is trusted, but a user's own Constraint subclass may hand back anything.
   const Eigen::Index r = rows.rows();
   if (rows.a.rows() != samples_.size() || rows.b.rows() != samples_.size() || rows.c.rows() != samples_.size() ||
@@ -95,6 +147,10 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
         if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
           detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
                        "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
+  for (size_t t = replaced.size(); t-- > 0;) {
+    constraints_.erase(constraints_.begin() + static_cast<long>(replaced[t]));
+    rows_.erase(rows_.begin() + static_cast<long>(replaced[t]));
+  }
   constraints_.push_back(std::move(constraint));
   rows_.push_back(std::move(rows));
   if (joint_names_.empty()) {
@@ -148,6 +204,8 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   fs.x_max = ps.x_hi_id >= 0 ? ps.x_hi : std::numeric_limits<double>::infinity();
   fs.x_max_label = label(ps.x_hi_id);
   fs.empty = ps.empty;
+  for (const ConstraintRows& cr : rows_)
+    if (std::find(cr.inexact_points.begin(), cr.inexact_points.end(), k) != cr.inexact_points.end()) fs.exact = false;
   if (ps.empty) {
     for (int id : ps.certificate)
       if (id >= 0) fs.labels.push_back(label(id));
@@ -246,6 +304,14 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   res.s = samples_.s;
   const Eigen::Index n = intervals();
 
+  for (size_t i = 0; i < rows_.size(); ++i) {
+    res.stats.time_constraints += rows_[i].seconds;
+    res.stats.inexact_points += static_cast<int>(rows_[i].inexact_points.size());
+    if (std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i])) {
+      res.stats.time_projection += rows_[i].seconds;
+      res.stats.projection_lp_solves += rows_[i].lp_solves;
+    }
+  }
   auto t0 = std::chrono::steady_clock::now();
   const detail::GridSets sets = detail::build_grid_sets(samples_, constraint_rows);
   res.stats.time_feasible_sets = seconds_since(t0);
@@ -268,6 +334,7 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
       os << "; " << describe_relaxation(res.relaxation);
     }
     res.message = os.str();
+    if (st == Status::Infeasible && res.contacts) recheck_contacts(*this, rows_, k, sets.points[static_cast<size_t>(k)].empty, res);
     return res;
   };
 

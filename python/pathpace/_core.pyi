@@ -115,7 +115,15 @@ class Contact:
 
 class ContactConstraint(Constraint):
     def __init__(self, robot: RobotModel, contacts: list[Contact], cone_edges: int = 8, friction_margin: float = 0.0,
-                 min_normal_force: float = 0.0, torque_scale: float = 1.0, torque_margin: float = 0.0) -> None: ...
+                 min_normal_force: float = 0.0, torque_scale: float = 1.0, torque_margin: float = 0.0,
+                 tau_min: ArrayLike | None = None, tau_max: ArrayLike | None = None,
+                 min_link_normal_force: float = 0.0, max_lps: int = 2000) -> None: ...
+    @property
+    def tau_min(self) -> Array: ...
+    @property
+    def tau_max(self) -> Array: ...
+    @property
+    def projected_contacts(self) -> list[int]: ...
     @property
     def contacts(self) -> list[Contact]: ...
     @property
@@ -202,6 +210,7 @@ class FeasibleSet:
     vertices: Array
     empty: bool
     bounded: bool
+    exact: bool
     def contains(self, x: float, u: float, tol: float = 1e-9) -> bool: ...
 
 class Trajectory:
@@ -284,6 +293,10 @@ class TimeScalingProblem:
         torque_scale: float = 1.0,
         torque_margin: float = 0.0,
         drift_tolerance: float = 1e-6,
+        tau_min: ArrayLike | None = None,
+        tau_max: ArrayLike | None = None,
+        min_link_normal_force: float = 0.0,
+        max_lps: int = 2000,
     ) -> None: ...
     def add_constraint(self, constraint: Constraint) -> None: ...
     def set_boundary_speeds(self, sdot_begin: float = 0.0, sdot_end: float = 0.0) -> None: ...

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "detail/projection.hpp"
+#include "pathpace/pathpace.hpp"
 
 using namespace pathpace::detail;
 
@@ -101,5 +102,177 @@ TEST(Projection, WarmProjectorAlongASequenceMatchesColdProjections) {
       EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9);
     }
     EXPECT_NEAR(support(a, 1.0, 0.0), scale * std::max(std::abs(std::cos(ang)), std::abs(std::sin(ang))) , 1e-9);
+  }
+}
+
+namespace {
+
+// A square [-1, 1]² whose corners are rounded with radius r by `per_corner` vertices each: a polygon
+// with 4·per_corner vertices and edges of about r·(π/2)/per_corner (micrometres for r = 3e-5).
+std::vector<Vertex> rounded_square(int per_corner, double r) {
+  std::vector<Vertex> v;
+  const double cx[4] = {1 - r, -1 + r, -1 + r, 1 - r}, cy[4] = {1 - r, 1 - r, -1 + r, -1 + r};
+  for (int c = 0; c < 4; ++c)
+    for (int i = 0; i < per_corner; ++i) {
+      const double ang = M_PI / 2 * c + M_PI / 2 * i / (per_corner - 1);
+      v.push_back({cx[c] + r * std::cos(ang), cy[c] + r * std::sin(ang)});
+    }
+  return v;
+}
+
+// The polytope {(x, u, y): polygon's half-planes on (x, u), y = x + u, |y| <= 10}: its shadow is the
+// polygon (counter-clockwise vertices).
+PolytopeLp lifted_polygon(const std::vector<Vertex>& v) {
+  const int m = static_cast<int>(v.size());
+  PolytopeLp lp;
+  lp.A.setZero(m + 1, 3);
+  lp.row_lo = Eigen::VectorXd::Constant(m + 1, -INFINITY);
+  lp.row_hi.resize(m + 1);
+  for (int i = 0; i < m; ++i) {
+    const Vertex &a = v[static_cast<size_t>(i)], &b = v[static_cast<size_t>((i + 1) % m)];
+    const double len = std::hypot(b.y - a.y, b.x - a.x), nx = (b.y - a.y) / len, nu = -(b.x - a.x) / len;
+    lp.A.row(i) << nx, nu, 0;
+    lp.row_hi[i] = nx * a.x + nu * a.y;
+  }
+  lp.A.row(m) << 1, 1, -1;
+  lp.row_lo[m] = lp.row_hi[m] = 0;
+  lp.col_lo = Eigen::Vector3d(-INFINITY, -INFINITY, -10);
+  lp.col_hi = Eigen::Vector3d(INFINITY, INFINITY, 10);
+  return lp;
+}
+
+}  // namespace
+
+TEST(Projection, MicrometreEdgesOfA160GonAreAllFoundAndCertified) {
+  const std::vector<Vertex> truth = rounded_square(40, 3e-5);
+  double shortest = INFINITY;
+  for (size_t i = 0; i < truth.size(); ++i)
+    shortest = std::min(shortest, std::hypot(truth[(i + 1) % truth.size()].x - truth[i].x,
+                                             truth[(i + 1) % truth.size()].y - truth[i].y));
+  ASSERT_LT(shortest, 2e-6);
+  const Projection p = project_polytope(lifted_polygon(truth));
+  ASSERT_EQ(p.outcome, Projection::Outcome::Polygon);
+  EXPECT_TRUE(p.complete) << p.note;
+  // Every true vertex, and perhaps a few points on long edges that were outside the hull when found.
+  EXPECT_GE(p.vertices.size(), truth.size());
+  EXPECT_LE(p.vertices.size(), truth.size() + 8);
+  EXPECT_EQ(p.halfplanes.size(), p.vertices.size());
+  // Every true vertex is a vertex of the projection (to 1e-9 of the size 2).
+  for (const Vertex& t : truth) {
+    double best = INFINITY;
+    for (const Vertex& v : p.vertices) best = std::min(best, std::hypot(v.x - t.x, v.y - t.y));
+    EXPECT_LT(best, 2e-9);
+  }
+  // Support values in 256 directions.
+  for (int d = 0; d < 256; ++d) {
+    const double dx = std::cos(2 * M_PI * d / 256), du = std::sin(2 * M_PI * d / 256);
+    double ref = -INFINITY;
+    for (const Vertex& t : truth) ref = std::max(ref, dx * t.x + du * t.y);
+    EXPECT_NEAR(support(p, dx, du), ref, 2e-9);
+  }
+}
+
+TEST(Projection, BudgetExhaustionIsReportedAndKeepsAnInnerHull) {
+  const std::vector<Vertex> truth = rounded_square(40, 3e-5);
+  const PolytopeLp lp = lifted_polygon(truth);
+  const Projection p = project_polytope(lp, 1e-9, 20);
+  ASSERT_EQ(p.outcome, Projection::Outcome::Polygon);
+  EXPECT_FALSE(p.complete);
+  EXPECT_NE(p.note.find("budget"), std::string::npos) << p.note;
+  EXPECT_EQ(p.lp_solves, 20);
+  EXPECT_GE(p.vertices.size(), 3u);
+  // Inner: every vertex found lies in the true polygon.
+  for (const Vertex& v : p.vertices)
+    for (int i = 0; i < lp.A.rows() - 1; ++i) EXPECT_LE(lp.A(i, 0) * v.x + lp.A(i, 1) * v.y, lp.row_hi[i] + 1e-12);
+}
+
+TEST(Projection, SegmentAndPointShadowsAreClosed) {
+  // x = u (y = x - u = 0), 0 <= x <= 1: the shadow is the segment from (0, 0) to (1, 1).
+  PolytopeLp lp;
+  lp.A.resize(1, 3);
+  lp.A.row(0) << 1, -1, -1;
+  lp.row_lo = lp.row_hi = Eigen::VectorXd::Zero(1);
+  lp.col_lo = Eigen::Vector3d(0, -INFINITY, 0);
+  lp.col_hi = Eigen::Vector3d(1, INFINITY, 0);
+  Projection p = project_polytope(lp);
+  ASSERT_EQ(p.outcome, Projection::Outcome::Polygon);
+  EXPECT_TRUE(p.complete);
+  ASSERT_EQ(p.vertices.size(), 2u);
+  EXPECT_EQ(p.halfplanes.size(), 4u);  // two sides and two ends
+  for (int d = 0; d < 16; ++d) {
+    const double dx = std::cos(0.4 * d), du = std::sin(0.4 * d);
+    EXPECT_NEAR(support(p, dx, du), std::max(0.0, dx + du), 1e-12);
+  }
+  const double ins[2][2] = {{0.5, 0.5}, {1.0, 1.0}}, outs[3][2] = {{0.5, 0.6}, {1.1, 1.1}, {-0.1, -0.1}};
+  for (const auto& z : ins)
+    for (const Line& h : p.halfplanes) EXPECT_LE(h.a * z[0] + h.b * z[1], h.c + 1e-12);
+  for (const auto& z : outs) {
+    bool cut = false;
+    for (const Line& h : p.halfplanes) cut |= h.a * z[0] + h.b * z[1] > h.c + 1e-9;
+    EXPECT_TRUE(cut) << z[0] << " " << z[1];
+  }
+  lp.col_hi[0] = 0;  // now only (0, 0)
+  p = project_polytope(lp);
+  ASSERT_EQ(p.outcome, Projection::Outcome::Polygon);
+  ASSERT_EQ(p.vertices.size(), 1u);
+  EXPECT_EQ(p.halfplanes.size(), 4u);
+  EXPECT_EQ(p.lp_solves, 3);
+}
+
+TEST(Projection, FeasibilityLpWithAFixedPoint) {
+  PolytopeProjector solver;
+  const PolytopeLp lp = octahedron();
+  const double inside[2] = {0.3, -0.3}, outside[2] = {0.8, 0.8};
+  EXPECT_EQ(solver.feasible(lp), 1);
+  EXPECT_EQ(solver.feasible(lp, inside), 1);
+  EXPECT_EQ(solver.feasible(lp, outside), 0);
+  EXPECT_EQ(solver.feasible(lp), 1);  // the fixed point is not left behind
+}
+
+TEST(Projection, ConvexHullDropsInteriorCollinearAndDuplicatePoints) {
+  const std::vector<Vertex> pts = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {1, 1}, {0, 0}};
+  std::vector<int> order;
+  convex_hull(pts, order);
+  ASSERT_EQ(order.size(), 4u);
+  EXPECT_EQ(order[0], 0);  // lowest x, then lowest y; counter-clockwise
+  EXPECT_EQ(order[1], 1);
+  EXPECT_EQ(order[2], 2);
+  EXPECT_EQ(order[3], 3);
+}
+
+TEST(Projection, A160GonWithMicrometreEdgesSurvivesPruningIntoTheFeasibleSet) {
+  // The projected rounded square, shifted to x in [1, 3], as a constraint of a time-scaling problem:
+  // the per-grid-point pruning (sec. IV.A) keeps every one of its edges.
+  std::vector<Vertex> truth = rounded_square(40, 3e-5);
+  for (Vertex& v : truth) v.x += 2.0;
+  const Projection p = project_polytope(lifted_polygon(truth));
+  ASSERT_TRUE(p.complete);
+  const Eigen::Index r = static_cast<Eigen::Index>(p.halfplanes.size());
+  ASSERT_GE(r, 160);
+  Eigen::MatrixXd A(2, r), B(2, r), C = Eigen::MatrixXd::Zero(2, r), lo(2, r), hi(2, r);
+  for (Eigen::Index j = 0; j < r; ++j) {
+    const Line& h = p.halfplanes[static_cast<size_t>(j)];
+    A.col(j).setConstant(h.a);
+    B.col(j).setConstant(h.b);
+    hi.col(j).setConstant(h.c);
+  }
+  lo.setConstant(-INFINITY);
+  Eigen::MatrixXd q(2, 1), dq(2, 1), ddq = Eigen::MatrixXd::Zero(2, 1);
+  q << 0, 1;
+  dq << 1, 1;
+  auto path = std::make_shared<pathpace::SampledPath>(Eigen::Vector2d(0, 1), q, dq, ddq);
+  pathpace::TimeScalingProblem prob(path, 1);
+  prob.add_linear_constraint(A, B, C, lo, hi);
+  const pathpace::FeasibleSet fs = prob.feasible_set(0);
+  ASSERT_FALSE(fs.empty);
+  // Two sides are bounds on x alone (folded into x_min / x_max), every other edge is a half-plane.
+  EXPECT_GE(fs.halfplanes.rows() + 2, 160);
+  EXPECT_EQ(fs.vertices.rows(), r);
+  for (int d = 0; d < 256; ++d) {
+    const double dx = std::cos(2 * M_PI * d / 256), du = std::sin(2 * M_PI * d / 256);
+    double ref = -INFINITY, got = -INFINITY;
+    for (const Vertex& t : truth) ref = std::max(ref, dx * t.x + du * t.y);
+    for (Eigen::Index i = 0; i < fs.vertices.rows(); ++i) got = std::max(got, dx * fs.vertices(i, 0) + du * fs.vertices(i, 1));
+    EXPECT_NEAR(got, ref, 2e-9);
   }
 }

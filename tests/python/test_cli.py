@@ -221,7 +221,9 @@ def test_contact_problem_file_solves_and_checks(tmp_path):
     out = tmp_path / "t.csv"
     p = run("solve", problem, "--out", out)
     assert p.returncode == 0, p.stderr
-    assert json.loads(p.stdout)["duration"] == pytest.approx(expected.duration, rel=1e-12)
+    # The same problem, built through the file (its constraints in the file's order): the same optimum to
+    # far below the certified tolerance (1e-7), not necessarily to the last bit (measured 4e-11).
+    assert json.loads(p.stdout)["duration"] == pytest.approx(expected.duration, rel=1e-9)
     p = run("check", problem, out)
     assert p.returncode == 0, p.stdout + p.stderr
     contact = [ln for ln in p.stdout.splitlines() if ln.startswith("contact")]

@@ -208,7 +208,11 @@ def test_find_executable_margin_bisects_on_the_minimum_normal_force(sway):
     # is halved towards 10 N: 50 N, then the bracket [10, 50] is bisected to within 10 N.
     out = find_executable_margin(sway["sim"], sway["path"], lower=10.0, upper=90.0, tolerance=10.0, friction_margin=0.5)
     assert [t.min_normal_force for t in out.trials] == [10.0, 90.0, 50.0, 30.0, 20.0]
-    assert out.trials[1].status == "INFEASIBLE" and out.trials[1].sim is None and math.isnan(out.trials[1].duration)
+    # No timing at 90 N. Since the exact projection (issue 9) the solver says NUMERICAL_ERROR there rather
+    # than INFEASIBLE: the polygon at s = 0.25 comes out empty while one LP on the full polytope finds a
+    # point (a sliver of a set; see the note on issue 9). Either way the search must treat it as no timing.
+    assert out.trials[1].status in ("INFEASIBLE", "NUMERICAL_ERROR")
+    assert out.trials[1].sim is None and math.isnan(out.trials[1].duration)
     assert [t.executed for t in out.trials] == [False, False, True, True, True]
     assert out.margin == 20.0 and out.parameter == "min_normal_force"
     assert out.duration == out.trials[-1].duration and out.zero_margin_duration == out.trials[0].duration

@@ -27,6 +27,9 @@ struct FeasibleSet {
   Eigen::Matrix<double, Eigen::Dynamic, 2> vertices;
   bool empty = false;
   bool bounded = true;
+  /// False where a projected constraint (contacts) is only an inner approximation at this grid point:
+  /// its LP solver failed or its LP budget ran out, and the polygon is the hull found so far.
+  bool exact = true;
 
   /// True if (x, u) satisfies every half-plane to the relative tolerance tol.
   bool contains(double x, double u, double tol = 1e-9) const;

@@ -55,6 +55,10 @@ struct SolverStats {
   /// guarantee = continuous: the largest relative violation the last audit found (<= audit_tolerance
   /// when it passed; negative = the smallest relative slack, i.e. the margin reached)
   double audit_worst = 0;
+  /// Contact polygons (sec. IV.C): computed when the contacts were added (add_constraint), reported here.
+  double time_projection = 0;     ///< seconds, included in time_constraints
+  int projection_lp_solves = 0;   ///< LPs of the projection
+  int inexact_points = 0;         ///< grid points whose polygon is only an inner approximation (see FeasibleSet::exact)
 };
 
 class Result {

@@ -1,7 +1,12 @@
 #include "pathpace/constraints/contact_constraint.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
+
+#include <Eigen/SVD>
 
 #include "detail/glpk_guard.hpp"
 #include "detail/glpk_util.hpp"
@@ -25,7 +30,10 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     detail::fail("torque_scale = " + detail::fmt(options_.torque_scale) + " must be > 0 and finite");
   if (!(options_.torque_margin >= 0.0) || !std::isfinite(options_.torque_margin))
     detail::fail("torque_margin = " + detail::fmt(options_.torque_margin) + " must be >= 0 and finite");
+  if (!(options_.min_link_normal_force >= 0.0) || !std::isfinite(options_.min_link_normal_force))
+    detail::fail("min_link_normal_force = " + detail::fmt(options_.min_link_normal_force) + " must be >= 0 and finite");
   if (!(options_.cap > 0.0) || !std::isfinite(options_.cap)) detail::fail("cap = " + detail::fmt(options_.cap) + " must be > 0");
+  if (options_.max_lps < 3) detail::fail("max_lps = " + std::to_string(options_.max_lps) + " must be >= 3");
   const int n = robot_->nq();
   if (tau_max.size() == 0) tau_max = robot_->effort_limits();
   if (tau_min.size() == 0) tau_min = -robot_->effort_limits();
@@ -83,17 +91,73 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     }
     local_generators_.push_back(g);
   }
+  // The exact reduction: group the points by (body, other body, normal, μ); a group whose points lie in
+  // one plane keeps the vertices of their convex hull in that plane. A force f at p = Σ α_j p_j (α a
+  // convex combination) has the same generalized force Jᵀ(p) f = Σ α_j Jᵀ(p_j) f (Jᵀ f is affine in p
+  // for a point of one body: the wrench (f, p × f)), and α_j f lies in the same cone; so the hull
+  // vertices generate every force the group can. The sum of normal forces is unchanged, so a per-link
+  // minimum survives; a per-point minimum does not (it would load interior points), hence no reduction.
+  std::vector<char> keep(contacts_.size(), 1);
+  if (options_.min_normal_force == 0.0) {
+    std::map<std::tuple<int, int, double, double, double, double>, std::vector<int>> groups;
+    for (size_t i = 0; i < contacts_.size(); ++i) {
+      const Eigen::Vector3d& nrm = contacts_[i].normal;
+      groups[{body_[i], other_body_[i], nrm.x(), nrm.y(), nrm.z(), contacts_[i].friction}].push_back(static_cast<int>(i));
+    }
+    for (const auto& [key, members] : groups) {
+      if (members.size() < 4) continue;
+      Eigen::Matrix3Xd P(3, members.size());
+      for (size_t j = 0; j < members.size(); ++j) P.col(static_cast<Eigen::Index>(j)) = point_in_body_[static_cast<size_t>(members[j])];
+      const Eigen::Vector3d mean = P.rowwise().mean();
+      P.colwise() -= mean;
+      Eigen::JacobiSVD<Eigen::Matrix3Xd> svd(P, Eigen::ComputeFullU);
+      const Eigen::Vector3d sv = svd.singularValues();
+      if (sv[0] == 0.0) {  // all at one point: one of them
+        for (size_t j = 1; j < members.size(); ++j) keep[static_cast<size_t>(members[j])] = 0;
+        continue;
+      }
+      if (sv[2] > 1e-12 * sv[0]) continue;  // not flat: keep every point
+      const Eigen::Vector3d e1 = svd.matrixU().col(0), e2 = svd.matrixU().col(1);
+      std::vector<detail::Vertex> flat(members.size());
+      for (size_t j = 0; j < members.size(); ++j) {
+        const Eigen::Vector3d d = P.col(static_cast<Eigen::Index>(j));
+        flat[j] = {e1.dot(d), e2.dot(d)};
+      }
+      std::vector<int> hull;
+      detail::convex_hull(flat, hull);
+      for (int j : members) keep[static_cast<size_t>(j)] = 0;
+      for (int h : hull) keep[static_cast<size_t>(members[static_cast<size_t>(h)])] = 1;
+    }
+  }
+  for (size_t i = 0; i < contacts_.size(); ++i)
+    if (keep[i]) projected_.push_back(static_cast<int>(i));
+}
+
+std::shared_ptr<ContactConstraint> ContactConstraint::with_torque_limits(const Eigen::VectorXd& lo,
+                                                                         const Eigen::VectorXd& hi) const {
+  const Eigen::Index n = robot_->nq();
+  detail::require_size("tau_min", lo.size(), n, "one per joint");
+  detail::require_size("tau_max", hi.size(), n, "one per joint");
+  auto out = std::make_shared<ContactConstraint>(*this);
+  out->tau_min_ = tau_min_.cwiseMax(lo);
+  out->tau_max_ = tau_max_.cwiseMin(hi);
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (!(out->tau_min_[j] <= out->tau_max_[j]))
+      detail::fail("torque limits of joint " + std::to_string(j) + " ('" + robot_->joint_names()[static_cast<size_t>(j)] +
+                   "'): the contacts' [" + detail::fmt(tau_min_[j]) + ", " + detail::fmt(tau_max_[j]) +
+                   "] and the torque limits' [" + detail::fmt(lo[j]) + ", " + detail::fmt(hi[j]) + "] do not intersect");
+  return out;
 }
 
 void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
-                                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen) const {
-  const int m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
+                                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use) const {
+  const int m = use ? static_cast<int>(use->size()) : static_cast<int>(contacts_.size()), k = options_.cone_edges;
   robot_->body_placements(q, T);
   J.setZero(3 * m, robot_->nq());
   gen.resize(3, m * k);
   auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
   for (int i = 0; i < m; ++i) {
-    const size_t u = static_cast<size_t>(i);
+    const size_t u = use ? static_cast<size_t>((*use)[static_cast<size_t>(i)]) : static_cast<size_t>(i);
     const Eigen::Vector3d p = pose(body_[u]) * point_in_body_[u];
     auto Ji = J.middleRows(3 * i, 3);
     if (body_[u] >= 0) robot_->add_point_jacobian(T, body_[u], p, 1.0, Ji);
@@ -131,57 +195,100 @@ double ContactConstraint::max_drift(const PathSamples& samples, int* which) cons
   return worst;
 }
 
+void ContactConstraint::lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp) const {
+  const int n = robot_->nq(), m = static_cast<int>(use.size()), k = options_.cone_edges;
+  const double inf = std::numeric_limits<double>::infinity();
+  // Rows: n torque rows, a per-point minimum per contact, a per-link minimum per link, `extra` more.
+  std::vector<std::string> links;
+  std::vector<int> link_of(static_cast<size_t>(m));
+  for (int i = 0; i < m; ++i) {
+    const std::string& l = contacts_[static_cast<size_t>(use[static_cast<size_t>(i)])].link;
+    auto it = std::find(links.begin(), links.end(), l);
+    link_of[static_cast<size_t>(i)] = static_cast<int>(it - links.begin());
+    if (it == links.end()) links.push_back(l);
+  }
+  const int point_rows = options_.min_normal_force > 0.0 ? m : 0;
+  const int link_rows = options_.min_link_normal_force > 0.0 ? static_cast<int>(links.size()) : 0;
+  const int cols = 2 + m * k, rows = n + point_rows + link_rows + extra;
+  lp.A.setZero(rows, cols);
+  lp.row_lo = Eigen::VectorXd::Constant(rows, -inf);
+  lp.row_hi = Eigen::VectorXd::Constant(rows, inf);
+  lp.col_lo = Eigen::VectorXd::Zero(cols);
+  lp.col_hi = Eigen::VectorXd::Constant(cols, inf);
+  lp.col_hi[0] = options_.cap;
+  lp.col_lo[1] = -options_.cap;
+  lp.col_hi[1] = options_.cap;
+  lp.stand_in = options_.cap;
+  // n·f_i = Σ_e λ_ie since n·g_ie = 1 (sec. V.D's minimum normal force, per point and per link).
+  for (int i = 0; i < point_rows; ++i) {
+    lp.A.block(n + i, 2 + i * k, 1, k).setOnes();
+    lp.row_lo[n + i] = options_.min_normal_force;
+  }
+  for (int i = 0; i < m && link_rows > 0; ++i) {
+    const int r = n + point_rows + link_of[static_cast<size_t>(i)];
+    lp.A.block(r, 2 + i * k, 1, k).setOnes();
+    lp.row_lo[r] = options_.min_link_normal_force;
+  }
+}
+
+void ContactConstraint::lp_point(const std::vector<int>& use, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
+                                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const {
+  thread_local std::vector<Eigen::Isometry3d> T;
+  thread_local Eigen::MatrixXd J;
+  thread_local Eigen::Matrix3Xd gen;
+  const int n = robot_->nq(), m = static_cast<int>(use.size()), k = options_.cone_edges;
+  // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
+  lp.A.col(0).head(n) = a;  // the minimum-normal-force rows below n keep zeros in x and u
+  lp.A.col(1).head(n) = b;
+  contact_jacobians(q, T, J, gen, &use);
+  for (int i = 0; i < m; ++i)
+    lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
+  lp.row_lo.head(n) = tau_min_ - c;
+  lp.row_hi.head(n) = tau_max_ - c;
+  // Rounding residue (1e-17 where a joint axis is orthogonal to a force) is not a coefficient: as a
+  // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5.
+  const double tiny = 1e-13 * lp.A.topRows(n).cwiseAbs().maxCoeff();
+  lp.A.topRows(n) = (lp.A.topRows(n).array().abs() < tiny).select(0.0, lp.A.topRows(n));
+}
+
 ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   const int n = robot_->nq();
   if (samples.dof() != n)
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
                  std::to_string(n) + " joints");
-  const int m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
-  const int cols = 2 + m * k;
-  const int rows = n + (options_.min_normal_force > 0.0 ? m : 0);
   detail::PolytopeLp lp;
-  lp.A.setZero(rows, cols);
-  lp.row_lo.resize(rows);
-  lp.row_hi.resize(rows);
-  lp.col_lo = Eigen::VectorXd::Zero(cols);
-  lp.col_hi = Eigen::VectorXd::Constant(cols, std::numeric_limits<double>::infinity());
-  lp.col_hi[0] = options_.cap;
-  lp.col_lo[1] = -options_.cap;
-  lp.col_hi[1] = options_.cap;
-  for (int i = 0; i < m && options_.min_normal_force > 0.0; ++i) {
-    lp.A.block(n + i, 2 + i * k, 1, k).setOnes();  // n·f_i = Σ_e λ_ie since n·g_ie = 1
-    lp.row_lo[n + i] = options_.min_normal_force;
-    lp.row_hi[n + i] = std::numeric_limits<double>::infinity();
-  }
+  lp_structure(projected_, 0, lp);
 
   RobotWorkspace ws(*robot_);
   Eigen::MatrixXd a, b, c;  // eq. (12) at every grid point, row p
   robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
-  std::vector<Eigen::Isometry3d> T;
-  Eigen::MatrixXd J;
-  Eigen::Matrix3Xd gen;
   detail::PolytopeProjector projector;  // one GLPK problem, warm-started from grid point to grid point
   std::vector<std::vector<detail::Line>> polys(static_cast<size_t>(samples.size()));
   std::vector<char> empty_point(static_cast<size_t>(samples.size()), 0);
+  ConstraintRows r;
   size_t widest = 0;
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
-    const Eigen::VectorXd q = samples.q.row(p).transpose();
-    // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
-    lp.A.col(0).head(n) = a.row(p).transpose();  // the min-normal-force rows below n keep zeros in x and u
-    lp.A.col(1).head(n) = b.row(p).transpose();
-    contact_jacobians(q, T, J, gen);
-    for (int i = 0; i < m; ++i)
-      lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
-    lp.row_lo.head(n) = tau_min_ - c.row(p).transpose();
-    lp.row_hi.head(n) = tau_max_ - c.row(p).transpose();
-    const detail::Projection pr = projector.project(lp);
-    if (pr.outcome == detail::Projection::Outcome::Failed)
-      throw Error("contact projection failed at grid index " + std::to_string(p) + " (s = " + detail::fmt(samples.s[p]) +
-                  "): the LP solver did not finish");
+    lp_point(projected_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
+    detail::Projection pr = projector.project(lp, 1e-9, options_.max_lps);
+    if (pr.outcome == detail::Projection::Outcome::Failed ||
+        (pr.outcome == detail::Projection::Outcome::Polygon && !pr.complete)) {
+      // Once more from a cold start (a fresh basis), keeping the larger result.
+      detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps);
+      r.lp_solves += pr.lp_solves;
+      if (cold.outcome != detail::Projection::Outcome::Failed &&
+          (pr.outcome == detail::Projection::Outcome::Failed || cold.complete || cold.vertices.size() > pr.vertices.size()))
+        pr = std::move(cold);
+    }
+    r.lp_solves += pr.lp_solves;
     auto& out = polys[static_cast<size_t>(p)];
-    if (pr.outcome == detail::Projection::Outcome::Empty) {
+    if (pr.outcome != detail::Projection::Outcome::Polygon) {
+      // Empty (confirmed in exact arithmetic), or no support point at all (the solver failed: reported
+      // inexact, and solve() re-checks such a point before it calls it infeasible).
       empty_point[static_cast<size_t>(p)] = 1;
+      if (pr.outcome == detail::Projection::Outcome::Failed) r.inexact_points.push_back(p);
     } else {
+      if (!pr.complete) r.inexact_points.push_back(p);
       for (const detail::Line& h : pr.halfplanes) {
         // Edges on the stand-in bounds are not limits.
         const bool on_cap = (std::abs(h.b) < 1e-12 && h.a > 0 && std::abs(h.c - options_.cap) <= 1e-6 * options_.cap) ||
@@ -192,9 +299,12 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     widest = std::max(widest, out.size());
   }
   // The last row marks grid points where no contact forces balance the robot: 0 <= -1 there.
-  ConstraintRows r;
   const Eigen::Index marker = static_cast<Eigen::Index>(widest);
+  const auto inexact = std::move(r.inexact_points);
+  const int lps = r.lp_solves;
   r.resize(samples.size(), marker + 1);
+  r.inexact_points = inexact;
+  r.lp_solves = lps;
   for (size_t j = 0; j < widest; ++j) r.labels[j] = "contact polygon edge " + std::to_string(j);
   r.labels[static_cast<size_t>(marker)] = "contact forces cannot balance the robot";
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
@@ -207,6 +317,41 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     if (empty_point[static_cast<size_t>(p)]) r.c(p, marker) = -1.0;
   }
   return r;
+}
+
+ContactConstraint::PointCheck ContactConstraint::check_point(const PathSamples& samples, Eigen::Index k,
+                                                             const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra) const {
+  const int n = robot_->nq();
+  if (samples.dof() != n)
+    detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
+                 std::to_string(n) + " joints");
+  if (k < 0 || k >= samples.size())
+    detail::fail("k = " + std::to_string(k) + " must be in [0, " + std::to_string(samples.size() - 1) + "]");
+  std::vector<int> all(contacts_.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  detail::PolytopeLp lp;
+  const int e = static_cast<int>(extra.rows());
+  lp_structure(all, e, lp);
+  RobotWorkspace ws(*robot_);
+  Eigen::VectorXd a(n), b(n), c(n);
+  robot_->path_torque_coefficients(ws, samples.q.row(k).transpose(), samples.dq.row(k).transpose(),
+                                   samples.ddq.row(k).transpose(), a, b, c);
+  lp_point(all, samples.q.row(k).transpose(), a, b, c, lp);
+  const Eigen::Index r0 = lp.A.rows() - e;
+  for (int i = 0; i < e; ++i) {
+    lp.A(r0 + i, 0) = extra(i, 0);
+    lp.A(r0 + i, 1) = extra(i, 1);
+    lp.row_hi[r0 + i] = extra(i, 2);
+  }
+  // Nothing bounds (x, u) here but what the rows say: no stand-in caps in a feasibility question.
+  lp.col_hi[0] = lp.col_hi[1] = std::numeric_limits<double>::infinity();
+  lp.col_lo[1] = -std::numeric_limits<double>::infinity();
+  detail::PolytopeProjector solver;
+  PointCheck out;
+  out.feasible = solver.feasible(lp);
+  const double rest[2] = {0.0, 0.0};
+  out.rest_feasible = solver.feasible(lp, rest);
+  return out;
 }
 
 std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,

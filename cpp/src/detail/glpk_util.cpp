@@ -25,15 +25,22 @@ void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& i
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
 }
 
-int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm) {
+int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation) {
   int ret = glp_simplex(lp, &parm);
   int st = glp_get_status(lp);
-  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS)) {
+  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS) || (st == GLP_NOFEAS && !exact_confirmation)) {
+    // From the slack basis, with the dual simplex when the primal one stalled (a degenerate cycle
+    // was seen to use the whole iteration limit on a humanoid carrying a box).
+    glp_smcp retry = parm;
+    if (ret != 0) retry.meth = GLP_DUALP;
     glp_std_basis(lp);
-    ret = glp_simplex(lp, &parm);
+    ret = glp_simplex(lp, &retry);
     st = glp_get_status(lp);
   }
   if (ret == 0 && st == GLP_OPT) return GLP_OPT;
+  // Two simplex runs from different bases agree (the warm one and the slack basis): enough for a
+  // projection, whose infeasibility claims solve() re-checks exactly before reporting them.
+  if (ret == 0 && st == GLP_NOFEAS && !exact_confirmation) return GLP_NOFEAS;
   glp_std_basis(lp);
   if (glp_exact(lp, &parm) != 0) return -1;
   st = glp_get_status(lp);

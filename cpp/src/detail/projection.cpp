@@ -3,12 +3,58 @@
 #include "detail/glpk_guard.hpp"
 #include "detail/glpk_util.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <utility>
 
 #include <glpk.h>
 
 namespace pathpace::detail {
+
+namespace {
+
+double cross(const Vertex& o, const Vertex& a, const Vertex& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+}  // namespace
+
+void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order) {
+  std::vector<int> idx(points.size());
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
+  std::sort(idx.begin(), idx.end(), [&](int i, int j) {
+    const Vertex &p = points[static_cast<size_t>(i)], &q = points[static_cast<size_t>(j)];
+    return p.x < q.x || (p.x == q.x && p.y < q.y);
+  });
+  idx.erase(std::unique(idx.begin(), idx.end(),
+                        [&](int i, int j) {
+                          const Vertex &p = points[static_cast<size_t>(i)], &q = points[static_cast<size_t>(j)];
+                          return p.x == q.x && p.y == q.y;
+                        }),
+            idx.end());
+  order.clear();
+  if (idx.size() <= 2) {
+    order = idx;
+    return;
+  }
+  // Lower hull left to right, then upper hull right to left; a turn that is not strictly
+  // counter-clockwise drops the middle point.
+  std::vector<int> h(2 * idx.size());
+  size_t k = 0;
+  auto P = [&](int i) -> const Vertex& { return points[static_cast<size_t>(i)]; };
+  for (size_t i = 0; i < idx.size(); ++i) {
+    while (k >= 2 && cross(P(h[k - 2]), P(h[k - 1]), P(idx[i])) <= 0) --k;
+    h[k++] = idx[i];
+  }
+  for (size_t i = idx.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(P(h[k - 2]), P(h[k - 1]), P(idx[i])) <= 0) --k;
+    h[k++] = idx[i];
+  }
+  h.resize(k - 1);  // the last point is the first
+  order = std::move(h);
+}
 
 Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps) {
   PolytopeProjector p;
@@ -23,20 +69,10 @@ void PolytopeProjector::release() {
   rows_ = cols_ = -1;
 }
 
-Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps) {
-  Projection out;
+// Loads the problem (same shape: the previous basis is kept as the warm start). Returns whether it was
+// warm. Must run under the GLPK error hook.
+bool PolytopeProjector::load(const PolytopeLp& in) {
   const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
-  glp_term_out(GLP_OFF);
-  GlpkHookState state;
-  glp_error_hook(pathpace_glpk_error_hook, &state);
-  if (setjmp(state.env)) {  // GLPK misuse: the environment is gone, and with it our problem
-    glp_error_hook(nullptr, nullptr);
-    glp_free_env();
-    lp_ = nullptr;
-    rows_ = cols_ = -1;
-    out.outcome = Projection::Outcome::Failed;
-    return out;
-  }
   const bool warm = lp_ && rows == rows_ && cols == cols_;
   if (!warm) {
     release();
@@ -47,36 +83,96 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     rows_ = rows;
     cols_ = cols;
   }
-  glp_prob* lp = lp_;
-  for (int i = 0; i < rows; ++i) glpk_set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
-  for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
-  glpk_load_dense(lp, in.A, ia_, ja_, ar_);
-  // No scaling: GLPK's automatic scaling was seen to make the primal simplex declare small, plainly
-  // feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
+  for (int i = 0; i < rows; ++i) glpk_set_bounds(lp_, true, i + 1, in.row_lo[i], in.row_hi[i]);
+  for (int j = 0; j < cols; ++j) glpk_set_bounds(lp_, false, j + 1, in.col_lo[j], in.col_hi[j]);
+  glpk_load_dense(lp_, in.A, ia_, ja_, ar_);
   // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
-  if (!warm) glp_adv_basis(lp, 0);
+  if (!warm) glp_adv_basis(lp_, 0);
+  return warm;
+}
+
+namespace {
+
+glp_smcp simplex_parameters(int rows, int cols) {
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
+  // No scaling, no presolve: GLPK's automatic scaling was seen to make the primal simplex declare small,
+  // plainly feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
   parm.presolve = GLP_OFF;
-  parm.it_lim = 100 * (rows + cols) + 1000;  // never a hang: a cycling simplex ends as a failure
+  // Never a hang: a cycling simplex ends as a failure, and is retried (glpk_solve_robust). A warm
+  // solve takes a few dozen pivots, a cold one at most a few times rows + cols.
+  parm.it_lim = 10 * (rows + cols) + 100;
+  // GLPK's default bound tolerance (1e-7, relative to each bound) lets an optimum lie outside the
+  // polytope by more than the 1e-9 of the polygon's size that the projection certifies, and hides
+  // vertices of short edges; these small dense LPs solve as reliably at 1e-10.
+  parm.tol_bnd = 1e-10;
+  parm.tol_dj = 1e-10;
+  return parm;
+}
 
-  // eq. (19): max v·(x, u) over the polytope; false if infeasible (or the solver fails).
+}  // namespace
+
+int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
+  glp_term_out(GLP_OFF);
+  GlpkHookState state;
+  glp_error_hook(pathpace_glpk_error_hook, &state);
+  if (setjmp(state.env)) {
+    glp_error_hook(nullptr, nullptr);
+    glp_free_env();
+    lp_ = nullptr;
+    rows_ = cols_ = -1;
+    return -1;
+  }
+  load(in);
+  if (fix) {
+    glpk_set_bounds(lp_, false, 1, fix[0], fix[0]);
+    glpk_set_bounds(lp_, false, 2, fix[1], fix[1]);
+  }
+  glp_set_obj_coef(lp_, 1, 0.0);
+  glp_set_obj_coef(lp_, 2, 0.0);
+  const glp_smcp parm = simplex_parameters(rows_, cols_);
+  const int st = glpk_solve_robust(lp_, parm);
+  if (fix) {  // the next projection reloads the bounds anyway; restore them for a warm feasible() too
+    glpk_set_bounds(lp_, false, 1, in.col_lo[0], in.col_hi[0]);
+    glpk_set_bounds(lp_, false, 2, in.col_lo[1], in.col_hi[1]);
+  }
+  glp_error_hook(nullptr, nullptr);
+  return st == GLP_OPT ? 1 : st == GLP_NOFEAS ? 0 : -1;
+}
+
+Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps) {
+  Projection out;
+  glp_term_out(GLP_OFF);
+  GlpkHookState state;
+  glp_error_hook(pathpace_glpk_error_hook, &state);
+  if (setjmp(state.env)) {  // GLPK misuse: the environment is gone, and with it our problem
+    glp_error_hook(nullptr, nullptr);
+    glp_free_env();
+    lp_ = nullptr;
+    rows_ = cols_ = -1;
+    out.outcome = Projection::Outcome::Failed;
+    out.note = "GLPK error";
+    return out;
+  }
+  load(in);
+  glp_prob* lp = lp_;
+  const glp_smcp parm = simplex_parameters(rows_, cols_);
+
+  // eq. (19): max v·(x, u) over the polytope; 1 optimal, 0 infeasible (confirmed exactly), -1 failed.
   auto extremize = [&](double vx, double vu, Vertex& p) -> int {
     glp_set_obj_coef(lp, 1, vx);
     glp_set_obj_coef(lp, 2, vu);
     ++out.lp_solves;
-    // Warm start from the previous direction's basis (these LPs are small: joints x (2 + contacts x
-    // cone edges), so the exact fallback is affordable).
-    const int st = glpk_solve_robust(lp, parm);
+    const int st = glpk_solve_robust(lp, parm, false);
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {glp_get_col_prim(lp, 1), glp_get_col_prim(lp, 2)};
     return 1;
   };
 
-  // Initial directions: the vertices of an equilateral triangle (sec. IV.C).
-  std::vector<Vertex> poly;
-  std::vector<double> normal_angle;  // direction that produced each vertex
+  std::vector<Vertex> points;  // every support point found
+  // Initial directions: the vertices of an equilateral triangle (sec. IV.C). They positively span the
+  // plane, so a shadow whose three support points coincide is that point.
   for (int i = 0; i < 3; ++i) {
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
@@ -84,66 +180,139 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (r <= 0) {
       glp_error_hook(nullptr, nullptr);
       out.outcome = r == 0 ? Projection::Outcome::Empty : Projection::Outcome::Failed;
+      if (r < 0) out.note = "the LP solver did not finish (initial direction " + std::to_string(i) + ")";
       return out;
     }
-    poly.push_back(p);
+    points.push_back(p);
   }
-  // Expansion: edge (p_i, p_{i+1}) counter-clockwise; its outward normal is (dy, -dx).
-  std::vector<char> final_edge(3, 0);
-  double size = 0.0;
-  for (const Vertex& p : poly) size = std::max(size, std::abs(p.x) + std::abs(p.y));
-  size = std::max(size, 1e-12);
-  size_t i = 0;
-  while (out.lp_solves < max_lps) {
-    // Find an edge still to expand.
-    size_t e = poly.size();
-    for (size_t t = 0; t < poly.size(); ++t)
-      if (!final_edge[(i + t) % poly.size()]) {
-        e = (i + t) % poly.size();
+
+  // A vertex on a stand-in bound is not part of the polygon's extent.
+  auto real = [&](const Vertex& p, bool along_x) {
+    const double v = along_x ? p.x : p.y, lo = in.col_lo[along_x ? 0 : 1], hi = in.col_hi[along_x ? 0 : 1];
+    return !((v >= hi && std::abs(hi) >= in.stand_in) || (v <= lo && std::abs(lo) >= in.stand_in));
+  };
+  auto tolerance = [&](const std::vector<int>& hull) {
+    double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY, mag = 0.0;
+    for (int i : hull) {
+      const Vertex& p = points[static_cast<size_t>(i)];
+      if (real(p, true)) xlo = std::min(xlo, p.x), xhi = std::max(xhi, p.x), mag = std::max(mag, std::abs(p.x));
+      if (real(p, false)) ylo = std::min(ylo, p.y), yhi = std::max(yhi, p.y), mag = std::max(mag, std::abs(p.y));
+    }
+    double size = 0.0;
+    if (xhi >= xlo) size = std::max(size, xhi - xlo);
+    if (yhi >= ylo) size = std::max(size, yhi - ylo);
+    // A polygon that is (nearly) a point still needs a floor above the LPs' rounding: a thousandth of
+    // its distance from the origin, or an absolute 1e-14 at the origin.
+    return std::max(relative_tolerance * std::max(size, 1e-3 * mag), 1e-14);
+  };
+
+  // Certified directions, keyed by the hull edge (from, to) that produced them; (i, i) is the end
+  // direction beyond point i of a hull that is a segment.
+  std::set<std::pair<int, int>> certified;
+  std::vector<int> hull;
+  struct Pending {
+    int from, to;
+    double nx, nu, offset;
+  };
+  std::vector<Pending> pending;
+  auto directions = [&]() {
+    pending.clear();
+    const size_t h = hull.size();
+    auto add = [&](int from, int to, double nx, double nu) {
+      if (certified.count({from, to})) return;
+      const double len = std::hypot(nx, nu);
+      if (!(len > 0.0)) return;
+      nx /= len;
+      nu /= len;
+      // The hull's own support value in this direction: attained at the edge's ends (a convex hull).
+      const Vertex &a = points[static_cast<size_t>(from)], &b = points[static_cast<size_t>(to)];
+      pending.push_back({from, to, nx, nu, std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y)});
+    };
+    if (h == 1) return;  // three support points coincide: the shadow is that point
+    for (size_t e = 0; e < h; ++e) {
+      const int i = hull[e], j = hull[(e + 1) % h];
+      const Vertex &a = points[static_cast<size_t>(i)], &b = points[static_cast<size_t>(j)];
+      add(i, j, b.y - a.y, -(b.x - a.x));  // outward normal of a counter-clockwise edge
+    }
+    if (h == 2) {  // a segment: its two ends too
+      const Vertex &a = points[static_cast<size_t>(hull[0])], &b = points[static_cast<size_t>(hull[1])];
+      add(hull[0], hull[0], a.x - b.x, a.y - b.y);
+      add(hull[1], hull[1], b.x - a.x, b.y - a.y);
+    }
+  };
+
+  convex_hull(points, hull);
+  out.complete = true;
+  double tol = tolerance(hull);
+  for (;;) {
+    directions();
+    if (pending.empty()) break;
+    bool grew = false;
+    for (const Pending& d : pending) {
+      if (out.lp_solves >= max_lps) {
+        out.complete = false;
+        out.note = "LP budget (" + std::to_string(max_lps) + ") ran out with " + std::to_string(pending.size()) +
+                   " edges not certified";
         break;
       }
-    if (e == poly.size()) break;
-    const Vertex& a = poly[e];
-    const Vertex& b = poly[(e + 1) % poly.size()];
-    double nx = b.y - a.y, nu = -(b.x - a.x);
-    const double len = std::hypot(nx, nu);
-    if (len <= 1e-14 * size) {  // coincident vertices: nothing to expand
-      final_edge[e] = 1;
-      continue;
+      Vertex q;
+      const int r = extremize(d.nx, d.nu, q);
+      if (r != 1) {
+        // The polytope was non-empty three LPs ago: an 'infeasible' here is a solver failure too.
+        out.complete = false;
+        out.note = "the LP solver did not finish after " + std::to_string(out.lp_solves) + " LPs";
+        break;
+      }
+      if (d.nx * q.x + d.nu * q.y <= d.offset + tol) {
+        certified.insert({d.from, d.to});  // nothing of the shadow beyond this edge
+      } else {
+        points.push_back(q);  // strictly outside the hull by more than the tolerance
+        grew = true;
+        break;  // the hull changes: recompute it and its uncertified edges
+      }
     }
-    nx /= len;
-    nu /= len;
-    Vertex q;
-    if (extremize(nx, nu, q) != 1) {
-      glp_error_hook(nullptr, nullptr);
-      out.outcome = Projection::Outcome::Failed;
-      return out;
+    if (!out.complete) break;
+    if (grew) {
+      convex_hull(points, hull);
+      tol = tolerance(hull);
     }
-    // The gain is measured against the support value itself, not the polygon's size: vertices on the
-    // stand-in bounds (1e6) would otherwise make every real edge look final.
-    const double gain = nx * (q.x - a.x) + nu * (q.y - a.y);
-    if (gain <= relative_tolerance * std::max(1.0, std::abs(nx * a.x + nu * a.y))) {
-      final_edge[e] = 1;
-    } else {
-      poly.insert(poly.begin() + static_cast<long>(e) + 1, q);
-      final_edge.insert(final_edge.begin() + static_cast<long>(e) + 1, 0);
-      final_edge[e] = 0;
-      size = std::max(size, std::abs(q.x) + std::abs(q.y));
-    }
-    i = e;
   }
   glp_error_hook(nullptr, nullptr);
-  // Half-planes from the edges (dropping zero-length ones).
-  for (size_t e = 0; e < poly.size(); ++e) {
-    const Vertex& a = poly[e];
-    const Vertex& b = poly[(e + 1) % poly.size()];
-    double nx = b.y - a.y, nu = -(b.x - a.x);
+
+  // The polygon: the hull's vertices and edges (an inner set, certified when complete).
+  out.tolerance = tol;
+  for (int i : hull) out.vertices.push_back(points[static_cast<size_t>(i)]);
+  const size_t h = out.vertices.size();
+  auto push = [&](double nx, double nu, const Vertex& on) {
     const double len = std::hypot(nx, nu);
-    if (len <= 1e-14 * size) continue;
     nx /= len;
     nu /= len;
-    out.halfplanes.push_back({nx, nu, nx * a.x + nu * a.y, static_cast<int>(out.halfplanes.size())});
-    out.vertices.push_back(a);
+    // An edge between two LP optima whose x (or u) differ by rounding is a bound on x (u) alone: a
+    // normal 1e-14 off the axis would otherwise be a line of slope 1e14 for the pruning (sec. IV.A),
+    // whose envelope arithmetic it ruins. The turn is below 1e-9 rad (the tolerance), and c keeps every vertex inside.
+    if (std::abs(nu) < 1e-9) nx = nx > 0 ? 1.0 : -1.0, nu = 0.0;
+    if (std::abs(nx) < 1e-9) nu = nu > 0 ? 1.0 : -1.0, nx = 0.0;
+    double c = nx * on.x + nu * on.y;
+    for (const Vertex& v : out.vertices) c = std::max(c, nx * v.x + nu * v.y);  // never cut a hull vertex
+    out.halfplanes.push_back({nx, nu, c, static_cast<int>(out.halfplanes.size())});
+  };
+  if (h == 1) {
+    const Vertex& p = out.vertices[0];
+    push(1, 0, p);
+    push(0, 1, p);
+    push(-1, 0, p);
+    push(0, -1, p);
+  } else if (h == 2) {  // a segment: its two sides and its two ends, counter-clockwise
+    const Vertex &a = out.vertices[0], &b = out.vertices[1];
+    push(b.y - a.y, -(b.x - a.x), a);
+    push(b.x - a.x, b.y - a.y, b);
+    push(a.y - b.y, -(a.x - b.x), b);
+    push(a.x - b.x, a.y - b.y, a);
+  } else {
+    for (size_t e = 0; e < h; ++e) {
+      const Vertex &a = out.vertices[e], &b = out.vertices[(e + 1) % h];
+      push(b.y - a.y, -(b.x - a.x), a);
+    }
   }
   out.outcome = Projection::Outcome::Polygon;
   return out;

@@ -1,8 +1,14 @@
 #pragma once
 // Projection of a polytope {z = (x, u, y) : lo <= A z <= hi, col_lo <= z <= col_hi} onto the (x, u)
-// plane by recursive expansion (sec. IV.C; Bretl & Lall): extremize in three directions, then push each
-// edge of the current inner polygon out along its normal with one LP, until no edge moves. Each LP is
-// eq. (19); GLPK is warm-started from the previous direction's basis.
+// plane by recursive expansion (sec. IV.C; Bretl & Lall), made right by construction:
+//  - the polygon is the convex hull of the LP optima found so far (support points of the shadow), so
+//    it is always an inner set, whatever the LPs did;
+//  - an LP optimum is added only when it lies outside the current hull by more than a tolerance scaled
+//    to the polygon's size (never a near-duplicate that would fold a vertex sequence: the hull is
+//    recomputed, not spliced);
+//  - an edge is final only when an LP along its own outward normal finds nothing beyond it (its
+//    certificate), so the shadow lies within the tolerance of the polygon.
+// Each LP is eq. (19); GLPK is warm-started from the previous direction's basis.
 
 #include <string>
 #include <vector>
@@ -20,30 +26,44 @@ struct PolytopeLp {
   Eigen::MatrixXd A;          // (rows, cols), dense is fine at these sizes
   Eigen::VectorXd row_lo, row_hi;  // -inf / +inf for one-sided rows; equal for equalities
   Eigen::VectorXd col_lo, col_hi;
+  /// Bounds of x or u at least this large in magnitude are stand-ins (no limit): vertices on them do
+  /// not count towards the polygon's size, which scales the tolerance.
+  double stand_in = 1e300;
 };
 
 struct Projection {
   enum class Outcome { Polygon, Empty, Failed };
   Outcome outcome = Outcome::Failed;
+  /// Polygon only: every edge certified by its own LP. False when an LP failed or the LP budget ran
+  /// out: the polygon is then the hull found so far (an inner approximation) and `note` says why.
+  bool complete = false;
+  std::string note;
   std::vector<Line> halfplanes;  // a x + b u <= c, (a, b) of unit length, counter-clockwise
-  std::vector<Vertex> vertices;  // counter-clockwise
+  std::vector<Vertex> vertices;  // counter-clockwise (the hull of the support points)
+  double tolerance = 0.0;        // absolute: the shadow lies within this of every certified edge
   int lp_solves = 0;
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
 /// is kept from one call to the next and each call starts from the previous call's final basis, which
 /// is nearly optimal for a neighbouring grid point (sec. IV.C's warm start, carried across points).
-/// `relative_tolerance`: an edge is final when the LP moves it outward by less than this times its
-/// support value (at least 1). `max_lps` bounds the work (the result is then an inner approximation).
+/// `relative_tolerance`: an LP optimum is a new vertex, and an edge is not final, when it lies beyond
+/// the edge by more than this times the polygon's size (the larger of its x and u extents, vertices
+/// on stand-in bounds left out). `max_lps` bounds the work (the result then says it is incomplete).
 class PolytopeProjector {
  public:
   PolytopeProjector() = default;
   PolytopeProjector(const PolytopeProjector&) = delete;
   PolytopeProjector& operator=(const PolytopeProjector&) = delete;
   ~PolytopeProjector();
-  Projection project(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 200);
+  Projection project(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000);
+
+  /// One LP: is the polytope non-empty (1), empty (0, confirmed in exact arithmetic), or did the
+  /// solver fail (-1)? With `fix` the point (x, u) = (fix[0], fix[1]) is imposed.
+  int feasible(const PolytopeLp& lp, const double* fix = nullptr);
 
  private:
+  bool load(const PolytopeLp& lp);
   void release();
   ::glp_prob* lp_ = nullptr;
   int rows_ = -1, cols_ = -1;
@@ -52,6 +72,10 @@ class PolytopeProjector {
 };
 
 /// One polytope, from a cold start.
-Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 200);
+Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000);
+
+/// Convex hull of points, counter-clockwise, collinear and duplicate points dropped (Andrew's monotone
+/// chain). `order` receives, for each hull vertex, its index in `points`.
+void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order);
 
 }  // namespace pathpace::detail

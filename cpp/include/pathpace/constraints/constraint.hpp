@@ -26,6 +26,11 @@ struct ConstraintRows {
   Matrix b;  ///< (N+1, r)
   Matrix c;  ///< (N+1, r)
   std::vector<std::string> labels;  ///< r names
+  /// Grid points where the rows are only an inner approximation of the constraint (a projection whose
+  /// LP failed or ran out of budget, sec. IV.C); empty when they are exact.
+  std::vector<Eigen::Index> inexact_points;
+  int lp_solves = 0;     ///< LPs spent computing the rows (projections)
+  double seconds = 0.0;  ///< time spent computing them (set by TimeScalingProblem::add_constraint)
 
   void resize(Eigen::Index points, Eigen::Index rows) {
     a.setZero(points, rows);

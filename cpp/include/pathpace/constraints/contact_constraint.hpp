@@ -15,15 +15,29 @@
 
 namespace pathpace {
 
+namespace detail {
+struct PolytopeLp;  // the projection's LP data (internal)
+}
+
 struct ContactOptions {
-  int cone_edges = 8;              ///< polyhedral friction cone with k edges, inscribed in the true cone
-  double friction_margin = 0.0;    ///< μ is used as μ (1 - friction_margin) (sec. V.D)
-  double min_normal_force = 0.0;   ///< N: every contact pushes at least this hard (sec. V.D)
+  int cone_edges = 8;  ///< polyhedral friction cone with k edges at multiples of 2π/k, inscribed in the true cone
+  /// The cone is that of μ (1 - friction_margin) (sec. V.D): every force keeps at least this fraction of
+  /// the friction it could use in reserve (0.5: tangential force at most half of what would slip).
+  double friction_margin = 0.0;
+  /// N, per contact point: every point pushes at least this hard along its normal (sec. V.D). It keeps
+  /// each point loaded, so it disables the reduction of a flat foot's points to their convex hull.
+  double min_normal_force = 0.0;
+  /// N, per link: the normal forces of all of a link's contact points sum to at least this (a foot
+  /// pushes at least this hard in total, however it spreads it over its points).
+  double min_link_normal_force = 0.0;
   double torque_scale = 1.0;       ///< multiplies the torque limits (sec. V.D)
-  double torque_margin = 0.0;      ///< N·m subtracted from each side
+  double torque_margin = 0.0;      ///< N·m subtracted from each side (unactuated joints stay at 0)
   /// Stand-in bounds on ṡ² and |s̈| for the projection LPs: polygon edges on them are not limits and are
   /// dropped (a direction in which nothing else bounds the set).
   double cap = 1e6;
+  /// LPs allowed per grid point. When they run out, the polygon is the inner hull found so far and the
+  /// grid point is reported inexact (FeasibleSet::exact, SolverStats::inexact_points).
+  int max_lps = 2000;
 };
 
 /// At grid point k: τ = a x + b u + c - Σ_i J_iᵀ f_i (J_i the contact point's Jacobian on `link`, minus
@@ -31,7 +45,15 @@ struct ContactOptions {
 /// unactuated floating base), f_i = Σ_e λ_ie g_ie with λ >= 0 (the cone's generators g_ie = n_i +
 /// μ (cos φ_e t1 + sin φ_e t2), so that n·f_i = Σ_e λ_ie), and Σ_e λ_ie >= min_normal_force. The
 /// polygon's edges become this constraint's half-planes (a varying number per point; inactive padding).
-/// The torque limits are part of this constraint: do not add TorqueLimits to the same problem.
+/// The torque limits are part of this constraint; TimeScalingProblem merges TorqueLimits of the same
+/// robot into it (both limits hold: the tighter side of each is kept).
+///
+/// The polygon is the convex hull of LP optima with every edge certified by its own LP (sec. IV.C), so
+/// it is exact to 1e-9 of its size. Points of one link with one normal and one μ that lie in a plane
+/// (a flat sole) span the same wrench cone as the vertices of their convex hull (a force at a convex
+/// combination of points is that combination of forces at the points), so without a per-point
+/// min_normal_force only those vertices enter the LPs: an exact reduction (the per-link minimum is
+/// kept exactly, as the sum of normal forces does not change).
 class ContactConstraint : public Constraint {
  public:
   ContactConstraint(std::shared_ptr<const RobotModel> robot, std::vector<Contact> contacts,
@@ -55,6 +77,26 @@ class ContactConstraint : public Constraint {
   const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
 
+  /// This constraint with torque limits tightened to [max(tau_min, lo), min(tau_max, hi)] (e.g. from a
+  /// TorqueLimits of the same robot): one projection for both.
+  std::shared_ptr<ContactConstraint> with_torque_limits(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) const;
+
+  /// One LP on the full (ṡ², s̈, τ, forces) polytope at grid point k of `samples`, all contact points
+  /// and both minimum normal forces, intersected with `extra` half-planes a x + b u <= c (rows [a, b,
+  /// c]: the other constraints there). feasible / rest_feasible ((x, u) = (0, 0)): 1 yes, 0 no
+  /// (confirmed in exact arithmetic), -1 the solver failed. This confirms an infeasibility before it is
+  /// reported.
+  struct PointCheck {
+    int feasible = -1;
+    int rest_feasible = -1;
+  };
+  PointCheck check_point(const PathSamples& samples, Eigen::Index k,
+                         const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra) const;
+
+  /// Indices of the contacts whose forces enter the projection LPs (all of them, or the convex-hull
+  /// vertices of each flat group, see above).
+  const std::vector<int>& projected_contacts() const { return projected_; }
+
   const std::vector<Contact>& contacts() const { return contacts_; }
   const ContactOptions& options() const { return options_; }
 
@@ -62,8 +104,16 @@ class ContactConstraint : public Constraint {
   std::shared_ptr<const RobotModel> robot_;
   std::vector<Contact> contacts_;
   // Fills J (3·m x nq: the stacked J_i) and the cone generators in world coordinates (3 x m·k) at q.
+  // With `use`, only those contacts, in that order.
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
-                         Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen) const;
+                         Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr) const;
+  // The projection LP's fixed part for the contacts `use`: bounds, minimum-normal-force rows; `extra`
+  // more rows (zero, free) after them.
+  void lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp) const;
+  void lp_point(const std::vector<int>& use, const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
+                const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
+  std::vector<int> projected_;
   std::vector<int> body_, other_body_;                  // other_body_ -1: the world
   std::vector<Eigen::Vector3d> point_in_body_;
   std::vector<Eigen::Isometry3d> other_in_body_;        // other_link's frame in its body's frame

@@ -1,0 +1,226 @@
+"""Contact polygons on real humanoids (issue 9): exact against an independent projection, nested in the
+number of cone edges, composed with torque limits, re-checked before an infeasibility is reported.
+
+The fast slice of the seeded corpus of contact_corpus.py; bench/contact_projection.py runs all of it
+(N up to 400, 4-32 cone edges) and the timings."""
+
+import time
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+
+pin = pytest.importorskip("pinocchio")
+import contact_corpus as cc  # noqa: E402
+
+MARGINS = [
+    {},
+    {"friction_margin": 0.5},
+    {"min_normal_force": 5.0},
+    {"min_link_normal_force": 100.0},
+    {"friction_margin": 0.3, "min_normal_force": 2.0},
+]
+
+
+def corpus(seed: int, count: int):
+    """`count` seeded draws of (robot, path, cone edges, margins)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(count):
+        out.append((str(rng.choice(["talos", "romeo"])), str(rng.choice(["sway", "squat", "wall"])),
+                    int(rng.choice([4, 8, 16, 32])), MARGINS[int(rng.integers(len(MARGINS)))]))
+    return out
+
+
+@pytest.fixture(scope="module")
+def paths():
+    cache = {}
+
+    def get(robot, kind):
+        if (robot, kind) not in cache:
+            h = cc.load(robot)
+            cache[(robot, kind)] = (h, cc.make_path(h, kind))
+        return cache[(robot, kind)]
+
+    return get
+
+
+@pytest.mark.parametrize("case", corpus(9, 6), ids=lambda c: f"{c[0]}-{c[1]}-k{c[2]}-{'-'.join(c[3]) or 'bare'}")
+def test_every_polygon_matches_the_exact_projection(case, paths):
+    """Every grid point's set against HiGHS support values of the full polytope built with pinocchio, in
+    64 directions: equal within 1e-6 of the polygon's size; empty exactly where the polytope is."""
+    robot, kind, k, margins = case
+    h, path = paths(robot, kind)
+    cons = cc.contacts(h, kind)
+    opts = dict(cone_edges=k, **margins)
+    prob = pp.TimeScalingProblem(path, grid=8)
+    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+    worst, compared, empty = cc.compare(h, prob, cons, opts)
+    assert compared == 9
+    assert worst <= 1e-6
+
+
+@pytest.mark.parametrize("robot,kind", [("talos", "sway"), ("romeo", "squat"), ("talos", "wall")])
+def test_k_edge_polygons_nest_in_2k_edge_ones_and_feasibility_carries_over(robot, kind, paths):
+    """A k-edge pyramid (edges at multiples of 2π/k) lies inside the 2k-edge one: so does every polygon,
+    a timing feasible with k edges is feasible with 2k, and no slower."""
+    h, path = paths(robot, kind)
+    cons = cc.contacts(h, kind)
+    dirs = cc.directions()
+    for margins in ({}, {"friction_margin": 0.5, "min_normal_force": 5.0}):
+        polys, results = {}, {}
+        for k in (4, 8, 16):
+            prob = pp.TimeScalingProblem(path, grid=40)
+            prob.add_contacts(h.robot, cons, cone_edges=k, drift_tolerance=1e-4, **margins)
+            polys[k] = [prob.feasible_set(i) for i in range(41)]
+            results[k] = prob.solve()
+        for k in (4, 8):
+            for a, b in zip(polys[k], polys[2 * k]):
+                if a.empty:
+                    continue
+                assert not b.empty
+                size = max(cc.polygon_size(b), 1e-12)
+                ha, hb = cc.polygon_support(a, dirs), cc.polygon_support(b, dirs)
+                ok = np.isfinite(ha) & np.isfinite(hb)
+                assert np.all(ha[ok] <= hb[ok] + 1e-9 * size)
+            if results[k].ok:
+                assert results[2 * k].ok, results[2 * k].message
+                assert results[2 * k].duration <= results[k].duration * (1 + 1e-9)
+
+
+def test_carrying_a_box_nests_in_the_cone_edges_too():
+    """Talos sways with a 3 kg box squeezed between its hands (robot–robot contacts with a free object):
+    feasible, k ⊆ 2k, and a budget-free projection at every point."""
+    robot, path, cons = cc.box_problem(cc.load("talos"))
+    res = {}
+    for k in (4, 8):
+        prob = pp.TimeScalingProblem(path, grid=30)
+        prob.add_contacts(robot, cons, cone_edges=k, drift_tolerance=1e-4, friction_margin=0.3, min_normal_force=2.0)
+        res[k] = prob.solve()
+        assert res[k].ok, res[k].message
+        assert res[k].stats["inexact_points"] == 0
+    assert res[8].duration <= res[4].duration * (1 + 1e-9)
+
+
+def test_flat_soles_reduce_exactly_to_their_corners(paths):
+    """30 points per sole (6 x 5 grid): without a per-point minimum only the 4 corners of each sole enter
+    the LPs, and every polygon still equals the exact projection over all 60 points (also with a per-link
+    minimum); with a per-point minimum, all 60 points enter."""
+    h, path = paths("talos", "sway")
+    cons = cc.contacts(h, "sway", grid=(6, 5))
+    assert len(cons) == 60
+    for opts in ({"cone_edges": 8, "friction_margin": 0.5}, {"cone_edges": 8, "min_link_normal_force": 150.0}):
+        c = pp.ContactConstraint(h.robot, cons, **opts)
+        corners = [i for i, con in enumerate(cons) if abs(abs(con.point[0]) - 0.1) < 1e-12 and abs(abs(con.point[1]) - 0.05) < 1e-12]
+        assert sorted(c.projected_contacts) == corners
+        prob = pp.TimeScalingProblem(path, grid=8)
+        prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+        worst, compared, _ = cc.compare(h, prob, cons, opts, points=[0, 3, 6])
+        assert worst <= 1e-6
+    assert len(pp.ContactConstraint(h.robot, cons, min_normal_force=1.0).projected_contacts) == 60
+
+
+def test_torque_limits_and_contacts_compose_on_a_floating_base(paths):
+    """add_torque_limits then add_contacts (a new user's first try) is one projection: OPTIMAL, and the
+    same timing as add_contacts given the tighter limits directly; in either order."""
+    h, path = paths("talos", "sway")
+    cons = cc.contacts(h, "sway")
+    eff = h.robot.effort_limits
+    tight = 0.6 * eff
+    direct = pp.TimeScalingProblem(path, grid=30)
+    direct.add_contacts(h.robot, cons, drift_tolerance=1e-4, tau_min=-tight, tau_max=tight)
+    ref = direct.solve()
+    assert ref.ok, ref.message
+    for order in ("torque first", "contacts first"):
+        prob = pp.TimeScalingProblem(path, grid=30)
+        if order == "torque first":
+            prob.add_torque_limits(h.robot, -tight, tight)
+            prob.add_contacts(h.robot, cons, drift_tolerance=1e-4)
+        else:
+            prob.add_contacts(h.robot, cons, drift_tolerance=1e-4)
+            prob.add_torque_limits(h.robot, -tight, tight)
+        assert len(prob.constraints) == 1
+        merged = prob.constraints[0]
+        assert isinstance(merged, pp.ContactConstraint)
+        np.testing.assert_array_equal(merged.tau_max, tight)
+        res = prob.solve()
+        assert res.ok, res.message
+        assert res.duration == pytest.approx(ref.duration, rel=1e-9)
+    # Without contacts, the torque limits alone cannot hold the floating base.
+    alone = pp.TimeScalingProblem(path, grid=30)
+    alone.add_torque_limits(h.robot)
+    assert alone.solve().status == pp.Status.INFEASIBLE
+
+
+def test_add_contacts_validates_its_new_arguments(paths):
+    h, path = paths("talos", "sway")
+    cons = cc.contacts(h, "sway")
+    prob = pp.TimeScalingProblem(path, grid=4)
+    n = h.robot.nq
+    with pytest.raises(pp.InvalidInputError, match=rf"tau_max has size 3, expected {n}"):
+        prob.add_contacts(h.robot, cons, tau_max=np.ones(3), drift_tolerance=1e-4)
+    with pytest.raises(pp.InvalidInputError, match=r"min_link_normal_force = -1 must be >= 0"):
+        prob.add_contacts(h.robot, cons, min_link_normal_force=-1.0, drift_tolerance=1e-4)
+    with pytest.raises(pp.InvalidInputError, match=r"max_lps = 2 must be >= 3"):
+        prob.add_contacts(h.robot, cons, max_lps=2, drift_tolerance=1e-4)
+    bad = -h.robot.effort_limits
+    bad[7] = 1e9
+    with pytest.raises(pp.InvalidInputError, match=r"tau_min\[7\] = 1000000000 must be <= tau_max\[7\]"):
+        prob.add_contacts(h.robot, cons, tau_min=bad, drift_tolerance=1e-4)
+    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4)
+    lo = -h.robot.effort_limits
+    lo[8] = 1e6
+    with pytest.raises(pp.InvalidInputError, match=r"torque limits of joint 8 .* do not intersect"):
+        prob.add_torque_limits(h.robot, lo, np.full(n, 2e6))
+    assert len(prob.constraints) == 1 and isinstance(prob.constraints[0], pp.ContactConstraint)  # unchanged
+
+
+def test_infeasibility_is_rechecked_on_the_full_polytope(paths):
+    h, path = paths("talos", "sway")
+    cons = cc.contacts(h, "sway")
+    # Torque limits far too weak to stand: empty everywhere, rest included.
+    weak = pp.TimeScalingProblem(path, grid=10)
+    weak.add_contacts(h.robot, cons, drift_tolerance=1e-4, torque_scale=0.01)
+    res = weak.solve()
+    assert res.status == pp.Status.INFEASIBLE
+    assert "re-checked by one LP on the full (sdot^2, sddot, torque, force) polytope at that point: infeasible, " \
+           "rest state (0, 0) infeasible" in res.message
+    # Standing is fine, but the path cannot start at 50 rad/s: the rest state is feasible there.
+    fast = pp.TimeScalingProblem(path, grid=10)
+    fast.add_contacts(h.robot, cons, drift_tolerance=1e-4)
+    fast.set_boundary_speeds(50.0, 0.0)
+    res = fast.solve()
+    assert res.status == pp.Status.INFEASIBLE
+    # (the speed cannot be shed before grid point 1: the polygon there is fine, the start speed is not)
+    assert res.infeasible_index <= 1
+    assert "polytope at that point: feasible, rest state (0, 0) feasible" in res.message
+
+
+def test_stats_time_the_projection_and_report_an_exhausted_budget(paths):
+    h, path = paths("talos", "wall")
+    cons = cc.contacts(h, "wall")
+    prob = pp.TimeScalingProblem(path, grid=20)
+    t0 = time.perf_counter()
+    prob.add_contacts(h.robot, cons, cone_edges=16, drift_tolerance=1e-4)
+    wall = time.perf_counter() - t0
+    res = prob.solve()
+    st = res.stats
+    assert 0 < st["time_projection"] <= wall
+    assert st["time_constraints"] >= st["time_projection"]
+    assert st["projection_lp_solves"] >= 21 * 4
+    assert st["inexact_points"] == 0
+    assert all(prob.feasible_set(k).exact for k in range(21))
+    # A budget of 5 LPs per point: every polygon is an inner hull, and says so.
+    cut = pp.TimeScalingProblem(path, grid=20)
+    cut.add_contacts(h.robot, cons, cone_edges=16, drift_tolerance=1e-4, max_lps=5)
+    res_cut = cut.solve()
+    assert res_cut.stats["inexact_points"] == 21
+    assert not any(cut.feasible_set(k).exact for k in range(21))
+    dirs = cc.directions()
+    for k in range(0, 21, 5):
+        inner, full = cut.feasible_set(k), prob.feasible_set(k)
+        size = cc.polygon_size(full)
+        ha, hb = cc.polygon_support(inner, dirs), cc.polygon_support(full, dirs)
+        ok = np.isfinite(ha) & np.isfinite(hb)
+        assert np.all(ha[ok] <= hb[ok] + 1e-9 * size)
