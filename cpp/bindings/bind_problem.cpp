@@ -510,10 +510,11 @@ void bind_problem(py::module_& m) {
                         std::vector<std::shared_ptr<Constraint>> cs;
                         for (const auto& c : p.constraints()) cs.push_back(std::const_pointer_cast<Constraint>(c));
                         return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs, p.sdot_begin(),
-                                              p.sdot_end());
+                                              p.sdot_end(), p.joint_names(),
+                                              py::make_tuple(p.zero_sddot_begin(), p.zero_sddot_end()));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 5, "TimeScalingProblem");
+                        check_state(t, 7, "TimeScalingProblem");
                         auto p = std::make_shared<TimeScalingProblem>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "grid"));
                         const auto cs = t[2].cast<std::vector<std::shared_ptr<Constraint>>>();
                         {
@@ -521,8 +522,20 @@ void bind_problem(py::module_& m) {
                           for (const auto& c : cs) p->add_constraint(c);
                         }
                         p->set_boundary_speeds(t[3].cast<double>(), t[4].cast<double>());
+                        const auto names = t[5].cast<std::vector<std::string>>();
+                        if (!names.empty()) p->set_joint_names(names);
+                        const py::tuple z = t[6].cast<py::tuple>();
+                        p->set_zero_boundary_accelerations(z[0].cast<bool>(), z[1].cast<bool>());
                         return p;
                       }))
+      .def("set_zero_boundary_accelerations", [](TimeScalingProblem& p, py::handle at_begin, py::handle at_end) {
+        const bool b = to_bool(at_begin, "at_begin"), e = to_bool(at_end, "at_end");
+        ProblemUse use(p, ProblemUse::kWrite, "set_zero_boundary_accelerations");
+        p.set_zero_boundary_accelerations(b, e);
+      }, "at_begin"_a = true, "at_end"_a = true,
+         "sddot = 0 at s_begin and/or s_end (q̈ = p'' ṡ² there: no jump of q̈ from or to a cruise). With sddot "
+         "constant per interval (eq. 24) it holds on the whole first/last interval, so the boundary speed there must "
+         "be > 0 (set_boundary_speeds); solve() raises InvalidInputError otherwise.")
       .def("set_joint_names", [](TimeScalingProblem& p, std::vector<std::string> names) {
         ProblemUse use(p, ProblemUse::kWrite, "set_joint_names");
         p.set_joint_names(std::move(names));

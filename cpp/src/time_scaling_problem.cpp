@@ -237,7 +237,19 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
                  " must be in (0, 1e-3)");
   if (!(options.time_limit > 0.0))
     detail::fail("time_limit = " + detail::fmt(options.time_limit) + " must be > 0 (seconds)");
-  if (options.guarantee == Guarantee::Grid) return solve_rows(rows_, nullptr, options);
+  if (zero_sddot_begin_ && sdot_begin_ == 0.0)
+    detail::fail("sddot = 0 at s_begin needs sdot_begin > 0: with sddot constant on each interval (eq. 24), a start "
+                 "from rest with sddot = 0 never moves");
+  if (zero_sddot_end_ && sdot_end_ == 0.0)
+    detail::fail("sddot = 0 at s_end needs sdot_end > 0: with sddot constant on each interval (eq. 24), a stop at "
+                 "rest with sddot = 0 is never reached");
+  if (options.guarantee == Guarantee::Grid) {
+    if (!zero_sddot_begin_ && !zero_sddot_end_) return solve_rows(rows_, nullptr, options);
+    std::vector<ConstraintRows> rows = rows_;
+    detail::IntervalExtra extra;
+    add_boundary_rows(rows, extra);
+    return solve_rows(rows, &extra, options);
+  }
   if (options.audit_points < 1 || options.audit_points > 1000)
     detail::fail("audit_points = " + std::to_string(options.audit_points) + " must be in [1, 1000]");
   if (!(options.audit_tolerance >= 0.0 && options.audit_tolerance < 1.0))
@@ -250,6 +262,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   std::vector<ConstraintRows> rows = rows_;
   detail::IntervalExtra extra;
   detail::add_kinematic_continuous_rows(*path_, samples_, constraints_, rows, extra);
+  add_boundary_rows(rows, extra);
   std::vector<int> offset;
   int id = 0;
   for (const ConstraintRows& cr : rows_) {
@@ -477,16 +490,42 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   return res;
 }
 
+void TimeScalingProblem::set_zero_boundary_accelerations(bool at_begin, bool at_end) {
+  zero_sddot_begin_ = at_begin;
+  zero_sddot_end_ = at_end;
+}
+
+void TimeScalingProblem::add_boundary_rows(std::vector<ConstraintRows>& rows, detail::IntervalExtra& extra) const {
+  const Eigen::Index n = intervals();
+  extra.rows.resize(static_cast<size_t>(n));
+  if (!zero_sddot_begin_ && !zero_sddot_end_) return;
+  int id = 0;
+  for (const ConstraintRows& cr : rows) id += static_cast<int>(cr.rows());
+  ConstraintRows labels;  // inactive at every grid point: the rows act on the end intervals
+  labels.resize(samples_.size(), 2);
+  labels.labels = {"sddot = 0 at s_begin", "sddot = 0 at s_end"};
+  rows.push_back(std::move(labels));
+  // s̈ on interval k is (θ_{k+1} - θ_k) / (2Δs_k): zero is θ_{k+1} <= θ_k and θ_k <= θ_{k+1}.
+  if (zero_sddot_begin_) {
+    extra.rows[0].push_back({-1.0, 1.0, 0.0, id});
+    extra.rows[0].push_back({1.0, -1.0, 0.0, id});
+  }
+  if (zero_sddot_end_) {
+    extra.rows[static_cast<size_t>(n - 1)].push_back({-1.0, 1.0, 0.0, id + 1});
+    extra.rows[static_cast<size_t>(n - 1)].push_back({1.0, -1.0, 0.0, id + 1});
+  }
+}
+
 bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const Constraint>>& constraints,
                                        std::vector<ConstraintRows> rows, Guarantee guarantee) const {
   detail::IntervalExtra extra;
   if (guarantee == Guarantee::Continuous)
     detail::add_kinematic_continuous_rows(*path_, samples_, constraints, rows, extra);
+  add_boundary_rows(rows, extra);
   const detail::GridSets sets = detail::build_grid_sets(samples_, rows);
   for (const detail::PointSet& p : sets.points)
     if (p.empty) return false;
-  const detail::Chain chain =
-      detail::build_chain(samples_.s, sets, guarantee == Guarantee::Continuous ? &extra : nullptr);
+  const detail::Chain chain = detail::build_chain(samples_.s, sets, &extra);
   // Unbounded is not infeasible: some timing exists (and a relaxation cannot make it less bounded).
   return detail::reachability(chain, sdot_begin_ * sdot_begin_, sdot_end_ * sdot_end_).outcome !=
          detail::Reachability::Outcome::Infeasible;

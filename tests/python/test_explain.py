@@ -229,3 +229,27 @@ def test_limits_added_before_the_robot_take_its_joint_names():
     assert any("hinge" in c for c in res.binding_constraints), res.binding_constraints
     with pytest.raises(pp.InvalidInputError, match=r"^joint_names has 2 entries, the path has 1 coordinates$"):
         prob.set_joint_names(["a", "b"])
+
+
+def test_zero_boundary_acceleration_cruises_the_end_intervals():
+    # Start and end at half the speed limit with s̈ = 0 on the first and last intervals: q̈ = p''ṡ² = 0
+    # there (a line), so the timing cruises them at 0.5 before it accelerates.
+    prob = line_problem(40, sdot=(0.5, 0.5))
+    prob.set_zero_boundary_accelerations(True, True)
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL
+    assert res.sddot[0] == 0.0 and res.sddot[-1] == 0.0
+    assert res.sdot[1] == pytest.approx(0.5, abs=1e-12) and res.sdot[-2] == pytest.approx(0.5, abs=1e-12)
+    # Exactly the trapezoid moved in by one interval at each end: cruise 0.025 at 0.5 (0.05 s) at each end.
+    assert res.duration == pytest.approx(0.1 + trapezoid_time(0.95, 1.0, 1.0, 0.5, 0.5), rel=1e-9)
+    assert res.binding[0] == "sddot = 0 at s_begin" and res.binding[-1] == "sddot = 0 at s_end"
+    only_begin = line_problem(40, sdot=(0.5, 0.0))
+    only_begin.set_zero_boundary_accelerations(True, False)
+    assert only_begin.solve().sddot[0] == 0.0
+    with pytest.raises(pp.InvalidInputError, match=r"^sddot = 0 at s_end needs sdot_end > 0"):
+        only_begin.set_zero_boundary_accelerations(True, True)
+        only_begin.solve()
+    with pytest.raises(pp.InvalidInputError, match=r"^sddot = 0 at s_begin needs sdot_begin > 0"):
+        rest = line_problem(40)
+        rest.set_zero_boundary_accelerations(True, False)
+        rest.solve()

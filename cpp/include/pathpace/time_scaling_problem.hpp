@@ -54,6 +54,12 @@ class TimeScalingProblem {
 
   /// ṡ at s_begin and s_end (default 0, rest to rest). Must be >= 0 and finite.
   void set_boundary_speeds(double sdot_begin, double sdot_end);
+  /// s̈ = 0 at s_begin and/or s_end on request: then q̈ = p''ṡ² there (eq. 11), no jump of q̈ from or to a
+  /// cruise. With s̈ constant on each interval (eq. 24) this holds on the whole first (last) interval, so it
+  /// needs a nonzero boundary speed at that end: solve() raises InvalidInput for a start or stop at rest.
+  void set_zero_boundary_accelerations(bool at_begin, bool at_end);
+  bool zero_sddot_begin() const { return zero_sddot_begin_; }
+  bool zero_sddot_end() const { return zero_sddot_end_; }
   /// The boundary speeds from joint velocities q̇ at s_begin and s_end (rad/s or m/s): q̇ = p'(s) ṡ
   /// (eq. 10), so q̇ must be a non-negative multiple of the path tangent p'; ṡ = p'·q̇ / |p'|². Throws
   /// InvalidInput naming the joint where q̇ is not parallel to p' (relative tolerance `tolerance`).
@@ -99,6 +105,9 @@ class TimeScalingProblem {
  private:
   void init_samples();
   /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
+  /// Appends the rows of set_zero_boundary_accelerations (a labels-only ConstraintRows to `rows`, the
+  /// interval rows θ_1 = θ_0 / θ_N = θ_{N-1} to `extra`, sized here).
+  void add_boundary_rows(std::vector<ConstraintRows>& rows, detail::IntervalExtra& extra) const;
   bool feasible_with(const std::vector<std::shared_ptr<const Constraint>>& constraints,
                      std::vector<ConstraintRows> rows, Guarantee guarantee) const;
   /// solve() on these rows (one ConstraintRows per constraint, then any extra ones), plus rows of single
@@ -110,6 +119,7 @@ class TimeScalingProblem {
   std::vector<std::shared_ptr<const Constraint>> constraints_;
   std::vector<ConstraintRows> rows_;
   double sdot_begin_ = 0.0, sdot_end_ = 0.0;
+  bool zero_sddot_begin_ = false, zero_sddot_end_ = false;
   std::vector<std::string> joint_names_;
 };
 
