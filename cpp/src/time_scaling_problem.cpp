@@ -538,11 +538,9 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
   if (!(rel_tolerance > 0.0 && rel_tolerance < 1.0))
     detail::fail("rel_tolerance = " + detail::fmt(rel_tolerance) + " must be in (0, 1)");
   std::vector<std::string> families;
-  for (const auto& c : constraints_) {
-    const std::string f = c->family();
-    if (!f.empty() && std::find(families.begin(), families.end(), f) == families.end() && c->relaxed(2.0))
-      families.push_back(f);
-  }
+  for (const auto& c : constraints_)
+    for (const std::string& f : c->families())
+      if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);
   if (families.size() >= 2) families.push_back("all");
   std::map<std::string, double> out;
   if (families.empty()) return out;
@@ -555,9 +553,13 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
       std::vector<ConstraintRows> rows = rows_;
       std::vector<std::shared_ptr<const Constraint>> cons = constraints_;
       for (size_t i = 0; i < constraints_.size(); ++i) {
-        const std::string fi = constraints_[i]->family();
-        if (fi.empty() || (f != "all" && fi != f)) continue;
-        if (auto r = constraints_[i]->relaxed(scale)) {
+        // "all": every family of the constraint at once (relaxed one after the other).
+        std::shared_ptr<const Constraint> r;
+        for (const std::string& fi : constraints_[i]->families()) {
+          if (f != "all" && fi != f) continue;
+          if (auto next = (r ? r : constraints_[i])->relaxed(fi, scale)) r = std::move(next);
+        }
+        if (r) {
           rows[i] = r->evaluate(samples_);
           cons[i] = std::move(r);
         }

@@ -253,3 +253,33 @@ def test_zero_boundary_acceleration_cruises_the_end_intervals():
         rest = line_problem(40)
         rest.set_zero_boundary_accelerations(True, False)
         rest.solve()
+
+
+def test_contact_problems_explain_themselves_in_torque_and_friction():
+    # The rod of sec. IV.E standing on its end, leaning to 0.15 rad at the ends, where it rests: holding it
+    # needs 9.81 sin 0.15 = 1.47 N m, the motor at torque_scale 0.7 gives 1.4 N m. A torque problem that no
+    # friction can fix: the relaxation says so, and its torque scale is the smallest that works.
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_contact import rod_path
+
+    th = np.linspace(-0.15, 0.15, 41)
+    path = rod_path(th)
+    robot = pp.RobotModel.from_urdf(str(DATA / "rod.urdf"))
+    rod = [pp.Contact("rod", point=[0, 0, -1], normal=[0, 0, 1], friction=0.5)]
+
+    def problem(torque_scale):
+        p = pp.TimeScalingProblem(path, grid=th)
+        p.add_contacts(robot, rod, cone_edges=4, torque_scale=torque_scale)
+        return p
+
+    res = problem(0.7).solve()
+    assert res.status == pp.Status.INFEASIBLE
+    r = res.relaxation
+    assert set(r) == {"torque", "friction", "all"}
+    assert r["friction"] == math.inf
+    assert r["torque"] * 1.4 >= 9.81 * math.sin(0.15) * (1 - 1e-6)
+    assert problem(0.7 * r["torque"]).solve(explain=False).ok
+    assert not problem(0.7 * r["torque"] / (1 + 2e-3)).solve(explain=False).ok
+    assert "feasible with torque limits x " in res.message

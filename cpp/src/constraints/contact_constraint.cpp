@@ -448,4 +448,26 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
   return out;
 }
 
+std::shared_ptr<const Constraint> ContactConstraint::relaxed(const std::string& family, double scale) const {
+  // The stored limits already include torque_scale and torque_margin: the copy takes them as they are.
+  ContactOptions o = options_;
+  o.torque_scale = 1.0;
+  o.torque_margin = 0.0;
+  Eigen::VectorXd lo = tau_min_, hi = tau_max_;
+  std::vector<Contact> contacts = contacts_;
+  if (family == "torque") {
+    for (Eigen::Index j = 0; j < lo.size(); ++j) {
+      lo[j] = widen_lower(lo[j], scale);
+      hi[j] = widen_upper(hi[j], scale);
+    }
+  } else if (family == "friction") {
+    for (Contact& c : contacts) c.friction *= scale;
+    o.min_normal_force /= scale;
+    o.min_link_normal_force /= scale;
+  } else {
+    return nullptr;
+  }
+  return std::make_shared<ContactConstraint>(robot_, std::move(contacts), o, std::move(lo), std::move(hi));
+}
+
 }  // namespace pathpace

@@ -70,6 +70,16 @@ class Constraint {
   /// becomes scale·l, a bound l > 0 becomes l / scale, likewise for upper bounds), so that the
   /// feasible set grows monotonically with the scale; nullptr if the constraint has no such scale.
   virtual std::shared_ptr<const Constraint> relaxed(double /*scale*/) const { return nullptr; }
+
+  /// Every family this constraint takes part in (a contact constraint holds torque limits and friction).
+  virtual std::vector<std::string> families() const {
+    std::string f = family();
+    return f.empty() ? std::vector<std::string>() : std::vector<std::string>{f};
+  }
+  /// The constraint with only `family`'s limits widened by `scale`; nullptr if it has no such family.
+  virtual std::shared_ptr<const Constraint> relaxed(const std::string& family, double scale) const {
+    return family == this->family() ? relaxed(scale) : nullptr;
+  }
 };
 
 /// A limit interval [lo, hi] widened by scale >= 1 about zero (see Constraint::relaxed).

@@ -61,6 +61,10 @@ class ContactConstraint : public Constraint {
                     Eigen::VectorXd tau_max = Eigen::VectorXd());
 
   std::string name() const override { return "contact"; }
+  /// "torque" (its torque limits) and "friction" (μ of every contact widened by the scale, the minimum
+  /// normal forces divided by it) for TimeScalingProblem::relaxation.
+  std::vector<std::string> families() const override { return {"torque", "friction"}; }
+  std::shared_ptr<const Constraint> relaxed(const std::string& family, double scale) const override;
   ConstraintRows evaluate(const PathSamples& samples) const override;
 
   /// The largest distance a contact point moves along the path's samples (0 for a path that keeps
