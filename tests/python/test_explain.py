@@ -1,6 +1,7 @@
 """Boundary states, restarts, and answers to "why is it infeasible?" / "what binds where?"."""
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -283,3 +284,28 @@ def test_contact_problems_explain_themselves_in_torque_and_friction():
     assert problem(0.7 * r["torque"]).solve(explain=False).ok
     assert not problem(0.7 * r["torque"] / (1 + 2e-3)).solve(explain=False).ok
     assert "feasible with torque limits x " in res.message
+
+
+def test_contact_polygon_edges_are_named_by_what_binds_them():
+    # The rod of sec. IV.E (fig. 3): its polygons are bounded by the motor's torque (upper, lower) and by
+    # the friction cone at its one contact; the edges say which, not their place in the polygon.
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_contact import rod_path
+
+    th = np.linspace(-0.5, 0.5, 21)
+    robot = pp.RobotModel.from_urdf(str(DATA / "rod.urdf"))
+    prob = pp.TimeScalingProblem(rod_path(th), grid=th)
+    prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, -1], normal=[0, 0, 1], friction=0.5)], cone_edges=4)
+    friction = "friction at link 'rod' point (0, 0, -1)"
+    seen = set()
+    for k in range(len(th)):
+        for label in prob.feasible_set(k).labels:
+            base = re.sub(r" \(\d+\)$", "", label)  # a second edge held by the same limit: "... (2)"
+            assert base in {friction, "torque theta upper", "torque theta lower"}, label
+            seen.add(base)
+    assert seen == {friction, "torque theta upper", "torque theta lower"}
+    # Leaning to 0.5 rad needs more than the motor's 2 N m: the infeasibility names the torque limit.
+    res = prob.solve()
+    assert res.status == pp.Status.INFEASIBLE and res.binding_constraints == ["torque theta upper"]

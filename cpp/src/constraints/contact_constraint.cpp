@@ -1,6 +1,7 @@
 #include "pathpace/constraints/contact_constraint.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -252,6 +253,56 @@ void ContactConstraint::lp_point(const std::vector<int>& use, const Eigen::Ref<c
   lp.A.topRows(n) = (lp.A.topRows(n).array().abs() < tiny).select(0.0, lp.A.topRows(n));
 }
 
+std::vector<std::string> ContactConstraint::binding_names(const std::vector<int>& use) const {
+  // The layout of lp_structure: n torque rows, then the per-point and per-link minimum normal force rows;
+  // columns x, u, then the k cone-edge weights of each contact in `use`. Entry 2r / 2r + 1: row r at its
+  // lower / upper bound; then one entry per column.
+  const int n = robot_->nq(), m = static_cast<int>(use.size()), k = options_.cone_edges;
+  auto contact_name = [&](int i) {
+    const Contact& c = contacts_[static_cast<size_t>(use[static_cast<size_t>(i)])];
+    std::ostringstream os;
+    os.precision(4);
+    os << "link '" << c.link << "' point (" << c.point.x() << ", " << c.point.y() << ", " << c.point.z() << ")";
+    return os.str();
+  };
+  std::vector<std::string> links;
+  for (int i = 0; i < m; ++i) {
+    const std::string& l = contacts_[static_cast<size_t>(use[static_cast<size_t>(i)])].link;
+    if (std::find(links.begin(), links.end(), l) == links.end()) links.push_back(l);
+  }
+  const int point_rows = options_.min_normal_force > 0.0 ? m : 0;
+  const int link_rows = options_.min_link_normal_force > 0.0 ? static_cast<int>(links.size()) : 0;
+  std::vector<std::string> out;
+  for (int j = 0; j < n; ++j) {
+    const std::string& name = robot_->joint_names()[static_cast<size_t>(j)];
+    const bool unactuated = tau_min_[j] == 0.0 && tau_max_[j] == 0.0;
+    out.push_back(unactuated ? "balance of unactuated " + name : "torque " + name + " lower");
+    out.push_back(unactuated ? "balance of unactuated " + name : "torque " + name + " upper");
+  }
+  for (int i = 0; i < point_rows; ++i) {
+    out.push_back("minimum normal force at " + contact_name(i));
+    out.push_back("minimum normal force at " + contact_name(i));
+  }
+  for (int l = 0; l < link_rows; ++l) {
+    out.push_back("minimum normal force on link '" + links[static_cast<size_t>(l)] + "'");
+    out.push_back("minimum normal force on link '" + links[static_cast<size_t>(l)] + "'");
+  }
+  out.push_back("sdot^2 >= 0");
+  out.push_back("sddot");
+  for (int i = 0; i < m; ++i)
+    for (int e = 0; e < k; ++e) out.push_back("friction at " + contact_name(i));
+  return out;
+}
+
+std::string ContactConstraint::binding_label(const std::vector<std::string>& names, int code) const {
+  const int rows_entries = static_cast<int>(names.size()) - 2 - static_cast<int>(projected_.size()) * options_.cone_edges;
+  size_t i = names.size();
+  if (code == detail::kBindingUnknown) return "contact forces";
+  if (detail::binding_is_row(code)) i = static_cast<size_t>(code);
+  else i = static_cast<size_t>(rows_entries + detail::binding_column(code));
+  return i < names.size() ? names[i] : std::string("contact forces");
+}
+
 ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   const int n = robot_->nq();
   if (samples.dof() != n)
@@ -265,6 +316,8 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
   detail::PolytopeProjector projector;  // one GLPK problem, warm-started from grid point to grid point
   std::vector<std::vector<detail::Line>> polys(static_cast<size_t>(samples.size()));
+  std::vector<std::vector<std::string>> names(static_cast<size_t>(samples.size()));
+  const std::vector<std::string> what = binding_names(projected_);
   std::vector<char> empty_point(static_cast<size_t>(samples.size()), 0);
   ConstraintRows r;
   size_t widest = 0;
@@ -289,30 +342,53 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
       if (pr.outcome == detail::Projection::Outcome::Failed) r.inexact_points.push_back(p);
     } else {
       if (!pr.complete) r.inexact_points.push_back(p);
-      for (const detail::Line& h : pr.halfplanes) {
+      for (size_t e = 0; e < pr.halfplanes.size(); ++e) {
+        const detail::Line& h = pr.halfplanes[e];
         // Edges on the stand-in bounds are not limits.
         const bool on_cap = (std::abs(h.b) < 1e-12 && h.a > 0 && std::abs(h.c - options_.cap) <= 1e-6 * options_.cap) ||
                             (std::abs(h.a) < 1e-12 && std::abs(std::abs(h.c) - options_.cap) <= 1e-6 * options_.cap);
-        if (!on_cap) out.push_back(h);
+        if (on_cap) continue;
+        out.push_back(h);
+        names[static_cast<size_t>(p)].push_back(binding_label(what, pr.binding[e]));
       }
     }
     widest = std::max(widest, out.size());
   }
+  // One column per (label, occurrence at a grid point): an edge is reported by what binds it (a torque
+  // limit, a contact's friction or minimum normal force), which is what a user can act on; the edge's
+  // position in the polygon means nothing from one grid point to the next.
+  std::map<std::pair<std::string, int>, Eigen::Index> column;
+  std::vector<std::string> labels;
+  std::vector<std::vector<Eigen::Index>> at(static_cast<size_t>(samples.size()));
+  for (Eigen::Index p = 0; p < samples.size(); ++p) {
+    std::map<std::string, int> seen;
+    for (const std::string& l : names[static_cast<size_t>(p)]) {
+      const int occurrence = seen[l]++;
+      auto it = column.find({l, occurrence});
+      if (it == column.end()) {
+        it = column.emplace(std::make_pair(l, occurrence), static_cast<Eigen::Index>(labels.size())).first;
+        labels.push_back(occurrence == 0 ? l : l + " (" + std::to_string(occurrence + 1) + ")");
+      }
+      at[static_cast<size_t>(p)].push_back(it->second);
+    }
+  }
   // The last row marks grid points where no contact forces balance the robot: 0 <= -1 there.
-  const Eigen::Index marker = static_cast<Eigen::Index>(widest);
+  const Eigen::Index marker = static_cast<Eigen::Index>(labels.size());
+  (void)widest;
   const auto inexact = std::move(r.inexact_points);
   const int lps = r.lp_solves;
   r.resize(samples.size(), marker + 1);
   r.inexact_points = inexact;
   r.lp_solves = lps;
-  for (size_t j = 0; j < widest; ++j) r.labels[j] = "contact polygon edge " + std::to_string(j);
+  for (size_t j = 0; j < labels.size(); ++j) r.labels[j] = labels[j];
   r.labels[static_cast<size_t>(marker)] = "contact forces cannot balance the robot";
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     const auto& out = polys[static_cast<size_t>(p)];
     for (size_t j = 0; j < out.size(); ++j) {
-      r.a(p, static_cast<Eigen::Index>(j)) = out[j].a;
-      r.b(p, static_cast<Eigen::Index>(j)) = out[j].b;
-      r.c(p, static_cast<Eigen::Index>(j)) = out[j].c;
+      const Eigen::Index col = at[static_cast<size_t>(p)][j];
+      r.a(p, col) = out[j].a;
+      r.b(p, col) = out[j].b;
+      r.c(p, col) = out[j].c;
     }
     if (empty_point[static_cast<size_t>(p)]) r.c(p, marker) = -1.0;
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -207,8 +208,36 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   };
 
   // Certified directions, keyed by the hull edge (from, to) that produced them; (i, i) is the end
-  // direction beyond point i of a hull that is a segment.
-  std::set<std::pair<int, int>> certified;
+  // direction beyond point i of a hull that is a segment. The value: what binds there (see binding()).
+  std::map<std::pair<int, int>, int> certified;
+  // The constraint that holds the shadow at an edge: at the certifying LP's optimum, the inequality row or
+  // column bound with the largest dual (a row's dual per unit of its normalised row), with its side.
+  Eigen::VectorXd row_norm = in.A.rowwise().norm();
+  auto binding = [&]() {
+    int code = kBindingUnknown;
+    double best = 0.0;
+    const int nr = static_cast<int>(in.A.rows()), nc = static_cast<int>(in.A.cols());
+    for (int i = 0; i < nr; ++i) {
+      const int st = glp_get_row_stat(lp, i + 1);
+      // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
+      if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
+      const double w = std::abs(glp_get_row_dual(lp, i + 1)) * row_norm[i];
+      if (w > best) {
+        best = w;
+        code = 2 * i + (st == GLP_NU ? 1 : 0);
+      }
+    }
+    for (int j = 0; j < nc; ++j) {
+      const int st = glp_get_col_stat(lp, j + 1);
+      if (st == GLP_BS) continue;
+      const double w = std::abs(glp_get_col_dual(lp, j + 1));
+      if (w > best) {
+        best = w;
+        code = -(j + 1);
+      }
+    }
+    return code;
+  };
   std::vector<int> hull;
   struct Pending {
     int from, to;
@@ -219,7 +248,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     pending.clear();
     const size_t h = hull.size();
     auto add = [&](int from, int to, double nx, double nu) {
-      if (certified.count({from, to})) return;
+      if (certified.count({from, to}) != 0) return;
       const double len = std::hypot(nx, nu);
       if (!(len > 0.0)) return;
       nx /= len;
@@ -264,7 +293,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         break;
       }
       if (d.nx * q.x + d.nu * q.y <= d.offset + tol) {
-        certified.insert({d.from, d.to});  // nothing of the shadow beyond this edge
+        certified[{d.from, d.to}] = binding();  // nothing of the shadow beyond this edge
       } else {
         points.push_back(q);  // strictly outside the hull by more than the tolerance
         grew = true;
@@ -283,7 +312,9 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   out.tolerance = tol;
   for (int i : hull) out.vertices.push_back(points[static_cast<size_t>(i)]);
   const size_t h = out.vertices.size();
-  auto push = [&](double nx, double nu, const Vertex& on) {
+  auto push = [&](double nx, double nu, const Vertex& on, int from, int to) {
+    auto it = certified.find({from, to});
+    out.binding.push_back(it == certified.end() ? kBindingUnknown : it->second);
     const double len = std::hypot(nx, nu);
     nx /= len;
     nu /= len;
@@ -298,20 +329,21 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   };
   if (h == 1) {
     const Vertex& p = out.vertices[0];
-    push(1, 0, p);
-    push(0, 1, p);
-    push(-1, 0, p);
-    push(0, -1, p);
+    push(1, 0, p, -1, -1);
+    push(0, 1, p, -1, -1);
+    push(-1, 0, p, -1, -1);
+    push(0, -1, p, -1, -1);
   } else if (h == 2) {  // a segment: its two sides and its two ends, counter-clockwise
     const Vertex &a = out.vertices[0], &b = out.vertices[1];
-    push(b.y - a.y, -(b.x - a.x), a);
-    push(b.x - a.x, b.y - a.y, b);
-    push(a.y - b.y, -(a.x - b.x), b);
-    push(a.x - b.x, a.y - b.y, a);
+    const int i = hull[0], j = hull[1];
+    push(b.y - a.y, -(b.x - a.x), a, i, j);
+    push(b.x - a.x, b.y - a.y, b, j, j);
+    push(a.y - b.y, -(a.x - b.x), b, j, i);
+    push(a.x - b.x, a.y - b.y, a, i, i);
   } else {
     for (size_t e = 0; e < h; ++e) {
       const Vertex &a = out.vertices[e], &b = out.vertices[(e + 1) % h];
-      push(b.y - a.y, -(b.x - a.x), a);
+      push(b.y - a.y, -(b.x - a.x), a, hull[e], hull[(e + 1) % h]);
     }
   }
   out.outcome = Projection::Outcome::Polygon;

@@ -10,6 +10,7 @@
 //    certificate), so the shadow lies within the tolerance of the polygon.
 // Each LP is eq. (19); GLPK is warm-started from the previous direction's basis.
 
+#include <climits>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,14 @@ struct PolytopeLp {
   double stand_in = 1e300;
 };
 
+/// What stops the shadow at an edge: the constraint of the polytope with the largest dual at the edge's
+/// certifying LP. Row r at its lower bound: 2r, at its upper bound: 2r + 1; column j at a bound: -(j + 1).
+inline constexpr int kBindingUnknown = INT_MIN;
+inline bool binding_is_row(int code) { return code >= 0; }
+inline int binding_row(int code) { return code / 2; }
+inline bool binding_upper(int code) { return code % 2 == 1; }
+inline int binding_column(int code) { return -code - 1; }
+
 struct Projection {
   enum class Outcome { Polygon, Empty, Failed };
   Outcome outcome = Outcome::Failed;
@@ -39,6 +48,7 @@ struct Projection {
   bool complete = false;
   std::string note;
   std::vector<Line> halfplanes;  // a x + b u <= c, (a, b) of unit length, counter-clockwise
+  std::vector<int> binding;      // per half-plane: the polytope's binding constraint (kBinding... codes)
   std::vector<Vertex> vertices;  // counter-clockwise (the hull of the support points)
   double tolerance = 0.0;        // absolute: the shadow lies within this of every certified edge
   int lp_solves = 0;

@@ -109,6 +109,9 @@ class ContactConstraint : public Constraint {
   std::vector<Contact> contacts_;
   // Fills J (3·m x nq: the stacked J_i) and the cone generators in world coordinates (3 x m·k) at q.
   // With `use`, only those contacts, in that order.
+  // Names of what can bind a projected edge (see detail::Projection::binding), in lp_structure's layout.
+  std::vector<std::string> binding_names(const std::vector<int>& use) const;
+  std::string binding_label(const std::vector<std::string>& names, int code) const;
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr) const;
   // The projection LP's fixed part for the contacts `use`: bounds, minimum-normal-force rows; `extra`
