@@ -279,7 +279,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     res = solve_rows(rows, &extra, round_options);
     if (!res.ok() || res.status == Status::TimeLimit) break;
     const Eigen::VectorXd theta = res.sdot.array().square();
-    const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, offset,
+    const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, rows_, offset,
                                                       options.audit_points, options.audit_tolerance, extra);
     ++rounds;
     cuts += audit.cuts;

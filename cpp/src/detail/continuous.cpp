@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <string>
 
 #include "detail/interval_bounds.hpp"
 #include "detail/validate.hpp"
@@ -86,7 +87,8 @@ double violation(double a, double b, double c, double lam, double t0, double t1,
 
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,
-                    const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra) {
+                    const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
+                    double tolerance, IntervalExtra& extra) {
   Audit audit;
   const Eigen::Index N = s.size() - 1;
   std::vector<size_t> which;
@@ -116,38 +118,48 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
   const PathSamples coarse = samples_at(ks, ls);
   audit.worst = -std::numeric_limits<double>::infinity();
   auto u_of = [&](Eigen::Index k) { return (theta[k + 1] - theta[k]) / (2.0 * (s[k + 1] - s[k])); };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  // Per interval and constraint, the violation at λ is the largest relative violation over the
+  // constraint's rows there (a contact polygon's rows differ from one point to the next, so rows are
+  // not followed one by one); its peak is found, and every row broken at the peak becomes a cut.
   struct Candidate {
-    Eigen::Index k, j;
+    Eigen::Index k;
     double lo, hi, x1, x2, f1, f2;  // golden-section bracket [lo, hi] with inner points x1 < x2
   };
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  auto worst_row = [&](const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k, Eigen::Index* arg) {
+    double w = -std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < rr.rows(); ++j) {
+      const double v = violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[k], theta[k + 1], u_of(k));
+      if (v > w) {
+        w = v;
+        if (arg) *arg = j;
+      }
+    }
+    return w;
+  };
   for (size_t ci : which) {
     const ConstraintRows cr = constraints[ci]->evaluate(coarse);
     std::vector<Candidate> cand;
     for (Eigen::Index k = 0; k < N; ++k) {
-      const double u = u_of(k);
-      for (Eigen::Index j = 0; j < cr.rows(); ++j) {
-        double worst = -std::numeric_limits<double>::infinity(), step = 0.0, prev = 0.0;
-        int at = -1;
-        for (int m = 0; m < points; ++m) {
-          const Eigen::Index r = k * points + m;
-          const double v = violation(cr.a(r, j), cr.b(r, j), cr.c(r, j), lam[static_cast<size_t>(m)], theta[k], theta[k + 1], u);
-          if (m > 0 && std::isfinite(v) && std::isfinite(prev)) step = std::max(step, std::abs(v - prev));
-          prev = v;
-          if (v > worst) {
-            worst = v;
-            at = m;
-          }
+      double worst = -std::numeric_limits<double>::infinity(), step = 0.0, prev = 0.0;
+      int at = -1;
+      for (int m = 0; m < points; ++m) {
+        const double v = worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k, nullptr);
+        if (m > 0 && std::isfinite(v) && std::isfinite(prev)) step = std::max(step, std::abs(v - prev));
+        prev = v;
+        if (v > worst) {
+          worst = v;
+          at = m;
         }
-        if (at < 0) continue;
-        audit.worst = std::max(audit.worst, worst);
-        // A row that comes within 1 % of its limit, or within twice its largest change between two audit
-        // points (it can rise that much between them): find its peak between the neighbouring points.
-        if (worst > -std::max(1e-2, 2.0 * step)) {
-          const double lo = at == 0 ? 0.0 : lam[static_cast<size_t>(at - 1)];
-          const double hi = at == points - 1 ? 1.0 : lam[static_cast<size_t>(at + 1)];
-          cand.push_back({k, j, lo, hi, hi - g * (hi - lo), lo + g * (hi - lo), 0.0, 0.0});
-        }
+      }
+      if (at < 0 || !std::isfinite(worst)) continue;
+      audit.worst = std::max(audit.worst, worst);
+      // Within 1 % of a limit, or within twice the largest change between two audit points (it can rise
+      // that much between them): find the peak between the neighbouring points.
+      if (worst > -std::max(1e-2, 2.0 * step)) {
+        const double lo = at == 0 ? 0.0 : lam[static_cast<size_t>(at - 1)];
+        const double hi = at == points - 1 ? 1.0 : lam[static_cast<size_t>(at + 1)];
+        cand.push_back({k, lo, hi, hi - g * (hi - lo), lo + g * (hi - lo), 0.0, 0.0});
       }
     }
     if (cand.empty()) continue;
@@ -155,14 +167,9 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     auto eval = [&](const std::vector<double>& at_lam, std::vector<double>& f) {
       ks.clear();
       for (const Candidate& c : cand) ks.push_back(c.k);
-      const PathSamples ps = samples_at(ks, at_lam);
-      const ConstraintRows rr = constraints[ci]->evaluate(ps);
+      const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, at_lam));
       f.resize(cand.size());
-      for (size_t i = 0; i < cand.size(); ++i) {
-        const Candidate& c = cand[i];
-        f[i] = violation(rr.a(static_cast<Eigen::Index>(i), c.j), rr.b(static_cast<Eigen::Index>(i), c.j),
-                         rr.c(static_cast<Eigen::Index>(i), c.j), at_lam[i], theta[c.k], theta[c.k + 1], u_of(c.k));
-      }
+      for (size_t i = 0; i < cand.size(); ++i) f[i] = worst_row(rr, static_cast<Eigen::Index>(i), at_lam[i], cand[i].k, nullptr);
     };
     std::vector<double> x(cand.size()), f;
     for (size_t i = 0; i < cand.size(); ++i) x[i] = cand[i].x1;
@@ -205,17 +212,23 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
       }
     }
     if (cut.empty()) continue;
-    // The cut: the row itself at the peak, as a row of the interval (exact, see the header).
-    const PathSamples ps = samples_at(ks, ls);
-    const ConstraintRows rr = constraints[ci]->evaluate(ps);
+    // The cuts: every row broken at the peak, as a row of the interval (exact, see the header), labelled
+    // as the problem's own row of that name (the constraint's first row if it has none).
+    const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, ls));
+    std::map<std::string, int> named;
+    for (size_t j = 0; j < grid_rows[ci].labels.size(); ++j) named.emplace(grid_rows[ci].labels[j], static_cast<int>(j));
     for (size_t q = 0; q < cut.size(); ++q) {
       const Candidate& c = cand[cut[q]];
       const double l = ls[q], h = s[c.k + 1] - s[c.k];
-      const double a = rr.a(static_cast<Eigen::Index>(q), c.j), b = rr.b(static_cast<Eigen::Index>(q), c.j);
-      extra.rows[static_cast<size_t>(c.k)].push_back(
-          {a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(static_cast<Eigen::Index>(q), c.j),
-           row_offset[ci] + static_cast<int>(c.j)});
-      ++audit.cuts;
+      const Eigen::Index r = static_cast<Eigen::Index>(q);
+      for (Eigen::Index j = 0; j < rr.rows(); ++j) {
+        if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[c.k], theta[c.k + 1], u_of(c.k)) <= tolerance) continue;
+        const double a = rr.a(r, j), b = rr.b(r, j);
+        const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
+        extra.rows[static_cast<size_t>(c.k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
+                                                        row_offset[ci] + (id == named.end() ? 0 : id->second)});
+        ++audit.cuts;
+      }
     }
   }
   if (!std::isfinite(audit.worst)) audit.worst = 0.0;

@@ -36,10 +36,12 @@ struct Audit {
 
 /// Checks every constraint other than velocity and acceleration limits at `points` interior points of
 /// each interval of grid `s` under the timing θ, and adds to `extra` each row that is violated by more than
-/// `tolerance` (relative), at the interior point where it is violated most. `row_offset[i]` is the label
-/// id of constraint i's first row.
+/// `tolerance` (relative), at the interior point where it is violated most. Rows are followed by their label
+/// (a contact polygon's columns differ from one evaluation to the next); `grid_rows[i]` are constraint i's
+/// rows on the grid and `row_offset[i]` the label id of its first row, which name the cuts.
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,
-                    const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra);
+                    const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
+                    double tolerance, IntervalExtra& extra);
 
 }  // namespace pathpace::detail
