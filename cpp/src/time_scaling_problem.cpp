@@ -271,6 +271,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   }
   Result res;
   int rounds = 0, cuts = 0;
+  detail::AuditMemory memory;
   // The time budget covers all rounds: each solve gets what is left.
   const auto started = std::chrono::steady_clock::now();
   SolverOptions round_options = options;
@@ -280,7 +281,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     if (!res.ok() || res.status == Status::TimeLimit) break;
     const Eigen::VectorXd theta = res.sdot.array().square();
     const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, rows_, offset,
-                                                      options.audit_points, options.audit_tolerance, extra);
+                                                      options.audit_points, options.audit_tolerance, extra, memory);
     ++rounds;
     cuts += audit.cuts;
     res.stats.audit_worst = audit.worst;

@@ -88,7 +88,7 @@ double violation(double a, double b, double c, double lam, double t0, double t1,
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,
                     const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
-                    double tolerance, IntervalExtra& extra) {
+                    double tolerance, IntervalExtra& extra, AuditMemory& memory) {
   Audit audit;
   const Eigen::Index N = s.size() - 1;
   std::vector<size_t> which;
@@ -110,13 +110,13 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
   };
   std::vector<Eigen::Index> ks;
   std::vector<double> ls;
-  for (Eigen::Index k = 0; k < N; ++k)
-    for (int m = 0; m < points; ++m) {
-      ks.push_back(k);
-      ls.push_back(lam[static_cast<size_t>(m)]);
-    }
-  const PathSamples coarse = samples_at(ks, ls);
   audit.worst = -std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (memory.theta0.size() != constraints.size()) {
+    memory.theta0.assign(constraints.size(), std::vector<double>(static_cast<size_t>(N), nan));
+    memory.theta1 = memory.theta0;
+    memory.worst = memory.theta0;
+  }
   auto u_of = [&](Eigen::Index k) { return (theta[k + 1] - theta[k]) / (2.0 * (s[k + 1] - s[k])); };
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   // Per interval and constraint, the violation at λ is the largest relative violation over the
@@ -138,13 +138,32 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     return w;
   };
   for (size_t ci : which) {
-    const ConstraintRows cr = constraints[ci]->evaluate(coarse);
-    std::vector<Candidate> cand;
+    // Only the intervals whose speeds changed since they were last audited.
+    std::vector<Eigen::Index> todo;
+    auto& t0 = memory.theta0[ci];
+    auto& t1 = memory.theta1[ci];
+    auto& remembered = memory.worst[ci];
     for (Eigen::Index k = 0; k < N; ++k) {
+      const size_t kk = static_cast<size_t>(k);
+      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) audit.worst = std::max(audit.worst, remembered[kk]);
+      else todo.push_back(k);
+    }
+    if (todo.empty()) continue;
+    ks.clear();
+    ls.clear();
+    for (Eigen::Index k : todo)
+      for (int m = 0; m < points; ++m) {
+        ks.push_back(k);
+        ls.push_back(lam[static_cast<size_t>(m)]);
+      }
+    const ConstraintRows cr = constraints[ci]->evaluate(samples_at(ks, ls));
+    std::vector<Candidate> cand;
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const Eigen::Index k = todo[t];
       double worst = -std::numeric_limits<double>::infinity(), step = 0.0, prev = 0.0;
       int at = -1;
       for (int m = 0; m < points; ++m) {
-        const double v = worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k, nullptr);
+        const double v = worst_row(cr, static_cast<Eigen::Index>(t) * points + m, lam[static_cast<size_t>(m)], k, nullptr);
         if (m > 0 && std::isfinite(v) && std::isfinite(prev)) step = std::max(step, std::abs(v - prev));
         prev = v;
         if (v > worst) {
@@ -152,6 +171,9 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
           at = m;
         }
       }
+      t0[static_cast<size_t>(k)] = theta[k];
+      t1[static_cast<size_t>(k)] = theta[k + 1];
+      remembered[static_cast<size_t>(k)] = std::isfinite(worst) ? worst : -std::numeric_limits<double>::infinity();
       if (at < 0 || !std::isfinite(worst)) continue;
       audit.worst = std::max(audit.worst, worst);
       // Within 1 % of a limit, or within twice the largest change between two audit points (it can rise
@@ -205,6 +227,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
       const Candidate& c = cand[i];
       const double best = std::max(c.f1, c.f2);
       audit.worst = std::max(audit.worst, best);
+      memory.worst[ci][static_cast<size_t>(c.k)] = std::max(memory.worst[ci][static_cast<size_t>(c.k)], best);
       if (best > tolerance) {
         cut.push_back(i);
         ks.push_back(c.k);

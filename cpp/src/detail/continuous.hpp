@@ -29,6 +29,13 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
                                    const std::vector<std::shared_ptr<const Constraint>>& constraints,
                                    std::vector<ConstraintRows>& rows, IntervalExtra& extra);
 
+/// What earlier audits of one solve found per constraint and interval: an interval whose θ_k, θ_{k+1} are
+/// (bitwise) those it was audited at has the same rows and the same violation, so it is not audited again
+/// (after a cut, the re-solve changes θ near it and leaves most of the path as it was).
+struct AuditMemory {
+  std::vector<std::vector<double>> theta0, theta1, worst;  // [constraint][interval]
+};
+
 struct Audit {
   double worst = 0.0;  ///< largest violation found, relative to max(|c|, |a θ(s)| + |b u|) (<= 0: none)
   int cuts = 0;        ///< rows added to `extra`
@@ -42,6 +49,6 @@ struct Audit {
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,
                     const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
-                    double tolerance, IntervalExtra& extra);
+                    double tolerance, IntervalExtra& extra, AuditMemory& memory);
 
 }  // namespace pathpace::detail
