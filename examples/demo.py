@@ -48,6 +48,7 @@ print(f"  trajectory written to {out / 'panda_trajectory.csv'}")
 stuck = vmax.copy()
 stuck[3] = 0.0
 bad = pp.TimeScalingProblem(path, grid=1000)
+bad.set_joint_names(joints)  # messages name the joint
 bad.add_velocity_limits(-stuck, stuck)
 r = bad.solve()
-print(f"With panda_joint4 (index 3) locked by a zero velocity limit: {r.status.name}: {r.message}")
+print(f"With panda_joint4 locked by a zero velocity limit: {r.status.name}: {r.message}")

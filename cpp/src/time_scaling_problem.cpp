@@ -528,8 +528,12 @@ bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const C
     if (p.empty) return false;
   const detail::Chain chain = detail::build_chain(samples_.s, sets, &extra);
   // Unbounded is not infeasible: some timing exists (and a relaxation cannot make it less bounded).
-  return detail::reachability(chain, sdot_begin_ * sdot_begin_, sdot_end_ * sdot_end_).outcome !=
-         detail::Reachability::Outcome::Infeasible;
+  const detail::Reachability reach = detail::reachability(chain, sdot_begin_ * sdot_begin_, sdot_end_ * sdot_end_);
+  if (reach.outcome != detail::Reachability::Outcome::Feasible) return reach.outcome == detail::Reachability::Outcome::Unbounded;
+  // As solve() judges it: a speed forced to zero on an interval means the path cannot be traversed.
+  for (Eigen::Index k = 0; k + 1 < reach.theta.size(); ++k)
+    if (reach.theta[k] + reach.theta[k + 1] <= 0.0) return false;
+  return true;
 }
 
 std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance,
