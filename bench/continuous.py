@@ -69,18 +69,11 @@ def arm_rows(seeds, sizes, repeat):
                 if case == "b" and sc is None:
                     continue
                 for N in sizes:
-                    path = pp.CubicSplinePath(wp, knots="uniform", boundary="not-a-knot", s_begin=0.0, s_end=1.0)
-                    v, a = arm.v, 2.0 * arm.v
+                    v, a = arm.v, 2.0 * arm.v  # sweep.make's limits
                     row = {"arm": name, "seed": seed, "case": case, "N": N}
                     for g in GUARANTEES:
-                        def solve():
-                            prob = pp.TimeScalingProblem(path, grid=N)
-                            prob.add_velocity_limits(-v, v)
-                            prob.add_acceleration_limits(-a, a)
-                            if sc is not None:
-                                prob.add_torque_limits(arm.ours, scale=sc)
-                            return prob.solve(guarantee=g)
-
+                        # The problem exactly as bench/sweep.py builds it, solved with this guarantee.
+                        _, _, solve, _ = sweep.make(arm, wp, N, sc, guarantee=g)
                         res, cpu = timed(solve, repeat)
                         row[g] = {"status": res.status.name, "T": res.duration, "ms": 1e3 * cpu,
                                   "audit_rounds": res.stats["audit_rounds"]}

@@ -21,6 +21,8 @@ from scipy.optimize import linprog
 import pathpace as pp
 from pathpace.robots import example_robot_urdf
 
+from oracles import composite_floating_joint
+
 CAP = 1e6  # ContactOptions::cap, the stand-in bounds on ṡ² and |s̈|
 
 
@@ -58,15 +60,6 @@ HUMANOIDS = {
 }
 
 _cache: dict[str, Humanoid] = {}
-
-
-def composite_floating_joint():
-    import pinocchio as pin
-    jc = pin.JointModelComposite()
-    for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(), pin.JointModelRZ(), pin.JointModelRY(),
-              pin.JointModelRX()):
-        jc.addJoint(j)
-    return jc
 
 
 def load(name: str) -> Humanoid:

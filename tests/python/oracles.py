@@ -131,3 +131,14 @@ def frank_wolfe_gap(s, theta, A, B, C, theta_begin=0.0, theta_end=0.0):
     lp = linprog(g, A_ub=M, b_ub=np.concatenate(rhs), bounds=bounds, method="highs")
     assert lp.status == 0, lp.message
     return float(g @ (theta - lp.x))
+
+
+def composite_floating_joint():
+    """pinocchio's counterpart of our floating base: x, y, z, then rotations about z, y, x."""
+    import pinocchio as pin
+
+    jc = pin.JointModelComposite()
+    for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(), pin.JointModelRZ(), pin.JointModelRY(),
+              pin.JointModelRX()):
+        jc.addJoint(j)
+    return jc

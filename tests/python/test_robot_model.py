@@ -7,14 +7,7 @@ import pathpace as pp
 from pathpace.robots import example_robot_urdf
 
 pin = pytest.importorskip("pinocchio")
-
-
-def composite_floating_joint():
-    jc = pin.JointModelComposite()
-    for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(), pin.JointModelRZ(), pin.JointModelRY(),
-              pin.JointModelRX()):
-        jc.addJoint(j)
-    return jc
+from oracles import composite_floating_joint  # noqa: E402  (re-exported for test_contact*)
 
 
 def random_tree_urdf(n_joints, seed):
