@@ -327,7 +327,10 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     }
   }
   auto t0 = std::chrono::steady_clock::now();
-  const detail::GridSets sets = detail::build_grid_sets(samples_, constraint_rows);
+  // Solved in units where the speeds are ~1 (see detail::Scale): T then scales exactly with the path's
+  // length and its limits, with no cap on ṡ² that a bounded problem could reach.
+  const detail::Scale scale = detail::problem_scale(samples_.s, constraint_rows);
+  const detail::GridSets sets = detail::build_grid_sets(samples_, constraint_rows, scale);
   res.stats.time_feasible_sets = seconds_since(t0);
   res.stats.average_halfplanes = sets.average_rows;
 
@@ -379,15 +382,16 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   for (const auto& [k, sdot, name] : {std::make_tuple(Eigen::Index(0), sdot_begin_, "sdot_begin"),
                                       std::make_tuple(n, sdot_end_, "sdot_end")}) {
     const detail::PointSet& p = sets.points[static_cast<size_t>(k)];
-    if (sdot * sdot > p.x_hi * (1 + 1e-12) && p.x_hi_id >= 0)
+    if (sdot * sdot / scale.x_unit > p.x_hi * (1 + 1e-12) && p.x_hi_id >= 0)
       return report(Status::Infeasible, k, {p.x_hi_id},
                     std::string(name) + " = " + detail::fmt(sdot) + " is faster than the constraints allow at " +
-                        (k == 0 ? "s_begin" : "s_end") + " (sdot <= " + detail::fmt(std::sqrt(p.x_hi)) + ")");
+                        (k == 0 ? "s_begin" : "s_end") + " (sdot <= " + detail::fmt(std::sqrt(p.x_hi * scale.x_unit)) +
+                        ")");
   }
 
   t0 = std::chrono::steady_clock::now();
-  const detail::Chain chain = detail::build_chain(samples_.s, sets, extra);
-  const double th0 = sdot_begin_ * sdot_begin_, thN = sdot_end_ * sdot_end_;
+  const detail::Chain chain = detail::build_chain(samples_.s, sets, extra, scale);
+  const double th0 = sdot_begin_ * sdot_begin_ / scale.x_unit, thN = sdot_end_ * sdot_end_ / scale.x_unit;
   res.status = Status::Optimal;
   bool proven = false;  // θ is the optimum, or within the tolerance of it, without SLP
   Eigen::VectorXd theta;
@@ -427,6 +431,12 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     if (chain.lattice && options.method == Method::Auto) proven = true;
   }
   res.stats.greatest_element = proven && res.stats.gap == 0.0;
+  // A greedy profile that stops on an interval is the answer only if it is the greatest element (then
+  // every feasible profile stops there); otherwise it may have walked into a trap of the coupling rows.
+  if (!proven && !chain.lattice && detail::has_stopped_interval(theta)) {
+    Eigen::VectorXd start = detail::unstopped_profile(reach, th0);
+    if (!detail::has_stopped_interval(start)) theta = reach.theta = std::move(start);
+  }
   res.stats.time_reachability = seconds_since(t0);
   for (Eigen::Index k = 0; k < n; ++k)
     if (theta[k] + theta[k + 1] <= 0.0) {
@@ -477,6 +487,8 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
         break;
     }
   }
+  res.binding = detail::binding_labels(chain, sets, theta);
+  theta *= scale.x_unit;  // back to ṡ² (a power of two: exact)
   res.sdot = theta.cwiseMax(0.0).cwiseSqrt();
   res.times.resize(n + 1);
   res.sddot.resize(n);
@@ -487,7 +499,6 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     res.sddot[k] = (theta[k + 1] - theta[k]) / (2.0 * ds);
   }
   res.duration = res.times[n];
-  res.binding = detail::binding_labels(chain, sets, theta);
   return res;
 }
 
@@ -523,17 +534,18 @@ bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const C
   if (guarantee == Guarantee::Continuous)
     detail::add_kinematic_continuous_rows(*path_, samples_, constraints, rows, extra);
   add_boundary_rows(rows, extra);
-  const detail::GridSets sets = detail::build_grid_sets(samples_, rows);
+  const detail::Scale scale = detail::problem_scale(samples_.s, rows);
+  const detail::GridSets sets = detail::build_grid_sets(samples_, rows, scale);
   for (const detail::PointSet& p : sets.points)
     if (p.empty) return false;
-  const detail::Chain chain = detail::build_chain(samples_.s, sets, &extra);
+  const detail::Chain chain = detail::build_chain(samples_.s, sets, &extra, scale);
   // Unbounded is not infeasible: some timing exists (and a relaxation cannot make it less bounded).
-  const detail::Reachability reach = detail::reachability(chain, sdot_begin_ * sdot_begin_, sdot_end_ * sdot_end_);
+  const double th0 = sdot_begin_ * sdot_begin_ / scale.x_unit;
+  const detail::Reachability reach = detail::reachability(chain, th0, sdot_end_ * sdot_end_ / scale.x_unit);
   if (reach.outcome != detail::Reachability::Outcome::Feasible) return reach.outcome == detail::Reachability::Outcome::Unbounded;
   // As solve() judges it: a speed forced to zero on an interval means the path cannot be traversed.
-  for (Eigen::Index k = 0; k + 1 < reach.theta.size(); ++k)
-    if (reach.theta[k] + reach.theta[k + 1] <= 0.0) return false;
-  return true;
+  if (!detail::has_stopped_interval(reach.theta)) return true;
+  return !chain.lattice && !detail::has_stopped_interval(detail::unstopped_profile(reach, th0));
 }
 
 std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pathpace::detail {
 
@@ -18,16 +19,46 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   return build_point_set(constraints, k, polygon, lines);
 }
 
+Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>& constraints) {
+  Scale sc;
+  const Eigen::Index n_pts = s.size();
+  const double length = s[n_pts - 1] - s[0];
+  if (!(length > 0.0)) return sc;
+  sc.s_unit = 1.0 / inverse_power_of_two(length);
+  const Eigen::Index samples = std::min<Eigen::Index>(n_pts, 65);
+  std::vector<double> est;
+  est.reserve(static_cast<size_t>(samples));
+  for (Eigen::Index i = 0; i < samples; ++i) {
+    const Eigen::Index k = samples == 1 ? 0 : (i * (n_pts - 1)) / (samples - 1);
+    double e = std::numeric_limits<double>::infinity();
+    for (const ConstraintRows& cr : constraints)
+      for (Eigen::Index j = 0; j < cr.rows(); ++j) {
+        const double a = std::abs(cr.a(k, j)), b = std::abs(cr.b(k, j)), c = cr.c(k, j);
+        if (!(c > 0.0) || c == std::numeric_limits<double>::infinity()) continue;  // no scale (or inactive)
+        if (a > 0.0) e = std::min(e, c / a);
+        if (b > 0.0) e = std::min(e, 2.0 * length * (c / b));
+      }
+    if (e > 0.0 && std::isfinite(e)) est.push_back(e);
+  }
+  if (est.empty()) return sc;
+  auto mid = est.begin() + static_cast<long>(est.size() / 2);
+  std::nth_element(est.begin(), mid, est.end());
+  sc.x_unit = 1.0 / inverse_power_of_two(*mid);
+  sc.u_unit = sc.x_unit / sc.s_unit;
+  return sc;
+}
+
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
-                         std::vector<Line>& lines, View<Line> hint, std::vector<Line>* out_rows) {
+                         std::vector<Line>& lines, View<Line> hint, std::vector<Line>* out_rows, const Scale& scale) {
   PointSet ps;
   int offset = 0;
   lines.clear();
   for (const ConstraintRows& cr : constraints) {
     for (Eigen::Index j = 0; j < cr.rows(); ++j) {
       const int id = offset + static_cast<int>(j);
-      const double a = cr.a(k, j), b = cr.b(k, j), c = cr.c(k, j);
+      const double c = cr.c(k, j);
       if (c == std::numeric_limits<double>::infinity()) continue;  // inactive here
+      const double a = cr.a(k, j) * scale.x_unit, b = cr.b(k, j) * scale.u_unit;
       if (b == 0.0) {
         // A bound on x alone (eq. 16, or p'_j = 0 in eq. 14): fold it into the x range.
         if (a > 0.0) {
@@ -41,7 +72,8 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
         }
         continue;
       }
-      lines.push_back({a, b, c, id});  // normalised below, only if it supports the polygon
+      // Normalised to unit norm below, only if it supports the polygon; by a power of two here (exact).
+      lines.push_back(power_of_two_normalised({a, b, c, id}));
     }
     offset += static_cast<int>(cr.rows());
   }
@@ -83,7 +115,8 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   return ps;
 }
 
-GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints) {
+GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints,
+                         const Scale& scale) {
   GridSets gs;
   for (const ConstraintRows& cr : constraints) gs.labels.insert(gs.labels.end(), cr.labels.begin(), cr.labels.end());
   const Eigen::Index n_points = samples.size();
@@ -95,7 +128,7 @@ GridSets build_grid_sets(const PathSamples& samples, const std::vector<Constrain
   for (Eigen::Index k = 0; k < n_points; ++k) {
     // The hint views row_data; build_point_set reads it only before appending to row_data.
     gs.points[static_cast<size_t>(k)] =
-        build_point_set(constraints, k, polygon, lines, k > 0 ? gs.rows(k - 1) : View<Line>{}, &gs.row_data);
+        build_point_set(constraints, k, polygon, lines, k > 0 ? gs.rows(k - 1) : View<Line>{}, &gs.row_data, scale);
     gs.row_offset[static_cast<size_t>(k) + 1] = gs.row_data.size();
   }
   gs.average_rows = n_points ? static_cast<double>(gs.row_data.size()) / static_cast<double>(n_points) : 0.0;

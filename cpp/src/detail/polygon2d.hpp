@@ -9,7 +9,11 @@
 // This is the innermost loop of every solve (one polygon per grid point and two per interval), so the
 // storage is two flat buffers swapped on each cut, with no allocation once warm.
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace pathpace::detail {
@@ -18,6 +22,30 @@ struct Line {
   double a = 0, b = 0, c = 0;
   int id = -1;  // caller's row id; box sides get negative ids (kBoxXLow, ...)
 };
+
+/// 2^-floor(log2 m) for a normal m > 0, else 1: a factor that scales by a power of two, so that
+/// multiplying by it is exact (no rounding) and every result computed from the scaled numbers is the
+/// same, scaled.
+inline double inverse_power_of_two(double m) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &m, sizeof bits);
+  const int e = static_cast<int>((bits >> 52) & 0x7ff);
+  if (e == 0 || e >= 2046) return 1.0;  // zero, subnormal, inf, nan, or a result that would be subnormal
+  const std::uint64_t r = static_cast<std::uint64_t>(2046 - e) << 52;
+  double out;
+  std::memcpy(&out, &r, sizeof out);
+  return out;
+}
+
+/// The line scaled by the power of two that brings max(|a|, |b|) into [1, 2). Exact, so vertices and
+/// tests computed from it are those of the original line; but the products of Cramer's rule cannot
+/// overflow (coordinates at 1e200 give coefficients ~1e200, whose products are inf) nor underflow.
+inline Line power_of_two_normalised(const Line& l) {
+  const double f = inverse_power_of_two(std::max(std::abs(l.a), std::abs(l.b)));
+  const double c = l.c * f;
+  if (!std::isfinite(c) && std::isfinite(l.c)) return l;  // would overflow: keep it as it is
+  return {l.a * f, l.b * f, c, l.id};
+}
 
 inline constexpr int kBoxXLow = -1;
 inline constexpr int kBoxXHigh = -2;

@@ -17,10 +17,10 @@ double cancel(double p, double q) {
 
 }  // namespace
 
-Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const IntervalExtra* extra) {
+Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const IntervalExtra* extra, const Scale& scale) {
   Chain ch;
   const Eigen::Index n_pts = s.size(), n = n_pts - 1;
-  ch.ds = s.tail(n) - s.head(n);
+  ch.ds = (s.tail(n) - s.head(n)) / scale.s_unit;  // a power of two: exact
   ch.x_lo.resize(n_pts);
   ch.x_hi.resize(n_pts);
   ch.x_lo_id.resize(static_cast<size_t>(n_pts));
@@ -53,7 +53,11 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
     // eq. (26), backward row at s_{k+1}: a θ_{k+1} + b (θ_{k+1} - θ_k)/(2Δs_k) <= c
     for (const Line& l : sets.rows(k + 1)) push(-l.b * h, cancel(l.a, l.b * h), l.c, l.id);
     if (extra)
-      for (const Line& l : extra->rows[static_cast<size_t>(k)]) push(l.a, l.b, l.c, l.id);
+      for (const Line& l : extra->rows[static_cast<size_t>(k)]) {
+        // Rows on θ itself: α x_unit θ̃_k + β x_unit θ̃_{k+1} <= c, exactly, then normalised (a power of two).
+        const Line r = power_of_two_normalised({l.a * scale.x_unit, l.b * scale.x_unit, l.c, l.id});
+        push(r.a, r.b, r.c, r.id);
+      }
     ch.coupled_offset[static_cast<size_t>(k)] = ch.row_data.size();
     if (!coupled.empty()) {
       ch.lattice = false;
@@ -148,6 +152,25 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
+}
+
+bool has_stopped_interval(const Eigen::VectorXd& theta) {
+  for (Eigen::Index k = 0; k + 1 < theta.size(); ++k)
+    if (theta[k] + theta[k + 1] <= 0.0) return true;
+  return false;
+}
+
+Eigen::VectorXd unstopped_profile(const Reachability& reach, double theta_begin) {
+  const Eigen::Index n = static_cast<Eigen::Index>(reach.start.size());
+  Eigen::VectorXd mid(n + 1);
+  mid[0] = theta_begin;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    double lo, hi;
+    slice(reach.vertices.data() + reach.start[static_cast<size_t>(k)], reach.size[static_cast<size_t>(k)], mid[k], lo, hi);
+    mid[k + 1] = 0.5 * (lo + hi);
+  }
+  mid[n] = reach.theta[n];
+  return 0.5 * (mid + reach.theta);
 }
 
 Reachability reachability(const Chain& chain, double theta_begin, double theta_end) {

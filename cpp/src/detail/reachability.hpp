@@ -50,7 +50,9 @@ struct IntervalExtra {
   std::vector<std::vector<Line>> rows;
 };
 
-Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const IntervalExtra* extra = nullptr);
+/// The chain in the units of `scale` (those `sets` were built in): Δs̃ = Δs / s_unit, θ̃ = θ / x_unit.
+Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const IntervalExtra* extra = nullptr,
+                  const Scale& scale = {});
 
 /// True for a row with α > 0 and β > 0 (beyond rounding): the only kind that breaks max-closure.
 bool couples_positively(const Line& r);
@@ -92,6 +94,19 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
 /// vertices, so (θ_k, θ_{k+1}) is a convex combination of points that satisfy every row to rounding:
 /// no row with a small coefficient can amplify an error along the chain.
 Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps);
+
+/// True if some interval has θ_k = θ_{k+1} = 0: it would be crossed in infinite time (eq. 25).
+bool has_stopped_interval(const Eigen::VectorXd& theta);
+
+/// A feasible profile that stops on no interval if any feasible profile does not, for a start when the
+/// greedy one stops somewhere. Where the rows couple θ_k and θ_{k+1} positively (Chain::lattice false)
+/// the greedy maximum can walk into a trap: θ_k at the top of K_k may leave only θ_{k+1} = 0, and the
+/// next interval then only θ_{k+2} = 0 (seen on coarse grids, N = 6, reported INFEASIBLE although
+/// θ = 1e-3 everywhere is feasible). Taking θ_{k+1} in the middle of each slice instead keeps every
+/// θ_{k+1} strictly inside K_{k+1} (the slice at a point strictly inside K_k has positive length when the
+/// polygon has positive area), so it stops nowhere; its average with the greedy profile is feasible (the
+/// feasible set is convex) and stops nowhere either.
+Eigen::VectorXd unstopped_profile(const Reachability& reach, double theta_begin);
 
 
 
