@@ -453,7 +453,10 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     t0 = std::chrono::steady_clock::now();
     // SLP on windows around the intervals where θ' breaks a coupling row (see detail/slp.hpp); without
     // θ' (Method::Slp, or the relaxed analysis did not end feasible) one window, the whole chain, under θ_hi.
-    const detail::SlpOutcome out = detail::windowed_slp(chain, reach, have_full ? relaxed.theta : chain.x_hi,
+    // Every feasible θ_k is also below the backward-controllable bound K_k (tighter than x_hi, which is the
+    // solve's cap where nothing bounds ṡ² alone: a column bound of 1e100 would not help GLPK).
+    const detail::SlpOutcome out = detail::windowed_slp(chain, reach,
+                                                        have_full ? relaxed.theta : chain.x_hi.cwiseMin(reach.k_hi),
                                                         have_full, th0, options, deadline);
     res.stats.time_slp = seconds_since(t0);
     res.stats.slp_iterations = out.iterations;

@@ -21,6 +21,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
 
 Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>& constraints) {
   Scale sc;
+  sc.cap = kSolveCap;
   const Eigen::Index n_pts = s.size();
   const double length = s[n_pts - 1] - s[0];
   if (!(length > 0.0)) return sc;
@@ -51,6 +52,7 @@ Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>&
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
                          std::vector<Line>& lines, View<Line> hint, std::vector<Line>* out_rows, const Scale& scale) {
   PointSet ps;
+  ps.x_hi = scale.cap;
   int offset = 0;
   lines.clear();
   for (const ConstraintRows& cr : constraints) {
@@ -85,7 +87,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
   // One pass over the envelopes; clipping row by row only when that declines (empty or degenerate
   // sets: clipping also names the rows that empty it).
-  if (!polygon.build(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap, lines.data(), lines.size())) {
+  if (!polygon.build(ps.x_lo, ps.x_hi, -scale.cap, scale.cap, lines.data(), lines.size())) {
     if (!hint.empty()) {
       // The rows that supported the previous grid point's polygon most likely support this one too.
       // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
@@ -96,7 +98,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
         return false;
       });
     }
-    polygon.reset(ps.x_lo, ps.x_hi, -kInfinityCap, kInfinityCap);
+    polygon.reset(ps.x_lo, ps.x_hi, -scale.cap, scale.cap);
     for (const Line& l : lines) {
       polygon.clip(l);
       if (polygon.empty()) {

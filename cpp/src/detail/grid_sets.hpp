@@ -14,6 +14,10 @@ namespace pathpace::detail {
 /// Stand-ins for "no limit": box sides far outside any physical ṡ² or s̈. Vertices on them are exact
 /// (Polygon2d intersects original lines), so their size costs no precision.
 inline constexpr double kInfinityCap = 1e15;
+/// The same inside a solve, where ṡ² and s̈ are in units of their typical size (Scale): far beyond any
+/// speed a bounded problem has, even with limits over twenty decades (the backward-controllable speeds
+/// then reach 1e18 of the typical ones, and a cap at 1e15 read them as "nothing bounds the speed").
+inline constexpr double kSolveCap = 1e100;
 
 /// Units of the solve: x = ṡ² = x_unit · x̃ and u = s̈ = u_unit · ũ, both powers of two, so a row
 /// a x + b u <= c is read, exactly, as (a x_unit) x̃ + (b u_unit) ũ <= c. The discretised problem (eq. 25-27)
@@ -23,6 +27,7 @@ inline constexpr double kInfinityCap = 1e15;
 /// made a velocity-limited path of length 1e-9 UNBOUNDED). u_unit = x_unit / s_unit, s = s_unit · s̃.
 struct Scale {
   double x_unit = 1.0, u_unit = 1.0, s_unit = 1.0;
+  double cap = kInfinityCap;  // box sides standing in for "no limit" on x̃ and ũ
 };
 
 /// Units for a problem: s_unit ~ the path's parameter length, x_unit ~ the median over (at most 65) grid
@@ -31,7 +36,7 @@ struct Scale {
 Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>& constraints);
 
 struct PointSet {
-  double x_lo = 0.0, x_hi = kInfinityCap;  // x_hi = kInfinityCap when nothing bounds x alone
+  double x_lo = 0.0, x_hi = kInfinityCap;  // x_hi = Scale::cap when nothing bounds x alone
   int x_lo_id = -1, x_hi_id = -1;          // row ids giving the bounds (-1: ṡ² >= 0 / none)
   std::vector<Line> rows;                  // supporting half-planes with b != 0, (a, b) of unit norm
   bool empty = false;
@@ -57,7 +62,7 @@ struct GridSets {
 GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints,
                          const Scale& scale = {});
 
-/// One grid point's set; `polygon` is left holding its polygon (cut at kInfinityCap).
+/// One grid point's set; `polygon` is left holding its polygon (cut at kInfinityCap, unscaled).
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon);
 /// Same, with a caller-owned scratch vector (no allocation per grid point in a loop) and optionally the
 /// neighbouring point's supporting rows, which are clipped first (same result, less work). With

@@ -21,6 +21,7 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
   Chain ch;
   const Eigen::Index n_pts = s.size(), n = n_pts - 1;
   ch.ds = (s.tail(n) - s.head(n)) / scale.s_unit;  // a power of two: exact
+  ch.cap = scale.cap;
   ch.x_lo.resize(n_pts);
   ch.x_hi.resize(n_pts);
   ch.x_lo_id.resize(static_cast<size_t>(n_pts));
@@ -91,8 +92,9 @@ double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
 
 namespace {
 
-// Range of y on the polygon's slice at x (x clamped into the polygon's x-range).
-void slice(const Vertex* v, size_t m, double x, double& y_lo, double& y_hi) {
+// Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through
+// v[i - 1] and v[i].
+void slice(const Vertex* v, const Line* e, size_t m, double x, double& y_lo, double& y_hi) {
   double x_min = v[0].x, x_max = v[0].x;
   for (size_t i = 1; i < m; ++i) {
     x_min = std::min(x_min, v[i].x);
@@ -100,21 +102,35 @@ void slice(const Vertex* v, size_t m, double x, double& y_lo, double& y_hi) {
   }
   x = std::clamp(x, x_min, x_max);
   // An edge whose ends differ in x by rounding only is vertical: at such x the whole edge is the slice.
-  // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.)
-  const double tol = 1e-12 * std::max({std::abs(x_min), std::abs(x_max), 1e-300});
+  // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.) Rounding is relative to
+  // each vertex, not to the polygon: an edge from ṡ² = 17 to 8e12 does not reach x = 12 (a tolerance of
+  // 1e-12 of the polygon's extent said it did, and the slice's top jumped to 17, s̈ 100x its limit).
   y_lo = std::numeric_limits<double>::infinity();
   y_hi = -y_lo;
   for (size_t i = 0; i < m; ++i) {
     const Vertex& p = v[i];
     const Vertex& q = v[(i + 1) % m];
-    if (x < std::min(p.x, q.x) - tol || x > std::max(p.x, q.x) + tol) continue;  // the edge does not reach x
-    if (std::abs(q.x - p.x) <= tol) {
+    const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x);
+    if (x < x0 - 1e-12 * std::abs(x0) || x > x1 + 1e-12 * std::abs(x1)) continue;  // the edge does not reach x
+    if (x1 - x0 <= 1e-12 * std::max({std::abs(x0), std::abs(x1), 1e-300})) {
       y_lo = std::min({y_lo, p.y, q.y});
       y_hi = std::max({y_hi, p.y, q.y});
       continue;
     }
-    const double t = std::clamp((x - p.x) / (q.x - p.x), 0.0, 1.0);
-    const double y = std::clamp(p.y + t * (q.y - p.y), std::min(p.y, q.y), std::max(p.y, q.y));
+    // Interpolating between the vertices errs by rounding relative to the vertices, the edge's own line
+    // (y = (c - a x) / b) by rounding relative to its terms at x: the backward pass keeps speeds that
+    // only the start makes unreachable, so an edge may run from ṡ² ~ 1e-2 to 1e13 (limits over many
+    // decades), and interpolated at 1e-2 its y was off by 1e13 · 1e-16, s̈ 20x its limit. The smaller
+    // error wins; a near-vertical edge (b ~ 0, small p'_j) is still interpolated.
+    const Line& l = e[(i + 1) % m];
+    double y;
+    if (std::abs(l.b) * std::max(std::abs(p.y), std::abs(q.y)) > std::abs(l.c) + std::abs(l.a * x)) {
+      y = (l.c - l.a * x) / l.b;
+    } else {
+      const double t = std::clamp((x - p.x) / (q.x - p.x), 0.0, 1.0);
+      y = p.y + t * (q.y - p.y);
+    }
+    y = std::clamp(y, std::min(p.y, q.y), std::max(p.y, q.y));
     y_lo = std::min(y_lo, y);
     y_hi = std::max(y_hi, y);
   }
@@ -148,7 +164,7 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
   for (Eigen::Index k = 0; k < n; ++k) {
     const size_t o = reach.start[static_cast<size_t>(k)], m = reach.size[static_cast<size_t>(k)];
     double lo, hi;
-    slice(reach.vertices.data() + o, m, theta[k], lo, hi);
+    slice(reach.vertices.data() + o, reach.edges.data() + o, m, theta[k], lo, hi);
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
@@ -166,7 +182,8 @@ Eigen::VectorXd unstopped_profile(const Reachability& reach, double theta_begin)
   mid[0] = theta_begin;
   for (Eigen::Index k = 0; k < n; ++k) {
     double lo, hi;
-    slice(reach.vertices.data() + reach.start[static_cast<size_t>(k)], reach.size[static_cast<size_t>(k)], mid[k], lo, hi);
+    const size_t o = reach.start[static_cast<size_t>(k)];
+    slice(reach.vertices.data() + o, reach.edges.data() + o, reach.size[static_cast<size_t>(k)], mid[k], lo, hi);
     mid[k + 1] = 0.5 * (lo + hi);
   }
   mid[n] = reach.theta[n];
@@ -196,6 +213,8 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
   // Polygons are stored as they come (interval N-1 first).
   out.vertices.clear();
   out.vertices.reserve(static_cast<size_t>(n) * 6);
+  out.edges.clear();
+  out.edges.reserve(static_cast<size_t>(n) * 6);
   out.start.resize(static_cast<size_t>(n));
   out.size.resize(static_cast<size_t>(n));
   for (Eigen::Index k = n - 1; k >= 0; --k) {
@@ -210,11 +229,12 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     out.start[static_cast<size_t>(k)] = out.vertices.size();
     out.size[static_cast<size_t>(k)] = poly.vertices().size();
     out.vertices.insert(out.vertices.end(), poly.vertices().begin(), poly.vertices().end());
+    out.edges.insert(out.edges.end(), poly.edges().begin(), poly.edges().end());
     out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
     out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
     // θ_0 is the given start speed, so an unbounded K_0 (e.g. p'(s_0) = 0 with velocity limits only)
     // bounds nothing that is free; elsewhere it means the speed has no limit there.
-    if (k > 0 && out.k_hi[k] >= kInfinityCap * (1 - 1e-9)) {
+    if (k > 0 && out.k_hi[k] >= chain.cap * (1 - 1e-9)) {
       out.outcome = Reachability::Outcome::Unbounded;
       out.failed_index = k;
       out.reason = "nothing bounds the speed here";
@@ -282,6 +302,8 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
   for (Reachability* o : outs) {
     o->vertices.clear();
     o->vertices.reserve(static_cast<size_t>(n) * 6);
+    o->edges.clear();
+    o->edges.reserve(static_cast<size_t>(n) * 6);
     o->start.resize(static_cast<size_t>(n));
     o->size.resize(static_cast<size_t>(n));
   }
@@ -303,9 +325,10 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
       o.start[static_cast<size_t>(k)] = o.vertices.size();
       o.size[static_cast<size_t>(k)] = p.vertices().size();
       o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());
+      o.edges.insert(o.edges.end(), p.edges().begin(), p.edges().end());
       outs[i]->k_lo[k] = p.vertices()[static_cast<size_t>(p.argmin_x())].x;
       outs[i]->k_hi[k] = p.vertices()[static_cast<size_t>(p.argmax_x())].x;
-      if (k > 0 && outs[i]->k_hi[k] >= kInfinityCap * (1 - 1e-9)) return false;  // K_0: θ_0 is given
+      if (k > 0 && outs[i]->k_hi[k] >= chain.cap * (1 - 1e-9)) return false;  // K_0: θ_0 is given
     }
   }
   for (int i = 0; i < 2; ++i) {

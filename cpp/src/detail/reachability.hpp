@@ -37,6 +37,7 @@ struct Chain {
     return {row_data.data() + o, row_offset[static_cast<std::size_t>(k) + 1] - o};
   }
   Eigen::VectorXd x_lo, x_hi;                  // per grid point bounds on θ_k
+  double cap = kInfinityCap;                   // the box standing in for "no limit" (Scale::cap)
   std::vector<int> x_lo_id, x_hi_id;
   /// True if no row has α > 0 and β > 0: then the feasible set of θ is closed under the componentwise
   /// max (for α, β of opposite signs or either <= 0, max(θ, θ') satisfies every row that θ and θ' do),
@@ -68,6 +69,7 @@ struct Reachability {
   // Interval k's polygon in (θ_k, θ_{k+1}) with θ_{k+1} ∈ K_{k+1}: vertices [start[k], start[k] + size[k])
   // (stored in the order the backward pass builds them, interval N-1 first).
   std::vector<Vertex> vertices;
+  std::vector<Line> edges;     // edges[start[k] + j] runs from vertex j - 1 to vertex j (Polygon2d's order)
   std::vector<size_t> start, size;
   Eigen::VectorXd theta;       // greedy forward profile (when feasible)
   Eigen::Index failed_index = -1;
