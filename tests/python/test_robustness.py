@@ -315,7 +315,7 @@ def test_cli_reports_bad_values_in_one_line_naming_the_option(tmp_path, capsys):
     assert "No such file" in capsys.readouterr().err
 
 
-# ---- silent wrong results in the solver's numerics (xfail until the solver-numerics fixes land) ----
+# ---- silent wrong results in the solver's numerics (issue 10) ----
 
 def solve_and_check(w, vmax, amax, N):
     """Solve in a child; re-check |q̇| <= vmax, |q̈| <= amax at every grid point with scipy's spline."""
@@ -337,19 +337,17 @@ def solve_and_check(w, vmax, amax, N):
     return status, viol, T
 
 
-@pytest.mark.xfail(strict=True, reason="rows normalised with absolute thresholds lose the acceleration rows at 1e200 "
-                                       "(solver numerics, after the solver rewrite of issue 8)")
 def test_coordinates_at_1e200_time_like_unit_coordinates():
     w = np.random.default_rng(0).uniform(-1, 1, (6, 2))
     ref = solve_and_check(w, np.ones(2), np.ones(2), 200)
     big = solve_and_check(1e200 * w, 1e200 * np.ones(2), 1e200 * np.ones(2), 200)
     assert ref[0] == "OPTIMAL" and ref[1] <= 1e-9
-    # measured: OPTIMAL, T = 4.73 instead of 8.20, limits exceeded 4.3e3-fold
+    # before issue 10: OPTIMAL, T = 4.73 instead of 8.20, limits exceeded 4.3e3-fold (a² + b² overflowed)
     assert big[0] == "OPTIMAL" and big[1] <= 1e-9 and big[2] == pytest.approx(ref[2], rel=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="fine-grid drift: violations grow ~N^2 (2.3e-8 at N = 2e5, 5.9e-7 at 1e6) "
-                                       "while the status says OPTIMAL (solver numerics, after issue 8)")
+# Before issue 10: violations grew ~N^2 (2.3e-8 at N = 2e5, 5.9e-7 at 1e6) while OPTIMAL: θ_{k+1} was
+# interpolated between the vertices of a polygon whose far vertices are at the top of K_{k+1}.
 def test_a_million_intervals_still_meet_the_limits():
     w = np.random.default_rng(0).uniform(-1, 1, (6, 1))
     status, viol, _ = solve_and_check(w, np.ones(1), np.ones(1), 1_000_000)
