@@ -26,7 +26,7 @@ Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>&
   const double length = s[n_pts - 1] - s[0];
   if (!(length > 0.0)) return sc;
   sc.s_unit = 1.0 / inverse_power_of_two(length);
-  const Eigen::Index samples = std::min<Eigen::Index>(n_pts, 65);
+  const Eigen::Index samples = std::min<Eigen::Index>(n_pts, 33);
   std::vector<double> est;
   est.reserve(static_cast<size_t>(samples));
   for (Eigen::Index i = 0; i < samples; ++i) {
@@ -36,8 +36,8 @@ Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>&
       for (Eigen::Index j = 0; j < cr.rows(); ++j) {
         const double a = std::abs(cr.a(k, j)), b = std::abs(cr.b(k, j)), c = cr.c(k, j);
         if (!(c > 0.0) || c == std::numeric_limits<double>::infinity()) continue;  // no scale (or inactive)
-        if (a > 0.0) e = std::min(e, c / a);
-        if (b > 0.0) e = std::min(e, 2.0 * length * (c / b));
+        if (a * e > c) e = c / a;  // a division only when the estimate shrinks
+        if (b * e > 2.0 * length * c) e = 2.0 * length * (c / b);
       }
     if (e > 0.0 && std::isfinite(e)) est.push_back(e);
   }
@@ -74,8 +74,10 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
         }
         continue;
       }
-      // Normalised to unit norm below, only if it supports the polygon; by a power of two here (exact).
-      lines.push_back(power_of_two_normalised({a, b, c, id}));
+      // Normalised to unit norm below, only if it supports the polygon. Coefficients beyond 1e±100 (the
+      // products of Cramer's rule overflow at 1e154) are first brought to ~1 by a power of two (exact).
+      const double m = std::max(std::abs(a), std::abs(b));
+      lines.push_back(m > 1e-100 && m < 1e100 ? Line{a, b, c, id} : power_of_two_normalised({a, b, c, id}));
     }
     offset += static_cast<int>(cr.rows());
   }

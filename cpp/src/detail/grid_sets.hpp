@@ -30,7 +30,7 @@ struct Scale {
   double cap = kInfinityCap;  // box sides standing in for "no limit" on x̃ and ũ
 };
 
-/// Units for a problem: s_unit ~ the path's parameter length, x_unit ~ the median over (at most 65) grid
+/// Units for a problem: s_unit ~ the path's parameter length, x_unit ~ the median over (at most 33) grid
 /// points of the smallest ṡ² the rows there allow with s̈ = 0 (c/a) or reach by accelerating along the path
 /// at the s̈ they allow at ṡ² = 0 (2 L c / b). O(rows) on those points, homogeneous in the problem.
 Scale problem_scale(const Eigen::VectorXd& s, const std::vector<ConstraintRows>& constraints);

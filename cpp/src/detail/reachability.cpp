@@ -136,6 +136,14 @@ void slice(const Vertex* v, const Line* e, size_t m, double x, double& y_lo, dou
   }
 }
 
+// The slice of interval k's stored polygon (its own copy, or the relaxed analysis's when they are equal).
+void slice(const Reachability& reach, Eigen::Index k, double x, double& y_lo, double& y_hi) {
+  const size_t i = static_cast<size_t>(k);
+  const Reachability& src = reach.base && reach.in_base[i] ? *reach.base : reach;
+  const size_t o = src.start[i];
+  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], x, y_lo, y_hi);
+}
+
 void clip_rows(Polygon2d& poly, View<Line> rows) {
   for (const Line& r : rows) {
     poly.clip(r);
@@ -162,9 +170,8 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
   Eigen::VectorXd theta(n + 1);
   theta[0] = theta_begin;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const size_t o = reach.start[static_cast<size_t>(k)], m = reach.size[static_cast<size_t>(k)];
     double lo, hi;
-    slice(reach.vertices.data() + o, reach.edges.data() + o, m, theta[k], lo, hi);
+    slice(reach, k, theta[k], lo, hi);
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
@@ -182,8 +189,7 @@ Eigen::VectorXd unstopped_profile(const Reachability& reach, double theta_begin)
   mid[0] = theta_begin;
   for (Eigen::Index k = 0; k < n; ++k) {
     double lo, hi;
-    const size_t o = reach.start[static_cast<size_t>(k)];
-    slice(reach.vertices.data() + o, reach.edges.data() + o, reach.size[static_cast<size_t>(k)], mid[k], lo, hi);
+    slice(reach, k, mid[k], lo, hi);
     mid[k + 1] = 0.5 * (lo + hi);
   }
   mid[n] = reach.theta[n];
@@ -307,21 +313,32 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     o->start.resize(static_cast<size_t>(n));
     o->size.resize(static_cast<size_t>(n));
   }
+  relaxed.base = nullptr;
+  full.base = &relaxed;
+  full.in_base.assign(static_cast<size_t>(n), 0);
   for (Eigen::Index k = n - 1; k >= 0; --k) {
     interval_polygon(pr, chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1], chain.relaxed_rows(k));
     if (pr.empty()) return false;
     // K_full ⊆ K_relaxed, so the full polygon is the relaxed one cut to θ_{k+1} ∈ K_full,k+1 and by
     // the coupling rows: one clipping pass serves both analyses.
     pf.assign(pr);
-    if (full.k_hi[k + 1] < relaxed.k_hi[k + 1]) pf.clip({0.0, 1.0, full.k_hi[k + 1], kBoxYHigh});
-    if (full.k_lo[k + 1] > relaxed.k_lo[k + 1] && !pf.empty()) pf.clip({0.0, -1.0, -full.k_lo[k + 1], kBoxYLow});
+    bool cut = false;
+    if (full.k_hi[k + 1] < relaxed.k_hi[k + 1]) cut |= pf.clip({0.0, 1.0, full.k_hi[k + 1], kBoxYHigh});
+    if (full.k_lo[k + 1] > relaxed.k_lo[k + 1] && !pf.empty()) cut |= pf.clip({0.0, -1.0, -full.k_lo[k + 1], kBoxYLow});
     for (const Line& r : chain.coupled_rows(k))
-      if (!pf.empty()) pf.clip(r);
+      if (!pf.empty()) cut |= pf.clip(r);
     if (pf.empty()) return false;
+    // Usually nothing cut: the full analysis reads the relaxed one's copy of the polygon.
+    full.in_base[static_cast<size_t>(k)] = !cut;
     const Polygon2d* polys[2] = {&pr, &pf};
     for (int i = 0; i < 2; ++i) {
       const Polygon2d& p = *polys[i];
       Reachability& o = *outs[i];
+      if (i == 1 && !cut) {
+        o.k_lo[k] = relaxed.k_lo[k];
+        o.k_hi[k] = relaxed.k_hi[k];
+        continue;
+      }
       o.start[static_cast<size_t>(k)] = o.vertices.size();
       o.size[static_cast<size_t>(k)] = p.vertices().size();
       o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());

@@ -71,6 +71,10 @@ struct Reachability {
   std::vector<Vertex> vertices;
   std::vector<Line> edges;     // edges[start[k] + j] runs from vertex j - 1 to vertex j (Polygon2d's order)
   std::vector<size_t> start, size;
+  // reachability_pair: where the full analysis's polygon equals the relaxed one's (in_base[k]), it is
+  // read from `base` (the relaxed analysis, which must outlive this one) instead of stored twice.
+  const Reachability* base = nullptr;
+  std::vector<char> in_base;
   Eigen::VectorXd theta;       // greedy forward profile (when feasible)
   Eigen::Index failed_index = -1;
   std::vector<int> binding;    // row ids (labels) that bind where it fails
@@ -86,7 +90,8 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
 /// the optimum of the full problem) and the full analysis together. Their backward passes usually meet the
 /// same box (K_{k+1} alike) and then share the polygon of the rows both have, the full one adding only
 /// the coupling rows, which rarely cut. Returns false, with nothing reliable in the outputs, if either
-/// analysis does not end feasible: call reachability() for the report then.
+/// analysis does not end feasible: call reachability() for the report then. `full` reads polygons from
+/// `relaxed` afterwards (Reachability::base): keep `relaxed` alive as long as `full` is used.
 bool reachability_pair(const Chain& chain, double theta_begin, double theta_end, Reachability& relaxed,
                        Reachability& full);
 
