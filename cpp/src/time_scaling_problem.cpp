@@ -466,8 +466,19 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     theta = out.theta;
     const double T = detail::duration(chain.ds, theta);
     res.stats.gap = out.lower > 0.0 ? std::max(0.0, T - out.lower) / out.lower : std::numeric_limits<double>::infinity();
-    const std::string bound = "the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
-                              " (relative, certified)";
+    // The repair (forward_pass) returns a profile that meets every row to rounding; checked, not assumed,
+    // before a message calls it feasible.
+    const double violation = detail::chain_violation(chain, theta);
+    const std::string bound =
+        violation <= 1e-9 ? "the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
+                                " (relative, certified)"
+                          : "the timing returned is NOT feasible: it breaks a constraint by " + detail::fmt(violation) +
+                                " (relative); T exceeds the optimum by at most " + detail::fmt(res.stats.gap);
+    if (violation > 1e-9 && out.status == detail::SlpOutcome::Status::Converged && res.stats.gap <= options.tolerance) {
+      res.status = Status::NumericalError;
+      res.message = "SLP converged, but its repaired timing breaks a constraint by " + detail::fmt(violation) +
+                    " (relative)";
+    }
     switch (out.status) {
       case detail::SlpOutcome::Status::Converged:
         if (res.stats.gap > options.tolerance) {

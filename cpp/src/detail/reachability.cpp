@@ -90,6 +90,16 @@ double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   return worst;
 }
 
+double chain_violation(const Chain& chain, const Eigen::VectorXd& theta) {
+  double worst = 0.0;
+  for (Eigen::Index k = 0; k < chain.intervals(); ++k)
+    for (const Line& r : chain.rows(k)) worst = std::max(worst, row_violation(r, theta[k], theta[k + 1]));
+  for (Eigen::Index k = 0; k < theta.size(); ++k)
+    worst = std::max({worst, (theta[k] - chain.x_hi[k]) / std::max(1.0, std::abs(chain.x_hi[k])),
+                      (chain.x_lo[k] - theta[k]) / std::max(1.0, std::abs(chain.x_lo[k]))});
+  return worst;
+}
+
 namespace {
 
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through

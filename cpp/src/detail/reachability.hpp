@@ -62,6 +62,10 @@ bool couples_positively(const Line& r);
 /// Largest violation of the positively coupling rows by θ, relative to max(1, |c|, |α θ_k|, |β θ_{k+1}|).
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta);
 
+/// Largest violation of any row of the chain or of the bounds x_lo <= θ <= x_hi by θ, each relative to
+/// max(1, |c|, |α θ_k|, |β θ_{k+1}|) (in the solve's units, where 1 is a typical ṡ²).
+double chain_violation(const Chain& chain, const Eigen::VectorXd& theta);
+
 struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
   Outcome outcome = Outcome::Feasible;
