@@ -148,7 +148,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
   }
   // t grows by μ after each centring; at the final t the centring is tightened to a Newton decrement of
   // dec_final, where the bound below is within a few per cent of n_ineq / t.
-  const double mu = 10.0;
+  const double mu = 30.0;
   const double dec_final = 1e-8;
   const double t_final = n_ineq / (0.5 * abs_target);
   int since_update = 0;
@@ -216,7 +216,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
     }
     const double dec2 = -g.dot(d);
     if (!(dec2 >= 0.0) || !std::isfinite(dec2)) return out;
-    const bool final_t = n_ineq / t <= 0.5 * abs_target;
+    const bool final_t = t >= t_final;  // (not n_ineq / t <= ...: t = t_final must count, after rounding)
     if (!(final_t && dec2 <= dec_final)) {
       // Largest step that keeps every slack positive, then a line search on φ' (below).
       double amax = kInf;
