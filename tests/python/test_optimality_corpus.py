@@ -159,6 +159,25 @@ def test_long_random_walks_solved_by_the_barrier_window_solver(i, robots):
     assert res.duration == pytest.approx(slp.duration, rel=2e-7)
 
 
+def test_the_bench_random_walk_is_certified_by_newton_steps_alone(robots):
+    """bench/sweep.py's 400-waypoint walk at N = 1000 (1.4 s and ITERATION_LIMIT by SLP alone): one window over
+    the grid, certified by the barrier solver with no LP, in a bounded number of Newton steps (it crawled for
+    its whole budget when started 1e-4 from the boundary); optimal to HiGHS's Frank-Wolfe certificate."""
+    ours, _ = robots["panda"]
+    v = ours.velocity_limits
+    path = pp.CubicSplinePath(random_walk(ours, np.random.default_rng(0), 400), knots="uniform",
+                              boundary="not-a-knot")
+    prob = pp.TimeScalingProblem(path, grid=1000)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-2 * v, 2 * v)
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL and res.stats["gap"] <= 1e-7
+    assert res.stats["lp_solves"] == 0 and 0 < res.stats["newton_steps"] <= 150
+    A, B, C = kinematic_rows(path.dq(prob.grid), path.ddq(prob.grid), -v, v, -2 * v, 2 * v)
+    assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
+    assert frank_wolfe_gap(prob.grid, res.sdot**2, A, B, C) <= 1e-6 * res.duration
+
+
 def test_time_limit_ends_with_a_feasible_timing_and_its_certified_gap(robots):
     ours, _ = robots["panda"]
     lo, hi = ours.position_limits

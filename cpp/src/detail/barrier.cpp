@@ -108,8 +108,11 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
 
   // A strictly feasible start between the feasible `start` and lo: every row satisfied at `start` and at
   // lo (the rest state, or a slower one) is satisfied strictly in between, unless it is tight at both.
+  // 1 % of the way in, not less: from slacks of 1e-4 of the tight rows the damped Newton steps of the first
+  // centring crawl along the boundary (a 1600-waypoint walk at N = 10000: no centre in 300 steps at 1e-4,
+  // 58 steps in all at 1e-2).
   bool found = false;
-  for (double lambda : {1.0 - 1e-4, 1.0 - 1e-2, 0.9, 0.5}) {
+  for (double lambda : {1.0 - 1e-2, 0.9, 0.5}) {
     for (Eigen::Index j = 0; j <= m; ++j) {
       if (!p.free[static_cast<size_t>(j)]) continue;
       double v = p.lo[j] + lambda * (start[j] - p.lo[j]);
