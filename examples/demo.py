@@ -21,8 +21,14 @@ lo, hi, vmax = limits["lower"], limits["upper"], limits["velocity"]
 amax = 2.0 * vmax
 
 rng = np.random.default_rng(0)
-waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (5, 7))
+# Waypoints in the middle 60 % of each joint's range: the spline between them overshoots the waypoints, and a
+# path must stay inside the position limits (time scaling cannot fix a path that leaves them).
+waypoints = lo + (hi - lo) * rng.uniform(0.2, 0.8, (5, 7))
 path = pp.CubicSplinePath(waypoints)
+q_dense = path.q(np.linspace(0.0, 1.0, 10001))
+margin = np.min(np.minimum(q_dense - lo, hi - q_dense) / (hi - lo))
+assert margin > 0, "the path leaves the joint position limits"
+print(f"Path inside the joint position limits (closest: {100 * margin:.1f} % of a joint's range from a limit)")
 
 prob = pp.TimeScalingProblem(path, grid=1000)
 prob.add_velocity_limits(-vmax, vmax)
@@ -39,6 +45,14 @@ t = np.linspace(0.0, traj.duration, 20001)
 qd, qdd = traj.qd(t), traj.qdd(t)
 print(f"  peak |qd|/vmax = {np.max(np.abs(qd) / vmax):.6f}, peak |qdd|/amax = {np.max(np.abs(qdd) / amax):.6f} "
       "(dense resampling; between grid points s̈ is constant, so q̈ may exceed a limit by O(Δs))")
+# Limits at every instant, not only at the grid points: guarantee="continuous" bounds p'(s), p''(s) over each
+# interval (Bernstein bounds of the spline pieces), for a slightly longer T.
+cont = prob.solve(guarantee="continuous")
+tc = cont.trajectory()
+t = np.linspace(0.0, tc.duration, 20001)
+print(f"  guarantee='continuous': {cont.status.name}, T = {cont.duration:.4f} s "
+      f"(+{100 * (cont.duration / res.duration - 1):.3f} %), peak |qd|/vmax = {np.max(np.abs(tc.qd(t)) / vmax):.6f}, "
+      f"peak |qdd|/amax = {np.max(np.abs(tc.qdd(t)) / amax):.6f}")
 out = Path(__file__).parent / "output"
 out.mkdir(exist_ok=True)
 save_trajectory_csv(traj, out / "panda_trajectory.csv", dt=0.01, joint_names=joints)

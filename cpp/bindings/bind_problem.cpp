@@ -114,7 +114,8 @@ py::dict stats_dict(const SolverStats& s) {
                   "time_slp"_a = s.time_slp, "audit_rounds"_a = s.audit_rounds, "audit_cuts"_a = s.audit_cuts,
                   "audit_worst"_a = s.audit_worst, "windows"_a = s.windows, "window_points"_a = s.window_points,
                   "time_constraints"_a = s.time_constraints, "time_projection"_a = s.time_projection,
-                  "projection_lp_solves"_a = s.projection_lp_solves, "inexact_points"_a = s.inexact_points);
+                  "projection_lp_solves"_a = s.projection_lp_solves, "inexact_points"_a = s.inexact_points,
+                  "newton_steps"_a = s.newton_steps);
 }
 
 }  // namespace
@@ -337,7 +338,7 @@ void bind_problem(py::module_& m) {
                             py::make_tuple(st.slp_iterations, st.lp_solves, st.greatest_element, st.gap, st.average_halfplanes,
                                            st.time_constraints, st.time_feasible_sets, st.time_reachability, st.time_slp,
                                            st.audit_rounds, st.audit_cuts, st.audit_worst, st.windows, st.window_points,
-                                           st.time_projection, st.projection_lp_solves, st.inexact_points),
+                                           st.time_projection, st.projection_lp_solves, st.inexact_points, st.newton_steps),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
                             std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding);
                       },
@@ -356,7 +357,7 @@ void bind_problem(py::module_& m) {
                         r.infeasibility.s = inf[1].cast<double>();
                         r.infeasibility.constraints = inf[2].cast<std::vector<std::string>>();
                         const py::tuple st = t[8].cast<py::tuple>();
-                        check_state(st, 17, "Result stats");
+                        check_state(st, 18, "Result stats");
                         r.stats.slp_iterations = st[0].cast<int>();
                         r.stats.lp_solves = st[1].cast<int>();
                         r.stats.greatest_element = st[2].cast<bool>();
@@ -374,6 +375,7 @@ void bind_problem(py::module_& m) {
                         r.stats.time_projection = st[14].cast<double>();
                         r.stats.projection_lp_solves = st[15].cast<int>();
                         r.stats.inexact_points = st[16].cast<int>();
+                        r.stats.newton_steps = st[17].cast<int>();
                         r.path = optional_ptr<Path>(t[9]);
                         r.robot = optional_ptr<RobotModel>(t[10]);
                         r.contacts = optional_ptr<ContactConstraint>(t[11]);

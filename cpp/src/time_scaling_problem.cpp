@@ -463,6 +463,7 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     res.stats.lp_solves = out.lp_solves;
     res.stats.windows = out.windows;
     res.stats.window_points = static_cast<int>(out.window_points);
+    res.stats.newton_steps = out.newton_steps;
     theta = out.theta;
     const double T = detail::duration(chain.ds, theta);
     res.stats.gap = out.lower > 0.0 ? std::max(0.0, T - out.lower) / out.lower : std::numeric_limits<double>::infinity();

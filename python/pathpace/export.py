@@ -19,7 +19,7 @@ def _duration(t: float) -> dict[str, int]:
     return {"sec": ns // 1_000_000_000, "nanosec": ns % 1_000_000_000}
 
 
-def resample(traj: Trajectory, dt: float | None = None, spline: bool = True) -> dict[str, np.ndarray]:
+def resample(traj: Trajectory, dt: float | None = None, spline: bool = False) -> dict[str, np.ndarray]:
     """Samples of the trajectory at a controller rate.
 
     Parameters
@@ -29,9 +29,11 @@ def resample(traj: Trajectory, dt: float | None = None, spline: bool = True) -> 
         Sample period in s (e.g. 0.001 for a 1 kHz controller); the duration T is appended when it is
         not a multiple of dt. None: the solver's grid times.
     spline : bool
-        True (default): from ``traj.time_spline()``, the C² cubic spline in t through the grid (continuous
-        q̈, as controllers that interpolate between points expect). False: the exact timing (q̈ jumps at
-        grid points).
+        False (default): the exact timing, sampled (q̈ jumps at grid points, between samples): every sample
+        meets the limits the problem was solved under (at every instant with ``guarantee="continuous"``).
+        True: from ``traj.time_spline()``, the C² cubic spline in t through the grid (continuous q̈), which
+        rings where the exact q̈ jumps: up to 1.26x the acceleration limits (measured, any N); solve with
+        acceleration limits x 0.75 if the spline is what the robot executes.
 
     Returns
     -------
@@ -51,7 +53,7 @@ def to_joint_trajectory(
     dt: float | None = None,
     joint_names: Sequence[str] | None = None,
     robot: RobotModel | None = None,
-    spline: bool = True,
+    spline: bool = False,
 ) -> dict[str, Any]:
     """The trajectory as a ``trajectory_msgs/JointTrajectory``-shaped dict, ready for ``json.dumps``.
 

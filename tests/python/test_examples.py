@@ -9,9 +9,16 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def test_demo_solves_the_panda_path_and_reports_the_locked_joint(capsys):
-    runpy.run_path(str(EXAMPLES / "demo.py"), run_name="__main__")
+    ns = runpy.run_path(str(EXAMPLES / "demo.py"), run_name="__main__")
     out = capsys.readouterr().out
     assert "N = 1000: OPTIMAL" in out
+    assert ns["margin"] > 0  # the path stays inside the position limits
+    # guarantee="continuous": the limits hold at every instant (1 kHz and denser), for a longer T.
+    import numpy as np
+    tc, vmax, amax = ns["tc"], ns["vmax"], ns["amax"]
+    t = np.arange(0.0, tc.duration, 1e-3)
+    assert np.max(np.abs(tc.qd(t)) / vmax) <= 1 + 1e-9 and np.max(np.abs(tc.qdd(t)) / amax) <= 1 + 1e-9
+    assert ns["cont"].duration >= ns["res"].duration
     assert "INFEASIBLE" in out and "binding: velocity panda_joint4" in out
     # A zero limit cannot be scaled into a nonzero one: no relaxation of velocity limits explains it.
     assert "feasible with velocity limits" not in out

@@ -89,8 +89,22 @@ def test_to_joint_trajectory_is_a_json_ready_joint_trajectory():
     assert len(fast["points"]) == len(traj.sample_times(0.001))
     last = fast["points"][-1]["time_from_start"]
     assert last["sec"] + 1e-9 * last["nanosec"] == pytest.approx(traj.duration, abs=1e-9)
-    exact = traj.resample(0.01, spline=False)
+    exact = traj.resample(0.01)  # the default: the exact timing, not the spline
     np.testing.assert_array_equal(exact["qdd"], traj.qdd(exact["t"]))
+    smooth = traj.resample(0.01, spline=True)
+    np.testing.assert_array_equal(smooth["qdd"], traj.time_spline().ddq(smooth["t"]))
+
+
+def test_default_export_meets_the_limits_the_spline_does_not():
+    """The exported samples (default) are the exact timing: within the limits at every sample with
+    guarantee="continuous"; the spline export rings past the acceleration limits (see above)."""
+    res = random_problem(3, 300).solve(guarantee="continuous")
+    msg = res.trajectory().to_joint_trajectory(dt=0.001)
+    qd = np.array([p["velocities"] for p in msg["points"]])
+    qdd = np.array([p["accelerations"] for p in msg["points"]])
+    assert (np.abs(qd) / VMAX).max() <= 1 + 1e-9 and (np.abs(qdd) / AMAX).max() <= 1 + 1e-9
+    ring = res.trajectory().to_joint_trajectory(dt=0.001, spline=True)
+    assert (np.abs([p["accelerations"] for p in ring["points"]]) / AMAX).max() > 1.01
 
 
 def test_to_joint_trajectory_names_and_validation():

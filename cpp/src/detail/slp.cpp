@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "detail/barrier.hpp"
 #include "detail/glpk_lp.hpp"
 
 namespace pathpace::detail {
@@ -49,6 +50,15 @@ double slope(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, const Eige
 
 namespace {
 
+// SLP iterations on a window before the barrier method takes over (see slp_window), the window size
+// (free points) from which it goes first, and its step budget. Measured on the arm corpus of bench/sweep.py,
+// windows of ~100 points are nearly always certified by the first one or two LPs (the Frank-Wolfe check at
+// the greedy profile), cheaper than ~30 Newton steps; a GLPK LP over thousands of columns costs more than
+// the whole barrier solve (random walk, N = 1000: 10 LPs 16 ms, barrier 8 ms).
+constexpr int kSlpBeforeBarrier = 2;
+constexpr int kBarrierFirstColumns = 500;
+constexpr int kBarrierSteps = 300;
+
 struct WindowResult {
   SlpOutcome::Status status = SlpOutcome::Status::Converged;
   Eigen::VectorXd theta;  // θ_a .. θ_b
@@ -56,7 +66,7 @@ struct WindowResult {
   double gap = std::numeric_limits<double>::infinity();  // Frank-Wolfe gap of theta (absolute), if computed
   // Best lower bound on the window's optimum: max over the Frank-Wolfe checks of T(θ) - gap(θ).
   double lower = -std::numeric_limits<double>::infinity();
-  int iterations = 0, lp_solves = 0;
+  int iterations = 0, lp_solves = 0, newton_steps = 0;
 };
 
 int remaining_ms(Clock::time_point deadline) {
@@ -72,7 +82,7 @@ int remaining_ms(Clock::time_point deadline) {
 // absolute gap to reach.
 WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, const Eigen::VectorXd& hi_all,
                         const Eigen::VectorXd& start, bool fix_a, bool fix_b, double rel_target,
-                        const SolverOptions& options, Clock::time_point deadline, GlpkLp& lp) {
+                        const SolverOptions& options, Clock::time_point deadline, GlpkLp& lp, bool use_barrier) {
   WindowResult out;
   const Eigen::Index m = b - a;  // intervals
   const Eigen::VectorXd ds = chain.ds.segment(a, m);
@@ -94,29 +104,11 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     out.lower = out.T;
     return out;
   }
-  lp.reset(cols);
-  // The LP is posed in y_j = θ_j / σ_j with σ_j the start's θ_j (floored), and each row divided by its size
-  // at the start: ṡ² spans orders of magnitude along a path (1e-5 near a slow point, 1 elsewhere) and
-  // GLPK's tolerances are absolute in the problem it is given, so in θ itself a row with c ~ 1e-5 could be
-  // broken by 1e-9, 1e-4 of itself, which the repair would then pay for in T.
-  const double theta_max = std::max(theta.maxCoeff(), 1e-300);
-  Eigen::VectorXd sigma = theta.cwiseMax(1e-6 * theta_max);
-  struct LpRow {
-    Eigen::Index k;  // interval (local)
-    double alpha, beta, c;
-    bool on_k, on_k1;  // coefficient on a column at point k / k+1
-    int n;             // LP coefficients (1 or 2), normalised
-    int col[2];
-    double val[2], rhs;
-  };
-  std::vector<LpRow> lp_rows;   // the rows in the LP, in its order
-  std::vector<LpRow> waiting;   // the rows not (yet) in it
-  std::vector<int> idx;
-  std::vector<double> val;
   // Only the rows that support interval k's polygon within the column bounds' box can bind in any of the
   // window's LPs (every trust region lies inside that box): typically two or three of the ~5 per interval.
   Polygon2d poly;
   std::vector<Line> local, kept;
+  std::vector<WindowRow> wrows;
   for (Eigen::Index k = 0; k < m; ++k) {
     const View<Line> all = chain.rows(a + k);
     kept.assign(all.begin(), all.end());
@@ -140,44 +132,67 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
           if (e.id >= 0) kept.push_back(all[static_cast<size_t>(e.id)]);
       }
     }
-    for (const Line& r : kept) {
-      idx.clear();
-      val.clear();
-      double rhs = r.c;
-      double size = 0.0;
-      if (k >= first && k <= last) {
-        if (r.a != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.a * sigma[k]); }
-      } else {
-        rhs -= r.a * theta[k];
-      }
-      if (k + 1 >= first && k + 1 <= last) {
-        if (r.b != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.b * sigma[k + 1]); }
-      } else {
-        rhs -= r.b * theta[k + 1];
-      }
-      if (idx.empty()) continue;  // both ends fixed: nothing to decide
-      for (double v : val) size += std::abs(v);
-      size = std::max(size, std::abs(rhs));
-      for (double& v : val) v /= size;
-      LpRow row{k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
-                k + 1 >= first && k + 1 <= last && r.b != 0.0, static_cast<int>(idx.size()), {idx[0], 0},
-                {val[0], 0.0}, rhs / size};
-      if (idx.size() > 1) {
-        row.col[1] = idx[1];
-        row.val[1] = val[1];
-      }
-      // Rows are added lazily: first those nearly tight at the start (slack within 1 % of the row's size),
-      // which the start basis and most LP vertices need; the others only once an LP solution breaks them
-      // (see solve_lp). The LP is then a relaxation until the last round, which still gives valid bounds,
-      // and its basis factorisations have a quarter of the rows.
-      const double ax = r.a * theta[k], by = r.b * theta[k + 1];
-      const double slack = (r.c - ax - by) / std::max({std::abs(r.c), std::abs(ax) + std::abs(by), 1e-300});
-      if (slack <= 1e-2) {
-        lp.add_row_upper(idx, val, row.rhs);
-        lp_rows.push_back(row);
-      } else {
-        waiting.push_back(row);
-      }
+    for (const Line& r : kept) wrows.push_back({k, r.a, r.b, r.c});
+  }
+
+  lp.reset(cols);
+  // The LP is posed in y_j = θ_j / σ_j with σ_j the start's θ_j (floored), and each row divided by its size
+  // at the start: ṡ² spans orders of magnitude along a path (1e-5 near a slow point, 1 elsewhere) and
+  // GLPK's tolerances are absolute in the problem it is given, so in θ itself a row with c ~ 1e-5 could be
+  // broken by 1e-9, 1e-4 of itself, which the repair would then pay for in T.
+  const double theta_max = std::max(theta.maxCoeff(), 1e-300);
+  Eigen::VectorXd sigma = theta.cwiseMax(1e-6 * theta_max);
+  struct LpRow {
+    Eigen::Index k;  // interval (local)
+    double alpha, beta, c;
+    bool on_k, on_k1;  // coefficient on a column at point k / k+1
+    int n;             // LP coefficients (1 or 2), normalised
+    int col[2];
+    double val[2], rhs;
+  };
+  std::vector<LpRow> lp_rows;   // the rows in the LP, in its order
+  std::vector<LpRow> waiting;   // the rows not (yet) in it
+  std::vector<int> idx;
+  std::vector<double> val;
+  for (const WindowRow& wr : wrows) {
+    const Eigen::Index k = wr.k;
+    const Line r{wr.alpha, wr.beta, wr.c, -1};
+    idx.clear();
+    val.clear();
+    double rhs = r.c;
+    double size = 0.0;
+    if (k >= first && k <= last) {
+      if (r.a != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.a * sigma[k]); }
+    } else {
+      rhs -= r.a * theta[k];
+    }
+    if (k + 1 >= first && k + 1 <= last) {
+      if (r.b != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.b * sigma[k + 1]); }
+    } else {
+      rhs -= r.b * theta[k + 1];
+    }
+    if (idx.empty()) continue;  // both ends fixed: nothing to decide
+    for (double v : val) size += std::abs(v);
+    size = std::max(size, std::abs(rhs));
+    for (double& v : val) v /= size;
+    LpRow row{k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
+              k + 1 >= first && k + 1 <= last && r.b != 0.0, static_cast<int>(idx.size()), {idx[0], 0},
+              {val[0], 0.0}, rhs / size};
+    if (idx.size() > 1) {
+      row.col[1] = idx[1];
+      row.val[1] = val[1];
+    }
+    // Rows are added lazily: first those nearly tight at the start (slack within 1 % of the row's size),
+    // which the start basis and most LP vertices need; the others only once an LP solution breaks them
+    // (see solve_lp). The LP is then a relaxation until the last round, which still gives valid bounds,
+    // and its basis factorisations have a quarter of the rows.
+    const double ax = r.a * theta[k], by = r.b * theta[k + 1];
+    const double slack = (r.c - ax - by) / std::max({std::abs(r.c), std::abs(ax) + std::abs(by), 1e-300});
+    if (slack <= 1e-2) {
+      lp.add_row_upper(idx, val, row.rhs);
+      lp_rows.push_back(row);
+    } else {
+      waiting.push_back(row);
     }
   }
   if (!lp.load()) {
@@ -275,6 +290,22 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   };
 
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
+    if (use_barrier && out.iterations == (cols >= kBarrierFirstColumns ? 0 : kSlpBeforeBarrier)) {
+      // The SLP has not certified the window in a few LPs: its optimum is not at a vertex of the window's
+      // set (typically a long stretch where the optimum is interior: many short path pieces), where
+      // trust-region SLP crawls. Newton's method on a log barrier (detail/barrier.hpp: O(n) per step,
+      // certified by the same kind of bound) from the current iterate; the SLP goes on only if it fails.
+      const BarrierResult br = barrier_window(ds, wrows, lo, hi, theta, rel_target * T, kBarrierSteps, deadline);
+      out.newton_steps = br.newton_steps;
+      if (br.ok && br.T <= T) {
+        out.theta = br.theta;
+        out.T = br.T;
+        out.lower = std::max(out.lower, br.lower);
+        out.gap = out.T - out.lower;
+        out.status = SlpOutcome::Status::Converged;
+        return out;
+      }
+    }
     if (Clock::now() >= deadline) {
       out.status = SlpOutcome::Status::TimeLimit;
       return out;
@@ -416,11 +447,14 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
   for (const Window& w : ws) t_windows += duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
   const double rel_target = 0.5 * options.tolerance * std::max(1.0, T_upper / std::max(t_windows, 1e-300));
   GlpkLp lp;
+  const bool use_barrier = options.method == Method::Auto;
   Eigen::VectorXd z;
   for (;;) {
     for (Window& w : ws) {
       if (w.solved) continue;
-      w.result = slp_window(chain, w.a, w.b, upper, full.theta, w.a == 0, w.b == n, rel_target, options, deadline, lp);
+      w.result = slp_window(chain, w.a, w.b, upper, full.theta, w.a == 0, w.b == n, rel_target, options, deadline, lp,
+                            use_barrier);
+      out.newton_steps += w.result.newton_steps;
       w.solved = true;
       out.iterations += w.result.iterations;
       out.lp_solves += w.result.lp_solves;

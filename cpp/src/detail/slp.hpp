@@ -34,6 +34,7 @@ struct SlpOutcome {
   double lower = 0.0;     // certified lower bound on T*
   int iterations = 0;     // SLP iterations, all windows
   int lp_solves = 0;
+  int newton_steps = 0;   // barrier Newton steps, all windows (detail/barrier.hpp)
   int windows = 0;        // windows in the final cover
   Eigen::Index window_points = 0;  // grid points in the final cover
   int widenings = 0;      // rounds in which a window whose optimum pressed an edge was widened
