@@ -82,7 +82,10 @@ class Result {
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any
-  std::shared_ptr<const ContactConstraint> contacts;  ///< the problem's contact constraint, if any
+  std::shared_ptr<const ContactConstraint> contacts;  ///< the problem's contact constraint, if any (the last one)
+  /// Every contact constraint of the problem when it has several (the phases of add_contact_phases, in
+  /// order of s); empty otherwise. Trajectory::contact_forces uses the phase at each time.
+  std::vector<std::shared_ptr<const ContactConstraint>> contact_phases;
 
   /// True for Optimal (and for IterationLimit and TimeLimit, whose timing is feasible).
   bool ok() const {
