@@ -19,7 +19,10 @@ a 10 N minimum normal force per point (sec. V.D), one contact set per phase
 (TimeScalingProblem.add_contact_phases). The timing is audited between the grid points: the
 force-distribution LP with each phase's true cone (no margins) at ten times the grid density.
 
-    .venv/bin/python examples/humanoid_steps.py [--grid 100] [--step 0.1] [--lift 0.03]
+With --rise h both steps go up onto a platform h high (the swing foot lands h higher; the same contacts,
+flat on the platform): a step-up.
+
+    .venv/bin/python examples/humanoid_steps.py [--grid 100] [--step 0.1] [--lift 0.03] [--rise 0.05]
 """
 
 from __future__ import annotations
@@ -46,8 +49,9 @@ def smooth(u: np.ndarray | float) -> np.ndarray | float:
     return u ** 3 * (10 - 15 * u + 6 * u ** 2)
 
 
-def step_plan(robot: pp.RobotModel, q0: np.ndarray, step: float, lift: float, shift: float):
-    """Functions of s: the pelvis (x, y) and the world placement of each sole."""
+def step_plan(robot: pp.RobotModel, q0: np.ndarray, step: float, lift: float, shift: float, rise: float = 0.0):
+    """Functions of s: the pelvis (x, y) and the world placement of each sole (each step lands `rise` higher
+    than it started: a step up onto a platform)."""
     x0 = q0[0]
     home = {f: robot.frame_placement(q0, f) for f in (LEFT, RIGHT)}
     # The pelvis through its stations at the switches (over the right foot in [1, 2], over the left one,
@@ -67,17 +71,17 @@ def step_plan(robot: pp.RobotModel, q0: np.ndarray, step: float, lift: float, sh
         T = home[f].copy()
         u = np.clip(s - swing[0], 0.0, 1.0)
         T[0, 3] += step * smooth(u)
-        T[2, 3] += lift * np.sin(np.pi * u) ** 2  # up and down, at rest at lift-off and touchdown
+        T[2, 3] += rise * smooth(u) + lift * np.sin(np.pi * u) ** 2  # at rest at lift-off and touchdown
         return T
 
     return pelvis, sole
 
 
 def steps_path(robot: pp.RobotModel, step: float = 0.1, lift: float = 0.03, shift: float = 0.07,
-               knots_per_phase: int = 12) -> pp.CubicSplinePath:
+               knots_per_phase: int = 12, rise: float = 0.0) -> pp.CubicSplinePath:
     """The joint-space spline through sole-IK postures at `knots_per_phase` knots per phase."""
     q0 = talos_sway.standing_posture(robot)
-    pelvis, sole = step_plan(robot, q0, step, lift, shift)
+    pelvis, sole = step_plan(robot, q0, step, lift, shift, rise)
     s = np.linspace(0.0, 5.0, 5 * knots_per_phase + 1)
     q, waypoints = q0, []
     for si in s:
@@ -114,11 +118,13 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--grid", type=int, default=100, help="N, grid intervals over the five phases (default 100)")
     ap.add_argument("--step", type=float, default=0.1, help="step length in m (default 0.1)")
     ap.add_argument("--lift", type=float, default=0.03, help="swing foot lift in m (default 0.03)")
+    ap.add_argument("--rise", type=float, default=0.0,
+                    help="step up onto a platform this high, m (default 0: level ground)")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
     t0 = time.perf_counter()
-    path = steps_path(robot, args.step, args.lift)
+    path = steps_path(robot, args.step, args.lift, rise=args.rise)
     print(f"Talos, nq = {robot.nq}; two-step sole-IK path built in {time.perf_counter() - t0:.2f} s")
 
     prob = pp.TimeScalingProblem(path, grid=args.grid)
