@@ -40,8 +40,7 @@ std::vector<ContactPhase> push_then_brake(double split = 1.0) {
 // The discrete optimum of push-then-brake (a = F / (m_hand + m_box) = 5): θ = 2as up to the grid point before the
 // switch, constant over the two intervals at the switch (there both stances hold: s̈ >= 0 and s̈ <= 0),
 // then 2a(2 - s) down to rest.
-double push_brake_duration(const Eigen::VectorXd& s, Eigen::Index k_switch) {
-  const double a = 5.0;
+double push_brake_duration(const Eigen::VectorXd& s, Eigen::Index k_switch, double a = 5.0) {
   Eigen::VectorXd th(s.size());
   for (Eigen::Index k = 0; k < s.size(); ++k) th[k] = std::min(2 * a * s[k], 2 * a * (2.0 - s[k]));
   th[k_switch] = std::min(th[k_switch - 1], th[k_switch + 1]);
@@ -115,6 +114,31 @@ TEST(ContactPhases, ASwitchOffTheGridIsInserted) {
   EXPECT_EQ(snapped.intervals(), 20);
   EXPECT_EQ(std::dynamic_pointer_cast<const ContactConstraint>(snapped.constraints()[1])->options().active_begin,
             snapped.grid()[10]);
+}
+
+TEST(ContactPhases, TorqueLimitsJoinEveryPhaseAddedBeforeOrAfter) {
+  // The hand's force limited to 4 N (a = 4 / 2 kg = 2) by a TorqueLimits, before or after the phases.
+  auto robot = load("hand_box.urdf");
+  const auto& names = robot->joint_names();
+  const Eigen::Index hand = std::find(names.begin(), names.end(), "hand_x") - names.begin();
+  Eigen::Vector2d lo(0, 0), hi(0, 0);
+  lo[hand] = -4.0;
+  hi[hand] = 4.0;
+  for (bool before : {true, false}) {
+    TimeScalingProblem prob(together(), 20);
+    if (before) prob.add_constraint(std::make_shared<TorqueLimits>(robot, lo, hi));
+    prob.add_contact_phases(robot, push_then_brake());
+    if (!before) prob.add_constraint(std::make_shared<TorqueLimits>(robot, lo, hi));
+    ASSERT_EQ(prob.constraints().size(), 2u) << before;
+    for (const auto& c : prob.constraints()) {
+      auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c);
+      ASSERT_TRUE(contact);
+      EXPECT_EQ(contact->tau_max()[hand], 4.0);
+    }
+    const Result r = prob.solve();
+    ASSERT_EQ(r.status, Status::Optimal) << r.message;
+    EXPECT_NEAR(r.duration, push_brake_duration(prob.grid(), 10, 2.0), 1e-9) << before;
+  }
 }
 
 TEST(ContactPhases, InvalidPhasesAreNamed) {

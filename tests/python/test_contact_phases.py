@@ -81,6 +81,13 @@ def test_contact_forces_use_the_phase_at_each_time_the_later_one_at_a_switch(pus
     again = pickle.loads(pickle.dumps(traj))
     assert list(again.contact_forces(t).phase) == [0, 1, 1]
     assert pickle.loads(pickle.dumps(res)).trajectory().contact_phases[1].active_begin == 1.0
+    # plot.contacts_data lays the forces out over every contact of every phase (NaN where it does not hold).
+    from pathpace.plot import contacts_data
+
+    data = contacts_data(res, samples=4)  # t = 0, T/3, 2T/3, T
+    assert data["forces"].shape == (4, 2, 3) and list(data["phase"]) == [0, 0, 1, 1]
+    assert np.isnan(data["forces"][:2, 1]).all() and np.isnan(data["forces"][2:, 0]).all()
+    assert data["forces"][1, 0, 0] == pytest.approx(5.0, abs=1e-6) and data["forces"][2, 1, 0] == pytest.approx(-5.0, abs=1e-6)
     # Phases with different numbers of contacts: NaN beyond a phase's own.
     p2 = pp.TimeScalingProblem(together(), grid=20)
     p2.add_contact_phases(hand_box(), [(0.0, 1.0, on_box(1) * 2), (1.0, 2.0, on_box(-1))], cone_edges=4)
