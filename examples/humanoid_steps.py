@@ -22,7 +22,9 @@ force-distribution LP with each phase's true cone (no margins) at ten times the 
 With --rise h both steps go up onto a platform h high (the swing foot lands h higher; the same contacts,
 flat on the platform): a step-up.
 
-    .venv/bin/python examples/humanoid_steps.py [--grid 100] [--step 0.1] [--lift 0.03] [--rise 0.05]
+With --sim the timings are executed in MuJoCo (pathpace.sim, as examples/humanoid_sim.py does for the sway).
+
+    .venv/bin/python examples/humanoid_steps.py [--grid 100] [--step 0.1] [--lift 0.03] [--rise 0.05] [--sim]
 """
 
 from __future__ import annotations
@@ -113,6 +115,38 @@ def audit(traj: pp.Trajectory, robot: pp.RobotModel, samples: int, **options) ->
             "worst_per_phase": [float(margin[phase == i].min()) for i in range(5)]}
 
 
+def simulate(robot: pp.RobotModel, path: pp.Path, timings: list[tuple[str, pp.Trajectory]]) -> list[dict]:
+    """Each timing executed in MuJoCo by pathpace.sim (examples/humanoid_sim.py's Talos simulator: one sphere
+    per sole contact point, joint PD about the plan plus feed-forward torques from the force-distribution
+    LP of the timing's own phases). Reported: whether it fell, the largest tilt, and how far the contact
+    points that a phase holds are from where the plan puts them: |horizontal displacement - planned| (a lower
+    bound of the horizontal error, as pathpace.sim records distances) and |vertical - planned|."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import humanoid_sim  # noqa: E402  (MuJoCo; imported only here)
+
+    contacts = phases()[0][2]  # both soles: the simulator's spheres
+    key = [(c.link, tuple(c.point)) for c in contacts]
+    held = [np.array([k in {(c.link, tuple(c.point)) for c in ph[2]} for k in key]) for ph in phases()]
+    sim = humanoid_sim.talos_simulator(robot, path, contacts)
+    rows = []
+    for name, traj in timings:
+        r = sim.run(traj)
+        t = np.minimum(r.times, traj.duration)
+        # The phase at each recorded time, by s (a uniform timing has no phases of its own).
+        s_t = traj.s(t)[0]
+        phase = np.minimum(np.floor(s_t).astype(int), 4)
+        planned = np.array([[(robot.frame_placement(q, c.link) @ np.append(c.point, 1.0))[:3] for c in contacts]
+                            for q in traj.q(t)])
+        planned -= planned[0]
+        mask = np.array([held[p] for p in phase])
+        dxy = np.abs(r.slip - np.linalg.norm(planned[:, :, :2], axis=2))[mask].max()
+        dz = np.abs(r.lift - planned[:, :, 2])[mask].max()
+        rows.append({"timing": name, "T": traj.duration, "fell": r.fell, "tilt": r.max_tilt, "held_xy": dxy, "held_z": dz})
+        print(f"  {name:34s} T = {traj.duration:6.3f} s  fell: {'yes' if r.fell else 'no ':3s}  tilt {np.degrees(r.max_tilt):5.2f} deg  "
+              f"held contacts off plan: >= {1e3 * dxy:6.2f} mm horizontally, {1e3 * dz:6.2f} mm vertically")
+    return rows
+
+
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--grid", type=int, default=100, help="N, grid intervals over the five phases (default 100)")
@@ -120,6 +154,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--lift", type=float, default=0.03, help="swing foot lift in m (default 0.03)")
     ap.add_argument("--rise", type=float, default=0.0,
                     help="step up onto a platform this high, m (default 0: level ground)")
+    ap.add_argument("--sim", action="store_true",
+                    help="execute the timing (and the one without margins, and uniform ones) in MuJoCo (pathpace.sim)")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -152,8 +188,20 @@ def main(argv: list[str] | None = None) -> dict:
     print(f"audit at {samples} times, worst margin per phase (N of cone weight):")
     print("  solver cone (margins): " + "  ".join(f"{m:8.3f}" for m in solver_cone["worst_per_phase"]))
     print("  true cone (no margin): " + "  ".join(f"{m:8.3f}" for m in true_cone["worst_per_phase"]))
+    sim_rows = None
+    if args.sim:
+        bare = pp.TimeScalingProblem(path, grid=args.grid)
+        bare.add_contact_phases(robot, phases(), drift_tolerance=1e-4, cone_edges=8)
+        res_bare = bare.solve()
+        timings = [("contact phases, margins", traj), ("contact phases, no margins", res_bare.trajectory())]
+        s = np.linspace(0.0, 5.0, 101)
+        for factor in (1.0, 2.0):
+            T = factor * res.duration
+            timings.append((f"uniform, {factor:.0f} x T(margins)", pp.Trajectory(path, s, np.full(s.size, 5.0 / T))))
+        print("MuJoCo (pathpace.sim):")
+        sim_rows = simulate(robot, path, timings)
     return {"result": res, "problem": prob, "path": path, "robot": robot, "switches": k_switch, "solver_cone": solver_cone,
-            "true_cone": true_cone, "projection_time": t_sets, "solve_time": t_solve}
+            "true_cone": true_cone, "projection_time": t_sets, "solve_time": t_solve, "sim": sim_rows}
 
 
 if __name__ == "__main__":
