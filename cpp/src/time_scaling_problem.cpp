@@ -488,10 +488,10 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
       res.robot = contact->robot();
       res.contacts = contact;
-      res.contact_phases.push_back(contact);
+      if (std::isfinite(contact->options().active_begin) || std::isfinite(contact->options().active_end))
+        res.contact_phases.push_back(contact);
     }
   }
-  if (res.contact_phases.size() < 2) res.contact_phases.clear();
   std::stable_sort(res.contact_phases.begin(), res.contact_phases.end(), [](const auto& x, const auto& y) {
     return x->options().active_begin < y->options().active_begin;
   });
