@@ -56,15 +56,17 @@ def sole_contacts(per_side: int = 4, friction: float = 0.5) -> list[pp.Contact]:
             for link in SOLES for x in xs for y in ys]
 
 
-def feet_fixed_ik(robot: pp.RobotModel, q_ref: np.ndarray, base_y: float, iterations: int = 50) -> np.ndarray:
-    """The posture with the pelvis at lateral offset base_y, both soles where they are in q_ref (three
-    points per sole pin its pose), the pelvis orientation, its x and the upper body unchanged; solved
-    by Gauss-Newton over the pelvis height and the twelve leg joints with pathpace's point Jacobians."""
+def sole_ik(robot: pp.RobotModel, q_start: np.ndarray, base_xy: tuple[float, float], soles: dict[str, np.ndarray],
+            iterations: int = 50) -> np.ndarray:
+    """The posture with the pelvis at (x, y) = base_xy and each sole at its target pose (a 4x4 world
+    placement per sole link; three points per sole pin it), the pelvis orientation and the upper body as
+    in q_start; solved by Gauss-Newton over the pelvis height and the twelve leg joints with pathpace's
+    point Jacobians, from q_start."""
     free = [2] + [i for i, n in enumerate(robot.joint_names) if n.startswith("leg_")]
     marks = [np.array(p) for p in ((0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.05, 0.0))]
-    targets = [(robot.frame_placement(q_ref, f) @ np.append(p, 1.0))[:3] for f in SOLES for p in marks]
-    q = q_ref.copy()
-    q[1] = base_y
+    targets = [(soles[f] @ np.append(p, 1.0))[:3] for f in SOLES for p in marks]
+    q = q_start.copy()
+    q[0], q[1] = base_xy
     for _ in range(iterations):
         r = np.concatenate([(robot.frame_placement(q, f) @ np.append(p, 1.0))[:3] for f in SOLES for p in marks])
         r -= np.concatenate(targets)
@@ -72,7 +74,14 @@ def feet_fixed_ik(robot: pp.RobotModel, q_ref: np.ndarray, base_y: float, iterat
             return q
         J = np.vstack([robot.point_jacobian(q, f, p)[:, free] for f in SOLES for p in marks])
         q[free] -= np.linalg.lstsq(J, r, rcond=None)[0]
-    raise RuntimeError(f"feet-fixed IK did not converge for base_y = {base_y} (residual {np.max(np.abs(r)):.2e})")
+    raise RuntimeError(f"sole IK did not converge for the pelvis at {base_xy} (residual {np.max(np.abs(r)):.2e})")
+
+
+def feet_fixed_ik(robot: pp.RobotModel, q_ref: np.ndarray, base_y: float, iterations: int = 50) -> np.ndarray:
+    """The posture with the pelvis at lateral offset base_y, both soles where they are in q_ref, the
+    pelvis orientation, its x and the upper body unchanged (sole_ik)."""
+    soles = {f: robot.frame_placement(q_ref, f) for f in SOLES}
+    return sole_ik(robot, q_ref, (q_ref[0], base_y), soles, iterations)
 
 
 def sway_path(robot: pp.RobotModel, amplitude: float = 0.07, knots: int = 41) -> pp.CubicSplinePath:

@@ -363,6 +363,10 @@ ndarray
     (nq,) or (m, nq), N·m.)"},
     {"Trajectory", "contact_forces", R"(Contact forces at t from the force-distribution LP (the solver looked only at grid points).
 
+With contact phases (``add_contact_phases``) each t uses the contacts of its phase, the later one at a
+switch time; ``.phase`` gives the phase of each t and ``forces`` has as many rows as the largest phase
+has contacts (NaN beyond a phase's own).
+
 Returns
 -------
 ContactForces)"},
@@ -450,6 +454,33 @@ min_normal_force : float
 torque_scale, torque_margin : float
 drift_tolerance : float
     m: a warning names the contact that moves more than this along the path.)"},
+    {"TimeScalingProblem", "add_contact_phases", R"(Contacts that change along the path: one contact set per phase.
+
+Phase i holds its contacts (a ContactConstraint with torque limits, eq. 17-18) on the grid points of
+[s_begin, s_end], both ends included: at a switch both adjacent stances hold. Phases must be contiguous,
+cover the path and have s_begin < s_end (errors name the phase). A switch that is not a grid point is
+inserted into the grid (one more interval; constraints already added are re-evaluated; a switch within
+1e-9 of the path's length of a grid point snaps to it); with an ``add_linear_constraint`` (rows per grid
+point) a switch off the grid is an InvalidInputError naming the nearest grid point. TorqueLimits of the
+robot are merged into every phase. Row labels and ``Result.binding`` name the phase ("phases[1]: ...").
+
+No impact: a contact that phase i has and phase i-1 has not is made at the switch; if its point arrives
+moving along its normal (|n·c'| > impact_tolerance × the point's largest |c'| on the grid, c' = J p' just
+before the switch), ṡ = 0 there (row "phases[i]: no impact: ..."). Breaking contact needs nothing.
+
+Parameters
+----------
+robot : RobotModel
+phases : list of (s_begin, s_end, contacts) or (s_begin, s_end, contacts, options)
+    options: a dict of this phase's own friction_margin, min_normal_force, min_link_normal_force,
+    cone_edges (the others are the call's).
+cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin, tau_min, tau_max,
+min_link_normal_force, max_lps :
+    As in ``add_contacts``, for every phase.
+drift_tolerance : float
+    m: a warning names a phase's contact that moves more than this on that phase's stretch.
+impact_tolerance : float
+    Relative tolerance of the no-impact rule (default 1e-6).)"},
     {"TimeScalingProblem", "add_constraint", R"(Adds any Constraint; its rows are evaluated now, so errors surface here.)"},
     {"TimeScalingProblem", "set_boundary_speeds", R"(ṡ at s_begin and s_end.
 

@@ -107,6 +107,49 @@ void add_released(TimeScalingProblem& p, std::shared_ptr<Constraint> c, const ch
   p.add_constraint(std::move(c));
 }
 
+// Contact phases in pickle states: a list of ContactConstraint.
+py::list phases_list(const std::vector<std::shared_ptr<const ContactConstraint>>& v) {
+  py::list out;
+  for (const auto& c : v) out.append(std::const_pointer_cast<ContactConstraint>(c));
+  return out;
+}
+std::vector<std::shared_ptr<const ContactConstraint>> phases_vector(py::handle h) {
+  std::vector<std::shared_ptr<const ContactConstraint>> out;
+  for (py::handle c : h) out.push_back(c.cast<std::shared_ptr<ContactConstraint>>());
+  return out;
+}
+
+// One item of add_contact_phases' phases: (s_begin, s_end, contacts) or (s_begin, s_end, contacts, options),
+// options a dict of this phase's own margins.
+ContactPhase contact_phase_arg(py::handle h, size_t i, const ContactOptions& base) {
+  const std::string name = "phases[" + std::to_string(i) + "]";
+  const char* expected = "a tuple (s_begin, s_end, contacts) or (s_begin, s_end, contacts, options)";
+  const std::vector<py::object> items = to_items(h, name, expected);
+  if (items.size() != 3 && items.size() != 4)
+    throw InvalidInput(name + " has " + std::to_string(items.size()) + " entries, expected " + expected);
+  ContactPhase ph;
+  ph.s_begin = to_double(items[0], name + ".s_begin");
+  ph.s_end = to_double(items[1], name + ".s_end");
+  ph.contacts = to_contacts(items[2], name + ".contacts");
+  if (items.size() == 4 && !items[3].is_none()) {
+    if (!py::isinstance<py::dict>(items[3])) type_error(name + ".options", "a dict of margins", items[3]);
+    ContactOptions o = base;
+    for (const auto& [key_h, value] : items[3].cast<py::dict>()) {
+      const std::string key = py::str(key_h);
+      const std::string arg = name + ".options['" + key + "']";
+      if (key == "friction_margin") o.friction_margin = to_double(value, arg);
+      else if (key == "min_normal_force") o.min_normal_force = to_double(value, arg);
+      else if (key == "min_link_normal_force") o.min_link_normal_force = to_double(value, arg);
+      else if (key == "cone_edges") o.cone_edges = static_cast<int>(to_int(value, arg, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+      else
+        throw InvalidInput(name + ".options has key '" + key + "', expected friction_margin, min_normal_force, "
+                           "min_link_normal_force or cone_edges");
+    }
+    ph.options = o;
+  }
+  return ph;
+}
+
 py::dict stats_dict(const SolverStats& s) {
   return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
                   "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
@@ -225,9 +268,26 @@ void bind_problem(py::module_& m) {
           py::gil_scoped_release release;
           out = tr.contact_forces(tv);
         }
-        return to_force_samples(out, static_cast<int>(tr.contacts()->contacts().size()), tr.contacts()->robot()->nq(),
-                                is_scalar(t));
-      }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces).")
+        if (tr.contact_phases().empty())
+          return to_force_samples(out, static_cast<int>(tr.contacts()->contacts().size()), tr.contacts()->robot()->nq(),
+                                  is_scalar(t));
+        size_t m = 0;
+        for (const auto& c : tr.contact_phases()) m = std::max(m, c->contacts().size());
+        ForceSamples f = to_force_samples(out, static_cast<int>(m), tr.contact_phases()[0]->robot()->nq(), is_scalar(t));
+        f.phase = tr.contact_phase(tv);
+        return f;
+      }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces). With "
+                "contact phases each t uses its phase (the later one at a switch; .phase says which), forces padded "
+                "with NaN to the largest phase.")
+      .def("contact_phase", [](const Trajectory& tr, py::handle t) -> py::object {
+        const Eigen::VectorXi out = tr.contact_phase(to_vector(t, "t"));
+        return is_scalar(t) ? py::object(py::int_(out[0])) : py::cast(out);
+      }, "t"_a, "Index into contact_phases of the phase at each t (the later one at a switch); -1 without phases.")
+      .def_property_readonly("contact_phases", [](const Trajectory& tr) {
+        std::vector<std::shared_ptr<ContactConstraint>> out;
+        for (const auto& c : tr.contact_phases()) out.push_back(std::const_pointer_cast<ContactConstraint>(c));
+        return out;
+      }, "the ContactConstraint of each phase (add_contact_phases), in order of s; [] without phases")
       .def_property_readonly("contacts", [](const Trajectory& tr) { return std::const_pointer_cast<ContactConstraint>(tr.contacts()); })
       .def_property_readonly("robot", [](const Trajectory& tr) { return std::const_pointer_cast<RobotModel>(tr.robot()); },
                              "RobotModel or None: the robot whose torque limits or contacts shaped this trajectory")
@@ -285,14 +345,16 @@ void bind_problem(py::module_& m) {
       .def(py::pickle([](const Trajectory& tr) {
                         return py::make_tuple(std::const_pointer_cast<Path>(tr.path()), tr.grid(), tr.sdot_grid(),
                                               std::const_pointer_cast<RobotModel>(tr.robot()),
-                                              std::const_pointer_cast<ContactConstraint>(tr.contacts()));
+                                              std::const_pointer_cast<ContactConstraint>(tr.contacts()),
+                                              phases_list(tr.contact_phases()));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 5, "Trajectory");
+                        check_state(t, 6, "Trajectory");
                         auto tr = std::make_shared<Trajectory>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "s"),
                                                                to_vector(t[2], "sdot"));
                         tr->set_robot(optional_ptr<RobotModel>(t[3]));
                         tr->set_contacts(optional_ptr<ContactConstraint>(t[4]));
+                        tr->set_contact_phases(phases_vector(t[5]));
                         return tr;
                       }))
       .def("torques", [](const Trajectory& tr, py::handle t, py::handle robot_arg) -> py::object {
@@ -340,10 +402,11 @@ void bind_problem(py::module_& m) {
                                            st.audit_rounds, st.audit_cuts, st.audit_worst, st.windows, st.window_points,
                                            st.time_projection, st.projection_lp_solves, st.inexact_points, st.newton_steps),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
-                            std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding);
+                            std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding,
+                            phases_list(r.contact_phases));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 14, "Result");
+                        check_state(t, 15, "Result");
                         Result r;
                         r.status = static_cast<Status>(t[0].cast<int>());
                         r.message = t[1].cast<std::string>();
@@ -381,6 +444,7 @@ void bind_problem(py::module_& m) {
                         r.contacts = optional_ptr<ContactConstraint>(t[11]);
                         r.relaxation = t[12].cast<std::map<std::string, double>>();
                         r.binding = t[13].cast<std::vector<std::string>>();
+                        r.contact_phases = phases_vector(t[14]);
                         return r;
                       }))
       .def("__repr__", [](const Result& r) {
@@ -447,6 +511,47 @@ void bind_problem(py::module_& m) {
         add_released(p, std::move(c), "add_torque_limits");
       }, "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0,
          "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
+      .def("add_contact_phases", [](TimeScalingProblem& p, py::handle robot_arg, py::handle phases_arg, py::handle cone_edges,
+                                    py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
+                                    py::handle torque_margin, py::handle drift_tolerance_arg, py::handle tau_min,
+                                    py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
+                                    py::handle impact_tolerance) {
+        ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
+        o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
+        o.max_lps = static_cast<int>(to_int(max_lps, "max_lps", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+        auto robot = to_object<RobotModel>(robot_arg, "robot", "RobotModel");
+        const std::vector<py::object> items = to_items(phases_arg, "phases", "a list of (s_begin, s_end, contacts)");
+        std::vector<ContactPhase> phases;
+        for (size_t i = 0; i < items.size(); ++i) phases.push_back(contact_phase_arg(items[i], i, o));
+        const double drift_tolerance = to_double(drift_tolerance_arg, "drift_tolerance");
+        if (!(drift_tolerance >= 0.0))
+          throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
+        const double impact = to_double(impact_tolerance, "impact_tolerance");
+        const Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
+        const Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
+        std::vector<std::string> moved;
+        {
+          ProblemUse use(p, ProblemUse::kWrite, "add_contact_phases");
+          py::gil_scoped_release release;
+          p.add_contact_phases(robot, phases, o, lo, hi, impact);
+          // Each phase must keep its own contacts in place on its own stretch (ContactConstraint::max_drift).
+          const auto& cons = p.constraints();
+          for (size_t i = cons.size() - phases.size(); i < cons.size(); ++i) {
+            auto c = std::dynamic_pointer_cast<const ContactConstraint>(cons[i]);
+            if (!c) continue;
+            int which = -1;
+            const double drift = c->max_drift(p.samples(), &which);
+            if (drift > drift_tolerance && which >= 0)
+              moved.push_back(c->options().label + ": contact " + std::to_string(which) + " (link '" +
+                              c->contacts()[static_cast<size_t>(which)].link + "') moves by " + std::to_string(drift) +
+                              " m along its phase: the path does not keep it in place");
+          }
+        }
+        for (const std::string& msg : moved)
+          py::module_::import("warnings").attr("warn")(msg, py::module_::import("builtins").attr("UserWarning"), 2);
+      }, "robot"_a, "phases"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
+         "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "impact_tolerance"_a = 1e-6)
       .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
                               py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                               py::handle torque_margin, py::handle drift_tolerance_arg, py::handle tau_min,

@@ -274,7 +274,11 @@ void bind_robot(py::module_& m) {
       }, "(samples, contacts, 3) world-frame force on each contact's link")
       .def_property_readonly("torques", [](const ForceSamples& f) -> py::object {
         return f.scalar ? py::cast(Eigen::VectorXd(f.torques.row(0).transpose())) : py::cast(f.torques);
-      }, "(samples, nq) joint torques with these forces");
+      }, "(samples, nq) joint torques with these forces")
+      .def_property_readonly("phase", [](const ForceSamples& f) -> py::object {
+        return f.scalar ? py::object(py::int_(f.phase[0])) : py::cast(f.phase);
+      }, "index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the later "
+         "phase at a switch); -1 without phases. forces has max contacts over the phases rows, NaN beyond a phase's own");
 
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
       .def(py::init([](py::handle robot, py::handle contacts, py::handle cone_edges, py::handle friction_margin,
@@ -298,20 +302,34 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("projected_contacts", &ContactConstraint::projected_contacts,
                              "indices of the contacts whose forces enter the projection LPs (flat groups: hull vertices)")
       .def_property_readonly("contacts", &ContactConstraint::contacts)
+      .def_property_readonly("active_begin", [](const ContactConstraint& c) { return c.options().active_begin; },
+                             "the phase's first s (-inf: the whole path; see TimeScalingProblem.add_contact_phases)")
+      .def_property_readonly("active_end", [](const ContactConstraint& c) { return c.options().active_end; })
+      .def_property_readonly("label", [](const ContactConstraint& c) { return c.options().label; },
+                             "prefix of its row labels, e.g. 'phases[1]'")
+      .def_property_readonly("rest_at_begin", [](const ContactConstraint& c) { return c.options().rest_at_begin; },
+                             "the no-impact row's label if the phase forces sdot = 0 at its first point, else ''")
       // Rebuilt from the robot, contacts, options and the stored limits (which include torque_scale and
       // torque_margin, so those are 1 and 0 in the copy).
       .def(py::pickle([](const ContactConstraint& c) {
                         const ContactOptions& o = c.options();
                         return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.contacts(), o.cone_edges,
                                               o.friction_margin, o.min_normal_force, o.cap, c.tau_min(), c.tau_max(),
-                                              o.min_link_normal_force, o.max_lps);
+                                              o.min_link_normal_force, o.max_lps,
+                                              py::make_tuple(o.active_begin, o.active_end, o.label, o.rest_at_begin));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 10, "ContactConstraint");
+                        check_state(t, 11, "ContactConstraint");
                         ContactOptions o = contact_options(t[2].cast<int>(), t[3].cast<double>(), t[4].cast<double>(), 1.0, 0.0);
                         o.cap = t[5].cast<double>();
                         o.min_link_normal_force = t[8].cast<double>();
                         o.max_lps = t[9].cast<int>();
+                        const py::tuple phase = t[10].cast<py::tuple>();
+                        check_state(phase, 4, "ContactConstraint phase");
+                        o.active_begin = phase[0].cast<double>();
+                        o.active_end = phase[1].cast<double>();
+                        o.label = phase[2].cast<std::string>();
+                        o.rest_at_begin = phase[3].cast<std::string>();
                         auto robot = t[0].cast<std::shared_ptr<RobotModel>>();
                         auto contacts = t[1].cast<std::vector<Contact>>();
                         Eigen::VectorXd lo = to_vector(t[6], "tau_min"), hi = to_vector(t[7], "tau_max");

@@ -207,6 +207,7 @@ struct ForceSamples {
   Eigen::VectorXd margin;       // (S,)
   py::array_t<double> forces;   // (S, m, 3)
   Eigen::MatrixXd torques;      // (S, n)
+  Eigen::VectorXi phase;        // (S,): the contact phase of each sample (Trajectory.contact_forces), -1: none
   bool scalar = false;          // one sample asked for as a scalar: drop the leading axis
 };
 
@@ -217,6 +218,7 @@ inline ForceSamples to_force_samples(const std::vector<ContactForces>& v, int co
   out.forces = py::array_t<double>({S, static_cast<py::ssize_t>(contacts), static_cast<py::ssize_t>(3)});
   out.margin.resize(S);
   out.torques.resize(S, joints);
+  out.phase = Eigen::VectorXi::Constant(S, -1);
   auto fe = out.feasible.mutable_unchecked<1>();
   auto fo = out.forces.mutable_unchecked<3>();
   for (py::ssize_t s = 0; s < S; ++s) {
@@ -224,8 +226,9 @@ inline ForceSamples to_force_samples(const std::vector<ContactForces>& v, int co
     fe(s) = c.feasible;
     out.margin[s] = c.margin;
     out.torques.row(s) = c.torques.transpose();
+    // Contact phases have their own numbers of contacts: rows beyond a phase's own are NaN.
     for (int i = 0; i < contacts; ++i)
-      for (int d = 0; d < 3; ++d) fo(s, i, d) = c.forces(i, d);
+      for (int d = 0; d < 3; ++d) fo(s, i, d) = i < c.forces.rows() ? c.forces(i, d) : std::numeric_limits<double>::quiet_NaN();
   }
   out.scalar = scalar;
   return out;

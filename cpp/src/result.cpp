@@ -24,6 +24,7 @@ Trajectory Result::trajectory() const {
   Trajectory t(path, s, sdot);
   t.set_robot(robot);
   t.set_contacts(contacts);
+  t.set_contact_phases(contact_phases);
   return t;
 }
 

@@ -33,18 +33,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // constraint's half-planes there, re-checks it; the message says whether the rest state (0, 0) is
 // feasible there. A point whose polygon is empty but whose full LP is not is a projection failure.
 void recheck_contacts(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows, Eigen::Index k,
-                      bool point_empty, Result& res) {
+                      bool point_empty, const std::shared_ptr<const ContactConstraint>& contacts, Result& res) {
   Eigen::Matrix<double, Eigen::Dynamic, 3> extra(0, 3);
   for (size_t i = 0; i < rows.size(); ++i) {
     const ConstraintRows& cr = rows[i];
-    if (problem.constraints()[i] == res.contacts) continue;
+    if (problem.constraints()[i] == contacts) continue;
     for (Eigen::Index j = 0; j < cr.rows(); ++j)
       if (std::isfinite(cr.c(k, j))) {
         extra.conservativeResize(extra.rows() + 1, 3);
         extra.row(extra.rows() - 1) << cr.a(k, j), cr.b(k, j), cr.c(k, j);
       }
   }
-  const ContactConstraint::PointCheck check = res.contacts->check_point(problem.samples(), k, extra);
+  const ContactConstraint::PointCheck check = contacts->check_point(problem.samples(), k, extra);
   auto word = [](int v, const char* yes, const char* no) { return v > 0 ? yes : v == 0 ? no : "unknown (LP failed)"; };
   if (point_empty && check.feasible > 0) {
     res.status = Status::NumericalError;
@@ -114,13 +114,33 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   // hold; the merged constraint replaces the ones it absorbs (once it has evaluated without error).
   std::vector<size_t> replaced;
   if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(constraint)) {
+    std::vector<size_t> phases;
     for (size_t i = 0; i < constraints_.size(); ++i)
       if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
-          contact && contact->robot() == torque->robot()) {
-        constraint = contact->with_torque_limits(torque->tau_min(), torque->tau_max());
-        replaced.push_back(i);
-        break;
+          contact && contact->robot() == torque->robot())
+        phases.push_back(i);
+    if (phases.size() >= 2) {
+      // Contact phases (add_contact_phases): the torque limits join every phase, each in its place.
+      std::vector<std::shared_ptr<const Constraint>> merged;
+      std::vector<ConstraintRows> merged_rows;
+      for (size_t i : phases) {
+        auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
+        merged.push_back(contact->with_torque_limits(torque->tau_min(), torque->tau_max()));
+        const auto t0 = std::chrono::steady_clock::now();
+        merged_rows.push_back(merged.back()->evaluate(samples_));
+        merged_rows.back().seconds = seconds_since(t0);
       }
+      for (size_t j = 0; j < phases.size(); ++j) {
+        constraints_[phases[j]] = std::move(merged[j]);
+        rows_[phases[j]] = std::move(merged_rows[j]);
+      }
+      return;
+    }
+    if (!phases.empty()) {
+      auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[phases[0]]);
+      constraint = contact->with_torque_limits(torque->tau_min(), torque->tau_max());
+      replaced.push_back(phases[0]);
+    }
   } else if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraint)) {
     for (size_t i = 0; i < constraints_.size(); ++i)
       if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_[i]); t && t->robot() == contact->robot()) {
@@ -132,21 +152,7 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   const auto t0 = std::chrono::steady_clock::now();
   ConstraintRows rows = constraint->evaluate(samples_);
   rows.seconds = seconds_since(t0);
-  // A constraint of ours is trusted, but a user's own Constraint subclass may hand back anything.
-  const Eigen::Index r = rows.rows();
-  if (rows.a.rows() != samples_.size() || rows.b.rows() != samples_.size() || rows.c.rows() != samples_.size() ||
-      rows.b.cols() != r || rows.c.cols() != r || static_cast<Eigen::Index>(rows.labels.size()) != r)
-    detail::fail("constraint '" + constraint->name() + "' returned rows of inconsistent shapes");
-  // The vectorised check first; the element-wise one (which names the entry) only if it fails.
-  if (!rows.a.allFinite()) detail::require_finite(constraint->name() + " a", rows.a);
-  if (!rows.b.allFinite()) detail::require_finite(constraint->name() + " b", rows.b);
-  // c may be +inf (an inactive row), never NaN or -inf: -c < +inf holds exactly for the allowed values.
-  if (!((-rows.c.array()) < std::numeric_limits<double>::infinity()).all())
-    for (Eigen::Index k = 0; k < rows.c.rows(); ++k)
-      for (Eigen::Index j = 0; j < r; ++j)
-        if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
-          detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
-                       "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
+  check_rows(*constraint, rows, samples_.size());
   for (size_t t = replaced.size(); t-- > 0;) {
     constraints_.erase(constraints_.begin() + static_cast<long>(replaced[t]));
     rows_.erase(rows_.begin() + static_cast<long>(replaced[t]));
@@ -159,6 +165,175 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
     if (auto c = std::dynamic_pointer_cast<const ContactConstraint>(constraints_.back())) robot = c->robot();
     if (robot && robot->nq() == samples_.dof()) set_joint_names(robot->joint_names());
   }
+}
+
+void TimeScalingProblem::check_rows(const Constraint& con, const ConstraintRows& rows, Eigen::Index points) {
+  const Constraint* constraint = &con;
+  // A constraint of ours is trusted, but a user's own Constraint subclass may hand back anything.
+  const Eigen::Index r = rows.rows();
+  if (rows.a.rows() != points || rows.b.rows() != points || rows.c.rows() != points ||
+      rows.b.cols() != r || rows.c.cols() != r || static_cast<Eigen::Index>(rows.labels.size()) != r)
+    detail::fail("constraint '" + constraint->name() + "' returned rows of inconsistent shapes");
+  // The vectorised check first; the element-wise one (which names the entry) only if it fails.
+  if (!rows.a.allFinite()) detail::require_finite(constraint->name() + " a", rows.a);
+  if (!rows.b.allFinite()) detail::require_finite(constraint->name() + " b", rows.b);
+  // c may be +inf (an inactive row), never NaN or -inf: -c < +inf holds exactly for the allowed values.
+  if (!((-rows.c.array()) < std::numeric_limits<double>::infinity()).all())
+    for (Eigen::Index k = 0; k < rows.c.rows(); ++k)
+      for (Eigen::Index j = 0; j < r; ++j)
+        if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
+          detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
+                       "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
+}
+
+void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
+                                            const ContactOptions& options, const Eigen::VectorXd& tau_min,
+                                            const Eigen::VectorXd& tau_max, double impact_tolerance) {
+  if (!robot) detail::fail("robot must not be None");
+  if (robot->nq() != samples_.dof())
+    detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + robot->name() + "' has " +
+                 std::to_string(robot->nq()) + " joints");
+  if (phases.empty()) detail::fail("phases is empty, expected at least one (s_begin, s_end, contacts)");
+  if (!(impact_tolerance >= 0.0) || !std::isfinite(impact_tolerance))
+    detail::fail("impact_tolerance = " + detail::fmt(impact_tolerance) + " must be >= 0 and finite");
+  const Eigen::Index n = intervals();
+  const double a = samples_.s[0], b = samples_.s[n], length = b - a;
+  const double tol = 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
+  auto name = [](size_t i, const char* field) { return "phases[" + std::to_string(i) + "]." + field; };
+  for (size_t i = 0; i < phases.size(); ++i) {
+    const ContactPhase& ph = phases[i];
+    if (!std::isfinite(ph.s_begin)) detail::fail(name(i, "s_begin") + " = " + detail::fmt(ph.s_begin) + " must be finite");
+    if (!std::isfinite(ph.s_end)) detail::fail(name(i, "s_end") + " = " + detail::fmt(ph.s_end) + " must be finite");
+    if (!(ph.s_begin < ph.s_end))
+      detail::fail(name(i, "s_begin") + " = " + detail::fmt(ph.s_begin) + " must be < " + name(i, "s_end") + " = " +
+                   detail::fmt(ph.s_end));
+    if (i == 0 && std::abs(ph.s_begin - a) > tol)
+      detail::fail(name(i, "s_begin") + " = " + detail::fmt(ph.s_begin) + " must equal the path's s_begin = " +
+                   detail::fmt(a) + " (the phases cover the path)");
+    if (i > 0 && std::abs(ph.s_begin - phases[i - 1].s_end) > tol)
+      detail::fail(name(i, "s_begin") + " = " + detail::fmt(ph.s_begin) + " must equal " + name(i - 1, "s_end") + " = " +
+                   detail::fmt(phases[i - 1].s_end) + " (the phases are contiguous)");
+    if (i + 1 == phases.size() && std::abs(ph.s_end - b) > tol)
+      detail::fail(name(i, "s_end") + " = " + detail::fmt(ph.s_end) + " must equal the path's s_end = " + detail::fmt(b) +
+                   " (the phases cover the path)");
+  }
+  // Every contact set and option is checked (and its phase named) before anything changes.
+  std::vector<std::shared_ptr<ContactConstraint>> probe;
+  for (size_t i = 0; i < phases.size(); ++i) {
+    try {
+      probe.push_back(std::make_shared<ContactConstraint>(robot, phases[i].contacts, phases[i].options.value_or(options),
+                                                          tau_min, tau_max));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("phases[" + std::to_string(i) + "]: " + e.what());
+    }
+  }
+  // The switches on the grid: snapped to a grid point within 1e-9 of the length, else inserted.
+  std::vector<double> edge(phases.size() + 1);
+  edge[0] = a;
+  edge[phases.size()] = b;
+  std::vector<double> grid(samples_.s.data(), samples_.s.data() + samples_.s.size());
+  bool inserted = false;
+  for (size_t i = 1; i < phases.size(); ++i) {
+    const double sw = phases[i].s_begin;
+    const auto it = std::lower_bound(grid.begin(), grid.end(), sw);
+    size_t k = static_cast<size_t>(it - grid.begin());
+    if (k > 0 && (k == grid.size() || sw - grid[k - 1] < grid[k] - sw)) --k;
+    if (std::abs(grid[k] - sw) <= 1e-9 * length) {
+      edge[i] = grid[k];
+      continue;
+    }
+    for (size_t c = 0; c < constraints_.size(); ++c)
+      if (std::dynamic_pointer_cast<const LinearConstraint>(constraints_[c]))
+        detail::fail(name(i, "s_begin") + " = " + detail::fmt(sw) + " is not a grid point (nearest: grid[" +
+                     std::to_string(k) + "] = " + detail::fmt(grid[k]) + ") and the problem has a constraint given per grid "
+                     "point ('" + constraints_[c]->name() + "') that cannot be evaluated on a new grid: add the contact "
+                     "phases first, or use a grid with a point at every switch");
+    grid.insert(std::upper_bound(grid.begin(), grid.end(), sw), sw);
+    edge[i] = sw;
+    inserted = true;
+  }
+  PathSamples samples = samples_;
+  std::vector<ConstraintRows> rows = rows_;
+  if (inserted) {
+    samples.s = Eigen::Map<const Eigen::VectorXd>(grid.data(), static_cast<Eigen::Index>(grid.size()));
+    path_->evaluate(samples.s, samples.q, samples.dq, samples.ddq);
+    if (!samples.q.allFinite() || !samples.dq.allFinite() || !samples.ddq.allFinite())
+      detail::fail("path is not finite at an inserted switch point");
+    for (size_t c = 0; c < constraints_.size(); ++c) {
+      const auto t0 = std::chrono::steady_clock::now();
+      rows[c] = constraints_[c]->evaluate(samples);
+      rows[c].seconds = seconds_since(t0);
+    }
+  }
+  // TorqueLimits of this robot join every phase (as add_constraint merges them into one contact constraint).
+  std::vector<size_t> replaced;
+  Eigen::VectorXd lo = Eigen::VectorXd::Constant(robot->nq(), -std::numeric_limits<double>::infinity());
+  Eigen::VectorXd hi = -lo;
+  for (size_t c = 0; c < constraints_.size(); ++c)
+    if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_[c]); t && t->robot() == robot) {
+      lo = lo.cwiseMax(t->tau_min());
+      hi = hi.cwiseMin(t->tau_max());
+      replaced.push_back(c);
+    }
+  // The no-impact rule at each switch, from the contact points' velocities along the path (eq. 10: c' = J p').
+  std::vector<std::string> rest(phases.size());
+  for (size_t i = 1; i < phases.size(); ++i) {
+    // The approach velocity: c' just before the switch (1e-9 of the length), from the path of the phase that
+    // ends there. On a path that is C¹ at the switch a contact held fixed after it has c' = 0 there; a
+    // kinked path (p' jumps) can bring the point in at speed.
+    PathSamples before_switch;
+    before_switch.s = Eigen::VectorXd::Constant(1, edge[i] - 1e-9 * length);
+    path_->evaluate(before_switch.s, before_switch.q, before_switch.dq, before_switch.ddq);
+    Eigen::MatrixXd normal, speed, unused;
+    probe[i]->point_velocities(samples, unused, speed);
+    probe[i]->point_velocities(before_switch, normal, unused);
+    const Eigen::Index k = 0;
+    const std::vector<Contact>& now = probe[i]->contacts();
+    const std::vector<Contact>& before = probe[i - 1]->contacts();
+    for (size_t c = 0; c < now.size(); ++c) {
+      const bool kept = std::any_of(before.begin(), before.end(), [&](const Contact& o) {
+        return o.link == now[c].link && o.other_link == now[c].other_link && (o.point - now[c].point).norm() <= 1e-9;
+      });
+      if (kept) continue;
+      const Eigen::Index j = static_cast<Eigen::Index>(c);
+      const double vn = normal(k, j), scale = speed.col(j).maxCoeff();
+      if (!(std::abs(vn) > impact_tolerance * scale) || scale == 0.0) continue;
+      std::ostringstream os;
+      os.precision(4);
+      os << "no impact: contact " << c << " (link '" << now[c].link << "') is made at s = " << edge[i]
+         << " moving along its normal (n.c'(s) = " << vn << " m per unit s): sdot = 0 there";
+      rest[i] = os.str();
+      break;
+    }
+  }
+  std::vector<std::shared_ptr<const Constraint>> added;
+  std::vector<ConstraintRows> added_rows;
+  for (size_t i = 0; i < phases.size(); ++i) {
+    ContactOptions o = phases[i].options.value_or(options);
+    o.active_begin = edge[i];
+    o.active_end = edge[i + 1];
+    o.label = "phases[" + std::to_string(i) + "]";
+    o.rest_at_begin = rest[i];
+    std::shared_ptr<const ContactConstraint> c = std::make_shared<ContactConstraint>(robot, phases[i].contacts, o, tau_min, tau_max);
+    if (!replaced.empty()) c = c->with_torque_limits(lo, hi);
+    const auto t0 = std::chrono::steady_clock::now();
+    added_rows.push_back(c->evaluate(samples));
+    added_rows.back().seconds = seconds_since(t0);
+    check_rows(*c, added_rows.back(), samples.size());
+    added.push_back(std::move(c));
+  }
+  // Commit: nothing above changed the problem.
+  samples_ = std::move(samples);
+  rows_ = std::move(rows);
+  for (size_t t = replaced.size(); t-- > 0;) {
+    constraints_.erase(constraints_.begin() + static_cast<long>(replaced[t]));
+    rows_.erase(rows_.begin() + static_cast<long>(replaced[t]));
+  }
+  for (size_t i = 0; i < added.size(); ++i) {
+    constraints_.push_back(std::move(added[i]));
+    rows_.push_back(std::move(added_rows[i]));
+  }
+  if (joint_names_.empty() && robot->nq() == samples_.dof()) set_joint_names(robot->joint_names());
 }
 
 void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
@@ -313,8 +488,13 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
       res.robot = contact->robot();
       res.contacts = contact;
+      if (std::isfinite(contact->options().active_begin) || std::isfinite(contact->options().active_end))
+        res.contact_phases.push_back(contact);
     }
   }
+  std::stable_sort(res.contact_phases.begin(), res.contact_phases.end(), [](const auto& x, const auto& y) {
+    return x->options().active_begin < y->options().active_begin;
+  });
   res.s = samples_.s;
   const Eigen::Index n = intervals();
 
@@ -351,7 +531,17 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
       os << "; " << describe_relaxation(res.relaxation);
     }
     res.message = os.str();
-    if (st == Status::Infeasible && res.contacts) recheck_contacts(*this, rows_, k, sets.points[static_cast<size_t>(k)].empty, res);
+    if (st == Status::Infeasible && res.contacts) {
+      // With contact phases: the phase that holds at k (the first of two at a switch; the other's rows
+      // enter the check as half-planes).
+      std::shared_ptr<const ContactConstraint> at_k;
+      for (const auto& c : constraints_)
+        if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c); contact && contact->active_at(samples_.s[k])) {
+          at_k = contact;
+          break;
+        }
+      if (at_k) recheck_contacts(*this, rows_, k, sets.points[static_cast<size_t>(k)].empty, at_k, res);
+    }
     return res;
   };
 

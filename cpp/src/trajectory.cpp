@@ -113,11 +113,49 @@ Eigen::MatrixXd Trajectory::torques(const Eigen::Ref<const Eigen::VectorXd>& t, 
   return tau;
 }
 
+Eigen::VectorXi Trajectory::contact_phase(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::VectorXi out = Eigen::VectorXi::Constant(t.size(), -1);
+  if (contact_phases_.empty()) return out;
+  Eigen::VectorXd s, sd, sdd;
+  evaluate_s(t, s, sd, sdd);
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    // The last phase that holds s: the later one at a switch (both hold there).
+    for (size_t p = contact_phases_.size(); p-- > 0;)
+      if (contact_phases_[p]->active_at(s[i])) {
+        out[i] = static_cast<int>(p);
+        break;
+      }
+    // Between phases there is no gap (they are contiguous); a time beyond them gets the nearest one.
+    if (out[i] < 0) out[i] = s[i] < contact_phases_.front()->options().active_begin ? 0 : static_cast<int>(contact_phases_.size()) - 1;
+  }
+  return out;
+}
+
 std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const {
-  if (!contacts_) throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
+  if (!contacts_ && contact_phases_.empty())
+    throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
   Eigen::MatrixXd q, qd, qdd;
   evaluate(t, q, qd, qdd);
-  return contacts_->force_distribution(q, qd, qdd);
+  if (contact_phases_.empty()) return contacts_->force_distribution(q, qd, qdd);
+  // One force-distribution batch per phase, each with that phase's contacts.
+  const Eigen::VectorXi phase = contact_phase(t);
+  std::vector<ContactForces> out(static_cast<size_t>(t.size()));
+  for (size_t p = 0; p < contact_phases_.size(); ++p) {
+    std::vector<Eigen::Index> idx;
+    for (Eigen::Index i = 0; i < t.size(); ++i)
+      if (phase[i] == static_cast<int>(p)) idx.push_back(i);
+    if (idx.empty()) continue;
+    const auto m = static_cast<Eigen::Index>(idx.size());
+    Eigen::MatrixXd qp(m, q.cols()), qdp(m, q.cols()), qddp(m, q.cols());
+    for (size_t j = 0; j < idx.size(); ++j) {
+      qp.row(static_cast<Eigen::Index>(j)) = q.row(idx[j]);
+      qdp.row(static_cast<Eigen::Index>(j)) = qd.row(idx[j]);
+      qddp.row(static_cast<Eigen::Index>(j)) = qdd.row(idx[j]);
+    }
+    std::vector<ContactForces> f = contact_phases_[p]->force_distribution(qp, qdp, qddp);
+    for (size_t j = 0; j < idx.size(); ++j) out[static_cast<size_t>(idx[j])] = std::move(f[j]);
+  }
+  return out;
 }
 
 CubicSplinePath Trajectory::time_spline() const {

@@ -125,8 +125,27 @@ def contacts_data(result: Result, samples: int = 300) -> dict[str, Any] | None:
         return None
     t = np.linspace(0.0, traj.duration, samples)
     cf = traj.contact_forces(t)
-    return {"t": t, "forces": np.asarray(cf.forces), "margin": np.asarray(cf.margin),
-            "links": [c.link for c in traj.contacts.contacts]}
+    if not traj.contact_phases:
+        return {"t": t, "forces": np.asarray(cf.forces), "margin": np.asarray(cf.margin),
+                "links": [c.link for c in traj.contacts.contacts]}
+    # Contact phases: each sample's forces belong to its phase's contacts; lay them out over every contact
+    # of every phase (NaN where a contact does not hold), so that a column is one contact throughout.
+    keys: list[tuple] = []
+    links: list[str] = []
+    columns = []
+    for phase in traj.contact_phases:
+        cols = []
+        for c in phase.contacts:
+            key = (c.link, c.other_link, tuple(np.asarray(c.point, dtype=float)), tuple(np.asarray(c.normal, dtype=float)))
+            if key not in keys:
+                keys.append(key)
+                links.append(c.link)
+            cols.append(keys.index(key))
+        columns.append(cols)
+    forces = np.full((samples, len(keys), 3), np.nan)
+    for i, p in enumerate(np.asarray(cf.phase)):
+        forces[i, columns[p]] = cf.forces[i, : len(columns[p])]
+    return {"t": t, "forces": forces, "margin": np.asarray(cf.margin), "links": links, "phase": np.asarray(cf.phase)}
 
 
 def _axes(ax):

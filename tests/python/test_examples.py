@@ -64,3 +64,23 @@ def test_rod_example_reproduces_the_papers_observations(capsys):
     assert abs(upright.vertices[:, 0].max() - 9.81) < 1e-6  # no speed beyond ṡ² = g
     assert upright.contains(0.0, 0.0) and not sets[0.4].contains(0.0, 0.0)  # it can only stand near the vertical
     assert "0.00     4    9.810" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("rise", [0.0, 0.1])
+def test_humanoid_two_steps_with_contact_phases_keeps_its_feet(rise):
+    """Level ground, and a step up onto a 10 cm platform."""
+    out = runpy.run_path(str(EXAMPLES / "humanoid_steps.py"))["main"](["--rise", str(rise)])
+    res, robot = out["result"], out["robot"]
+    assert res.status.name == "OPTIMAL"
+    assert [c.label for c in res.trajectory().contact_phases] == [f"phases[{i}]" for i in range(5)]
+    for sole in ("left_sole_link", "right_sole_link"):  # both feet end on the platform
+        assert robot.frame_placement(out["path"].q(5.0), sole)[2, 3] == pytest.approx(rise, abs=1e-9)
+    # Touchdowns (s = 2, 4): the spline brings the swing foot down at ~7 mm per unit s, so the no-impact rule
+    # stops the path there; lift-offs (s = 1, 3) keep their speed.
+    k1, k2, k3, k4 = out["switches"]
+    assert res.sdot[k2] == 0.0 and res.sdot[k4] == 0.0 and res.sdot[k1] > 1.0 and res.sdot[k3] > 1.0
+    # Audit at 1001 times, each with its phase's contacts: the true cones (no margins) hold with at least
+    # 0.5 N of cone weight to spare in every phase; the solver's shrunk cones (50 % friction margin, 10 N per
+    # point) up to the discretisation's small excess between grid points.
+    assert min(out["true_cone"]["worst_per_phase"]) > 0.5
+    assert min(out["solver_cone"]["worst_per_phase"]) > -1.5

@@ -260,3 +260,14 @@ def test_example_quick_run_prints_the_fig1_rows(capsys):
     assert verdicts == {("pathpace, contacts", 0.0): "fell", ("pathpace, contacts", 20.0): "yes",
                         ("velocity + acceleration limits only", None): "no", ("uniform, 1.0 x T(ours)", None): "fell"}
     assert "| pathpace, contacts" in capsys.readouterr().out
+
+
+def test_talos_two_steps_with_contact_phase_margins_executes_without_margins_falls():
+    """examples/humanoid_steps.py --sim: the contact-phase timing with margins (50 % friction, 10 N per point)
+    walks its two steps in MuJoCo with the held sole points within 1 cm of the plan; the same without margins
+    (faster) falls. One deterministic run each (the table in the report is this run)."""
+    out = runpy.run_path(str(EXAMPLES / "humanoid_steps.py"))["main"](["--sim"])
+    rows = {r["timing"]: r for r in out["sim"]}
+    ours, bare = rows["contact phases, margins"], rows["contact phases, no margins"]
+    assert not ours["fell"] and ours["held_xy"] < 0.01 and ours["held_z"] < 0.01 and ours["tilt"] < 0.05
+    assert bare["T"] < ours["T"] and bare["fell"]

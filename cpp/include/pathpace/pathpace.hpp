@@ -7,6 +7,7 @@
 #include "pathpace/constraints/constraint.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/contact.hpp"
+#include "pathpace/contact_phase.hpp"
 #include "pathpace/contact_forces.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"

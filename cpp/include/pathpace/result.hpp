@@ -85,7 +85,11 @@ class Result {
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any
-  std::shared_ptr<const ContactConstraint> contacts;  ///< the problem's contact constraint, if any
+  std::shared_ptr<const ContactConstraint> contacts;  ///< the problem's contact constraint, if any (the last one)
+  /// The problem's contact constraints that hold on a stretch of s only (the phases of add_contact_phases),
+  /// in order of s; empty without phases. Trajectory::contact_forces then uses the phase at each time
+  /// (and only it: a contact constraint of the whole path added besides the phases is not in its LP).
+  std::vector<std::shared_ptr<const ContactConstraint>> contact_phases;
 
   /// True for Optimal (and for IterationLimit and TimeLimit, whose timing is feasible).
   bool ok() const {

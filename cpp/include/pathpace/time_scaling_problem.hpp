@@ -10,10 +10,12 @@
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
+#include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
 #include "pathpace/path.hpp"
 #include "pathpace/path_samples.hpp"
 #include "pathpace/result.hpp"
+#include "pathpace/robot_model.hpp"
 #include "pathpace/solver_options.hpp"
 
 namespace pathpace {
@@ -45,6 +47,29 @@ class TimeScalingProblem {
                              const std::string& label = "linear");
   /// Any constraint; its rows are evaluated now, so errors surface here.
   void add_constraint(std::shared_ptr<const Constraint> constraint);
+
+  /// A path whose contacts change: phase i holds its contacts (a ContactConstraint, eq. 17-18) on the grid
+  /// points of [s_begin, s_end], both ends included, so at a switch both adjacent stances hold. Phases
+  /// must be contiguous (phases[i].s_begin = phases[i-1].s_end), cover [s_begin, s_end] of the path and
+  /// have s_begin < s_end; errors name the phase index and value. A switch that is not a grid point is
+  /// inserted into the grid (one more interval; the constraints already added are evaluated again) unless
+  /// it lies within 1e-9 of the path's length of a grid point, which then becomes the switch. A constraint
+  /// whose rows are given per grid point (add_linear_constraint) cannot be re-evaluated: then a switch off
+  /// the grid is an InvalidInput naming the switch and the nearest grid point.
+  ///
+  /// No impact: a contact of phase i (i >= 1) that phase i-1 does not have (same link, other_link and
+  /// point to 1e-9 m) is made at the switch; if its point still moves along its normal as it arrives,
+  /// |n·c'| > impact_tolerance · (the point's largest speed |c'| over the grid), with c' = J p' taken just
+  /// before the switch (at s - 1e-9 of the path's length: the approach, which a path with a kink there
+  /// can have), then ṡ = 0 at the switch (a row ṡ² <= 0 labelled "phases[i]: no impact: ..."). Breaking a
+  /// contact needs nothing. The grid point at a switch takes p', p'' from the path's own evaluate there.
+  ///
+  /// Each phase is one ContactConstraint with active_begin/active_end set (label "phases[i]", which prefixes
+  /// its row labels, so Result::binding and messages name the phase); TorqueLimits of the same robot are
+  /// merged into every phase. tau_min / tau_max as in ContactConstraint.
+  void add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
+                          const ContactOptions& options = ContactOptions(), const Eigen::VectorXd& tau_min = Eigen::VectorXd(),
+                          const Eigen::VectorXd& tau_max = Eigen::VectorXd(), double impact_tolerance = 1e-6);
 
   /// Names of the path's coordinates, used in the row labels and messages of the velocity and
   /// acceleration limits (those added before as well as after). Set automatically from the robot of the
@@ -104,6 +129,8 @@ class TimeScalingProblem {
 
  private:
   void init_samples();
+  /// Throws InvalidInput unless `rows` fit the grid (a user's own Constraint may return anything).
+  static void check_rows(const Constraint& constraint, const ConstraintRows& rows, Eigen::Index points);
   /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
   /// Appends the rows of set_zero_boundary_accelerations (a labels-only ConstraintRows to `rows`, the
   /// interval rows θ_1 = θ_0 / θ_N = θ_{N-1} to `extra`, sized here).

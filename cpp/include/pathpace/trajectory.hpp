@@ -51,8 +51,20 @@ class Trajectory {
   const std::shared_ptr<const ContactConstraint>& contacts() const { return contacts_; }
   void set_contacts(std::shared_ptr<const ContactConstraint> contacts) { contacts_ = std::move(contacts); }
 
+  /// The contact phases that shaped this trajectory (TimeScalingProblem::add_contact_phases), in order
+  /// of s; empty if there were none.
+  const std::vector<std::shared_ptr<const ContactConstraint>>& contact_phases() const { return contact_phases_; }
+  void set_contact_phases(std::vector<std::shared_ptr<const ContactConstraint>> phases) {
+    contact_phases_ = std::move(phases);
+  }
+  /// The index into contact_phases() of the phase at each t: the one whose [active_begin, active_end]
+  /// holds s(t), the later one at a switch (the contacts that hold after it). -1 without phases.
+  Eigen::VectorXi contact_phase(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+
   /// The force-distribution LP at each t (see ContactForces): contact forces and their margin between
-  /// the grid points, where the solver did not look. Throws Error if no contact constraint shaped it.
+  /// the grid points, where the solver did not look. With contact phases, each t uses its phase (see
+  /// contact_phase: the later one at a switch), so the number of rows of `forces` is that phase's number
+  /// of contacts. Throws Error if no contact constraint shaped it.
   std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const;
 
   /// A C² cubic spline in time through the grid (as toppra's ParametrizeSpline): a CubicSplinePath whose
@@ -70,6 +82,7 @@ class Trajectory {
   std::shared_ptr<const Path> path_;
   std::shared_ptr<const RobotModel> robot_;
   std::shared_ptr<const ContactConstraint> contacts_;
+  std::vector<std::shared_ptr<const ContactConstraint>> contact_phases_;
   Eigen::VectorXd s_, sdot_, times_, sddot_;
 };
 

@@ -172,17 +172,49 @@ void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd
   }
 }
 
+bool ContactConstraint::active_at(double s) const {
+  const double tol = 1e-12 * std::max(1.0, std::abs(s));
+  return s >= options_.active_begin - tol && s <= options_.active_end + tol;
+}
+
+void ContactConstraint::point_velocities(const PathSamples& samples, Eigen::MatrixXd& normal, Eigen::MatrixXd& speed) const {
+  if (samples.dof() != robot_->nq())
+    detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
+                 std::to_string(robot_->nq()) + " joints");
+  const int m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
+  normal.resize(samples.size(), m);
+  speed.resize(samples.size(), m);
+  std::vector<Eigen::Isometry3d> T;
+  Eigen::MatrixXd J;
+  Eigen::Matrix3Xd gen;
+  for (Eigen::Index p = 0; p < samples.size(); ++p) {
+    contact_jacobians(samples.q.row(p).transpose(), T, J, gen);
+    const Eigen::VectorXd v = J * samples.dq.row(p).transpose();  // c_i' = J_i p' (eq. 10 for a point)
+    for (int i = 0; i < m; ++i) {
+      // The generators are n + μ (cos φ t1 + sin φ t2) over a full turn: their mean is the normal, in
+      // the world frame (other_link's turned into the world).
+      const Eigen::Vector3d n = gen.middleCols(i * k, k).rowwise().mean().normalized();
+      normal(p, i) = n.dot(v.segment<3>(3 * i));
+      speed(p, i) = v.segment<3>(3 * i).norm();
+    }
+  }
+}
+
 double ContactConstraint::max_drift(const PathSamples& samples, int* which) const {
   double worst = 0.0;
   std::vector<Eigen::Isometry3d> T;
   std::vector<Eigen::Vector3d> first(contacts_.size());
+  bool started = false;
   for (Eigen::Index s = 0; s < samples.size(); ++s) {
+    if (!active_at(samples.s[s])) continue;
+    const bool at_first = !started;
+    started = true;
     robot_->body_placements(samples.q.row(s).transpose(), T);
     auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
     for (size_t i = 0; i < contacts_.size(); ++i) {
       // Where the point is, in the frame that must keep it: the world, or the other body.
       const Eigen::Vector3d p = pose(other_body_[i]).inverse() * (pose(body_[i]) * point_in_body_[i]);
-      if (s == 0) {
+      if (at_first) {
         first[i] = p;
         continue;
       }
@@ -308,6 +340,59 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   if (samples.dof() != n)
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
                  std::to_string(n) + " joints");
+  std::vector<Eigen::Index> in;
+  for (Eigen::Index p = 0; p < samples.size(); ++p)
+    if (active_at(samples.s[p])) in.push_back(p);
+  const bool rest = !options_.rest_at_begin.empty();
+  if (static_cast<Eigen::Index>(in.size()) == samples.size() && !rest && options_.label.empty()) return project(samples);
+  // A phase: project only its own points; the others get inactive rows (c = +inf), as the contacts do
+  // not hold there.
+  ConstraintRows sub;
+  if (in.empty()) {
+    sub.resize(0, 0);
+  } else if (static_cast<Eigen::Index>(in.size()) == samples.size()) {
+    sub = project(samples);
+  } else {
+    PathSamples ps;
+    ps.s.resize(static_cast<Eigen::Index>(in.size()));
+    ps.q.resize(ps.s.size(), n);
+    ps.dq.resize(ps.s.size(), n);
+    ps.ddq.resize(ps.s.size(), n);
+    for (size_t i = 0; i < in.size(); ++i) {
+      const Eigen::Index j = static_cast<Eigen::Index>(i);
+      ps.s[j] = samples.s[in[i]];
+      ps.q.row(j) = samples.q.row(in[i]);
+      ps.dq.row(j) = samples.dq.row(in[i]);
+      ps.ddq.row(j) = samples.ddq.row(in[i]);
+    }
+    sub = project(ps);
+  }
+  const Eigen::Index r = sub.rows() + (rest ? 1 : 0);
+  ConstraintRows out;
+  out.resize(samples.size(), r);
+  out.lp_solves = sub.lp_solves;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Eigen::Index j = static_cast<Eigen::Index>(i);
+    out.a.row(in[i]).head(sub.rows()) = sub.a.row(j);
+    out.b.row(in[i]).head(sub.rows()) = sub.b.row(j);
+    out.c.row(in[i]).head(sub.rows()) = sub.c.row(j);
+  }
+  for (Eigen::Index p : sub.inexact_points) out.inexact_points.push_back(in[static_cast<size_t>(p)]);
+  const std::string prefix = options_.label.empty() ? std::string() : options_.label + ": ";
+  for (Eigen::Index j = 0; j < sub.rows(); ++j) out.labels[static_cast<size_t>(j)] = prefix + sub.labels[static_cast<size_t>(j)];
+  if (rest) {
+    // ṡ² <= 0 at the switch (a·x + b·u <= c with a = 1, b = 0, c = 0): the no-impact rule.
+    out.labels[static_cast<size_t>(r - 1)] = prefix + options_.rest_at_begin;
+    for (Eigen::Index p = 0; p < samples.size(); ++p)
+      if (std::abs(samples.s[p] - options_.active_begin) <= 1e-12 * std::max(1.0, std::abs(samples.s[p]))) {
+        out.a(p, r - 1) = 1.0;
+        out.c(p, r - 1) = 0.0;
+      }
+  }
+  return out;
+}
+
+ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
   detail::PolytopeLp lp;
   lp_structure(projected_, 0, lp);
 
@@ -422,6 +507,10 @@ ContactConstraint::PointCheck ContactConstraint::check_point(const PathSamples& 
   // Nothing bounds (x, u) here but what the rows say: no stand-in caps in a feasibility question.
   lp.col_hi[0] = lp.col_hi[1] = std::numeric_limits<double>::infinity();
   lp.col_lo[1] = -std::numeric_limits<double>::infinity();
+  // The no-impact row of a phase (ṡ² <= 0 at its first point) is part of this constraint.
+  if (!options_.rest_at_begin.empty() &&
+      std::abs(samples.s[k] - options_.active_begin) <= 1e-12 * std::max(1.0, std::abs(samples.s[k])))
+    lp.col_hi[0] = 0.0;
   detail::PolytopeProjector solver;
   PointCheck out;
   out.feasible = solver.feasible(lp);

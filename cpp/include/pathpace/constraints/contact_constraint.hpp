@@ -3,7 +3,9 @@
 /// Torque limits with frictional contact forces (eq. 17-18): the feasible (ṡ², s̈) polygon at each grid
 /// point is the projection of the polytope in (ṡ², s̈, contact forces) (sec. IV.B-C).
 
+#include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -38,6 +40,16 @@ struct ContactOptions {
   /// LPs allowed per grid point. When they run out, the polygon is the inner hull found so far and the
   /// grid point is reported inexact (FeasibleSet::exact, SolverStats::inexact_points).
   int max_lps = 2000;
+  /// The stretch of s where these contacts hold (one phase of TimeScalingProblem::add_contact_phases): grid
+  /// points with s outside [active_begin, active_end] (1e-12 relative) get only inactive rows, and
+  /// max_drift looks only inside. Default: the whole path.
+  double active_begin = -std::numeric_limits<double>::infinity();
+  double active_end = std::numeric_limits<double>::infinity();
+  /// Prefix of every row label ("phases[1]" gives "phases[1]: torque knee upper"); empty: none.
+  std::string label;
+  /// If not empty: ṡ = 0 at s = active_begin (the row ṡ² <= 0 there, with this label). A contact made at
+  /// the switch while its point still moves along its normal would need an impact (eq. 17 has no impulses).
+  std::string rest_at_begin;
 };
 
 /// At grid point k: τ = a x + b u + c - Σ_i J_iᵀ f_i (J_i the contact point's Jacobian on `link`, minus
@@ -69,8 +81,18 @@ class ContactConstraint : public Constraint {
 
   /// The largest distance a contact point moves along the path's samples (0 for a path that keeps
   /// every contact in place): in the world for a world contact, relative to `other_link` for a
-  /// robot–robot contact. `contact` receives the index of the worst one.
+  /// robot–robot contact, over the samples where the constraint is active (a phase: its own stretch).
+  /// `contact` receives the index of the worst one.
   double max_drift(const PathSamples& samples, int* contact = nullptr) const;
+
+  /// True if s lies in [active_begin, active_end] (to 1e-12 relative): the rows hold there.
+  bool active_at(double s) const;
+
+  /// Velocities of the contact points per unit of s along the path, at every sample: normal(k, i) =
+  /// n_i · c_i'(s_k) (c_i' = J_i p'(s_k), the world normal; relative to other_link for a robot–robot
+  /// contact) and speed(k, i) = |c_i'(s_k)| (m per unit s), for every sample whether active or not.
+  /// A contact made with normal(k, i) != 0 hits its surface (see add_contact_phases).
+  void point_velocities(const PathSamples& samples, Eigen::MatrixXd& normal, Eigen::MatrixXd& speed) const;
 
   /// The force-distribution LP at each row of (q, q̇, q̈) (each (samples, nq)): the most robust contact
   /// forces and their margin (see ContactForces). This is how a timing is audited between grid points.
@@ -111,6 +133,8 @@ class ContactConstraint : public Constraint {
   // With `use`, only those contacts, in that order.
   // Names of what can bind a projected edge (see detail::Projection::binding), in lp_structure's layout.
   std::vector<std::string> binding_names(const std::vector<int>& use) const;
+  // evaluate() on every sample of `samples`, without the phase's range, prefix or rest row.
+  ConstraintRows project(const PathSamples& samples) const;
   std::string binding_label(const std::vector<std::string>& names, int code) const;
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr) const;
