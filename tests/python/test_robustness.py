@@ -317,14 +317,17 @@ def test_cli_reports_bad_values_in_one_line_naming_the_option(tmp_path, capsys):
 
 # ---- silent wrong results in the solver's numerics (issue 10) ----
 
-def solve_and_check(w, vmax, amax, N):
-    """Solve in a child; re-check |q̇| <= vmax, |q̈| <= amax at every grid point with scipy's spline."""
+def solve_and_check(w, vmax, amax, N, amin=None):
+    """Solve in a child; re-check |q̇| <= vmax, amin <= q̈ <= amax (amin = -amax if not given) at every grid
+    point with scipy's spline."""
     from scipy.interpolate import CubicSpline
+
+    amin = -amax if amin is None else np.asarray(amin, dtype=float)
 
     def child():
         prob = pp.TimeScalingProblem(pp.CubicSplinePath(w), grid=N)
         prob.add_velocity_limits(-vmax, vmax)
-        prob.add_acceleration_limits(-amax, amax)
+        prob.add_acceleration_limits(amin, amax)
         r = prob.solve()
         return r.status.name, np.array(r.s), np.array(r.sdot), float(r.duration)
 
@@ -333,8 +336,24 @@ def solve_and_check(w, vmax, amax, N):
 
     kind, (status, s, sdot, T) = fork(child)
     spline = CubicSpline(np.linspace(0, 1, len(w)), w)
-    viol = kinematic_violation(s, sdot, spline(s, 1), spline(s, 2), vmax, amax) if len(s) else np.inf
+    viol = kinematic_violation(s, sdot, spline(s, 1), spline(s, 2), vmax, amax, amin) if len(sdot) else np.inf
     return status, viol, T
+
+
+def test_mixed_scale_limits_are_met_and_unused_limits_do_not_change_the_optimum():
+    # The issue's cases: amin = (-1, -2) binds, the upper limits of 1e9..1e14 never do. Before issue 10:
+    # limits exceeded by 4.2e-6 (amax = 1e9), 4.3e-3 (1e12), and ITERATION_LIMIT "the timing is feasible"
+    # with 0.34 and T below the optimum (vmax = 1e9, amax = 1e14). T cannot grow with a limit, and the
+    # three optima agree (no limit but amin binds), so a T below the optimum would show.
+    w = np.random.default_rng(0).uniform(-1, 1, (5, 2))
+    out = [solve_and_check(w, vmax * np.ones(2), amax * np.ones(2), 100, amin=[-1.0, -2.0])
+           for vmax, amax in ((1e6, 1e9), (1e6, 1e12), (1e9, 1e14))]
+    for status, viol, _ in out:
+        assert status == "OPTIMAL" and viol <= 1e-9, (status, viol)
+    assert out[1][2] == pytest.approx(out[0][2], rel=1e-9) and out[2][2] == pytest.approx(out[0][2], rel=1e-9)
+    # N = 2, limits 12 decades apart: q̈ = -5.0e-6 against amin = -2.77e-6, OPTIMAL, before.
+    status, viol, _ = solve_and_check(w, np.ones(2), 2.7e6 * np.ones(2), 2, amin=-2.77e-6 * np.ones(2))
+    assert status == "OPTIMAL" and viol <= 1e-9, (status, viol)
 
 
 def test_coordinates_at_1e200_time_like_unit_coordinates():
