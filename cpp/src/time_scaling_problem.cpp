@@ -367,7 +367,12 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   if (k < 0 || k >= samples_.size())
     detail::fail("k = " + std::to_string(k) + " must be in [0, " + std::to_string(samples_.size() - 1) + "]");
   detail::Polygon2d polygon;
-  const detail::PointSet ps = detail::build_point_set(rows_, k, polygon);
+  // Built in the solve's units (speeds ~1, see detail::Scale), so that the cut of an unbounded set and the
+  // polygon's tolerances are relative to the problem, and mapped back: a 1e-12-long path is bounded too.
+  detail::Scale scale = detail::problem_scale(samples_.s, rows_);
+  scale.cap = detail::kInfinityCap;
+  std::vector<detail::Line> scratch;
+  const detail::PointSet ps = detail::build_point_set(rows_, k, polygon, scratch, {}, nullptr, scale);
   std::vector<std::string> labels;
   for (const ConstraintRows& cr : rows_) labels.insert(labels.end(), cr.labels.begin(), cr.labels.end());
   auto label = [&](int id) { return id >= 0 ? labels[static_cast<size_t>(id)] : std::string(); };
@@ -375,8 +380,8 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   FeasibleSet fs;
   fs.index = k;
   fs.s = samples_.s[k];
-  fs.x_min = ps.x_lo;
-  fs.x_max = ps.x_hi_id >= 0 ? ps.x_hi : std::numeric_limits<double>::infinity();
+  fs.x_min = ps.x_lo * scale.x_unit;
+  fs.x_max = ps.x_hi_id >= 0 ? ps.x_hi * scale.x_unit : std::numeric_limits<double>::infinity();
   fs.x_max_label = label(ps.x_hi_id);
   fs.empty = ps.empty;
   for (const ConstraintRows& cr : rows_)
@@ -388,12 +393,14 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   }
   fs.halfplanes.resize(static_cast<Eigen::Index>(ps.rows.size()), 3);
   for (size_t i = 0; i < ps.rows.size(); ++i) {
-    fs.halfplanes.row(static_cast<Eigen::Index>(i)) << ps.rows[i].a, ps.rows[i].b, ps.rows[i].c;
+    fs.halfplanes.row(static_cast<Eigen::Index>(i)) << ps.rows[i].a / scale.x_unit, ps.rows[i].b / scale.u_unit,
+        ps.rows[i].c;
     fs.labels.push_back(label(ps.rows[i].id));
   }
   const auto& vs = polygon.vertices();
   fs.vertices.resize(static_cast<Eigen::Index>(vs.size()), 2);
-  for (size_t i = 0; i < vs.size(); ++i) fs.vertices.row(static_cast<Eigen::Index>(i)) << vs[i].x, vs[i].y;
+  for (size_t i = 0; i < vs.size(); ++i)
+    fs.vertices.row(static_cast<Eigen::Index>(i)) << vs[i].x * scale.x_unit, vs[i].y * scale.u_unit;
   for (const detail::Line& e : polygon.edges())
     if (e.id == detail::kBoxYLow || e.id == detail::kBoxYHigh || (e.id == detail::kBoxXHigh && ps.x_hi_id < 0))
       fs.bounded = false;

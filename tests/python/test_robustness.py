@@ -371,3 +371,21 @@ def test_a_million_intervals_still_meet_the_limits():
     w = np.random.default_rng(0).uniform(-1, 1, (6, 1))
     status, viol, _ = solve_and_check(w, np.ones(1), np.ones(1), 1_000_000)
     assert status == "OPTIMAL" and viol <= 1e-8, viol
+
+
+@pytest.mark.parametrize("L", [1e-12, 1.0, 1e12])
+def test_feasible_set_is_exact_and_bounded_at_any_path_length(L):
+    """feasible_set(k) is built in the solve's units: on a 1e-12-long path (ṡ² up to 1e24) it was cut at the
+    old absolute 1e15 and reported unbounded although the limits bound it."""
+    path = pp.CubicSplinePath(L * np.array([[0.0], [1.0]]))
+    prob = pp.TimeScalingProblem(path, grid=10)
+    prob.add_velocity_limits([-1.0], [1.0])
+    prob.add_acceleration_limits([-1.0], [1.0])
+    fs = prob.feasible_set(5)
+    assert fs.bounded and not fs.empty
+    assert fs.x_max == pytest.approx(1.0 / L**2, rel=1e-12)  # |p' ṡ| <= 1, p' = L
+    np.testing.assert_allclose(fs.vertices.max(axis=0), [1.0 / L**2, 1.0 / L], rtol=1e-12)  # |p' s̈| <= 1
+    assert fs.contains(0.5 / L**2, 0.0, tol=0.0) and not fs.contains(1.01 / L**2, 0.0, tol=0.0)
+    only_v = pp.TimeScalingProblem(path, grid=10)
+    only_v.add_velocity_limits([-1.0], [1.0])
+    assert not only_v.feasible_set(5).bounded  # s̈ is free: cut, and said so

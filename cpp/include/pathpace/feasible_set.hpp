@@ -23,7 +23,8 @@ struct FeasibleSet {
   double x_max = std::numeric_limits<double>::infinity();  ///< eq. (16) and any other bound on x alone
   std::string x_max_label;          ///< the constraint row giving x_max ("" if none)
   /// Polygon vertices, counter-clockwise, columns (x, u). An unbounded set (e.g. velocity limits only:
-  /// u is free) is shown cut at |u| <= 1e15 and x <= 1e15, with bounded = false.
+  /// u is free) is shown cut at 1e15 times the problem's typical ṡ² and s̈ (those the solve is scaled by),
+  /// with bounded = false.
   Eigen::Matrix<double, Eigen::Dynamic, 2> vertices;
   bool empty = false;
   bool bounded = true;
