@@ -137,51 +137,97 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     }
     return w;
   };
+  std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
+  std::vector<double> L, V;
+  if (memory.coarse.size() != constraints.size()) {
+    memory.coarse.assign(constraints.size(), ConstraintRows());
+    memory.cut_points.assign(constraints.size(), std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N)));
+  }
   for (size_t ci : which) {
-    // Only the intervals whose speeds changed since they were last audited.
-    std::vector<Eigen::Index> todo;
+    // The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (for a
+    // contact constraint, a polygon projection per point: most of the audit's cost).
+    if (memory.coarse[ci].a.rows() != N * points) {
+      ks.clear();
+      ls.clear();
+      for (Eigen::Index k = 0; k < N; ++k)
+        for (int m = 0; m < points; ++m) {
+          ks.push_back(k);
+          ls.push_back(lam[static_cast<size_t>(m)]);
+        }
+      memory.coarse[ci] = constraints[ci]->evaluate(samples_at(ks, ls));
+    }
+    const ConstraintRows& cr = memory.coarse[ci];
     auto& t0 = memory.theta0[ci];
     auto& t1 = memory.theta1[ci];
     auto& remembered = memory.worst[ci];
+    std::vector<Candidate> cand;
     for (Eigen::Index k = 0; k < N; ++k) {
       const size_t kk = static_cast<size_t>(k);
-      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) audit.worst = std::max(audit.worst, remembered[kk]);
-      else todo.push_back(k);
-    }
-    if (todo.empty()) continue;
-    ks.clear();
-    ls.clear();
-    for (Eigen::Index k : todo)
-      for (int m = 0; m < points; ++m) {
-        ks.push_back(k);
-        ls.push_back(lam[static_cast<size_t>(m)]);
+      // An interval whose speeds are those it was audited at has the same violation.
+      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) {
+        audit.worst = std::max(audit.worst, remembered[kk]);
+        continue;
       }
-    const ConstraintRows cr = constraints[ci]->evaluate(samples_at(ks, ls));
-    std::vector<Candidate> cand;
-    for (size_t t = 0; t < todo.size(); ++t) {
-      const Eigen::Index k = todo[t];
-      double worst = -std::numeric_limits<double>::infinity(), step = 0.0, prev = 0.0;
-      int at = -1;
-      for (int m = 0; m < points; ++m) {
-        const double v = worst_row(cr, static_cast<Eigen::Index>(t) * points + m, lam[static_cast<size_t>(m)], k, nullptr);
-        if (m > 0 && std::isfinite(v) && std::isfinite(prev)) step = std::max(step, std::abs(v - prev));
-        prev = v;
-        if (v > worst) {
-          worst = v;
-          at = m;
+      // Samples: both grid points (the grid's own rows), the Chebyshev points, and the points where the
+      // interval was cut before (the timing is tight there, and a violation next to one would lie
+      // between the Chebyshev points).
+      sample.clear();
+      sample.emplace_back(0.0, worst_row(grid_rows[ci], k, 0.0, k, nullptr));
+      sample.emplace_back(1.0, worst_row(grid_rows[ci], k + 1, 1.0, k, nullptr));
+      for (int m = 0; m < points; ++m)
+        sample.emplace_back(lam[static_cast<size_t>(m)], worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k, nullptr));
+      for (const AuditMemory::Point& pt : memory.cut_points[ci][kk]) {
+        double w = -std::numeric_limits<double>::infinity();
+        for (Eigen::Index j = 0; j < pt.a.size(); ++j)
+          w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta[k], theta[k + 1], u_of(k)));
+        sample.emplace_back(pt.lam, w);
+      }
+      std::sort(sample.begin(), sample.end());
+      L.clear();
+      V.clear();
+      for (const auto& [l, v] : sample) {
+        if (!L.empty() && l - L.back() <= 1e-6) {
+          V.back() = std::max(V.back(), v);
+          continue;
         }
+        L.push_back(l);
+        V.push_back(v);
       }
-      t0[static_cast<size_t>(k)] = theta[k];
-      t1[static_cast<size_t>(k)] = theta[k + 1];
-      remembered[static_cast<size_t>(k)] = std::isfinite(worst) ? worst : -std::numeric_limits<double>::infinity();
-      if (at < 0 || !std::isfinite(worst)) continue;
+      const size_t P = L.size();
+      double worst = -std::numeric_limits<double>::infinity();
+      for (double v : V) worst = std::max(worst, v);
+      t0[kk] = theta[k];
+      t1[kk] = theta[k + 1];
+      remembered[kk] = worst;
       audit.worst = std::max(audit.worst, worst);
-      // Within 1 % of a limit, or within twice the largest change between two audit points (it can rise
-      // that much between them): find the peak between the neighbouring points.
-      if (worst > -std::max(1e-2, 2.0 * step)) {
-        const double lo = at == 0 ? 0.0 : lam[static_cast<size_t>(at - 1)];
-        const double hi = at == points - 1 ? 1.0 : lam[static_cast<size_t>(at + 1)];
-        cand.push_back({k, lo, hi, hi - g * (hi - lo), lo + g * (hi - lo), 0.0, 0.0});
+      // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
+      // K τ (h - τ) / 2 with K >= -v'' there. K is taken as 4 times the largest concavity that the
+      // second divided differences of the neighbouring samples show (no bound of v'' is known in closed
+      // form: a polygon's edges move with s). On a timing that is tight at a grid point and falls away
+      // into the interval, the chord's slope outweighs that and no search is needed; the peak is
+      // searched (golden section below) between every two samples whose bound reaches the tolerance.
+      auto d2 = [&](size_t j) {  // v'' from the samples j - 1, j, j + 1
+        const double a = (V[j] - V[j - 1]) / (L[j] - L[j - 1]), b = (V[j + 1] - V[j]) / (L[j + 1] - L[j]);
+        return 2.0 * (b - a) / (L[j + 1] - L[j - 1]);
+      };
+      for (size_t i = 0; i + 1 < P; ++i) {
+        const double va = V[i], vb = V[i + 1], h = L[i + 1] - L[i];
+        if (va == -std::numeric_limits<double>::infinity() && vb == -std::numeric_limits<double>::infinity()) continue;
+        double concave = 0.0;
+        bool known = std::isfinite(va) && std::isfinite(vb);
+        for (size_t j : {i, i + 1})
+          if (j >= 1 && j + 1 < P) {
+            if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) known = false;
+            else concave = std::max(concave, -d2(j));
+          }
+        double bound = std::numeric_limits<double>::infinity();
+        if (known) {
+          const double K = 4.0 * concave, slope = (vb - va) / h;
+          // max over τ in [0, h] of va + slope τ + K τ (h - τ) / 2
+          const double tau = K > 0.0 ? std::clamp(0.5 * h + slope / K, 0.0, h) : (slope > 0.0 ? h : 0.0);
+          bound = va + slope * tau + 0.5 * K * tau * (h - tau);
+        }
+        if (bound > tolerance) cand.push_back({k, L[i], L[i + 1], L[i + 1] - g * h, L[i] + g * h, 0.0, 0.0});
       }
     }
     if (cand.empty()) continue;
@@ -223,11 +269,19 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     ks.clear();
     ls.clear();
     std::vector<size_t> cut;
+    // One cut per interval and round, at its largest violation (cuts at several points of one interval
+    // in one round are near-parallel rows that can leave the LPs ill-conditioned).
+    std::map<Eigen::Index, size_t> best_of;
+    for (size_t i = 0; i < cand.size(); ++i) {
+      auto it = best_of.emplace(cand[i].k, i).first;
+      if (std::max(cand[i].f1, cand[i].f2) > std::max(cand[it->second].f1, cand[it->second].f2)) it->second = i;
+    }
     for (size_t i = 0; i < cand.size(); ++i) {
       const Candidate& c = cand[i];
       const double best = std::max(c.f1, c.f2);
       audit.worst = std::max(audit.worst, best);
       memory.worst[ci][static_cast<size_t>(c.k)] = std::max(memory.worst[ci][static_cast<size_t>(c.k)], best);
+      if (best_of[c.k] != i) continue;
       if (best > tolerance) {
         cut.push_back(i);
         ks.push_back(c.k);
@@ -244,6 +298,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
       const Candidate& c = cand[cut[q]];
       const double l = ls[q], h = s[c.k + 1] - s[c.k];
       const Eigen::Index r = static_cast<Eigen::Index>(q);
+      memory.cut_points[ci][static_cast<size_t>(c.k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose()});
       for (Eigen::Index j = 0; j < rr.rows(); ++j) {
         if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[c.k], theta[c.k + 1], u_of(c.k)) <= tolerance) continue;
         const double a = rr.a(r, j), b = rr.b(r, j);

@@ -34,6 +34,15 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
 /// (after a cut, the re-solve changes θ near it and leaves most of the path as it was).
 struct AuditMemory {
   std::vector<std::vector<double>> theta0, theta1, worst;  // [constraint][interval]
+  /// [constraint]: its rows at the audit's Chebyshev points of every interval (row k·points + m), which do
+  /// not depend on the timing: evaluated in the first round only.
+  std::vector<ConstraintRows> coarse;
+  /// [constraint][interval]: the rows at each point where the interval was cut.
+  struct Point {
+    double lam;
+    Eigen::VectorXd a, b, c;
+  };
+  std::vector<std::vector<std::vector<Point>>> cut_points;
 };
 
 struct Audit {
