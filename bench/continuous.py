@@ -4,22 +4,24 @@ Arm corpus: the 4 arms and random paths of bench/sweep.py (Panda with fingers lo
 random waypoints, not-a-knot spline, URDF velocity limits, acceleration 2 x velocity), `--seeds` seeds per
 arm, N = 100 and 1000, (a) velocity + acceleration limits, (b) plus torque limits at sweep.py's scale
 (0.6 x effort, or 0.8 / 1.0 where 0.6 cannot hold the path). Humanoid: the Talos sway of
-examples/talos_sway.py (8 sole contacts, μ = 0.5, 8-edge cones, 10 N minimum normal force), N = 100.
+examples/talos_sway.py (8 sole contacts, μ = 0.5, 8-edge cones, 10 N minimum normal force), N = 100 and 1000.
 
 Per problem and guarantee: the solve time (thread CPU, median of `--repeat` calls), T, and the largest
 relative excess over every limit sampled at 1 kHz on the returned trajectory (velocity and acceleration by
 the trajectory's own q̇, q̈; torque by our inverse dynamics; contact: the force-distribution margin in N,
 negative = forces that do not exist). Reported as distributions: median and worst over the corpus.
 
-    .venv/bin/python bench/continuous.py              (about 3 min; writes bench/results/continuous.json and
+    .venv/bin/python bench/continuous.py              (under a minute; writes bench/results/continuous.json and
                                                        the generated section of bench/README.md)
     .venv/bin/python bench/continuous.py --quick      (3 seeds per arm, no humanoid, README left alone)
+    .venv/bin/python bench/continuous.py --humanoid   (the humanoid rows only, README left alone)
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import sys
 import time
@@ -86,17 +88,24 @@ def arm_rows(seeds, sizes, repeat):
     return rows
 
 
-def humanoid_rows(repeat):
+def humanoid_rows(repeat, sizes=(100, 1000)):
     import talos_sway as ts
 
     robot = ts.load_talos()
     path = ts.sway_path(robot)
     feet = ts.sole_contacts(4)
     rows = []
-    row = {"robot": "talos", "N": 100}
+    for N in sizes:
+        rows.append(humanoid_row(robot, path, feet, N, repeat))
+        print(f"talos N = {N}: {rows[-1]}", file=sys.stderr)
+    return rows
+
+
+def humanoid_row(robot, path, feet, N, repeat):
+    row = {"robot": "talos", "N": N, "load_before": os.getloadavg()[0]}
     for g in GUARANTEES:
         def solve():
-            prob = pp.TimeScalingProblem(path, grid=100)
+            prob = pp.TimeScalingProblem(path, grid=N)
             prob.add_contacts(robot, feet, cone_edges=8, min_normal_force=10.0)
             return prob.solve(guarantee=g)
 
@@ -110,8 +119,7 @@ def humanoid_rows(repeat):
             # Margin beyond the 10 N minimum the solve was asked for (force_distribution reports it so).
             r["contact_margin_N"] = float(np.min(cf.margin))
         row[g] = r
-    rows.append(row)
-    return rows
+    return row
 
 
 def summarize(rows):
@@ -141,7 +149,7 @@ def summarize(rows):
 def table(summary, humans):
     lines = ["| case | N | paths | T continuous / grid - 1: median, worst | solve ms grid / continuous (median) | "
              "time ratio: median, worst | 1 kHz excess grid: median, worst | 1 kHz excess continuous: worst | audit rounds (max) |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|"] if summary else []
     for s in summary:
         lines.append(f"| {s['case']} | {s['N']} | {s['paths']} | {s['dT_median']:+.2e}, {s['dT_worst']:+.2e} | "
                      f"{s['ms_grid']:.2f} / {s['ms_cont']:.2f} | {s['slow_median']:.1f}x, {s['slow_worst']:.1f}x | "
@@ -154,18 +162,22 @@ def table(summary, humans):
                      f"{g['ms']:.0f} ms, worst force-distribution margin at 1 kHz {g.get('contact_margin_N', float('nan')):+.3g} N; "
                      f"continuous T = {c['T']:.4f} s ({c['T'] / g['T'] - 1:+.2%}) in {c['ms']:.0f} ms "
                      f"({c['audit_rounds']} audit rounds, {c['audit_cuts']} cuts), worst margin "
-                     f"{c.get('contact_margin_N', float('nan')):+.3g} N.")
+                     f"{c.get('contact_margin_N', float('nan')):+.3g} N (1-minute load average before: {h['load_before']:.1f}).")
     return "\n".join(lines)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--humanoid", action="store_true")
     ap.add_argument("--seeds", type=int, default=None)
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
     seeds = args.seeds or (3 if args.quick else 10)
     t0 = time.time()
+    if args.humanoid:
+        print(table([], humanoid_rows(args.repeat)))
+        return
     rows = arm_rows(seeds, (100, 1000), args.repeat)
     humans = [] if args.quick else humanoid_rows(args.repeat)
     summary = summarize(rows)
@@ -178,9 +190,10 @@ def main():
             "machine": common.machine(), "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     (HERE / "results" / "continuous.json").write_text(json.dumps(data, indent=1, default=str))
     section = f"""{BEGIN}
-Command (from the repository root, after `make python`; about {data['seconds'] / 60:.0f} min):
+Command (from the repository root, after `make python`; about {data['seconds']:.0f} s):
 
-    .venv/bin/python bench/continuous.py        (--quick: 3 seeds per arm, no humanoid, README left alone)
+    .venv/bin/python bench/continuous.py        (--quick: 3 seeds per arm, no humanoid; --humanoid: the humanoid
+                                                 rows only; both leave the README alone)
 
 Run {data['date']}, {seeds} seeds per arm of bench/sweep.py's corpus (Panda, UR5, UR10, xArm7), (a)
 velocity + acceleration, (b) plus torque limits; solve time is thread CPU, median of {args.repeat} calls.

@@ -83,6 +83,18 @@ double violation(double a, double b, double c, double lam, double t0, double t1,
   return (ax + bu - c) / std::max({std::abs(c), std::abs(ax) + std::abs(bu), 1e-300});
 }
 
+// An upper bound of v on [la, lb] from its end values, if v'' >= -K there: the chord plus K τ (h - τ) / 2.
+double bump_bound(double la, double va, double lb, double vb, double K) {
+  const double h = lb - la, slope = (vb - va) / h;
+  const double tau = K > 0.0 ? std::clamp(0.5 * h + slope / K, 0.0, h) : (slope > 0.0 ? h : 0.0);
+  return va + slope * tau + 0.5 * K * tau * (h - tau);
+}
+
+// v'' from three samples.
+double second_difference(double la, double va, double lb, double vb, double lc, double vc) {
+  return 2.0 * ((vc - vb) / (lc - lb) - (vb - va) / (lb - la)) / (lc - la);
+}
+
 }  // namespace
 
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
@@ -124,7 +136,11 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
   // not followed one by one); its peak is found, and every row broken at the peak becomes a cut.
   struct Candidate {
     Eigen::Index k;
-    double lo, hi, x1, x2, f1, f2;  // golden-section bracket [lo, hi] with inner points x1 < x2
+    double a, b, c, fa, fb, fc;  // a < b < c: b the best interior point so far (its violation fb)
+    double step = 0.0, step_before = 0.0;  // the last two steps (Brent's safeguard on parabolic steps)
+    bool done = false;
+    double best() const { return std::max({fa, fb, fc}); }
+    double at() const { return fb >= fa && fb >= fc ? b : (fa >= fc ? a : c); }
   };
   auto worst_row = [&](const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k, Eigen::Index* arg) {
     double w = -std::numeric_limits<double>::infinity();
@@ -137,101 +153,198 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     }
     return w;
   };
+  std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
+  std::vector<double> L, V;
+  if (memory.coarse.size() != constraints.size()) {
+    memory.coarse.assign(constraints.size(), ConstraintRows());
+    memory.cut_points.assign(constraints.size(), std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N)));
+  }
   for (size_t ci : which) {
-    // Only the intervals whose speeds changed since they were last audited.
-    std::vector<Eigen::Index> todo;
+    // The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (for a
+    // contact constraint, a polygon projection per point: most of the audit's cost).
+    if (memory.coarse[ci].a.rows() != N * points) {
+      ks.clear();
+      ls.clear();
+      for (Eigen::Index k = 0; k < N; ++k)
+        for (int m = 0; m < points; ++m) {
+          ks.push_back(k);
+          ls.push_back(lam[static_cast<size_t>(m)]);
+        }
+      memory.coarse[ci] = constraints[ci]->evaluate(samples_at(ks, ls));
+    }
+    const ConstraintRows& cr = memory.coarse[ci];
     auto& t0 = memory.theta0[ci];
     auto& t1 = memory.theta1[ci];
     auto& remembered = memory.worst[ci];
+    std::vector<Candidate> cand;
     for (Eigen::Index k = 0; k < N; ++k) {
       const size_t kk = static_cast<size_t>(k);
-      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) audit.worst = std::max(audit.worst, remembered[kk]);
-      else todo.push_back(k);
-    }
-    if (todo.empty()) continue;
-    ks.clear();
-    ls.clear();
-    for (Eigen::Index k : todo)
-      for (int m = 0; m < points; ++m) {
-        ks.push_back(k);
-        ls.push_back(lam[static_cast<size_t>(m)]);
+      // An interval whose speeds are those it was audited at has the same violation.
+      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) {
+        audit.worst = std::max(audit.worst, remembered[kk]);
+        continue;
       }
-    const ConstraintRows cr = constraints[ci]->evaluate(samples_at(ks, ls));
-    std::vector<Candidate> cand;
-    for (size_t t = 0; t < todo.size(); ++t) {
-      const Eigen::Index k = todo[t];
-      double worst = -std::numeric_limits<double>::infinity(), step = 0.0, prev = 0.0;
-      int at = -1;
-      for (int m = 0; m < points; ++m) {
-        const double v = worst_row(cr, static_cast<Eigen::Index>(t) * points + m, lam[static_cast<size_t>(m)], k, nullptr);
-        if (m > 0 && std::isfinite(v) && std::isfinite(prev)) step = std::max(step, std::abs(v - prev));
-        prev = v;
-        if (v > worst) {
-          worst = v;
-          at = m;
+      // Samples: both grid points (the grid's own rows), the Chebyshev points, and the points where the
+      // interval was cut before (the timing is tight there, and a violation next to one would lie
+      // between the Chebyshev points).
+      sample.clear();
+      sample.emplace_back(0.0, worst_row(grid_rows[ci], k, 0.0, k, nullptr));
+      sample.emplace_back(1.0, worst_row(grid_rows[ci], k + 1, 1.0, k, nullptr));
+      for (int m = 0; m < points; ++m)
+        sample.emplace_back(lam[static_cast<size_t>(m)], worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k, nullptr));
+      for (const AuditMemory::Point& pt : memory.cut_points[ci][kk]) {
+        double w = -std::numeric_limits<double>::infinity();
+        for (Eigen::Index j = 0; j < pt.a.size(); ++j)
+          w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta[k], theta[k + 1], u_of(k)));
+        sample.emplace_back(pt.lam, w);
+      }
+      std::sort(sample.begin(), sample.end());
+      L.clear();
+      V.clear();
+      for (const auto& [l, v] : sample) {
+        if (!L.empty() && l - L.back() <= 1e-6) {
+          V.back() = std::max(V.back(), v);
+          continue;
         }
+        L.push_back(l);
+        V.push_back(v);
       }
-      t0[static_cast<size_t>(k)] = theta[k];
-      t1[static_cast<size_t>(k)] = theta[k + 1];
-      remembered[static_cast<size_t>(k)] = std::isfinite(worst) ? worst : -std::numeric_limits<double>::infinity();
-      if (at < 0 || !std::isfinite(worst)) continue;
+      const size_t P = L.size();
+      double worst = -std::numeric_limits<double>::infinity();
+      for (double v : V) worst = std::max(worst, v);
+      t0[kk] = theta[k];
+      t1[kk] = theta[k + 1];
+      remembered[kk] = worst;
       audit.worst = std::max(audit.worst, worst);
-      // Within 1 % of a limit, or within twice the largest change between two audit points (it can rise
-      // that much between them): find the peak between the neighbouring points.
-      if (worst > -std::max(1e-2, 2.0 * step)) {
-        const double lo = at == 0 ? 0.0 : lam[static_cast<size_t>(at - 1)];
-        const double hi = at == points - 1 ? 1.0 : lam[static_cast<size_t>(at + 1)];
-        cand.push_back({k, lo, hi, hi - g * (hi - lo), lo + g * (hi - lo), 0.0, 0.0});
+      // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
+      // K τ (h - τ) / 2 with K >= -v'' there. K is taken as 4 times the largest concavity that the
+      // second divided differences of the neighbouring samples show (no bound of v'' is known in closed
+      // form: a polygon's edges move with s). On a timing that is tight at a grid point and falls away
+      // into the interval, the chord's slope outweighs that and no search is needed; the peak is
+      // searched (golden section below) between every two samples whose bound reaches the tolerance.
+      for (size_t i = 0; i + 1 < P; ++i) {
+        const double va = V[i], vb = V[i + 1];
+        if (va == -std::numeric_limits<double>::infinity() && vb == -std::numeric_limits<double>::infinity()) continue;
+        double concave = 0.0;
+        bool known = std::isfinite(va) && std::isfinite(vb);
+        for (size_t j : {i, i + 1})
+          if (j >= 1 && j + 1 < P) {
+            if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) known = false;
+            else concave = std::max(concave, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]));
+          }
+        if (known && bump_bound(L[i], va, L[i + 1], vb, 4.0 * concave) <= tolerance) continue;
+        const double b = vb > va ? L[i] + g * (L[i + 1] - L[i]) : L[i + 1] - g * (L[i + 1] - L[i]);
+        cand.push_back({k, L[i], b, L[i + 1], va, 0.0, vb, L[i + 1] - L[i], L[i + 1] - L[i]});
       }
     }
     if (cand.empty()) continue;
-    // Golden-section search for each candidate's peak, all candidates evaluated in one batch per step.
-    auto eval = [&](const std::vector<double>& at_lam, std::vector<double>& f) {
+    // The peak between the two samples: successive parabolic interpolation through the best point and
+    // its two neighbours, with golden-section steps where a parabola does not apply or does not shrink
+    // the bracket fast enough (Brent's rule), all candidates evaluated in one batch per step. A candidate
+    // is settled early when the bound above, from its three points, shows no violation.
+    auto eval = [&](const std::vector<size_t>& which_cand, const std::vector<double>& at_lam, std::vector<double>& f) {
       ks.clear();
-      for (const Candidate& c : cand) ks.push_back(c.k);
+      for (size_t i : which_cand) ks.push_back(cand[i].k);
       const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, at_lam));
-      f.resize(cand.size());
-      for (size_t i = 0; i < cand.size(); ++i) f[i] = worst_row(rr, static_cast<Eigen::Index>(i), at_lam[i], cand[i].k, nullptr);
+      f.resize(which_cand.size());
+      for (size_t q = 0; q < which_cand.size(); ++q)
+        f[q] = worst_row(rr, static_cast<Eigen::Index>(q), at_lam[q], cand[which_cand[q]].k, nullptr);
     };
-    std::vector<double> x(cand.size()), f;
-    for (size_t i = 0; i < cand.size(); ++i) x[i] = cand[i].x1;
-    eval(x, f);
-    for (size_t i = 0; i < cand.size(); ++i) cand[i].f1 = f[i];
-    for (size_t i = 0; i < cand.size(); ++i) x[i] = cand[i].x2;
-    eval(x, f);
-    for (size_t i = 0; i < cand.size(); ++i) cand[i].f2 = f[i];
-    for (int it = 0; it < 24; ++it) {
+    std::vector<size_t> active;
+    std::vector<double> x, f;
+    for (size_t i = 0; i < cand.size(); ++i) {
+      active.push_back(i);
+      x.push_back(cand[i].b);
+    }
+    eval(active, x, f);
+    for (size_t q = 0; q < active.size(); ++q) cand[active[q]].fb = f[q];
+    for (int it = 0; it < 30; ++it) {
+      active.clear();
+      x.clear();
       for (size_t i = 0; i < cand.size(); ++i) {
         Candidate& c = cand[i];
-        if (c.f1 >= c.f2) {  // the peak is in [lo, x2]
-          c.hi = c.x2;
-          c.x2 = c.x1;
-          c.f2 = c.f1;
-          c.x1 = c.hi - g * (c.hi - c.lo);
-          x[i] = c.x1;
+        if (c.done) continue;
+        const double tol = 1e-9 + 1e-7 * (c.c - c.a);
+        if (c.c - c.a <= 1e-7 || !std::isfinite(c.fb)) {
+          c.done = true;
+          continue;
+        }
+        if (std::isfinite(c.fa) && std::isfinite(c.fc)) {
+          const double K = 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc));
+          if (c.best() <= tolerance && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance &&
+              bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance) {
+            c.done = true;
+            continue;
+          }
+        }
+        double next;
+        bool parabolic = false;
+        if (c.fb >= c.fa && c.fb >= c.fc) {
+          const double p = (c.b - c.a) * (c.fb - c.fc), q = (c.b - c.c) * (c.fb - c.fa);
+          const double den = 2.0 * (p - q);
+          if (den != 0.0) {
+            const double d = -((c.b - c.a) * p - (c.b - c.c) * q) / den;
+            if (std::abs(d) < 0.5 * std::abs(c.step_before) && c.b + d > c.a + tol && c.b + d < c.c - tol) {
+              next = std::abs(d) < tol ? c.b + (d < 0 ? -tol : tol) : c.b + d;
+              parabolic = true;
+            }
+          }
+          if (!parabolic) next = c.b - c.a > c.c - c.b ? c.b - (1.0 - g) * (c.b - c.a) : c.b + (1.0 - g) * (c.c - c.b);
+        } else if (c.fa >= c.fc) {  // v falls from a: the peak is nearer a
+          next = c.a + (1.0 - g) * (c.b - c.a);
         } else {
-          c.lo = c.x1;
-          c.x1 = c.x2;
-          c.f1 = c.f2;
-          c.x2 = c.lo + g * (c.hi - c.lo);
-          x[i] = c.x2;
+          next = c.c - (1.0 - g) * (c.c - c.b);
+        }
+        c.step_before = c.step;
+        c.step = next - c.b;
+        if (!parabolic) c.step_before = c.c - c.a;  // a golden step re-opens the safeguard
+        active.push_back(i);
+        x.push_back(next);
+      }
+      if (active.empty()) break;
+      eval(active, x, f);
+      for (size_t q = 0; q < active.size(); ++q) {
+        Candidate& c = cand[active[q]];
+        const double xq = x[q], fq = f[q];
+        if (fq >= c.fb) {
+          if (xq < c.b) {
+            c.c = c.b;
+            c.fc = c.fb;
+          } else {
+            c.a = c.b;
+            c.fa = c.fb;
+          }
+          c.b = xq;
+          c.fb = fq;
+        } else if (xq < c.b) {
+          c.a = xq;
+          c.fa = fq;
+        } else {
+          c.c = xq;
+          c.fc = fq;
         }
       }
-      eval(x, f);
-      for (size_t i = 0; i < cand.size(); ++i) (x[i] == cand[i].x1 ? cand[i].f1 : cand[i].f2) = f[i];
     }
     ks.clear();
     ls.clear();
     std::vector<size_t> cut;
+    // One cut per interval and round, at its largest violation (cuts at several points of one interval
+    // in one round are near-parallel rows that can leave the LPs ill-conditioned).
+    std::map<Eigen::Index, size_t> best_of;
+    for (size_t i = 0; i < cand.size(); ++i) {
+      auto it = best_of.emplace(cand[i].k, i).first;
+      if (cand[i].best() > cand[it->second].best()) it->second = i;
+    }
     for (size_t i = 0; i < cand.size(); ++i) {
       const Candidate& c = cand[i];
-      const double best = std::max(c.f1, c.f2);
+      const double best = c.best();
       audit.worst = std::max(audit.worst, best);
       memory.worst[ci][static_cast<size_t>(c.k)] = std::max(memory.worst[ci][static_cast<size_t>(c.k)], best);
+      if (best_of[c.k] != i) continue;
       if (best > tolerance) {
         cut.push_back(i);
         ks.push_back(c.k);
-        ls.push_back(c.f1 >= c.f2 ? c.x1 : c.x2);
+        ls.push_back(c.at());
       }
     }
     if (cut.empty()) continue;
@@ -244,6 +357,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
       const Candidate& c = cand[cut[q]];
       const double l = ls[q], h = s[c.k + 1] - s[c.k];
       const Eigen::Index r = static_cast<Eigen::Index>(q);
+      memory.cut_points[ci][static_cast<size_t>(c.k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose()});
       for (Eigen::Index j = 0; j < rr.rows(); ++j) {
         if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[c.k], theta[c.k + 1], u_of(c.k)) <= tolerance) continue;
         const double a = rr.a(r, j), b = rr.b(r, j);

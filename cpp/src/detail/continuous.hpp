@@ -34,6 +34,15 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
 /// (after a cut, the re-solve changes θ near it and leaves most of the path as it was).
 struct AuditMemory {
   std::vector<std::vector<double>> theta0, theta1, worst;  // [constraint][interval]
+  /// [constraint]: its rows at the audit's Chebyshev points of every interval (row k·points + m), which do
+  /// not depend on the timing: evaluated in the first round only.
+  std::vector<ConstraintRows> coarse;
+  /// [constraint][interval]: the rows at each point where the interval was cut.
+  struct Point {
+    double lam;
+    Eigen::VectorXd a, b, c;
+  };
+  std::vector<std::vector<std::vector<Point>>> cut_points;
 };
 
 struct Audit {
@@ -41,11 +50,14 @@ struct Audit {
   int cuts = 0;        ///< rows added to `extra`
 };
 
-/// Checks every constraint other than velocity and acceleration limits at `points` interior points of
-/// each interval of grid `s` under the timing θ, and adds to `extra` each row that is violated by more than
-/// `tolerance` (relative), at the interior point where it is violated most. Rows are followed by their label
-/// (a contact polygon's columns differ from one evaluation to the next); `grid_rows[i]` are constraint i's
-/// rows on the grid and `row_offset[i]` the label id of its first row, which name the cuts.
+/// Checks every constraint other than velocity and acceleration limits between the grid points of `s` under
+/// the timing θ: at `points` Chebyshev points of each interval (their rows kept in `memory` for later
+/// rounds), both grid points and the interval's earlier cut points, then, where a concavity bound from
+/// those samples reaches `tolerance`, at the peak found by parabolic/golden search. Adds to `extra` each
+/// row violated by more than `tolerance` (relative) at the interval's worst point, one point per interval
+/// and round. Rows are followed by their label (a contact polygon's columns differ from one evaluation to
+/// the next); `grid_rows[i]` are constraint i's rows on the grid and `row_offset[i]` the label id of its
+/// first row, which name the cuts.
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,
                     const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
