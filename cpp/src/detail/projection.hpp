@@ -84,6 +84,11 @@ class PolytopeProjector {
   int rows_ = -1, cols_ = -1;
   std::vector<int> ia_, ja_;  // matrix-loading scratch
   std::vector<double> ar_;
+  struct Basis {  // an LP's final basis: its direction, then GLPK's row and column statuses
+    double angle = 0.0;
+    std::vector<signed char> stat;
+  };
+  std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
 };
 
 /// One polytope, from a cold start.
