@@ -170,7 +170,11 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   // pivots restore primal feasibility; from the basis of the LP just before (another direction) the
   // primal simplex took ~30 pivots per LP on a 60-contact humanoid. Any start gives an optimum, so the
   // polygon does not depend on it (a degenerate optimum may be another point of the same edge).
-  const bool same_shape = warm && !previous_.empty();
+  // Only for LPs of at least kRestoreColumns columns: a restored basis is refactorised (~ the cost of a
+  // few pivots), which made the 8-contact humanoid (66 columns, few pivots per LP) 5-15 % slower and
+  // the 60-contact one (482 columns, ~31 pivots per LP) 2.2x faster.
+  constexpr int kRestoreColumns = 200;
+  const bool same_shape = warm && !previous_.empty() && cols_ >= kRestoreColumns;
   std::vector<char> nonempty_col(static_cast<size_t>(cols_), 0);
   if (same_shape)
     for (int j = 0; j < cols_; ++j) nonempty_col[static_cast<size_t>(j)] = (in.A.col(j).array() != 0.0).any();
