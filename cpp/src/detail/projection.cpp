@@ -251,9 +251,14 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       glpk_set_bounds(lp, false, 1, xlo, capped(xhi) ? INFINITY : xhi);
       glpk_set_bounds(lp, false, 2, capped(ulo) ? -INFINITY : ulo, capped(uhi) ? INFINITY : uhi);
       ++out.lp_solves;
-      // Confirmed in exact arithmetic: with b ~ 1e-8 against forces ~ 1e2 the floating-point simplex
-      // (no scaling) was seen to call such a polytope infeasible from both bases.
-      const int st = glpk_solve_robust(lp, parm, true);
+      // With GLPK's scaling, for this LP only: with b ~ 1e-8 against forces ~ 1e2 the unscaled simplex
+      // was seen to call such a polytope infeasible from both bases (exact arithmetic gets it right too,
+      // but costs ~30 ms per truly empty point). An infeasible answer is the projection's claim, which
+      // solve() re-checks in exact arithmetic before it reports it.
+      glp_scale_prob(lp, GLP_SF_AUTO);
+      glp_std_basis(lp);
+      const int st = glpk_solve_robust(lp, parm, false);
+      glp_unscale_prob(lp);
       if (st != GLP_OPT) {
         glp_error_hook(nullptr, nullptr);
         out.outcome = st == GLP_NOFEAS ? Projection::Outcome::Empty : Projection::Outcome::Failed;
@@ -272,8 +277,10 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       if (capped(ulo)) ulo = -grown;
       if (capped(uhi)) uhi = grown;
       stand_in = grown;
-      // A coordinate found beyond the old bounds is scaled to order one (b ~ 1e-8 against u ~ 1e10 was
-      // seen to give optima off the polytope by 10 %): its column times s, its bounds over s.
+      // A coordinate found beyond the old bounds is scaled to order one (its column times s, its bounds
+      // over s), so that GLPK's unscaled simplex sees values of order one. It does not make these LPs
+      // reliable (on Talos its optima still reached the grown bounds along u where HiGHS's did not):
+      // hence the polygon is reported inexact below.
       auto scale_of = [&](double f) { return f > in.stand_in ? std::pow(10.0, std::round(std::log10(f))) : 1.0; };
       sx = scale_of(fx);
       su = scale_of(fu);
