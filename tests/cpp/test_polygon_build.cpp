@@ -1,5 +1,6 @@
 // Polygon2d::build (envelopes) against reset + clip (the reference), on seeded random line sets shaped
-// like the solver's: slabs (pairs of opposite rows), x-bounds, boxes far larger than the polygon.
+// like the solver's: slabs (pairs of opposite rows), x-bounds, nearly vertical and nearly horizontal rows,
+// boxes far larger than the polygon.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,7 +31,12 @@ TEST(PolygonBuild, MatchesClippingOnRandomSlabs) {
     int id = 0;
     for (int j = 0; j < slabs; ++j) {
       // lo <= a x + b y <= hi, as acceleration or torque rows are.
-      const double a = U(rng), b = trial % 17 == 0 && j == 0 ? 0.0 : U(rng);
+      double a = U(rng), b = trial % 17 == 0 && j == 0 ? 0.0 : U(rng);
+      // Nearly vertical rows (|b| / |a| = 1e-14 .. 1e-12, edges of contact polygons between LP optima
+      // whose x differ by rounding) and nearly horizontal ones (|a| / |b| the same).
+      const double tiny = std::pow(10.0, -12.0 - (trial / 7) % 3) * (U(rng) > 0 ? 1.0 : -1.0);
+      if (trial % 7 == 3 && j < 2) b = tiny * (a == 0.0 ? 1.0 : a);
+      if (trial % 7 == 5 && j < 2) a = tiny * b;
       const double lo = -std::abs(U(rng)) - 0.1, hi = std::abs(U(rng)) + 0.1 + (trial % 5 == 0 ? -1.0 : 0.0);
       const double n = std::hypot(a, b);
       if (n == 0.0) continue;

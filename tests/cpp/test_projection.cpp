@@ -84,6 +84,42 @@ TEST(Projection, EmptyPolytopeIsReported) {
   EXPECT_EQ(project_polytope(lp).outcome, Projection::Outcome::Empty);
 }
 
+TEST(Projection, ShadowBeyondTheStandInBoundsIsFoundNotCalledEmpty) {
+  // y = 1e-8 u with 100 <= y <= 200 and 0 <= x <= 1: the shadow is the rectangle [0, 1] x [1e10, 2e10],
+  // entirely beyond the stand-in bounds |u| <= 1e6 (a grid point where b ~ 1e-8: Talos swaying with
+  // 90 N per sole corner). Those bounds mean "no limit": the projection must not call it empty.
+  PolytopeLp lp;
+  lp.A.resize(2, 3);
+  lp.A.row(0) << 0, 1e-8, -1;  // 1e-8 u - y = 0
+  lp.A.row(1) << 1, 0, 0;      // x <= 1
+  lp.row_lo = Eigen::Vector2d(0, -INFINITY);
+  lp.row_hi = Eigen::Vector2d(0, 1);
+  lp.col_lo = Eigen::Vector3d(0, -1e6, 100);
+  lp.col_hi = Eigen::Vector3d(1e6, 1e6, 200);
+  lp.stand_in = 1e6;
+  PolytopeProjector projector;
+  for (int round = 0; round < 2; ++round) {  // cold, then warm from the grown problem's basis
+    const Projection p = projector.project(lp);
+    ASSERT_EQ(p.outcome, Projection::Outcome::Polygon) << p.note;
+    // Every edge was certified, yet it is reported inexact: such shadows come from b ~ 1e-8 (see there).
+    EXPECT_FALSE(p.complete);
+    EXPECT_NE(p.note.find("beyond the stand-in bounds"), std::string::npos) << p.note;
+    EXPECT_GE(p.stand_in, 2e10);
+    // Exact to the projection's tolerance, 1e-9 of the polygon's size (1e10 along u).
+    for (int d = 0; d < 16; ++d) {
+      const double dx = std::cos(0.4 * d), du = std::sin(0.4 * d);
+      const double ref = std::max(0.0, dx) + std::max(1e10 * du, 2e10 * du);
+      EXPECT_NEAR(support(p, dx, du), ref, p.tolerance) << d;
+      EXPECT_LE(p.tolerance, 1e-9 * 1e10 + 1e-6);
+    }
+  }
+  // Truly empty with the same stand-in bounds (y <= 200 and y >= 300): still empty.
+  lp.A.row(1) << 0, 0, 1;
+  lp.row_lo[1] = 300;
+  lp.row_hi[1] = INFINITY;
+  EXPECT_EQ(projector.project(lp).outcome, Projection::Outcome::Empty);
+}
+
 TEST(Projection, WarmProjectorAlongASequenceMatchesColdProjections) {
   // A family of rotated, scaled octahedra (one per "grid point"), projected with one warm projector
   // and each from scratch: the same polygons.

@@ -430,8 +430,10 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
       for (size_t e = 0; e < pr.halfplanes.size(); ++e) {
         const detail::Line& h = pr.halfplanes[e];
         // Edges on the stand-in bounds are not limits.
-        const bool on_cap = (std::abs(h.b) < 1e-12 && h.a > 0 && std::abs(h.c - options_.cap) <= 1e-6 * options_.cap) ||
-                            (std::abs(h.a) < 1e-12 && std::abs(std::abs(h.c) - options_.cap) <= 1e-6 * options_.cap);
+        // (the stand-in the projection used: options_.cap, or larger where the shadow lies beyond it).
+        const double cap = pr.stand_in;
+        const bool on_cap = (std::abs(h.b) < 1e-12 && h.a > 0 && std::abs(h.c - cap) <= 1e-6 * cap) ||
+                            (std::abs(h.a) < 1e-12 && std::abs(std::abs(h.c) - cap) <= 1e-6 * cap);
         if (on_cap) continue;
         out.push_back(h);
         names[static_cast<size_t>(p)].push_back(binding_label(what, pr.binding[e]));

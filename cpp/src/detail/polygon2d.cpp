@@ -55,6 +55,7 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   empty_ = false;
   up_.clear();
   low_.clear();
+  steep_.clear();
   // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input).
   Line left{-1.0, 0.0, -x_lo, kBoxXLow}, right{1.0, 0.0, x_hi, kBoxXHigh};
   const Line box[2] = {{0.0, -1.0, -y_lo, kBoxYLow}, {0.0, 1.0, y_hi, kBoxYHigh}};
@@ -83,6 +84,13 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
       } else if (l.c < 0.0) {
         return false;  // 0 <= c fails: empty
       }
+      continue;
+    }
+    if (std::abs(l.b) <= kSteep * std::abs(l.a)) {
+      // Nearly vertical (an edge of a contact polygon between two LP optima whose x differ by rounding):
+      // as an envelope line its slope -a/b ~ 1e14 and intercept c/b ~ 1e16 ruin the breakpoints, and
+      // its edge was seen to be dropped. It is clipped exactly once the polygon stands (few such lines).
+      steep_.push_back(static_cast<int>(i));
       continue;
     }
     const double inv = 1.0 / l.b;
@@ -215,6 +223,10 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
   cur_ = nxt;
   m_ = cnt;
+  for (const int i : steep_) {
+    clip(line_at(i));
+    if (empty_) return false;  // left to clipping line by line, which gives the certificate
+  }
   return true;
 }
 

@@ -73,6 +73,8 @@ class Polygon2d {
   /// Relative tolerance of the inside test: a vertex with a·x + b·y - c <= tol·(|a x| + |b y| + |c|)
   /// is on the inner side.
   static constexpr double kTol = 1e-12;
+  /// build(): a line with |b| <= kSteep·|a| is nearly vertical; it is clipped after the envelopes.
+  static constexpr double kSteep = 1e-8;
 
   /// Starts from the box [x_lo, x_hi] x [y_lo, y_hi] (finite, x_lo <= x_hi, y_lo <= y_hi).
   void reset(double x_lo, double x_hi, double y_lo, double y_hi);
@@ -81,7 +83,9 @@ class Polygon2d {
   /// every line with b != 0 bounds y from above (b > 0) or below (b < 0), so the polygon is the region
   /// between the lower envelope of the upper bounds and the upper envelope of the lower bounds (the
   /// x-range where they do not cross), found by walking the two envelopes; lines with b = 0 tighten the
-  /// x-range. O(n · pieces) instead of O(n · vertices) clips. Returns false, with the polygon left
+  /// x-range; nearly vertical lines (|b| <= kSteep·|a|) are clipped once the rest is built (robustly, as
+  /// x-bounds would not be: their x moves by b·y/a over the box's y). O(n · pieces) instead of
+  /// O(n · vertices) clips. Returns false, with the polygon left
   /// unspecified, when the result is empty or nearly degenerate (touching envelopes, parallel lines):
   /// the caller then clips line by line, which also yields the emptiness certificate.
   bool build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n);
@@ -121,7 +125,7 @@ class Polygon2d {
     double x_end;    // where the next piece takes over
   };
   std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
-  std::vector<int> up_, low_;
+  std::vector<int> up_, low_, steep_;
   std::vector<Piece> upper_, lower_;
   int cur_ = 0;
   std::size_t m_ = 0;

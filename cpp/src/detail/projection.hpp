@@ -35,6 +35,8 @@ struct PolytopeLp {
 /// What stops the shadow at an edge: the constraint of the polytope with the largest dual at the edge's
 /// certifying LP. Row r at its lower bound: 2r, at its upper bound: 2r + 1; column j at a bound: -(j + 1).
 inline constexpr int kBindingUnknown = INT_MIN;
+/// The stand-in bounds are never grown past this: the feasible sets' own box (Polygon2d's 1e15 sides).
+inline constexpr double kLargestStandIn = 1e15;
 inline bool binding_is_row(int code) { return code >= 0; }
 inline int binding_row(int code) { return code / 2; }
 inline bool binding_upper(int code) { return code % 2 == 1; }
@@ -51,6 +53,9 @@ struct Projection {
   std::vector<int> binding;      // per half-plane: the polytope's binding constraint (kBinding... codes)
   std::vector<Vertex> vertices;  // counter-clockwise (the hull of the support points)
   double tolerance = 0.0;        // absolute: the shadow lies within this of every certified edge
+  /// The stand-in bound the polygon was computed with: PolytopeLp::stand_in, or larger when the shadow
+  /// lies only beyond it (the stand-in bounds grown past it; edges on them are still not limits).
+  double stand_in = 0.0;
   int lp_solves = 0;
 };
 
@@ -79,6 +84,11 @@ class PolytopeProjector {
   int rows_ = -1, cols_ = -1;
   std::vector<int> ia_, ja_;  // matrix-loading scratch
   std::vector<double> ar_;
+  struct Basis {  // an LP's final basis: its direction, then GLPK's row and column statuses
+    double angle = 0.0;
+    std::vector<signed char> stat;
+  };
+  std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
 };
 
 /// One polytope, from a cold start.
