@@ -45,8 +45,8 @@ struct SolverStats {
   double gap = 0.0;               ///< certified bound on (T - T*) / T* (0 when exact)
   int windows = 0;                ///< SLP windows (disjoint stretches of the grid solved by LPs)
   int window_points = 0;          ///< grid points inside them (N + 1 for Method::Slp)
-  /// Newton steps of the log-barrier window solver (Method::Auto: windows of 500+ points, or whose SLP
-  /// did not certify them in two iterations; see docs/method.md)
+  /// Newton steps of the log-barrier window solver (Method::Auto: windows far from their bound or of 2000+
+  /// points, or whose SLP did not certify them in two iterations; see docs/method.md)
   int newton_steps = 0;
   double average_halfplanes = 0;  ///< supporting half-planes per grid point after pruning
   double time_constraints = 0;    ///< seconds: path samples and constraint rows

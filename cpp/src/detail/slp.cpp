@@ -50,14 +50,21 @@ double slope(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, const Eige
 
 namespace {
 
-// SLP iterations on a window before the barrier method takes over (see slp_window), the window size
-// (free points) from which it goes first, and its step budget. Measured on the arm corpus of bench/sweep.py,
-// windows of ~100 points are nearly always certified by the first one or two LPs (the Frank-Wolfe check at
-// the greedy profile), cheaper than ~30 Newton steps; a GLPK LP over thousands of columns costs more than
-// the whole barrier solve (random walk, N = 1000: 10 LPs 16 ms, barrier 8 ms).
+// When the barrier method takes over a window (see slp_window): first, if the greedy profile is far from the
+// relaxation's bound on the window (relative bracket above kBarrierFirstBracket: many reversals per stretch,
+// an interior optimum, where the SLP from the greedy start needs many trust-region steps); otherwise after
+// kSlpBeforeBarrier SLP iterations that did not certify it. Measured: on the arm corpus of bench/sweep.py
+// the bracket is up to ~1e-3 (N = 100) and the first LP (the Frank-Wolfe check at the greedy profile) nearly
+// always certifies the window, cheaper than ~25-30 Newton steps (at N = 10000, windows of ~800 points: one
+// LP ~1 ms, the barrier ~3 ms; with the barrier first from a bracket of 1e-4 the N = 100 corpus went from
+// 10.9x to 7.6x toppra); on the 400-waypoint random walk the greedy profile is 6 % above the optimum and the
+// barrier certifies a 1001-point window in ~8 ms where SLP took 1.4 s. Also first on windows of
+// kBarrierFirstColumns free points or more, where one GLPK LP costs more than the whole barrier solve
+// (the walk at N = 100000: windows of ~5000 points, one LP each ~75 ms, the barrier ~30 ms).
 constexpr int kSlpBeforeBarrier = 2;
-constexpr int kBarrierFirstColumns = 500;
-constexpr int kBarrierSteps = 300;
+constexpr double kBarrierFirstBracket = 1e-2;
+constexpr int kBarrierFirstColumns = 2000;
+constexpr int kBarrierSteps = 300;  // its Newton step budget (then the SLP goes on)
 
 struct WindowResult {
   SlpOutcome::Status status = SlpOutcome::Status::Converged;
@@ -205,6 +212,9 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   Eigen::VectorXd g, d(m + 1), tmp, gtmp;
   std::vector<double> cost(static_cast<size_t>(cols)), x;
   double T = out.T;
+  // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start.
+  const double T_hi = duration(ds, hi);
+  const bool far_start = (std::isfinite(T_hi) && T - T_hi > kBarrierFirstBracket * T) || cols >= kBarrierFirstColumns;
   double rho = options.initial_trust_region * scale;
   bool global = true;  // next LP without trust region (Frank-Wolfe)
 
@@ -290,7 +300,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   };
 
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
-    if (use_barrier && out.iterations == (cols >= kBarrierFirstColumns ? 0 : kSlpBeforeBarrier)) {
+    if (use_barrier && out.iterations == (far_start ? 0 : kSlpBeforeBarrier)) {
       // The SLP has not certified the window in a few LPs: its optimum is not at a vertex of the window's
       // set (typically a long stretch where the optimum is interior: many short path pieces), where
       // trust-region SLP crawls. Newton's method on a log barrier (detail/barrier.hpp: O(n) per step,
