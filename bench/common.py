@@ -234,3 +234,15 @@ def machine() -> dict:
     return {"cpu": cpu, "nproc": nproc, "os": platform.platform(), "python": platform.python_version(),
             "pathpace": version("pathpace"), "toppra": version("toppra"), "numpy": version("numpy"),
             "scipy": version("scipy"), "pin": version("pin")}
+
+
+def write_generated_section(section: str, begin: str, end: str, heading: str) -> None:
+    """Put `section` (which starts with `begin` and ends with `end`) into bench/README.md in place of the
+    block between those markers, or, on a first run, append it under `heading` (a markdown heading line)."""
+    path = Path(__file__).resolve().parent / "README.md"
+    text = path.read_text() if path.exists() else "# Benchmarks\n"
+    if begin in text and end in text:
+        text = text[:text.index(begin)] + section + text[text.index(end) + len(end):]
+    else:
+        text = text.rstrip("\n") + "\n\n" + heading + "\n\n" + section + "\n"
+    path.write_text(text)

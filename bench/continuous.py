@@ -202,13 +202,8 @@ millisecond (negative: a margin). The continuous solves' excess must be <= 1e-9.
 
 {tab}
 {END}"""
-    readme = HERE / "README.md"
-    text = readme.read_text()
-    if BEGIN in text:
-        text = text[:text.index(BEGIN)] + section + text[text.index(END) + len(END):]
-    else:
-        text += "\n## Limits between grid points: guarantee=\"continuous\" against \"grid\"\n\n" + section + "\n"
-    readme.write_text(text)
+    common.write_generated_section(section, BEGIN, END,
+                                   "## Limits between grid points: guarantee=\"continuous\" against \"grid\"")
 
 
 if __name__ == "__main__":

@@ -66,7 +66,10 @@ def main(argv=None):
         sim = humanoid_sim.talos_simulator(robot, path, contacts, timestep=dt)
         out = find_executable_margin(sim, path, contacts, lower=0.0, upper=40.0, tolerance=1.0, friction_margin=0.5,
                                      grid=args.grid)
-        print(f"| {1e3 * dt:g} | {out.margin:.2f} | {out.duration:.3f} | +{100 * out.cost:.0f} % |", flush=True)
+        if out.margin is None:
+            print(f"| {1e3 * dt:g} | none in [0, 40] | - | - |", flush=True)
+        else:
+            print(f"| {1e3 * dt:g} | {out.margin:.2f} | {out.duration:.3f} | +{100 * out.cost:.0f} % |", flush=True)
 
 
 if __name__ == "__main__":

@@ -398,13 +398,7 @@ Targets (issue #8):
 Per-path rows (status, times, T of both, violations, solver stats): `bench/results/sweep.json`
 (not tracked).
 {END}"""
-    path = HERE / "README.md"
-    text = path.read_text()
-    if BEGIN in text:
-        text = text[:text.index(BEGIN)] + section + text[text.index(END) + len(END):]
-    else:
-        text = text.rstrip("\n") + "\n\n## pathpace vs toppra: a corpus of random arm paths\n\n" + section + "\n"
-    path.write_text(text)
+    common.write_generated_section(section, BEGIN, END, "## pathpace vs toppra: a corpus of random arm paths")
 
 
 if __name__ == "__main__":

@@ -440,20 +440,34 @@ scale : float
     Multiplies the limits (sec. V.D).
 margin : float
     N·m taken off each side.)"},
-    {"TimeScalingProblem", "add_contacts", R"(Torque limits with frictional contacts (eq. 17-18); see ContactConstraint.
+    {"TimeScalingProblem", "add_contacts", R"(Torque limits with frictional contact forces (eq. 17-18), projected to (ṡ², s̈) per grid point
+(sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP); see
+ContactConstraint. add_torque_limits on the same robot, before or after, merges into this one projection
+(both limits hold).
 
 Parameters
 ----------
 robot : RobotModel
 contacts : list of Contact
+    Points in their link's frame, normals in the world frame (other_link's for a robot-robot contact).
 cone_edges : int
+    Edges of the inscribed friction pyramid.
 friction_margin : float
-    μ is used as μ (1 - friction_margin).
+    μ is used as μ (1 - friction_margin): every force keeps this fraction of its friction in reserve
+    (sec. V.D).
 min_normal_force : float
-    N.
+    N per contact point.
 torque_scale, torque_margin : float
+    The torque limits are multiplied by torque_scale and shrunk by torque_margin (N·m per side).
 drift_tolerance : float
-    m: a warning names the contact that moves more than this along the path.)"},
+    m: a warning names the contact that moves more than this along the path.
+tau_min, tau_max : array, optional
+    Torque limits (default -/+ URDF effort; 0 on a floating base).
+min_link_normal_force : float
+    N per link: the sum of the normal forces of the link's points (e.g. a whole sole).
+max_lps : int
+    LPs per grid point before the polygon is reported inexact (FeasibleSet.exact,
+    stats['inexact_points']).)"},
     {"TimeScalingProblem", "add_contact_phases", R"(Contacts that change along the path: one contact set per phase.
 
 Phase i holds its contacts (a ContactConstraint with torque limits, eq. 17-18) on the grid points of
@@ -504,6 +518,19 @@ initial_trust_region : float
     SLP trust-region half-width relative to the largest ṡ² of the start.
 lp_feasibility_tolerance : float
     GLPK's primal feasibility tolerance.
+explain : bool
+    On an infeasible result, also find the smallest relaxation of each constraint family
+    (``Result.relaxation``).
+guarantee : {'grid', 'continuous'}
+    'grid': limits hold at the grid points (eq. 26); 'continuous': at every instant (velocity and
+    acceleration by Bernstein bounds of a piecewise-polynomial path, torque and contact by an audit at
+    audit_points interior points per interval with exact cuts until it passes; stats['audit_worst'] is
+    the largest relative violation left, negative = the margin reached).
+audit_points, audit_tolerance, max_audit_rounds :
+    Of the continuous audit: points per interval, relative violation accepted, solve-audit rounds.
+time_limit : float
+    Seconds (inf for none) for the whole solve: TIME_LIMIT with the best feasible timing found and its
+    certified gap.
 
 Returns
 -------
@@ -527,6 +554,7 @@ void set_function_doc(py::handle fn, const char* text) {
 }  // namespace
 
 void add_docstrings(py::module_& m) {
+  const py::object property = py::module_::import("builtins").attr("property");
   for (const Doc& d : kDocs) {
     py::object cls = m.attr(d.cls);
     if (!d.member) {
@@ -534,7 +562,7 @@ void add_docstrings(py::module_& m) {
       continue;
     }
     py::object entry = cls.attr("__dict__")[d.member];
-    if (py::isinstance(entry, py::module_::import("builtins").attr("property"))) {
+    if (py::isinstance(entry, property)) {
       entry.attr("__doc__") = py::str(d.text);
     } else {
       set_function_doc(entry, d.text);

@@ -580,18 +580,7 @@ void bind_problem(py::module_& m) {
         add_released(p, std::move(c), "add_contacts");
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
-         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000,
-         "Torque limits with frictional contact forces (eq. 17-18), projected to (sdot^2, sddot) per grid point "
-         "(sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP).\n"
-         "Contact points are in their link's frame, normals in the world frame (other_link's for a robot-robot "
-         "contact). tau_min/tau_max: torque limits (default -/+ URDF effort; 0 on a floating base), shrunk by "
-         "torque_scale and torque_margin (N m per side). add_torque_limits on the same robot, before or after, "
-         "merges into this one projection (both limits hold).\n"
-         "Margins (sec. V.D): friction_margin: the cone of mu (1 - friction_margin), i.e. every force keeps this "
-         "fraction of its friction in reserve; min_normal_force: N per contact point; min_link_normal_force: N per "
-         "link, the sum of the normal forces of the link's points (e.g. a whole sole). cone_edges: edges of the "
-         "inscribed friction pyramid. max_lps: LPs per grid point before the polygon is reported inexact "
-         "(FeasibleSet.exact, stats['inexact_points']).")
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000)
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         add_released(p, to_object<Constraint>(c, "constraint", "Constraint"), "add_constraint");
       }, "constraint"_a)
@@ -714,12 +703,7 @@ void bind_problem(py::module_& m) {
          "lp_feasibility_tolerance"_a = SolverOptions().lp_feasibility_tolerance,
          "explain"_a = SolverOptions().explain, "guarantee"_a = "grid", "audit_points"_a = SolverOptions().audit_points,
          "audit_tolerance"_a = SolverOptions().audit_tolerance, "max_audit_rounds"_a = SolverOptions().max_audit_rounds,
-         "time_limit"_a = SolverOptions().time_limit,
-         "Time-optimal timing. guarantee='grid': limits hold at the grid points (eq. 26); 'continuous': at every "
-         "instant (velocity/acceleration by Bernstein bounds of a piecewise-polynomial path, torque/contact by "
-         "audit at audit_points interior points per interval with exact cuts until the audit passes; "
-         "stats['audit_worst'] is the largest relative violation left, negative = the margin reached). "
-         "time_limit (s, inf for none) bounds the whole solve: TIME_LIMIT with the best feasible timing found.");
+         "time_limit"_a = SolverOptions().time_limit);
 }
 
 }  // namespace pathpace::python

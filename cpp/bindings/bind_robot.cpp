@@ -95,11 +95,13 @@ RobotModel::Source state_source(const py::tuple& t) {
 }  // namespace
 
 void bind_robot(py::module_& m) {
+  // RobotModel.from_urdf and, under the C++ name, RobotModel.from_urdf_file.
+  const auto from_urdf_file = [](py::handle path, py::handle floating_base, py::object locked_joints, py::handle gravity) {
+    const std::string file = to_string_arg(path, "path", true);
+    return std::make_shared<RobotModel>(RobotModel::from_urdf_file(file, options(floating_base, locked_joints, gravity)));
+  };
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", "A rigid-body tree from a URDF (immutable).")
-      .def_static("from_urdf", [](py::handle path, py::handle floating_base, py::object locked_joints, py::handle gravity) {
-        const std::string file = to_string_arg(path, "path", true);
-        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(file, options(floating_base, locked_joints, gravity)));
-      }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def_static("from_urdf", from_urdf_file, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
       .def_static("from_urdf_string", [](py::handle xml, py::handle floating_base, py::object locked_joints, py::handle gravity) {
         const std::string text = to_string_arg(xml, "xml");
         return std::make_shared<RobotModel>(RobotModel::from_urdf_string(text, options(floating_base, locked_joints, gravity)));
@@ -147,10 +149,7 @@ void bind_robot(py::module_& m) {
            "(as pinocchio's centerOfMass).")
       .def_property_readonly("mass", &RobotModel::mass, "float: total mass of the moving bodies in kg")
       // The C++ names, so that code reads the same in both languages.
-      .def_static("from_urdf_file", [](py::handle path, py::handle floating_base, py::object locked_joints, py::handle gravity) {
-        const std::string file = to_string_arg(path, "path", true);
-        return std::make_shared<RobotModel>(RobotModel::from_urdf_file(file, options(floating_base, locked_joints, gravity)));
-      }, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
+      .def_static("from_urdf_file", from_urdf_file, "path"_a, "floating_base"_a = false, "locked_joints"_a = py::none(), "gravity"_a = py::make_tuple(0.0, 0.0, -9.81))
       .def("gravity_torques", [](const RobotModel& r, py::handle q) { return r.gravity_torques(qvec(r, q, "q")); }, "q"_a)
       .def_property_readonly("mimic_joints", [](const RobotModel& r) {
         py::list out;

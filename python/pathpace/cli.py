@@ -300,7 +300,7 @@ def build_parser() -> argparse.ArgumentParser:
     common(s)
     s.add_argument("--out", help="trajectory CSV (columns t, q_<joint>, qd_<joint>, qdd_<joint>) sampled every --dt")
     s.add_argument("--json", help="the full result as JSON")
-    s.add_argument("--joint-trajectory", help="a JointTrajectory-shaped JSON (C² spline sampled every --dt)")
+    s.add_argument("--joint-trajectory", help="a JointTrajectory-shaped JSON (the exact timing sampled every --dt)")
     s.add_argument("--dt", type=float, default=0.01, help="sample period of the outputs in s (default 0.01)")
     s.add_argument("--out-dir", help="with several problems: <name>.csv and <name>.json per problem")
     s.add_argument("--workers", type=int, help="threads for several problems (default: all cores)")

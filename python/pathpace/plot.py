@@ -156,6 +156,21 @@ def _axes(ax):
     return ax
 
 
+def _against_limits(ax, t, values, lo, hi, names, ylabel, title):
+    """values[:, j] / max(|lo_j|, |hi_j|) over t for every joint with a finite nonzero limit, with ±1 marked."""
+    for j, name in enumerate(names):
+        lim = max(abs(lo[j]), abs(hi[j]))
+        if np.isfinite(lim) and lim > 0:
+            ax.plot(t, values[:, j] / lim, lw=1, label=name)
+    ax.axhline(1.0, color="k", ls="--", lw=1)
+    ax.axhline(-1.0, color="k", ls="--", lw=1)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize="x-small", ncol=2)
+    return ax
+
+
 def phase_plane(problem, result: Result, ax=None, joint_names=None):
     """ṡ(s) coloured by the binding limit, over the maximum-velocity curve (dashed)."""
     d = phase_plane_data(problem, result, joint_names)
@@ -202,17 +217,8 @@ def torques(result: Result, robot=None, ax=None, tau_min=None, tau_max=None):
     if d is None:
         ax.text(0.5, 0.5, "no robot: no torques", ha="center", transform=ax.transAxes)
         return ax
-    for j, name in enumerate(d["joint_names"]):
-        lim = max(abs(d["tau_min"][j]), abs(d["tau_max"][j]))
-        if np.isfinite(lim) and lim > 0:
-            ax.plot(d["t"], d["tau"][:, j] / lim, lw=1, label=name)
-    ax.axhline(1.0, color="k", ls="--", lw=1)
-    ax.axhline(-1.0, color="k", ls="--", lw=1)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("τ / τ_max")
-    ax.set_title("torques against the limits")
-    ax.legend(fontsize="x-small", ncol=2)
-    return ax
+    return _against_limits(ax, d["t"], d["tau"], d["tau_min"], d["tau_max"], d["joint_names"], "τ / τ_max",
+                           "torques against the limits")
 
 
 def contacts(result: Result, ax=None):
@@ -239,17 +245,8 @@ def velocities(result: Result, vmin, vmax, ax=None, joint_names=None, samples: i
     ax = _axes(ax)
     t = np.linspace(0.0, traj.duration, samples)
     qd = traj.qd(t)
-    for j in range(qd.shape[1]):
-        lim = max(abs(vmin[j]), abs(vmax[j]))
-        if np.isfinite(lim) and lim > 0:
-            ax.plot(t, qd[:, j] / lim, lw=1, label=joint_names[j] if joint_names else f"joint {j}")
-    ax.axhline(1.0, color="k", ls="--", lw=1)
-    ax.axhline(-1.0, color="k", ls="--", lw=1)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("q̇ / q̇_max")
-    ax.set_title("joint velocities against the limits")
-    ax.legend(fontsize="x-small", ncol=2)
-    return ax
+    names = joint_names if joint_names else [f"joint {j}" for j in range(qd.shape[1])]
+    return _against_limits(ax, t, qd, vmin, vmax, names, "q̇ / q̇_max", "joint velocities against the limits")
 
 
 def summary_figure(spec, result: Result, polygons_at=None):

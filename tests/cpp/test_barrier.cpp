@@ -87,6 +87,7 @@ TEST(Barrier, RandomChainsCertificateIsALowerBound) {
     const BarrierResult r = barrier_window(ds, rows, lo, hi, start, 1e-9 * T0, 400, kNoDeadline);
     ASSERT_TRUE(r.ok) << trial << " steps " << r.newton_steps << " T " << r.T << " lower " << r.lower;
     EXPECT_LE(r.lower, r.T);
+    EXPECT_LE(r.T - r.lower, 1e-9 * T0) << trial;  // the certificate is as tight as asked
     EXPECT_LE(r.T, T0 * (1 + 1e-12)) << trial;
     for (const WindowRow& w : rows) EXPECT_LE(w.alpha * r.theta[w.k] + w.beta * r.theta[w.k + 1], w.c) << trial;
     for (int j = 0; j <= m; ++j) EXPECT_LE(r.theta[j], hi[j]);

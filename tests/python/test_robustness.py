@@ -334,7 +334,9 @@ def solve_and_check(w, vmax, amax, N, amin=None):
     sys.path.insert(0, str(Path(__file__).parent / "fuzz"))
     from fuzz_support import kinematic_violation, run_isolated as fork
 
-    kind, (status, s, sdot, T) = fork(child)
+    kind, out = fork(child)
+    assert kind == "ok", out  # a crash or an exception in the child, not a result
+    status, s, sdot, T = out
     spline = CubicSpline(np.linspace(0, 1, len(w)), w)
     viol = kinematic_violation(s, sdot, spline(s, 1), spline(s, 2), vmax, amax, amin) if len(sdot) else np.inf
     return status, viol, T

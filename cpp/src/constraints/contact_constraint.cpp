@@ -405,7 +405,6 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
   const std::vector<std::string> what = binding_names(projected_);
   std::vector<char> empty_point(static_cast<size_t>(samples.size()), 0);
   ConstraintRows r;
-  size_t widest = 0;
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     lp_point(projected_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
     detail::Projection pr = projector.project(lp, 1e-9, options_.max_lps);
@@ -413,12 +412,13 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
         (pr.outcome == detail::Projection::Outcome::Polygon && !pr.complete)) {
       // Once more from a cold start (a fresh basis), keeping the larger result.
       detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps);
-      r.lp_solves += pr.lp_solves;
+      r.lp_solves += pr.lp_solves + cold.lp_solves;  // both ran, whichever is kept
       if (cold.outcome != detail::Projection::Outcome::Failed &&
           (pr.outcome == detail::Projection::Outcome::Failed || cold.complete || cold.vertices.size() > pr.vertices.size()))
         pr = std::move(cold);
+    } else {
+      r.lp_solves += pr.lp_solves;
     }
-    r.lp_solves += pr.lp_solves;
     auto& out = polys[static_cast<size_t>(p)];
     if (pr.outcome != detail::Projection::Outcome::Polygon) {
       // Empty (confirmed in exact arithmetic), or no support point at all (the solver failed: reported
@@ -439,7 +439,6 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
         names[static_cast<size_t>(p)].push_back(binding_label(what, pr.binding[e]));
       }
     }
-    widest = std::max(widest, out.size());
   }
   // One column per (label, occurrence at a grid point): an edge is reported by what binds it (a torque
   // limit, a contact's friction or minimum normal force), which is what a user can act on; the edge's
@@ -461,12 +460,7 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
   }
   // The last row marks grid points where no contact forces balance the robot: 0 <= -1 there.
   const Eigen::Index marker = static_cast<Eigen::Index>(labels.size());
-  (void)widest;
-  const auto inexact = std::move(r.inexact_points);
-  const int lps = r.lp_solves;
-  r.resize(samples.size(), marker + 1);
-  r.inexact_points = inexact;
-  r.lp_solves = lps;
+  r.resize(samples.size(), marker + 1);  // a, b, c and labels only: inexact_points and lp_solves stay
   for (size_t j = 0; j < labels.size(); ++j) r.labels[j] = labels[j];
   r.labels[static_cast<size_t>(marker)] = "contact forces cannot balance the robot";
   for (Eigen::Index p = 0; p < samples.size(); ++p) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "detail/slp.hpp"  // duration(): T of eq. (27)
+
 namespace pathpace::detail {
 
 namespace {
@@ -16,6 +18,9 @@ struct Row {
   double a0, a1, c;
 };
 
+// s_r = c - a0 θ_k - a1 θ_{k+1}: the row's slack at θ.
+double slack(const Row& r, const Eigen::VectorXd& theta) { return r.c - r.a0 * theta[r.k] - r.a1 * theta[r.k + 1]; }
+
 struct Problem {
   const Eigen::VectorXd& ds;
   std::vector<Row> rows;
@@ -23,16 +28,6 @@ struct Problem {
   std::vector<char> free;
   Eigen::Index m;  // intervals
 };
-
-double window_T(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta) {
-  double T = 0.0;
-  for (Eigen::Index k = 0; k < ds.size(); ++k) {
-    const double w = std::sqrt(std::max(theta[k], 0.0)) + std::sqrt(std::max(theta[k + 1], 0.0));
-    if (w == 0.0) return kInf;
-    T += 2.0 * ds[k] / w;
-  }
-  return T;
-}
 
 // ∇T over the free points (0 at fixed ones). With r = √θ and S = r_k + r_{k+1}, f_k = 2Δs_k / S and
 // ∂f_k/∂θ_k = -Δs_k / (S² r_k).
@@ -54,7 +49,7 @@ double slope(const Problem& p, const Eigen::VectorXd& theta, const Eigen::Vector
   double out = t * g.dot(d);
   for (const Row& r : p.rows) {
     const double ad = r.a0 * d[r.k] + r.a1 * d[r.k + 1];
-    const double s = r.c - r.a0 * tmp[r.k] - r.a1 * tmp[r.k + 1];
+    const double s = slack(r, tmp);
     out += ad / s;
   }
   for (Eigen::Index j = 0; j <= p.m; ++j) {
@@ -69,7 +64,7 @@ bool strictly_feasible(const Problem& p, const Eigen::VectorXd& theta) {
   for (Eigen::Index j = 0; j <= p.m; ++j)
     if (p.free[static_cast<size_t>(j)] && !(theta[j] > p.lo[j] && theta[j] < p.hi[j])) return false;
   for (const Row& r : p.rows)
-    if (!(r.c - r.a0 * theta[r.k] - r.a1 * theta[r.k + 1] > 0.0)) return false;
+    if (!(slack(r, theta) > 0.0)) return false;
   return true;
 }
 
@@ -112,11 +107,12 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
   // centring crawl along the boundary (a 1600-waypoint walk at N = 10000: no centre in 300 steps at 1e-4,
   // 58 steps in all at 1e-2).
   bool found = false;
+  const double start_max = std::max(start.maxCoeff(), 1e-300);
   for (double lambda : {1.0 - 1e-2, 0.9, 0.5}) {
     for (Eigen::Index j = 0; j <= m; ++j) {
       if (!p.free[static_cast<size_t>(j)]) continue;
       double v = p.lo[j] + lambda * (start[j] - p.lo[j]);
-      if (!(v > p.lo[j])) v = p.lo[j] + (1.0 - lambda) * std::min(p.hi[j] - p.lo[j], std::max(start.maxCoeff(), 1e-300));
+      if (!(v > p.lo[j])) v = p.lo[j] + (1.0 - lambda) * std::min(p.hi[j] - p.lo[j], start_max);
       theta[j] = v;
     }
     if (strictly_feasible(p, theta)) {
@@ -127,7 +123,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
   if (!found) return out;
 
   const double n_ineq = static_cast<double>(p.rows.size()) + static_cast<double>(2 * n_free);
-  double T = window_T(ds, theta);
+  double T = duration(ds, theta);
   Eigen::VectorXd gT, g(m + 1), hd(m + 1), ho(m + 1), d(m + 1), tmp, gtmp, cp(m + 1), dp(m + 1);
   // The starting t: the one whose centring direction is shortest at the start, t = -∇T·∇b / |∇T|² (b the
   // barrier terms), kept between a gap of T (n_ineq / t at the centre) and the target gap.
@@ -136,7 +132,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
     gradient_T(p, theta, gT);
     Eigen::VectorXd gb = Eigen::VectorXd::Zero(m + 1);
     for (const Row& r : p.rows) {
-      const double wi = 1.0 / (r.c - r.a0 * theta[r.k] - r.a1 * theta[r.k + 1]);
+      const double wi = 1.0 / slack(r, theta);
       gb[r.k] += wi * r.a0;
       gb[r.k + 1] += wi * r.a1;
     }
@@ -173,7 +169,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
     }
     for (size_t i = 0; i < p.rows.size(); ++i) {
       const Row& r = p.rows[i];
-      const double s = r.c - r.a0 * theta[r.k] - r.a1 * theta[r.k + 1];
+      const double s = slack(r, theta);
       const double wi = 1.0 / s;
       g[r.k] += wi * r.a0;
       g[r.k + 1] += wi * r.a1;
@@ -183,10 +179,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
     }
     for (Eigen::Index j = 0; j <= m; ++j) {
       if (!p.free[static_cast<size_t>(j)]) {
-        hd[j] = 1.0;
-        g[j] = 0.0;
-        if (j < m) ho[j] = 0.0;
-        if (j > 0) ho[j - 1] = 0.0;
+        hd[j] = 1.0;  // g_j = 0 and no off-diagonal term here (rows and T carry none on fixed points): d_j = 0
         continue;
       }
       const double d1 = 1.0 / (theta[j] - p.lo[j]);
@@ -225,7 +218,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
       double amax = kInf;
       for (const Row& r : p.rows) {
         const double ad = r.a0 * d[r.k] + r.a1 * d[r.k + 1];
-        if (ad > 0.0) amax = std::min(amax, (r.c - r.a0 * theta[r.k] - r.a1 * theta[r.k + 1]) / ad);
+        if (ad > 0.0) amax = std::min(amax, slack(r, theta) / ad);
       }
       for (Eigen::Index j = 0; j <= m; ++j) {
         if (!p.free[static_cast<size_t>(j)]) continue;
@@ -263,7 +256,7 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
       Eigen::VectorXd next = theta + alpha * d;
       if (!strictly_feasible(p, next)) return out;
       theta = next;
-      T = window_T(ds, theta);
+      T = duration(ds, theta);
       ++since_update;
     }
     // Between updates of t, centring to dec2 <= 0.5 is enough (the next t moves the centre anyway). The
@@ -283,12 +276,12 @@ BarrierResult barrier_window(const Eigen::VectorXd& ds, const std::vector<Window
     // multiplier after the step to first order, and cancels that residual (clipped at 0: any λ >= 0 gives
     // a valid bound).
     const bool d_current = final_t && dec2 <= dec_final;
-    gradient_T(p, theta, gT);
+    if (!d_current) gradient_T(p, theta, gT);  // θ moved since this iteration's gradient
     Eigen::VectorXd coef = gT;
     double lower = T;
     for (size_t i = 0; i < p.rows.size(); ++i) {
       const Row& r = p.rows[i];
-      const double s = r.c - r.a0 * theta[r.k] - r.a1 * theta[r.k + 1];
+      const double s = slack(r, theta);
       const double ad = d_current ? r.a0 * d[r.k] + r.a1 * d[r.k + 1] : 0.0;
       const double lam = std::max(0.0, 1.0 + ad / s) / (t * s);
       coef[r.k] += lam * r.a0;

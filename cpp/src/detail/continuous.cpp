@@ -39,7 +39,9 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
          "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath); this path is not one");
   const IntervalRows ir = interval_rows(*pp, samples.s);
   const double inf = std::numeric_limits<double>::infinity();
-  for (const auto& c : constraints) {
+  const size_t own = rows.size();  // rows[i] are constraints[i]'s grid rows (for their labels)
+  for (size_t ci = 0; ci < constraints.size(); ++ci) {
+    const std::shared_ptr<const Constraint>& c = constraints[ci];
     if (auto vl = std::dynamic_pointer_cast<const VelocityLimits>(c)) {
       // One bound per grid point for all joints (each joint's own would do too, but the polygon keeps only
       // the smallest bound on x alone anyway).
@@ -57,10 +59,12 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
       const int id0 = total_rows(rows);
       ConstraintRows cr;  // labels only: its rows are inactive at the grid points, they act on intervals
       cr.resize(samples.size(), 2 * n);
-      for (Eigen::Index j = 0; j < n; ++j) {
-        cr.labels[static_cast<size_t>(2 * j)] = "acceleration joint " + std::to_string(j) + " upper (between grid points)";
-        cr.labels[static_cast<size_t>(2 * j + 1)] = "acceleration joint " + std::to_string(j) + " lower (between grid points)";
-      }
+      // The grid rows' own labels (joint names where the problem has them), "between grid points".
+      const bool named = ci < own && rows[ci].labels.size() == static_cast<size_t>(2 * n);
+      for (size_t l = 0; l < static_cast<size_t>(2 * n); ++l)
+        cr.labels[l] = (named ? rows[ci].labels[l]
+                              : "acceleration joint " + std::to_string(l / 2) + (l % 2 ? " lower" : " upper")) +
+                       " (between grid points)";
       rows.push_back(std::move(cr));
       for (Eigen::Index k = 0; k < N; ++k) {
         auto& out = extra.rows[static_cast<size_t>(k)];

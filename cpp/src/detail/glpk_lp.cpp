@@ -1,6 +1,7 @@
 #include "detail/glpk_lp.hpp"
 
 #include "detail/glpk_guard.hpp"
+#include "detail/glpk_util.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -125,14 +126,10 @@ void GlpkLp::set_objective(const std::vector<double>& c) {
 }
 
 void GlpkLp::set_row_upper(int row, double ub) {
-  if (ub == std::numeric_limits<double>::infinity()) glp_set_row_bnds(lp_, row + 1, GLP_FR, 0.0, 0.0);
-  else glp_set_row_bnds(lp_, row + 1, GLP_UP, 0.0, ub);
+  glpk_set_bounds(lp_, true, row + 1, -std::numeric_limits<double>::infinity(), ub);
 }
 
-void GlpkLp::set_col_bounds(int col, double lo, double hi) {
-  if (lo == hi) glp_set_col_bnds(lp_, col + 1, GLP_FX, lo, hi);
-  else glp_set_col_bnds(lp_, col + 1, GLP_DB, lo, hi);
-}
+void GlpkLp::set_col_bounds(int col, double lo, double hi) { glpk_set_bounds(lp_, false, col + 1, lo, hi); }
 
 void GlpkLp::set_basis(const std::vector<Stat>& rows, const std::vector<Stat>& cols) {
   auto code = [](Stat st, int type) {

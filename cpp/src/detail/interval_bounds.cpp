@@ -166,7 +166,6 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
   struct Sub {
     double s0, w;               // σ at its start, width
     std::vector<double> P;      // p'_j² in τ
-    int end;                    // 0: in the interval's first eighth, 1: in its last, -1: neither
   };
   std::vector<Sub> subs;
   std::vector<double> t, E(static_cast<size_t>(dq) + 1), F(static_cast<size_t>(dq) + 1), bE(E.size()), bF(F.size()),
@@ -184,19 +183,15 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
       // The line starts from the exact bounds at the ends, V = v²/p'_j² there, then is checked over the
       // whole interval and scaled down if needed (where V is convex between the ends, by O(Δs²)).
       subs.clear();
-      double max0 = 0.0, max1 = 0.0, max_all = 0.0;
+      double max_all = 0.0;
       for_each_sub(path, sk, sk1, {sk + 0.125 * h, sk + 0.5 * h, sk1 - 0.125 * h}, [&](Eigen::Index piece, double a, double b) {
-        const double mid = 0.5 * (a + b);
-        Sub sub{a - sk, b - a, std::vector<double>(static_cast<size_t>(2 * dd) + 1, 0.0),
-                mid < sk + 0.125 * h ? 0 : (mid > sk1 - 0.125 * h ? 1 : -1)};
+        Sub sub{a - sk, b - a, std::vector<double>(static_cast<size_t>(2 * dd) + 1, 0.0)};
         taylor(path.coefficients()[static_cast<size_t>(piece)], j, a - bp[piece], t);
         for (int x = 0; x < dd + 1; ++x)
           for (int y = 0; y < dd + 1; ++y)
             sub.P[static_cast<size_t>(x + y)] += (x + 1) * t[static_cast<size_t>(x) + 1] * (y + 1) * t[static_cast<size_t>(y) + 1];
         bernstein(sub.P.data(), 2 * dd, sub.w, bP.data());
         const double m = *std::max_element(bP.begin(), bP.end());
-        if (sub.end == 0) max0 = std::max(max0, m);
-        if (sub.end == 1) max1 = std::max(max1, m);
         max_all = std::max(max_all, m);
         subs.push_back(std::move(sub));
       });

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 #include <utility>
 
 #include <glpk.h>
@@ -218,6 +217,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const int st = glpk_solve_robust(lp, *method, false);
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {sx * glp_get_col_prim(lp, 1), su * glp_get_col_prim(lp, 2)};
+    if (cols_ < kRestoreColumns) return 1;  // no basis is restored at this size: none is recorded
     Basis b;
     b.angle = angle;
     b.stat.resize(static_cast<size_t>(rows_ + cols_));

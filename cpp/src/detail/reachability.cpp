@@ -74,14 +74,10 @@ bool couples_positively(const Line& r) {
   return r.a > tol && r.b > tol;
 }
 
-namespace {
-
 double row_violation(const Line& r, double x, double y) {
   const double ax = r.a * x, by = r.b * y;
   return (ax + by - r.c) / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)});
 }
-
-}  // namespace
 
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   double worst = 0.0;
@@ -161,19 +157,17 @@ void clip_rows(Polygon2d& poly, View<Line> rows) {
   }
 }
 
-// Interval k's polygon: the box cut by its rows, in one envelope pass when that applies (see
-// Polygon2d::build), else row by row (which also names the rows of an empty set).
-void interval_polygon(Polygon2d& poly, double x_lo, double x_hi, double y_lo, double y_hi, View<Line> rows) {
-  if (poly.build(x_lo, x_hi, y_lo, y_hi, rows.ptr, rows.n)) return;
-  poly.reset(x_lo, x_hi, y_lo, y_hi);
-  clip_rows(poly, rows);
-}
-
 void push_unique(std::vector<int>& v, int id) {
   if (id >= 0 && std::find(v.begin(), v.end(), id) == v.end()) v.push_back(id);
 }
 
 }  // namespace
+
+void interval_polygon(Polygon2d& poly, double x_lo, double x_hi, double y_lo, double y_hi, View<Line> rows) {
+  if (poly.build(x_lo, x_hi, y_lo, y_hi, rows.ptr, rows.n)) return;
+  poly.reset(x_lo, x_hi, y_lo, y_hi);
+  clip_rows(poly, rows);
+}
 
 Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps) {
   const Eigen::Index n = static_cast<Eigen::Index>(reach.start.size());

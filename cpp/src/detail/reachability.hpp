@@ -59,6 +59,13 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
 bool couples_positively(const Line& r);
 
 
+/// Violation of α x + β y <= c at (x, y), relative to max(1, |c|, |α x|, |β y|) (<= 0 when it holds).
+double row_violation(const Line& r, double x, double y);
+
+/// Interval k's polygon in (θ_k, θ_{k+1}): the box cut by its rows, in one envelope pass when that applies
+/// (see Polygon2d::build), else row by row (which also names the rows of an empty set).
+void interval_polygon(Polygon2d& poly, double x_lo, double x_hi, double y_lo, double y_hi, View<Line> rows);
+
 /// Largest violation of the positively coupling rows by θ, relative to max(1, |c|, |α θ_k|, |β θ_{k+1}|).
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta);
 

@@ -1,7 +1,6 @@
 #include "detail/slp.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -128,10 +127,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
         if (all[i].a == 0.0 || all[i].b == 0.0) kept.push_back(all[i]);
         else local.push_back({all[i].a, all[i].b, all[i].c, static_cast<int>(i)});
       }
-      if (!poly.build(lo[k], hi[k], lo[k + 1], hi[k + 1], local.data(), local.size())) {
-        poly.reset(lo[k], hi[k], lo[k + 1], hi[k + 1]);
-        for (const Line& l : local) poly.clip(l);
-      }
+      interval_polygon(poly, lo[k], hi[k], lo[k + 1], hi[k + 1], {local.data(), local.size()});
       if (poly.empty()) {
         kept.assign(all.begin(), all.end());
       } else {
@@ -161,29 +157,28 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   std::vector<LpRow> waiting;   // the rows not (yet) in it
   std::vector<int> idx;
   std::vector<double> val;
-  for (const WindowRow& wr : wrows) {
-    const Eigen::Index k = wr.k;
-    const Line r{wr.alpha, wr.beta, wr.c, -1};
+  for (const WindowRow& r : wrows) {
+    const Eigen::Index k = r.k;
     idx.clear();
     val.clear();
     double rhs = r.c;
     double size = 0.0;
     if (k >= first && k <= last) {
-      if (r.a != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.a * sigma[k]); }
+      if (r.alpha != 0.0) { idx.push_back(static_cast<int>(k - first)); val.push_back(r.alpha * sigma[k]); }
     } else {
-      rhs -= r.a * theta[k];
+      rhs -= r.alpha * theta[k];
     }
     if (k + 1 >= first && k + 1 <= last) {
-      if (r.b != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.b * sigma[k + 1]); }
+      if (r.beta != 0.0) { idx.push_back(static_cast<int>(k + 1 - first)); val.push_back(r.beta * sigma[k + 1]); }
     } else {
-      rhs -= r.b * theta[k + 1];
+      rhs -= r.beta * theta[k + 1];
     }
     if (idx.empty()) continue;  // both ends fixed: nothing to decide
     for (double v : val) size += std::abs(v);
     size = std::max(size, std::abs(rhs));
     for (double& v : val) v /= size;
-    LpRow row{k, r.a, r.b, r.c, k >= first && k <= last && r.a != 0.0,
-              k + 1 >= first && k + 1 <= last && r.b != 0.0, static_cast<int>(idx.size()), {idx[0], 0},
+    LpRow row{k, r.alpha, r.beta, r.c, k >= first && k <= last && r.alpha != 0.0,
+              k + 1 >= first && k + 1 <= last && r.beta != 0.0, static_cast<int>(idx.size()), {idx[0], 0},
               {val[0], 0.0}, rhs / size};
     if (idx.size() > 1) {
       row.col[1] = idx[1];
@@ -193,7 +188,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     // which the start basis and most LP vertices need; the others only once an LP solution breaks them
     // (see solve_lp). The LP is then a relaxation until the last round, which still gives valid bounds,
     // and its basis factorisations have a quarter of the rows.
-    const double ax = r.a * theta[k], by = r.b * theta[k + 1];
+    const double ax = r.alpha * theta[k], by = r.beta * theta[k + 1];
     const double slack = (r.c - ax - by) / std::max({std::abs(r.c), std::abs(ax) + std::abs(by), 1e-300});
     if (slack <= 1e-2) {
       lp.add_row_upper(idx, val, row.rhs);
@@ -207,15 +202,14 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     return out;
   }
 
-  const double scale = std::max(theta.maxCoeff(), 1e-300);
-  const double floor = 1e-24 * scale * scale + 1e-300;
+  const double floor = 1e-24 * theta_max * theta_max + 1e-300;
   Eigen::VectorXd g, d(m + 1), tmp, gtmp;
   std::vector<double> cost(static_cast<size_t>(cols)), x;
   double T = out.T;
   // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start.
   const double T_hi = duration(ds, hi);
   const bool far_start = (std::isfinite(T_hi) && T - T_hi > kBarrierFirstBracket * T) || cols >= kBarrierFirstColumns;
-  double rho = options.initial_trust_region * scale;
+  double rho = options.initial_trust_region * theta_max;
   bool global = true;  // next LP without trust region (Frank-Wolfe)
 
   // The start basis: the greedy profile is a vertex of the window's set (each θ_j is the top of a slice of
@@ -265,9 +259,9 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     }
     if (first_lp) start_basis();
     first_lp = false;
-    ++out.lp_solves;
     const int ms = remaining_ms(deadline);
     if (ms <= 0) return SlpOutcome::Status::TimeLimit;
+    ++out.lp_solves;
     GlpkLp::Outcome o = lp.solve(options.lp_feasibility_tolerance, ms);
     for (;;) {
       if (o == GlpkLp::Outcome::TimeLimit) return SlpOutcome::Status::TimeLimit;
@@ -329,7 +323,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       return out;
     }
     double predicted = -g.dot(d);
-    if (!global && (predicted <= rel_target * T || rho <= 1e-13 * scale)) {
+    if (!global && (predicted <= rel_target * T || rho <= 1e-13 * theta_max)) {
       // The trust-region step promises nothing more: check optimality over the whole window.
       st = solve_lp(std::numeric_limits<double>::infinity());
       if (st != SlpOutcome::Status::Converged) {
@@ -383,7 +377,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     // A full Frank-Wolfe step lands on a vertex of the window's set, where the optimum of a time-optimal
     // problem usually is: check it with another Frank-Wolfe LP first; otherwise continue with a trust region.
     const bool full_fw_step = global && alpha >= 0.999;
-    if (global) rho = std::max(step, 1e-6 * scale);
+    if (global) rho = std::max(step, 1e-6 * theta_max);
     else if (alpha >= 0.999) rho *= 2.0;
     else rho = std::max(0.5 * step, 0.25 * rho);
     global = full_fw_step;
@@ -439,10 +433,11 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
     }
     for (Eigen::Index k = 0; k < n; ++k) {
       bool violated = false;
-      for (const Line& r : chain.coupled_rows(k)) {
-        const double ax = r.a * upper[k], by = r.b * upper[k + 1];
-        if (ax + by - r.c > 1e-12 * std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)})) violated = true;
-      }
+      for (const Line& r : chain.coupled_rows(k))
+        if (row_violation(r, upper[k], upper[k + 1]) > 1e-12) {
+          violated = true;
+          break;
+        }
       if (violated) ws.push_back({std::max<Eigen::Index>(0, k - margin), std::min(n, k + 1 + margin), false, {}});
     }
   } else {
@@ -480,8 +475,7 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
       // Every feasible y <= upper, so the window's part of T(y) is >= its part of T(upper) as well.
       lower += std::max(t_up, w.result.lower) - t_up;
     }
-    out.theta = forward_pass(full, theta_begin, &z);
-    out.theta[0] = theta_begin;
+    out.theta = forward_pass(full, theta_begin, &z);  // θ_0 = theta_begin
     out.lower = lower;
     const double T = duration(chain.ds, out.theta);
     if (T - lower <= options.tolerance * lower || out.status != SlpOutcome::Status::Converged) break;
