@@ -38,10 +38,6 @@ SplineBoundary parse_boundary(const std::string& b) {
   throw InvalidInput("boundary = '" + b + "' must be one of 'not-a-knot', 'natural', 'clamped'");
 }
 
-Eigen::VectorXd optional_vector(py::handle h, const char* name) {
-  return h.is_none() ? Eigen::VectorXd() : to_vector(h, name);
-}
-
 const char* boundary_name(SplineBoundary b) {
   switch (b) {
     case SplineBoundary::NotAKnot: return "not-a-knot";

@@ -1,5 +1,6 @@
 // Constraints, the problem, results and trajectories.
 #include <optional>
+#include <type_traits>
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
@@ -140,7 +141,7 @@ ContactPhase contact_phase_arg(py::handle h, size_t i, const ContactOptions& bas
       if (key == "friction_margin") o.friction_margin = to_double(value, arg);
       else if (key == "min_normal_force") o.min_normal_force = to_double(value, arg);
       else if (key == "min_link_normal_force") o.min_link_normal_force = to_double(value, arg);
-      else if (key == "cone_edges") o.cone_edges = static_cast<int>(to_int(value, arg, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+      else if (key == "cone_edges") o.cone_edges = to_int32(value, arg);
       else
         throw InvalidInput(name + ".options has key '" + key + "', expected friction_margin, min_normal_force, "
                            "min_link_normal_force or cone_edges");
@@ -150,15 +151,73 @@ ContactPhase contact_phase_arg(py::handle h, size_t i, const ContactOptions& bas
   return ph;
 }
 
+// drift_tolerance of add_contacts / add_contact_phases, in metres.
+double drift_tolerance_arg(py::handle h) {
+  const double drift_tolerance = to_double(h, "drift_tolerance");
+  if (!(drift_tolerance >= 0.0))
+    throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
+  return drift_tolerance;
+}
+
+// The path must keep every contact in place (c(p(s)) = d) where the contacts hold: the warning that names
+// the contact that moves most, if it moves by more than drift_tolerance along `where`; "" otherwise.
+std::string drift_warning(const ContactConstraint& c, const PathSamples& samples, double drift_tolerance,
+                          const std::string& where) {
+  int which = -1;
+  const double drift = c.max_drift(samples, &which);
+  if (!(drift > drift_tolerance) || which < 0) return {};
+  return "contact " + std::to_string(which) + " (link '" + c.contacts()[static_cast<size_t>(which)].link + "') moves by " +
+         std::to_string(drift) + " m along " + where + ": the path does not keep it in place";
+}
+
+void warn(const std::string& msg) {
+  py::module_::import("warnings").attr("warn")(msg, py::module_::import("builtins").attr("UserWarning"), 2);
+}
+
+// Every SolverStats field, once: the stats dict and both ways of Result's pickle state go through this.
+// The order is the pickle state's (18 entries; a state of another length is refused by check_state): a
+// new field goes at the end, with the entry count, so that older states are still told apart.
+template <typename Stats, typename F>
+void for_each_stat(Stats& s, F&& f) {
+  f("slp_iterations", s.slp_iterations);
+  f("lp_solves", s.lp_solves);
+  f("greatest_element", s.greatest_element);
+  f("gap", s.gap);
+  f("average_halfplanes", s.average_halfplanes);
+  f("time_constraints", s.time_constraints);
+  f("time_feasible_sets", s.time_feasible_sets);
+  f("time_reachability", s.time_reachability);
+  f("time_slp", s.time_slp);
+  f("audit_rounds", s.audit_rounds);
+  f("audit_cuts", s.audit_cuts);
+  f("audit_worst", s.audit_worst);
+  f("windows", s.windows);
+  f("window_points", s.window_points);
+  f("time_projection", s.time_projection);
+  f("projection_lp_solves", s.projection_lp_solves);
+  f("inexact_points", s.inexact_points);
+  f("newton_steps", s.newton_steps);
+}
+constexpr size_t kStatsStateSize = 18;
+
 py::dict stats_dict(const SolverStats& s) {
-  return py::dict("slp_iterations"_a = s.slp_iterations, "lp_solves"_a = s.lp_solves,
-                  "greatest_element"_a = s.greatest_element, "gap"_a = s.gap, "average_halfplanes"_a = s.average_halfplanes,
-                  "time_feasible_sets"_a = s.time_feasible_sets, "time_reachability"_a = s.time_reachability,
-                  "time_slp"_a = s.time_slp, "audit_rounds"_a = s.audit_rounds, "audit_cuts"_a = s.audit_cuts,
-                  "audit_worst"_a = s.audit_worst, "windows"_a = s.windows, "window_points"_a = s.window_points,
-                  "time_constraints"_a = s.time_constraints, "time_projection"_a = s.time_projection,
-                  "projection_lp_solves"_a = s.projection_lp_solves, "inexact_points"_a = s.inexact_points,
-                  "newton_steps"_a = s.newton_steps);
+  py::dict out;
+  for_each_stat(s, [&](const char* name, const auto& value) { out[name] = value; });
+  return out;
+}
+
+py::tuple stats_state(const SolverStats& s) {
+  py::list out;
+  for_each_stat(s, [&](const char*, const auto& value) { out.append(value); });
+  return py::tuple(out);
+}
+
+SolverStats stats_from_state(const py::tuple& st) {
+  check_state(st, kStatsStateSize, "Result stats");
+  SolverStats s;
+  size_t i = 0;
+  for_each_stat(s, [&](const char*, auto& value) { value = st[i++].cast<std::decay_t<decltype(value)>>(); });
+  return s;
 }
 
 }  // namespace
@@ -393,14 +452,10 @@ void bind_problem(py::module_& m) {
       .def("trajectory", [](const Result& r) { return std::make_shared<Trajectory>(r.trajectory()); })
       .def("__bool__", &Result::ok, "True when the timing is usable (``ok``): ``if res: ...``")
       .def(py::pickle([](const Result& r) {
-                        const SolverStats& st = r.stats;
                         return py::make_tuple(
                             static_cast<int>(r.status), r.message, r.duration, r.s, r.sdot, r.times, r.sddot,
                             py::make_tuple(r.infeasibility.grid_index, r.infeasibility.s, r.infeasibility.constraints),
-                            py::make_tuple(st.slp_iterations, st.lp_solves, st.greatest_element, st.gap, st.average_halfplanes,
-                                           st.time_constraints, st.time_feasible_sets, st.time_reachability, st.time_slp,
-                                           st.audit_rounds, st.audit_cuts, st.audit_worst, st.windows, st.window_points,
-                                           st.time_projection, st.projection_lp_solves, st.inexact_points, st.newton_steps),
+                            stats_state(r.stats),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
                             std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding,
                             phases_list(r.contact_phases));
@@ -419,26 +474,7 @@ void bind_problem(py::module_& m) {
                         r.infeasibility.grid_index = inf[0].cast<Eigen::Index>();
                         r.infeasibility.s = inf[1].cast<double>();
                         r.infeasibility.constraints = inf[2].cast<std::vector<std::string>>();
-                        const py::tuple st = t[8].cast<py::tuple>();
-                        check_state(st, 18, "Result stats");
-                        r.stats.slp_iterations = st[0].cast<int>();
-                        r.stats.lp_solves = st[1].cast<int>();
-                        r.stats.greatest_element = st[2].cast<bool>();
-                        r.stats.gap = st[3].cast<double>();
-                        r.stats.average_halfplanes = st[4].cast<double>();
-                        r.stats.time_constraints = st[5].cast<double>();
-                        r.stats.time_feasible_sets = st[6].cast<double>();
-                        r.stats.time_reachability = st[7].cast<double>();
-                        r.stats.time_slp = st[8].cast<double>();
-                        r.stats.audit_rounds = st[9].cast<int>();
-                        r.stats.audit_cuts = st[10].cast<int>();
-                        r.stats.audit_worst = st[11].cast<double>();
-                        r.stats.windows = st[12].cast<int>();
-                        r.stats.window_points = st[13].cast<int>();
-                        r.stats.time_projection = st[14].cast<double>();
-                        r.stats.projection_lp_solves = st[15].cast<int>();
-                        r.stats.inexact_points = st[16].cast<int>();
-                        r.stats.newton_steps = st[17].cast<int>();
+                        r.stats = stats_from_state(t[8].cast<py::tuple>());
                         r.path = optional_ptr<Path>(t[9]);
                         r.robot = optional_ptr<RobotModel>(t[10]);
                         r.contacts = optional_ptr<ContactConstraint>(t[11]);
@@ -504,8 +540,8 @@ void bind_problem(py::module_& m) {
       }, "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear")
       .def("add_torque_limits", [](TimeScalingProblem& p, py::handle robot, py::object tau_min,
                                    py::object tau_max, py::handle scale, py::handle margin) {
-        Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
-        Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
+        Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
+        Eigen::VectorXd hi = optional_vector(tau_max, "tau_max");
         auto c = std::make_shared<TorqueLimits>(to_object<RobotModel>(robot, "robot", "RobotModel"), lo, hi,
                                                 to_double(scale, "scale"), to_double(margin, "margin"));
         add_released(p, std::move(c), "add_torque_limits");
@@ -513,22 +549,19 @@ void bind_problem(py::module_& m) {
          "τ_L <= τ <= τ_U along the path (URDF effort by default; scale and margin shrink it, sec. V.D)")
       .def("add_contact_phases", [](TimeScalingProblem& p, py::handle robot_arg, py::handle phases_arg, py::handle cone_edges,
                                     py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
-                                    py::handle torque_margin, py::handle drift_tolerance_arg, py::handle tau_min,
+                                    py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                                     py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
                                     py::handle impact_tolerance) {
-        ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
-        o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
-        o.max_lps = static_cast<int>(to_int(max_lps, "max_lps", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+        const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
+                                                     torque_margin, min_link_normal_force, max_lps);
         auto robot = to_object<RobotModel>(robot_arg, "robot", "RobotModel");
         const std::vector<py::object> items = to_items(phases_arg, "phases", "a list of (s_begin, s_end, contacts)");
         std::vector<ContactPhase> phases;
         for (size_t i = 0; i < items.size(); ++i) phases.push_back(contact_phase_arg(items[i], i, o));
-        const double drift_tolerance = to_double(drift_tolerance_arg, "drift_tolerance");
-        if (!(drift_tolerance >= 0.0))
-          throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
+        const double drift_tolerance = drift_tolerance_arg(drift_tolerance_h);
         const double impact = to_double(impact_tolerance, "impact_tolerance");
-        const Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
-        const Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
+        const Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
+        const Eigen::VectorXd hi = optional_vector(tau_max, "tau_max");
         std::vector<std::string> moved;
         {
           ProblemUse use(p, ProblemUse::kWrite, "add_contact_phases");
@@ -539,44 +572,29 @@ void bind_problem(py::module_& m) {
           for (size_t i = cons.size() - phases.size(); i < cons.size(); ++i) {
             auto c = std::dynamic_pointer_cast<const ContactConstraint>(cons[i]);
             if (!c) continue;
-            int which = -1;
-            const double drift = c->max_drift(p.samples(), &which);
-            if (drift > drift_tolerance && which >= 0)
-              moved.push_back(c->options().label + ": contact " + std::to_string(which) + " (link '" +
-                              c->contacts()[static_cast<size_t>(which)].link + "') moves by " + std::to_string(drift) +
-                              " m along its phase: the path does not keep it in place");
+            const std::string msg = drift_warning(*c, p.samples(), drift_tolerance, "its phase");
+            if (!msg.empty()) moved.push_back(c->options().label + ": " + msg);
           }
         }
-        for (const std::string& msg : moved)
-          py::module_::import("warnings").attr("warn")(msg, py::module_::import("builtins").attr("UserWarning"), 2);
+        for (const std::string& msg : moved) warn(msg);
       }, "robot"_a, "phases"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
          "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "impact_tolerance"_a = 1e-6)
       .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
                               py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
-                              py::handle torque_margin, py::handle drift_tolerance_arg, py::handle tau_min,
+                              py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                               py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps) {
-        ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
-        o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
-        o.max_lps = static_cast<int>(to_int(max_lps, "max_lps", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+        const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
+                                                     torque_margin, min_link_normal_force, max_lps);
         auto c = std::make_shared<ContactConstraint>(
             to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
-            tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min"),
-            tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max"));
-        const double drift_tolerance = to_double(drift_tolerance_arg, "drift_tolerance");
-        if (!(drift_tolerance >= 0.0))
-          throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
+            optional_vector(tau_min, "tau_min"), optional_vector(tau_max, "tau_max"));
+        const double drift_tolerance = drift_tolerance_arg(drift_tolerance_h);
         if (p.samples().dof() != c->robot()->nq())
           throw InvalidInput("path has " + std::to_string(p.samples().dof()) + " coordinates, robot '" +
                              c->robot()->name() + "' has " + std::to_string(c->robot()->nq()) + " joints");
-        int which = -1;
-        const double drift = c->max_drift(p.samples(), &which);
-        if (drift > drift_tolerance && which >= 0) {
-          // The path must keep every contact in place (c(p(s)) = d); say which one it does not.
-          const std::string msg = "contact " + std::to_string(which) + " (link '" + c->contacts()[static_cast<size_t>(which)].link +
-                                  "') moves by " + std::to_string(drift) + " m along the path: the path does not keep it in place";
-          py::module_::import("warnings").attr("warn")(msg, py::module_::import("builtins").attr("UserWarning"), 2);
-        }
+        const std::string msg = drift_warning(*c, p.samples(), drift_tolerance, "the path");
+        if (!msg.empty()) warn(msg);
         add_released(p, std::move(c), "add_contacts");
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
@@ -683,14 +701,11 @@ void bind_problem(py::module_& m) {
         o.time_limit = to_double(time_limit, "time_limit");
         o.explain = to_bool(explain, "explain");
         o.guarantee = parse_guarantee(to_string_arg(guarantee, "guarantee"));
-        o.audit_points = static_cast<int>(to_int(audit_points, "audit_points", std::numeric_limits<int>::min(),
-                                                 std::numeric_limits<int>::max()));
+        o.audit_points = to_int32(audit_points, "audit_points");
         o.audit_tolerance = to_double(audit_tolerance, "audit_tolerance");
-        o.max_audit_rounds = static_cast<int>(to_int(max_audit_rounds, "max_audit_rounds", std::numeric_limits<int>::min(),
-                                                     std::numeric_limits<int>::max()));
+        o.max_audit_rounds = to_int32(max_audit_rounds, "max_audit_rounds");
         o.method = parse_method(to_string_arg(method, "method"));
-        o.max_iterations = static_cast<int>(
-            to_int(max_iterations, "max_iterations", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+        o.max_iterations = to_int32(max_iterations, "max_iterations");
         o.tolerance = to_double(tolerance, "tolerance");
         o.initial_trust_region = to_double(initial_trust_region, "initial_trust_region");
         o.lp_feasibility_tolerance = to_double(lp_feasibility_tolerance, "lp_feasibility_tolerance");

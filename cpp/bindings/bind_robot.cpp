@@ -197,8 +197,8 @@ void bind_robot(py::module_& m) {
   py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits")
       .def(py::init([](py::handle robot, py::object tau_min, py::object tau_max, py::handle scale, py::handle margin) {
              auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
-             Eigen::VectorXd lo = tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min");
-             Eigen::VectorXd hi = tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max");
+             Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
+             Eigen::VectorXd hi = optional_vector(tau_max, "tau_max");
              return std::make_shared<TorqueLimits>(std::move(r), lo, hi, to_double(scale, "scale"), to_double(margin, "margin"));
            }),
            "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0)
@@ -283,13 +283,11 @@ void bind_robot(py::module_& m) {
       .def(py::init([](py::handle robot, py::handle contacts, py::handle cone_edges, py::handle friction_margin,
                        py::handle min_normal_force, py::handle torque_scale, py::handle torque_margin, py::handle tau_min,
                        py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps) {
-             ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin);
-             o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
-             o.max_lps = static_cast<int>(to_int(max_lps, "max_lps", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
-             return std::make_shared<ContactConstraint>(
-                 to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
-                 tau_min.is_none() ? Eigen::VectorXd() : to_vector(tau_min, "tau_min"),
-                 tau_max.is_none() ? Eigen::VectorXd() : to_vector(tau_max, "tau_max"));
+             const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
+                                                          torque_margin, min_link_normal_force, max_lps);
+             return std::make_shared<ContactConstraint>(to_object<RobotModel>(robot, "robot", "RobotModel"),
+                                                        to_contacts(contacts, "contacts"), o,
+                                                        optional_vector(tau_min, "tau_min"), optional_vector(tau_max, "tau_max"));
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
            "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "tau_min"_a = py::none(), "tau_max"_a = py::none(),

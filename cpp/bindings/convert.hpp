@@ -87,6 +87,11 @@ inline long long to_int(py::handle h, const std::string& name, long long lo, lon
   return v;
 }
 
+/// An int-sized integer (any value an int holds; the C++ side checks the range that makes sense).
+inline int to_int32(py::handle h, const std::string& name) {
+  return static_cast<int>(to_int(h, name, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+}
+
 inline bool to_bool(py::handle h, const std::string& name) {
   if (PyBool_Check(h.ptr())) return h.ptr() == Py_True;
   if (py::hasattr(h, "dtype") && py::str(h.attr("dtype")).cast<std::string>() == "bool" && py::hasattr(h, "__bool__"))
@@ -159,6 +164,11 @@ inline Eigen::VectorXd to_vector(py::handle obj, const std::string& name) {
   return Eigen::Map<const Eigen::VectorXd>(a.data(), a.shape(0));
 }
 
+/// None -> an empty vector (the C++ default, e.g. the URDF's limits), else a 1-D array as to_vector.
+inline Eigen::VectorXd optional_vector(py::handle h, const std::string& name) {
+  return h.is_none() ? Eigen::VectorXd() : to_vector(h, name);
+}
+
 /// A 2-D array as an Eigen matrix; a 1-D array of length m becomes (m, 1) when one_d_as_column.
 inline Eigen::MatrixXd to_matrix(py::handle obj, const std::string& name, bool one_d_as_column = false) {
   auto a = as_float_array(obj, name);
@@ -180,12 +190,17 @@ inline ContactOptions contact_options(int cone_edges, double friction_margin, do
   return o;
 }
 
-/// contact_options from Python arguments, each checked and named.
+/// contact_options from Python arguments, each checked and named (the options add_contacts,
+/// add_contact_phases and ContactConstraint share).
 inline ContactOptions contact_options_arg(py::handle cone_edges, py::handle friction_margin, py::handle min_normal_force,
-                                          py::handle torque_scale, py::handle torque_margin) {
-  return contact_options(static_cast<int>(to_int(cone_edges, "cone_edges", std::numeric_limits<int>::min(), std::numeric_limits<int>::max())),
-                         to_double(friction_margin, "friction_margin"), to_double(min_normal_force, "min_normal_force"),
-                         to_double(torque_scale, "torque_scale"), to_double(torque_margin, "torque_margin"));
+                                          py::handle torque_scale, py::handle torque_margin,
+                                          py::handle min_link_normal_force, py::handle max_lps) {
+  ContactOptions o = contact_options(to_int32(cone_edges, "cone_edges"), to_double(friction_margin, "friction_margin"),
+                                     to_double(min_normal_force, "min_normal_force"), to_double(torque_scale, "torque_scale"),
+                                     to_double(torque_margin, "torque_margin"));
+  o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
+  o.max_lps = to_int32(max_lps, "max_lps");
+  return o;
 }
 
 /// A Python scalar or 0-d array (functions of s or t then return one row instead of a matrix).

@@ -28,6 +28,28 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A constraint's rows on `samples` with the time they took (summed into SolverStats::time_constraints): every
+// evaluation that ends up in the problem's rows goes through here, so that no row keeps another's time.
+ConstraintRows timed_evaluate(const Constraint& constraint, const PathSamples& samples) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ConstraintRows rows = constraint.evaluate(samples);
+  rows.seconds = seconds_since(t0);
+  return rows;
+}
+
+// A greedy profile that stops on an interval is the answer only if it is the greatest element of a
+// max-closed feasible set (chain.lattice: then every feasible profile stops there); otherwise it may have
+// walked into a trap of the coupling rows, and the profile that does not stop (detail::unstopped_profile)
+// replaces it, in theta and reach.theta, when there is one. Returns whether theta moves on every interval.
+bool avoid_stopped_profile(const detail::Chain& chain, detail::Reachability& reach, double th0, Eigen::VectorXd& theta) {
+  if (!detail::has_stopped_interval(theta)) return true;
+  if (chain.lattice) return false;
+  Eigen::VectorXd start = detail::unstopped_profile(reach, th0);
+  if (detail::has_stopped_interval(start)) return false;
+  theta = reach.theta = std::move(start);
+  return true;
+}
+
 // An infeasibility with contacts is a claim about the robot, and the polygons are projections: before
 // it is reported, one LP on the full (ṡ², s̈, τ, f) polytope at the binding grid point, with every other
 // constraint's half-planes there, re-checks it; the message says whether the rest state (0, 0) is
@@ -126,9 +148,7 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
       for (size_t i : phases) {
         auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
         merged.push_back(contact->with_torque_limits(torque->tau_min(), torque->tau_max()));
-        const auto t0 = std::chrono::steady_clock::now();
-        merged_rows.push_back(merged.back()->evaluate(samples_));
-        merged_rows.back().seconds = seconds_since(t0);
+        merged_rows.push_back(timed_evaluate(*merged.back(), samples_));
       }
       for (size_t j = 0; j < phases.size(); ++j) {
         constraints_[phases[j]] = std::move(merged[j]);
@@ -149,9 +169,7 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
       }
     constraint = contact;
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  ConstraintRows rows = constraint->evaluate(samples_);
-  rows.seconds = seconds_since(t0);
+  ConstraintRows rows = timed_evaluate(*constraint, samples_);
   check_rows(*constraint, rows, samples_.size());
   for (size_t t = replaced.size(); t-- > 0;) {
     constraints_.erase(constraints_.begin() + static_cast<long>(replaced[t]));
@@ -259,11 +277,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     path_->evaluate(samples.s, samples.q, samples.dq, samples.ddq);
     if (!samples.q.allFinite() || !samples.dq.allFinite() || !samples.ddq.allFinite())
       detail::fail("path is not finite at an inserted switch point");
-    for (size_t c = 0; c < constraints_.size(); ++c) {
-      const auto t0 = std::chrono::steady_clock::now();
-      rows[c] = constraints_[c]->evaluate(samples);
-      rows[c].seconds = seconds_since(t0);
-    }
+    for (size_t c = 0; c < constraints_.size(); ++c) rows[c] = timed_evaluate(*constraints_[c], samples);
   }
   // TorqueLimits of this robot join every phase (as add_constraint merges them into one contact constraint).
   std::vector<size_t> replaced;
@@ -316,9 +330,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     o.rest_at_begin = rest[i];
     std::shared_ptr<const ContactConstraint> c = std::make_shared<ContactConstraint>(robot, phases[i].contacts, o, tau_min, tau_max);
     if (!replaced.empty()) c = c->with_torque_limits(lo, hi);
-    const auto t0 = std::chrono::steady_clock::now();
-    added_rows.push_back(c->evaluate(samples));
-    added_rows.back().seconds = seconds_since(t0);
+    added_rows.push_back(timed_evaluate(*c, samples));
     check_rows(*c, added_rows.back(), samples.size());
     added.push_back(std::move(c));
   }
@@ -349,7 +361,7 @@ void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
     else if (auto a = std::dynamic_pointer_cast<const AccelerationLimits>(constraints_[i]); a && a->joint_names().empty())
       named = std::make_shared<AccelerationLimits>(a->amin(), a->amax(), joint_names_);
     if (!named) continue;
-    rows_[i] = named->evaluate(samples_);
+    rows_[i] = timed_evaluate(*named, samples_);
     constraints_[i] = std::move(named);
   }
 }
@@ -628,12 +640,8 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     if (chain.lattice && options.method == Method::Auto) proven = true;
   }
   res.stats.greatest_element = proven && res.stats.gap == 0.0;
-  // A greedy profile that stops on an interval is the answer only if it is the greatest element (then
-  // every feasible profile stops there); otherwise it may have walked into a trap of the coupling rows.
-  if (!proven && !chain.lattice && detail::has_stopped_interval(theta)) {
-    Eigen::VectorXd start = detail::unstopped_profile(reach, th0);
-    if (!detail::has_stopped_interval(start)) theta = reach.theta = std::move(start);
-  }
+  // A proven θ is the answer even if it stops on an interval (every feasible profile does, then).
+  if (!proven) avoid_stopped_profile(chain, reach, th0, theta);
   res.stats.time_reachability = seconds_since(t0);
   for (Eigen::Index k = 0; k < n; ++k)
     if (theta[k] + theta[k + 1] <= 0.0) {
@@ -753,11 +761,11 @@ bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const C
   const detail::Chain chain = detail::build_chain(samples_.s, sets, &extra, scale);
   // Unbounded is not infeasible: some timing exists (and a relaxation cannot make it less bounded).
   const double th0 = sdot_begin_ * sdot_begin_ / scale.x_unit;
-  const detail::Reachability reach = detail::reachability(chain, th0, sdot_end_ * sdot_end_ / scale.x_unit);
+  detail::Reachability reach = detail::reachability(chain, th0, sdot_end_ * sdot_end_ / scale.x_unit);
   if (reach.outcome != detail::Reachability::Outcome::Feasible) return reach.outcome == detail::Reachability::Outcome::Unbounded;
   // As solve() judges it: a speed forced to zero on an interval means the path cannot be traversed.
-  if (!detail::has_stopped_interval(reach.theta)) return true;
-  return !chain.lattice && !detail::has_stopped_interval(detail::unstopped_profile(reach, th0));
+  Eigen::VectorXd theta = reach.theta;
+  return avoid_stopped_profile(chain, reach, th0, theta);
 }
 
 std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance,

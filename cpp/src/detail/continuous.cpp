@@ -48,7 +48,7 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
       ConstraintRows cr;
       cr.resize(samples.size(), 1);
       cr.labels[0] = "velocity (between grid points)";
-      const Eigen::VectorXd bound = continuous_speed_bounds(*pp, samples.s, vl->vmin(), vl->vmax());
+      const Eigen::VectorXd bound = continuous_speed_bounds(*pp, samples.s, ir, samples.dq, vl->vmin(), vl->vmax());
       for (Eigen::Index k = 0; k <= N; ++k)
         if (bound[k] < inf) {
           cr.a(k, 0) = 1.0;

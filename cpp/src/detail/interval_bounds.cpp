@@ -7,6 +7,26 @@
 
 namespace pathpace::detail {
 
+namespace {
+
+// Taylor coefficients of coordinate j of a piece (power coefficients c about its breakpoint) about x0:
+// p_j(x0 + τ) = Σ_m t[m] τ^m, t[m] = Σ_{i>=m} c_i C(i, m) x0^(i-m).
+void taylor(const Eigen::MatrixXd& c, Eigen::Index j, double x0, std::vector<double>& t) {
+  const int D = static_cast<int>(c.rows()) - 1;
+  t.assign(static_cast<size_t>(D) + 1, 0.0);
+  for (int m = 0; m <= D; ++m) {
+    double v = 0.0;
+    for (int i = D; i >= m; --i) {
+      double binom = 1.0;
+      for (int r = 0; r < m; ++r) binom = binom * static_cast<double>(i - r) / static_cast<double>(r + 1);
+      v = v * x0 + c(i, j) * binom;
+    }
+    t[static_cast<size_t>(m)] = v;
+  }
+}
+
+}  // namespace
+
 void bernstein(const double* c, int d, double h, double* b) {
   // a_j = c_j h^j are the coefficients in t = τ / h on [0, 1]; b_i = Σ_{j<=i} C(i, j) / C(d, j) a_j.
   double a[16];
@@ -34,7 +54,7 @@ IntervalRows interval_rows(const PiecewisePolynomialPath& path, const Eigen::Vec
   out.offset.assign(static_cast<size_t>(N) + 1, 0);
   out.dq_min.resize(N, n);
   out.dq_max.resize(N, n);
-  std::vector<double> taylor(static_cast<size_t>(D) + 1), dp(static_cast<size_t>(d) + 1), ddp(static_cast<size_t>(d) + 1),
+  std::vector<double> t, dp(static_cast<size_t>(d) + 1), ddp(static_cast<size_t>(d) + 1),
       A(static_cast<size_t>(d) + 1), B(static_cast<size_t>(d) + 1), bA(static_cast<size_t>(d) + 1),
       bB(static_cast<size_t>(d) + 1), bdp(static_cast<size_t>(d) + 1);
   for (Eigen::Index k = 0; k < N; ++k) {
@@ -58,23 +78,13 @@ IntervalRows interval_rows(const PiecewisePolynomialPath& path, const Eigen::Vec
       const double x0 = lo - bp[piece], s0 = lo - sk;  // piece-local start; σ at the start
       const bool first_sub = lo == sk, last_sub = hi == sk1;
       for (Eigen::Index j = 0; j < n; ++j) {
-        // Taylor coefficients of p_j at the sub-piece start: p_j(lo + τ) = Σ taylor[m] τ^m.
-        for (int m = 0; m <= D; ++m) {
-          double v = 0.0, binom = 1.0;  // Σ_{i>=m} c_i C(i, m) x0^(i - m)
-          // Horner over i from D down to m of c_i C(i, m) x0^(i-m).
-          v = 0.0;
-          for (int i = D; i >= m; --i) {
-            binom = 1.0;
-            for (int r = 0; r < m; ++r) binom = binom * static_cast<double>(i - r) / static_cast<double>(r + 1);
-            v = v * x0 + c(i, j) * binom;
-          }
-          taylor[static_cast<size_t>(m)] = v;
-        }
+        // Taylor coefficients of p_j at the sub-piece start: p_j(lo + τ) = Σ t[m] τ^m.
+        taylor(c, j, x0, t);
         // p' and p'' in τ (degree d, zero-padded).
         std::fill(dp.begin(), dp.end(), 0.0);
         std::fill(ddp.begin(), ddp.end(), 0.0);
-        for (int m = 1; m <= D; ++m) dp[static_cast<size_t>(m - 1)] = m * taylor[static_cast<size_t>(m)];
-        for (int m = 2; m <= D; ++m) ddp[static_cast<size_t>(m - 2)] = m * (m - 1) * taylor[static_cast<size_t>(m)];
+        for (int m = 1; m <= D; ++m) dp[static_cast<size_t>(m - 1)] = m * t[static_cast<size_t>(m)];
+        for (int m = 2; m <= D; ++m) ddp[static_cast<size_t>(m - 2)] = m * (m - 1) * t[static_cast<size_t>(m)];
         // E = 2σ p'' + p' with σ = s0 + τ: (2 s0 + 2τ) p'' + p'.
         for (int m = 0; m <= d; ++m) {
           double e = dp[static_cast<size_t>(m)] + 2.0 * s0 * ddp[static_cast<size_t>(m)];
@@ -105,22 +115,6 @@ IntervalRows interval_rows(const PiecewisePolynomialPath& path, const Eigen::Vec
 
 namespace {
 
-// Taylor coefficients of coordinate j of a piece (power coefficients c about its breakpoint) about x0:
-// p_j(x0 + τ) = Σ_m t[m] τ^m, t[m] = Σ_{i>=m} c_i C(i, m) x0^(i-m).
-void taylor(const Eigen::MatrixXd& c, Eigen::Index j, double x0, std::vector<double>& t) {
-  const int D = static_cast<int>(c.rows()) - 1;
-  t.assign(static_cast<size_t>(D) + 1, 0.0);
-  for (int m = 0; m <= D; ++m) {
-    double v = 0.0;
-    for (int i = D; i >= m; --i) {
-      double binom = 1.0;
-      for (int r = 0; r < m; ++r) binom = binom * static_cast<double>(i - r) / static_cast<double>(r + 1);
-      v = v * x0 + c(i, j) * binom;
-    }
-    t[static_cast<size_t>(m)] = v;
-  }
-}
-
 // The pieces of [a, b] cut at the path's breakpoints and at `extra` cuts (if inside): f(piece, lo, hi).
 // Cuts within rounding of another cut are dropped (slivers would only repeat their end's values).
 template <class F>
@@ -143,11 +137,11 @@ void for_each_sub(const PiecewisePolynomialPath& path, double a, double b, std::
 }  // namespace
 
 Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, const Eigen::VectorXd& grid,
-                                        const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax) {
+                                        const IntervalRows& ir, const Eigen::MatrixXd& dqg, const Eigen::VectorXd& vmin,
+                                        const Eigen::VectorXd& vmax) {
   const Eigen::Index N = grid.size() - 1, n = path.dof();
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::VectorXd out = Eigen::VectorXd::Constant(N + 1, inf);
-  const IntervalRows ir = interval_rows(path, grid);
   const Eigen::VectorXd& bp = path.breakpoints();
   const int D = static_cast<int>(path.coefficients()[0].rows()) - 1;
   const int dd = std::max(D - 1, 0);   // degree of p'
@@ -155,8 +149,6 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
   if (dq > 15) fail("guarantee = 'continuous' handles paths of degree <= 8 for velocity limits; this one has degree " +
                     std::to_string(D));
   // The speed bound at the grid points themselves (eq. 16): no end of a line needs to exceed it.
-  Eigen::MatrixXd qg, dqg, ddqg;
-  path.evaluate(grid, qg, dqg, ddqg);
   Eigen::VectorXd G = Eigen::VectorXd::Constant(N + 1, inf);
   for (Eigen::Index k = 0; k <= N; ++k)
     for (Eigen::Index j = 0; j < n; ++j) {

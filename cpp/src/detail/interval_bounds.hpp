@@ -43,8 +43,10 @@ IntervalRows interval_rows(const PiecewisePolynomialPath& path, const Eigen::Vec
 /// p'_j changes sign), checked by the Bernstein coefficients of that polynomial. Each interval starts from
 /// the exact end values v²/p'_j(s)² (the line through them is below v²/p'_j² where that is concave) and
 /// scales them down until the Bernstein check holds, so the loss is O(Δs²), not O(Δs) as with
-/// max |p'_j| over the interval. Entries without a limit are +inf.
+/// max |p'_j| over the interval. Entries without a limit are +inf. `rows` = interval_rows(path, grid) and
+/// `dq` = p' at the grid points (N+1, n), which the caller has already.
 Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, const Eigen::VectorXd& grid,
-                                        const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax);
+                                        const IntervalRows& rows, const Eigen::MatrixXd& dq, const Eigen::VectorXd& vmin,
+                                        const Eigen::VectorXd& vmax);
 
 }  // namespace pathpace::detail

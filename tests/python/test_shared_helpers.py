@@ -1,0 +1,102 @@
+"""Contracts of code that several callers share: the SolverStats table behind Result.stats and Result's pickle
+state, the constraint-evaluation timing of TimeScalingProblem (set_joint_names re-evaluates rows), and the
+limit curves that pathpace.plot (matplotlib) and pathpace.report (plotly) both draw."""
+
+import pickle
+import types
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+from pathpace import plot
+
+# Result's pickle state keeps SolverStats as a tuple of these 18 entries, in this order (the format pickles
+# written so far have): a new field may only be appended, with a new entry count.
+STATS_STATE = ("slp_iterations", "lp_solves", "greatest_element", "gap", "average_halfplanes", "time_constraints",
+               "time_feasible_sets", "time_reachability", "time_slp", "audit_rounds", "audit_cuts", "audit_worst",
+               "windows", "window_points", "time_projection", "projection_lp_solves", "inexact_points", "newton_steps")
+
+
+def two_joint_problem(N=50):
+    path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, -0.5], [0.3, 0.8]]))
+    prob = pp.TimeScalingProblem(path, grid=N)
+    prob.add_velocity_limits([-1.0, -1.0], [1.0, 1.0])
+    prob.add_acceleration_limits([-2.0, -2.0], [2.0, 2.0])
+    return prob
+
+
+def test_set_joint_names_keeps_the_time_of_the_rows_it_evaluates_again():
+    """Limits added before the names are evaluated again with them; their rows' time is what
+    stats['time_constraints'] sums. It was left at 0 (the rows replaced by untimed ones)."""
+    prob = two_joint_problem()
+    assert prob.solve().stats["time_constraints"] > 0.0
+    prob.set_joint_names(["shoulder", "elbow"])
+    labels = [lab for k in (0, 25) for lab in prob.feasible_set(k).labels]
+    assert any("shoulder" in lab for lab in labels) and not any("joint 0" in lab for lab in labels)
+    assert prob.solve().stats["time_constraints"] > 0.0
+
+
+def test_result_stats_are_the_18_fields_and_a_pickle_round_trip_keeps_them():
+    res = two_joint_problem().solve()
+    assert set(res.stats) == set(STATS_STATE)
+    back = pickle.loads(pickle.dumps(res))
+    assert back.stats == res.stats and back.duration == res.duration
+
+
+def test_result_reads_a_stats_state_in_the_existing_18_entry_layout():
+    """A state written in the layout pickles have had so far (each value distinct, of its field's type) is
+    read into the fields of that name; a state of another length is refused, named."""
+    res = two_joint_problem().solve()
+    state = list(res.__getstate__())
+    assert state[8] == tuple(res.stats[name] for name in STATS_STATE)
+    values = []
+    for i, name in enumerate(STATS_STATE):
+        kind = type(res.stats[name])
+        values.append(True if kind is bool else (i + 1 if kind is int else i + 0.25))
+    state[8] = tuple(values)
+    r = pp.Result.__new__(pp.Result)
+    r.__setstate__(tuple(state))
+    assert r.stats == dict(zip(STATS_STATE, values))
+    assert all(type(r.stats[n]) is type(v) for n, v in zip(STATS_STATE, values))
+    state[8] = tuple(values[:-1])
+    with pytest.raises(pp.InvalidInputError, match=r"Result stats pickle state has 17 entries, expected 18"):
+        pp.Result.__new__(pp.Result).__setstate__(tuple(state))
+
+
+def test_limit_ratios_divide_by_the_larger_limit_and_leave_out_joints_without_one():
+    values = np.array([[1.0, 5.0, 3.0, -2.0], [-4.0, 1.0, 0.0, 1.0]])
+    lo, hi = np.array([-2.0, -np.inf, 0.0, -8.0]), np.array([4.0, np.inf, 0.0, 2.0])
+    ratios = plot.limit_ratios(values, lo, hi, ["a", "b", "c", "d"])
+    assert [name for name, _ in ratios] == ["a", "d"]
+    np.testing.assert_array_equal(ratios[0][1], [0.25, -1.0])
+    np.testing.assert_array_equal(ratios[1][1], [-0.25, 0.125])
+
+
+def test_matplotlib_and_plotly_draw_the_same_velocity_curves():
+    matplotlib = pytest.importorskip("matplotlib")
+    pytest.importorskip("plotly")
+    matplotlib.use("Agg")
+    from pathpace import report
+
+    prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, -0.5], [0.3, 0.8]])), grid=50)
+    prob.add_velocity_limits([-1.0, -np.inf], [1.0, np.inf])  # the second joint has no limit: no curve
+    prob.add_acceleration_limits([-2.0, -2.0], [2.0, 2.0])
+    res = prob.solve()
+    d = plot.velocities_data(res, [-1.0, -np.inf], [1.0, np.inf], ["a", "b"])
+    expected = plot.limit_ratios(d["qd"], d["vmin"], d["vmax"], d["joint_names"])
+    assert [name for name, _ in expected] == ["a"]
+    np.testing.assert_allclose(expected[0][1], d["qd"][:, 0])
+
+    ax = plot.velocities(res, [-1.0, -np.inf], [1.0, np.inf], joint_names=["a", "b"])
+    drawn = [line for line in ax.get_lines() if line.get_label() == "a"]
+    assert len(drawn) == 1 and len(ax.get_lines()) == 3  # the curve and the two limits
+    np.testing.assert_array_equal(drawn[0].get_ydata(), expected[0][1])
+
+    spec = types.SimpleNamespace(problem=prob, name="two joints", joint_names=["a", "b"],
+                                 velocity_limits=([-1.0, -np.inf], [1.0, np.inf]))
+    figs = dict(report.figures(spec, res))
+    traces = figs["Joint velocities against the limits"].data
+    assert [t.name for t in traces] == ["a"]
+    np.testing.assert_array_equal(np.asarray(traces[0].y), expected[0][1])
+    np.testing.assert_array_equal(np.asarray(traces[0].x), d["t"])
