@@ -49,18 +49,9 @@ def contact_timing(robot, path, contacts, grid, min_normal_force=0.0, friction_m
     return prob.solve()
 
 
-def kinematic_timing(robot, path, grid) -> pp.Result:
-    """Joint velocity limits from the URDF and 10 rad/s² (m/s²) acceleration limits, no dynamics."""
-    vmax = np.where(np.isfinite(robot.velocity_limits), robot.velocity_limits, 1.0)
-    prob = pp.TimeScalingProblem(path, grid=grid)
-    prob.add_velocity_limits(-vmax, vmax)
-    prob.add_acceleration_limits(-10.0 * np.ones(robot.nq), 10.0 * np.ones(robot.nq))
-    return prob.solve()
-
-
-def uniform(path, grid, T) -> pp.Trajectory:
-    s = np.linspace(path.s_begin, path.s_end, grid + 1)
-    return pp.Trajectory(path, s, np.full(grid + 1, (path.s_end - path.s_begin) / T))
+# The timings to compare with (shared with talos_sway.py and humanoid_steps.py).
+kinematic_timing = talos_sway.kinematic_timing
+uniform = talos_sway.uniform_timing
 
 
 def row(name: str, mnf, fm, T: float, sim) -> dict:

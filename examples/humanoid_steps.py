@@ -194,10 +194,9 @@ def main(argv: list[str] | None = None) -> dict:
         bare.add_contact_phases(robot, phases(), drift_tolerance=1e-4, cone_edges=8)
         res_bare = bare.solve()
         timings = [("contact phases, margins", traj), ("contact phases, no margins", res_bare.trajectory())]
-        s = np.linspace(0.0, 5.0, 101)
         for factor in (1.0, 2.0):
-            T = factor * res.duration
-            timings.append((f"uniform, {factor:.0f} x T(margins)", pp.Trajectory(path, s, np.full(s.size, 5.0 / T))))
+            uniform = talos_sway.uniform_timing(path, 100, factor * res.duration)
+            timings.append((f"uniform, {factor:.0f} x T(margins)", uniform))
         print("MuJoCo (pathpace.sim):")
         sim_rows = simulate(robot, path, timings)
     return {"result": res, "problem": prob, "path": path, "robot": robot, "switches": k_switch, "solver_cone": solver_cone,

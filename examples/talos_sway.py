@@ -33,6 +33,22 @@ HALF_SITTING = {
 }
 
 
+def kinematic_timing(robot: pp.RobotModel, path, grid: int) -> pp.Result:
+    """The optimum under joint velocity limits from the URDF (1 where it has none) and 10 rad/s² (m/s²)
+    acceleration limits only, no dynamics: what a contact-unaware planner would do."""
+    vmax = np.where(np.isfinite(robot.velocity_limits), robot.velocity_limits, 1.0)
+    prob = pp.TimeScalingProblem(path, grid=grid)
+    prob.add_velocity_limits(-vmax, vmax)
+    prob.add_acceleration_limits(-10.0 * np.ones(robot.nq), 10.0 * np.ones(robot.nq))
+    return prob.solve()
+
+
+def uniform_timing(path, grid: int, T: float) -> pp.Trajectory:
+    """The path at constant speed, in T s (on `grid` + 1 evenly spaced points)."""
+    s = np.linspace(path.s_begin, path.s_end, grid + 1)
+    return pp.Trajectory(path, s, np.full(grid + 1, (path.s_end - path.s_begin) / T))
+
+
 def load_talos() -> pp.RobotModel:
     """Talos with its floating base; the grippers' mimic joints locked at 0 (the grippers do not move here)."""
     urdf = str(example_robot_urdf("talos_data/robots/talos_full_v2.urdf"))
@@ -139,11 +155,7 @@ def main(argv: list[str] | None = None) -> dict:
         return {"result": res}
 
     # Joint velocity and acceleration limits only (no dynamics): URDF velocities, 10 rad/s² or m/s².
-    vmax = np.where(np.isfinite(robot.velocity_limits), robot.velocity_limits, 1.0)
-    kin = pp.TimeScalingProblem(path, grid=args.grid)
-    kin.add_velocity_limits(-vmax, vmax)
-    kin.add_acceleration_limits(-10.0 * np.ones(robot.nq), 10.0 * np.ones(robot.nq))
-    res_kin = kin.solve()
+    res_kin = kinematic_timing(robot, path, args.grid)
 
     # The same without any safety margin (sec. V.D): faster, and on the edge of what the feet can do.
     bare = pp.TimeScalingProblem(path, grid=args.grid)
@@ -153,10 +165,8 @@ def main(argv: list[str] | None = None) -> dict:
     samples = 10 * args.grid + 1
     timings = [("pathpace, contacts with margins", res.trajectory()), ("pathpace, contacts, no margins", res_bare.trajectory()),
                ("velocity + acceleration limits", res_kin.trajectory())]
-    grid = np.linspace(0.0, 1.0, args.grid + 1)
     for factor in (1.0, 1.5, 2.0, 3.0):
-        T = factor * res.duration
-        timings.append((f"uniform, T = {factor:.1f} T*", pp.Trajectory(path, grid, np.full(args.grid + 1, 1.0 / T))))
+        timings.append((f"uniform, T = {factor:.1f} T*", uniform_timing(path, args.grid, factor * res.duration)))
     rows = []
     print(f"\naudit at {samples} times per timing (force-distribution LP; margin in N of cone weight):")
     print(f"{'timing':34s} {'T (s)':>8s} {'worst margin, solver cone':>26s} {'worst margin, true cone':>24s} {'needs nonexistent forces':>25s}")

@@ -118,6 +118,27 @@ def torques_data(result: Result, robot=None, tau_min=None, tau_max=None, samples
     return {"t": t, "tau": tau, "tau_min": lo, "tau_max": hi, "joint_names": list(robot.joint_names)}
 
 
+def velocities_data(result: Result, vmin, vmax, joint_names: Sequence[str] | None = None,
+                    samples: int = 1000) -> dict[str, Any]:
+    """q̇(t) (m, nq) along the timing, with the limits and the joints' names ("joint j" when not given)."""
+    traj = result.trajectory()
+    t = np.linspace(0.0, traj.duration, samples)
+    qd = traj.qd(t)
+    names = list(joint_names) if joint_names else [f"joint {j}" for j in range(qd.shape[1])]
+    return {"t": t, "qd": qd, "vmin": np.asarray(vmin), "vmax": np.asarray(vmax), "joint_names": names}
+
+
+def limit_ratios(values, lo, hi, names) -> list[tuple[str, np.ndarray]]:
+    """(name, values[:, j] / max(|lo_j|, |hi_j|)) for every joint with a finite nonzero limit: ±1 are the
+    limits. What both backends (matplotlib here, plotly in :mod:`pathpace.report`) draw against ±1."""
+    out = []
+    for j, name in enumerate(names):
+        lim = max(abs(lo[j]), abs(hi[j]))
+        if np.isfinite(lim) and lim > 0:
+            out.append((name, values[:, j] / lim))
+    return out
+
+
 def contacts_data(result: Result, samples: int = 300) -> dict[str, Any] | None:
     """Contact forces (m, contacts, 3) in N and the force-distribution margin (m,) in N over t."""
     traj = result.trajectory()
@@ -156,12 +177,10 @@ def _axes(ax):
     return ax
 
 
-def _against_limits(ax, t, values, lo, hi, names, ylabel, title):
-    """values[:, j] / max(|lo_j|, |hi_j|) over t for every joint with a finite nonzero limit, with ±1 marked."""
-    for j, name in enumerate(names):
-        lim = max(abs(lo[j]), abs(hi[j]))
-        if np.isfinite(lim) and lim > 0:
-            ax.plot(t, values[:, j] / lim, lw=1, label=name)
+def _against_limits(ax, t, ratios, ylabel, title):
+    """The curves of :func:`limit_ratios` over t, with ±1 marked."""
+    for name, y in ratios:
+        ax.plot(t, y, lw=1, label=name)
     ax.axhline(1.0, color="k", ls="--", lw=1)
     ax.axhline(-1.0, color="k", ls="--", lw=1)
     ax.set_xlabel("t (s)")
@@ -217,8 +236,8 @@ def torques(result: Result, robot=None, ax=None, tau_min=None, tau_max=None):
     if d is None:
         ax.text(0.5, 0.5, "no robot: no torques", ha="center", transform=ax.transAxes)
         return ax
-    return _against_limits(ax, d["t"], d["tau"], d["tau_min"], d["tau_max"], d["joint_names"], "τ / τ_max",
-                           "torques against the limits")
+    return _against_limits(ax, d["t"], limit_ratios(d["tau"], d["tau_min"], d["tau_max"], d["joint_names"]),
+                           "τ / τ_max", "torques against the limits")
 
 
 def contacts(result: Result, ax=None):
@@ -241,12 +260,10 @@ def contacts(result: Result, ax=None):
 
 def velocities(result: Result, vmin, vmax, ax=None, joint_names=None, samples: int = 1000):
     """q̇_j(t) / limit for every joint with a finite limit (±1 = the limits)."""
-    traj = result.trajectory()
+    d = velocities_data(result, vmin, vmax, joint_names, samples)
     ax = _axes(ax)
-    t = np.linspace(0.0, traj.duration, samples)
-    qd = traj.qd(t)
-    names = joint_names if joint_names else [f"joint {j}" for j in range(qd.shape[1])]
-    return _against_limits(ax, t, qd, vmin, vmax, names, "q̇ / q̇_max", "joint velocities against the limits")
+    return _against_limits(ax, d["t"], limit_ratios(d["qd"], d["vmin"], d["vmax"], d["joint_names"]), "q̇ / q̇_max",
+                           "joint velocities against the limits")
 
 
 def summary_figure(spec, result: Result, polygons_at=None):

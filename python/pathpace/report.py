@@ -30,6 +30,19 @@ def _segments(x: np.ndarray, y: np.ndarray, category: list[str]) -> dict[str, tu
     return out
 
 
+def _against_limits(t, ratios, ytitle: str):
+    """The curves of :func:`pathpace.plot.limit_ratios` over t, with ±1 marked."""
+    import plotly.graph_objects as go
+
+    f = go.Figure()
+    for name, y in ratios:
+        f.add_trace(go.Scatter(x=t, y=y, mode="lines", name=name))
+    for y in (-1, 1):
+        f.add_hline(y=y, line={"dash": "dash", "color": "black", "width": 1})
+    f.update_layout(xaxis_title="t (s)", yaxis_title=ytitle)
+    return f
+
+
 def figures(spec, result) -> list[tuple[str, Any]]:
     """(title, plotly Figure) for every plot that applies to this problem and result."""
     import plotly.graph_objects as go
@@ -68,30 +81,16 @@ def figures(spec, result) -> list[tuple[str, Any]]:
     td = _plot.torques_data(result, getattr(spec, "robot", None), None if tl is None else tl.tau_min,
                             None if tl is None else tl.tau_max)
     if td is not None:
-        f = go.Figure()
-        for j, name in enumerate(td["joint_names"]):
-            lim = max(abs(td["tau_min"][j]), abs(td["tau_max"][j]))
-            if np.isfinite(lim) and lim > 0:
-                f.add_trace(go.Scatter(x=td["t"], y=td["tau"][:, j] / lim, mode="lines", name=name))
-        for y in (-1, 1):
-            f.add_hline(y=y, line={"dash": "dash", "color": "black", "width": 1})
-        f.update_layout(xaxis_title="t (s)", yaxis_title="τ / τ_max")
-        figs.append(("Torques against the limits", f))
+        figs.append(("Torques against the limits",
+                     _against_limits(td["t"], _plot.limit_ratios(td["tau"], td["tau_min"], td["tau_max"], td["joint_names"]),
+                                     "τ / τ_max")))
 
     vl = getattr(spec, "velocity_limits", None)
     if vl is not None:
-        traj = result.trajectory()
-        t = np.linspace(0.0, traj.duration, 1000)
-        qd = traj.qd(t)
-        f = go.Figure()
-        for j in range(qd.shape[1]):
-            lim = max(abs(vl[0][j]), abs(vl[1][j]))
-            if np.isfinite(lim) and lim > 0:
-                f.add_trace(go.Scatter(x=t, y=qd[:, j] / lim, mode="lines", name=names[j] if names else f"joint {j}"))
-        for y in (-1, 1):
-            f.add_hline(y=y, line={"dash": "dash", "color": "black", "width": 1})
-        f.update_layout(xaxis_title="t (s)", yaxis_title="q̇ / q̇_max")
-        figs.append(("Joint velocities against the limits", f))
+        vd = _plot.velocities_data(result, vl[0], vl[1], names)
+        figs.append(("Joint velocities against the limits",
+                     _against_limits(vd["t"], _plot.limit_ratios(vd["qd"], vd["vmin"], vd["vmax"], vd["joint_names"]),
+                                     "q̇ / q̇_max")))
 
     cd = _plot.contacts_data(result)
     if cd is not None:

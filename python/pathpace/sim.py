@@ -178,6 +178,7 @@ class Simulator:
         self.mujoco = mj
         self.robot = robot
         self.contacts = list(contacts)
+        self._default_contact_model: _core.ContactConstraint | None = None  # see _contact_model
         locked = dict(locked_joints or {})
         if not (timestep > 0 and math.isfinite(timestep)):
             _fail(f"timestep = {timestep} must be > 0")
@@ -391,6 +392,15 @@ class Simulator:
         return self.data.site_xpos[self.site_ids].copy()
 
     # ----------------------------------------------------------------------------------------------
+    def _contact_model(self, contact_model: _core.ContactConstraint | None) -> _core.ContactConstraint:
+        """`contact_model`, else the simulator's contacts with 8 cone edges and no margins (built on first use
+        and kept: the contacts are fixed with the MuJoCo model, and a ContactConstraint is immutable)."""
+        if contact_model is not None:
+            return contact_model
+        if self._default_contact_model is None:
+            self._default_contact_model = _core.ContactConstraint(self.robot, self.contacts, cone_edges=8)
+        return self._default_contact_model
+
     def feedforward(self, traj: _core.Trajectory, t: np.ndarray, mode: str = "auto",
                     contact_model: _core.ContactConstraint | None = None) -> tuple[np.ndarray, str]:
         """(len(t), nq) feed-forward torques and the mode used.
@@ -412,7 +422,7 @@ class Simulator:
         if traj.contacts is not None and contact_model is None:
             cf = traj.contact_forces(t)
         else:
-            model = contact_model or _core.ContactConstraint(self.robot, self.contacts, cone_edges=8)
+            model = self._contact_model(contact_model)
             q, qd, qdd = traj.evaluate(t)
             cf = model.force_distribution(q, qd, qdd)
         tau = np.atleast_2d(np.array(cf.torques, dtype=float))
@@ -433,8 +443,7 @@ class Simulator:
             return zero
         if mode == "inverse_dynamics" or not self.contacts:
             return self.robot.gravity(q)
-        model = contact_model or _core.ContactConstraint(self.robot, self.contacts, cone_edges=8)
-        cf = model.force_distribution(q, zero, zero)
+        cf = self._contact_model(contact_model).force_distribution(q, zero, zero)
         return np.asarray(cf.torques, dtype=float) if cf.feasible else self.robot.gravity(q)
 
     def run(
@@ -501,8 +510,9 @@ class Simulator:
         rec_t, rec_z, rec_zp, rec_tilt, rec_pos, rec_err = [], [], [], [], [], []
         plan_k, z_plan, zaxis_plan = -1, 0.0, np.zeros(3)  # the plan's root link at control step plan_k
         fell, fall_time, saturated = False, None, 0
-        forcerange = model.actuator_forcerange
-        limited = model.actuator_forcelimited.astype(bool)
+        # Saturation: the force-limited actuators and their limits, once (not per step).
+        limited = np.flatnonzero(model.actuator_forcelimited)
+        at_limit = model.actuator_forcerange[limited, 1] * (1 - 1e-9)
         for step in range(n_move + n_hold + 1):
             k = min(step, n_move)
             if step % every == 0 or step == n_move + n_hold:
@@ -525,10 +535,8 @@ class Simulator:
                 break
             data.ctrl[:] = ctrl_for(step)
             mj.mj_step(model, data)
-            if np.any(limited):
-                f = data.actuator_force[limited]
-                if np.any(np.abs(f) >= forcerange[limited, 1] * (1 - 1e-9)):
-                    saturated += 1
+            if limited.size and np.any(np.abs(data.actuator_force[limited]) >= at_limit):
+                saturated += 1
         pos = np.array(rec_pos).reshape(len(rec_pos), len(self.contacts), 3)
         d = pos - p0
         return SimResult(

@@ -271,3 +271,29 @@ def test_talos_two_steps_with_contact_phase_margins_executes_without_margins_fal
     ours, bare = rows["contact phases, margins"], rows["contact phases, no margins"]
     assert not ours["fell"] and ours["held_xy"] < 0.01 and ours["held_z"] < 0.01 and ours["tilt"] < 0.05
     assert bare["T"] < ours["T"] and bare["fell"]
+
+
+def test_the_default_contact_model_is_built_once_and_kept(sway, monkeypatch):
+    """A timing without contacts of its own is fed forward with the simulator's contacts (8 cone edges, no
+    margins): that ContactConstraint is built on first use and kept (it was built three times per run: for
+    the motion and for the two static holds)."""
+    import pathpace.sim
+
+    sim, path = sway["sim"], sway["path"]
+    built = []
+    original = pathpace.sim._core.ContactConstraint
+
+    def counting(*args, **kwargs):
+        built.append(args)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(pathpace.sim._core, "ContactConstraint", counting)
+    monkeypatch.setattr(sim, "_default_contact_model", None)
+    traj = pp.Trajectory(path, np.linspace(0.0, 1.0, 11), np.full(11, 1.0 / 3.0))  # uniform, T = 3 s
+    assert traj.contacts is None
+    first = sim.run(traj, settle=0.05, hold=0.05)
+    assert first.feedforward == "contact" and len(built) == 1
+    assert built[0][1] == sway["contacts"]
+    second = sim.run(traj, settle=0.05, hold=0.05)
+    assert len(built) == 1
+    np.testing.assert_array_equal(first.tracking_error, second.tracking_error)
