@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "detail/barrier.hpp"
+#include "detail/chain_simplex.hpp"
 #include "detail/glpk_lp.hpp"
 
 namespace pathpace::detail {
@@ -45,6 +46,19 @@ double slope(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, const Eige
   return g.dot(d);
 }
 
+// The exact minimiser of T on the segment θ + α d, α in [0, 1] (T is convex along it): bisection on the sign
+// of the slope.
+double line_search(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, const Eigen::VectorXd& d, double floor,
+                   Eigen::VectorXd& tmp, Eigen::VectorXd& g) {
+  if (slope(ds, theta, d, 1.0, floor, tmp, g) <= 0.0) return 1.0;
+  double l = 0.0, h = 1.0;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (l + h);
+    (slope(ds, theta, d, mid, floor, tmp, g) > 0.0 ? h : l) = mid;
+  }
+  return l;
+}
+
 }  // namespace
 
 namespace {
@@ -64,6 +78,7 @@ constexpr int kSlpBeforeBarrier = 2;
 constexpr double kBarrierFirstBracket = 1e-2;
 constexpr int kBarrierFirstColumns = 2000;
 constexpr int kBarrierSteps = 300;  // its Newton step budget (then the SLP goes on)
+constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget (then GLPK)
 
 struct WindowResult {
   SlpOutcome::Status status = SlpOutcome::Status::Converged;
@@ -110,6 +125,41 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     out.lower = out.T;
     return out;
   }
+  const double theta_max = std::max(theta.maxCoeff(), 1e-300);
+  const double floor = 1e-24 * theta_max * theta_max + 1e-300;
+  Eigen::VectorXd g, d(m + 1), tmp, gtmp;
+  gradient(ds, theta, floor, g);
+  if (Clock::now() >= deadline) {
+    out.status = SlpOutcome::Status::TimeLimit;
+    return out;
+  }
+  {
+    // The first LP below is the Frank-Wolfe check at the start, and usually all that the window needs (with the
+    // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex).
+    ChainSimplex cs(chain, a, m, lo, hi, first, last);
+    const double gap = cs.gap(theta, g, kChainPivots);
+    if (std::isfinite(gap)) {
+      ++out.lp_solves;  // an LP, solved without GLPK
+      out.gap = gap;
+      out.lower = out.T - gap;
+      if (gap <= rel_target * out.T) return out;
+      // The Frank-Wolfe step to the LP's vertex with an exact line search; the bound above certifies it if the
+      // step realises all but the target of the decrease the LP promised.
+      d = cs.vertex() - theta;
+      const double alpha = line_search(ds, theta, d, floor, tmp, gtmp);
+      Eigen::VectorXd next = theta + alpha * d;
+      for (Eigen::Index j = 0; j <= m; ++j) next[j] = std::clamp(next[j], lo[j], hi[j]);
+      const double T_next = duration(ds, next);
+      if (T_next < out.T) {
+        theta = next;
+        out.theta = next;
+        out.T = T_next;
+        out.gap = T_next - out.lower;
+        gradient(ds, theta, floor, g);
+        if (out.gap <= rel_target * out.T) return out;
+      }
+    }
+  }
   // Only the rows that support interval k's polygon within the column bounds' box can bind in any of the
   // window's LPs (every trust region lies inside that box): typically two or three of the ~5 per interval.
   Polygon2d poly;
@@ -143,7 +193,6 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   // at the start: ṡ² spans orders of magnitude along a path (1e-5 near a slow point, 1 elsewhere) and
   // GLPK's tolerances are absolute in the problem it is given, so in θ itself a row with c ~ 1e-5 could be
   // broken by 1e-9, 1e-4 of itself, which the repair would then pay for in T.
-  const double theta_max = std::max(theta.maxCoeff(), 1e-300);
   Eigen::VectorXd sigma = theta.cwiseMax(1e-6 * theta_max);
   struct LpRow {
     Eigen::Index k;  // interval (local)
@@ -202,8 +251,6 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     return out;
   }
 
-  const double floor = 1e-24 * theta_max * theta_max + 1e-300;
-  Eigen::VectorXd g, d(m + 1), tmp, gtmp;
   std::vector<double> cost(static_cast<size_t>(cols)), x;
   double T = out.T;
   // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start.
@@ -346,15 +393,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       }
     }
     // Exact line search on the convex 1-D restriction: bisection on the sign of the slope.
-    double alpha = 1.0;
-    if (slope(ds, theta, d, 1.0, floor, tmp, gtmp) > 0.0) {
-      double l = 0.0, h = 1.0;
-      for (int it = 0; it < 60; ++it) {
-        const double mid = 0.5 * (l + h);
-        (slope(ds, theta, d, mid, floor, tmp, gtmp) > 0.0 ? h : l) = mid;
-      }
-      alpha = l;
-    }
+    const double alpha = line_search(ds, theta, d, floor, tmp, gtmp);
     Eigen::VectorXd next = theta + alpha * d;
     for (Eigen::Index j = 0; j <= m; ++j) next[j] = std::clamp(next[j], lo[j], hi[j]);
     const double T_next = duration(ds, next);

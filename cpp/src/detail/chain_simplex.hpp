@@ -1,0 +1,82 @@
+#pragma once
+// A primal simplex for the LP of one SLP window (sec. V.C) that uses the chain structure of eq. (26).
+//
+// Why. The first LP of a window is the Frank-Wolfe check at its greedy start, and on the arm corpus it nearly
+// always certifies the window at once (with the step to its vertex): a GLPK call costs 50-90 µs for 100
+// points, mostly set-up and factorisation. A primal simplex on the chain itself costs O(window) per pivot.
+//
+// The LP: minimise g·y over the window's rows and lo <= y <= hi (g = ∇T at the start θ). A basis is a set S of
+// active constraints (rows, or a bound of a column), one per free column, nonsingular. Every row touches two
+// neighbouring columns, so S can be matched to the columns (each constraint to a column it acts on), and in
+// that order both B (constraints x columns) and its transpose are tridiagonal: the multipliers (Bᵀλ = -g) and
+// an edge direction (B d = -e_p) cost one banded solve each. The matching is found earliest-deadline-first
+// (a row of interval k can serve column k or k+1 only: an interval scheduling problem, where EDF finds a
+// perfect matching whenever one exists). The greedy profile is a vertex (each free θ_j is at a bound or the
+// top of a slice, where a row of interval j-1 or j is tight), so the simplex starts there; at the usual
+// degenerate vertex (several rows tight at a point) a few pivots of length ~0 reach a dual feasible basis.
+// Bland's rule (smallest index leaves, smallest index enters) rules out cycling; a pivot cap, a singular
+// basis or an unbounded ray give up (the caller then runs GLPK).
+//
+// Nothing is trusted to the basis being optimal or to the simplex's arithmetic: with its multipliers clamped
+// at 0, weak duality bounds the LP (as GlpkLp::lagrangian_bound does; d = g + Aᵀλ over the rows):
+//     g·θ - min_{y in the window's set} g·y <= Σ_free j (d_j θ_j - min_{lo_j <= y_j <= hi_j} d_j y_j) + Σ_r λ_r (c_r - a_r·θ)
+// at the start θ, valid for any λ >= 0. Returns that bound on the start's Frank-Wolfe gap (+inf if given up).
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "detail/reachability.hpp"
+
+namespace pathpace::detail {
+
+class ChainSimplex {
+ public:
+  /// The LP of window [a, a + m] of `chain` (its intervals' rows), lo <= θ <= hi on the window's points (local
+  /// indices 0..m), columns first..last free (the others fixed at the start's values). Keeps references to
+  /// chain, lo and hi.
+  ChainSimplex(const Chain& chain, Eigen::Index a, Eigen::Index m, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+               Eigen::Index first, Eigen::Index last);
+
+  /// From the vertex `theta` (θ_0..θ_m, feasible; each free point at a bound or where a row of an adjacent
+  /// interval is tight, as the greedy profile is), minimises g·y by at most `max_pivots` pivots; returns the
+  /// bound above on g·θ - min g·y (>= 0), or +inf if it gave up (no start basis, singular, pivot budget).
+  double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots);
+
+  /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
+  const Eigen::VectorXd& vertex() const { return y_; }
+  int pivots() const { return pivots_; }
+
+ private:
+  struct Row {
+    const Line* line;
+    Eigen::Index k;  // interval (local): acts on columns k (α) and k + 1 (β)
+  };
+  // Constraint codes: >= 0 a row index; kHi / kLo the upper / lower bound of the column it is matched to.
+  static constexpr int kHi = -1, kLo = -2;
+
+  Eigen::Index col(std::size_t i) const { return first_ + static_cast<Eigen::Index>(i); }
+  std::size_t local(Eigen::Index j) const { return static_cast<std::size_t>(j - first_); }
+  bool free_col(Eigen::Index j) const { return j >= first_ && j <= last_; }
+  double coef(std::size_t owner, std::size_t i) const;
+  double slack(const Row& r) const { return r.line->c - r.line->a * y_[r.k] - r.line->b * y_[r.k + 1]; }
+  bool tight(const Row& r) const;
+  bool start_basis();
+  bool match();
+  void fill(bool transpose);
+  bool duals(const Eigen::VectorXd& g);
+  bool step(std::size_t p);
+
+  const Eigen::VectorXd &lo_, &hi_;
+  Eigen::Index first_, last_;
+  std::size_t n_;
+  std::vector<Row> rows_;
+  std::vector<char> in_basis_, used_;
+  std::vector<int> bounds_, match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
+  std::vector<double> l_, d_, u_, u2_, lambda_, dir_;
+  Eigen::VectorXd y_;
+  int pivots_ = 0;
+};
+
+}  // namespace pathpace::detail

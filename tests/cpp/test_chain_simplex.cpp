@@ -1,0 +1,129 @@
+// detail::ChainSimplex (the SLP window's LP by a primal simplex on the chain) against GLPK on random chains.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "detail/chain_simplex.hpp"
+#include "detail/glpk_lp.hpp"
+#include "detail/reachability.hpp"
+
+using namespace pathpace::detail;
+
+namespace {
+
+// A chain like eq. (26) with acceleration limits of `joints` random joints (|p'_j u + p''_j x| <= 1 at every
+// grid point, forward and backward rows) and x_lo = 0 <= θ <= x_hi, rest to rest.
+Chain random_chain(std::mt19937& rng, int m, int joints) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0), H(0.5, 2.0);
+  Chain ch;
+  ch.ds = Eigen::VectorXd::Constant(m, 1.0 / m);
+  ch.x_lo = Eigen::VectorXd::Zero(m + 1);
+  ch.x_hi.resize(m + 1);
+  ch.x_lo_id.assign(static_cast<size_t>(m) + 1, -1);
+  ch.x_hi_id.assign(static_cast<size_t>(m) + 1, -1);
+  for (int k = 0; k <= m; ++k) ch.x_hi[k] = H(rng);
+  // Smooth random p', p'' per joint (a few sines), so that the limits bind in ramps as on real paths.
+  std::vector<std::array<double, 4>> f(static_cast<size_t>(joints));
+  for (auto& c : f) c = {U(rng), 3 + 3 * H(rng), U(rng), 3 * U(rng)};
+  auto p1 = [&](int j, double s) { return f[j][0] * std::sin(f[j][1] * s + f[j][2]) + 0.3 * f[j][3]; };
+  auto p2 = [&](int j, double s) { return f[j][0] * f[j][1] * std::cos(f[j][1] * s + f[j][2]); };
+  ch.row_offset.push_back(0);
+  for (int k = 0; k < m; ++k) {
+    const double h = m / 2.0;  // 1 / (2 Δs)
+    for (int j = 0; j < joints; ++j)
+      for (double sgn : {1.0, -1.0}) {
+        const double a0 = sgn * p2(j, double(k) / m), b0 = sgn * p1(j, double(k) / m);
+        const double a1 = sgn * p2(j, double(k + 1) / m), b1 = sgn * p1(j, double(k + 1) / m);
+        ch.row_data.push_back({a0 - b0 * h, b0 * h, 1.0, j});   // forward row at s_k
+        ch.row_data.push_back({-b1 * h, a1 + b1 * h, 1.0, j});  // backward row at s_k+1
+      }
+    ch.coupled_offset.push_back(ch.row_data.size());
+    ch.row_offset.push_back(ch.row_data.size());
+  }
+  return ch;
+}
+
+// min g·y over the chain's rows and lo <= y <= hi with y_0, y_m fixed at theta's values, by GLPK.
+double glpk_optimum(const Chain& ch, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd& theta,
+                    const Eigen::VectorXd& g) {
+  const Eigen::Index m = ch.intervals();
+  GlpkLp lp;
+  lp.reset(static_cast<int>(m - 1));
+  for (Eigen::Index k = 0; k < m; ++k)
+    for (const Line& r : ch.rows(k)) {
+      std::vector<int> idx;
+      std::vector<double> val;
+      double ub = r.c;
+      if (k >= 1) { idx.push_back(static_cast<int>(k - 1)); val.push_back(r.a); } else { ub -= r.a * theta[0]; }
+      if (k + 1 <= m - 1) { idx.push_back(static_cast<int>(k)); val.push_back(r.b); } else { ub -= r.b * theta[m]; }
+      lp.add_row_upper(idx, val, ub);
+    }
+  EXPECT_TRUE(lp.load());
+  std::vector<double> cost(static_cast<size_t>(m - 1));
+  for (Eigen::Index j = 1; j < m; ++j) {
+    lp.set_col_bounds(static_cast<int>(j - 1), lo[j], hi[j]);
+    cost[static_cast<size_t>(j - 1)] = g[j];
+  }
+  lp.set_objective(cost);
+  EXPECT_EQ(lp.solve(1e-12), GlpkLp::Outcome::Optimal);
+  std::vector<double> x;
+  lp.column_values(x);
+  double v = g[0] * theta[0] + g[m] * theta[m];
+  for (Eigen::Index j = 1; j < m; ++j) v += g[j] * x[static_cast<size_t>(j - 1)];
+  return v;
+}
+
+}  // namespace
+
+// 200 seeded random chains (30-150 intervals, 2-4 joints): from the greedy profile of the reachability
+// analysis (a vertex), the chain simplex reaches GLPK's optimum of the window LP for a random decreasing
+// objective and for ∇T, and its bound on g·θ - min g·y is valid (not below the true gap) and tight (1e-9).
+TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> G(-1.0, -0.05);
+  int solved = 0, trials = 0, pivots = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
+    const Chain ch = random_chain(rng, m, joints);
+    const Reachability reach = reachability(ch, 0.0, 0.0);
+    ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
+    const Eigen::VectorXd& theta = reach.theta;
+    Eigen::VectorXd g(m + 1);
+    if (trial % 2 == 0) {
+      for (int j = 0; j <= m; ++j) g[j] = G(rng);
+    } else {
+      // ∇T (eq. 27) at θ: -(1/√θ_j) Σ_{k ∋ j} Δs_k / (√θ_k + √θ_k+1)²; the fixed ends do not enter.
+      g.setZero();
+      for (int k = 0; k < m; ++k) {
+        const double w = std::sqrt(theta[k]) + std::sqrt(theta[k + 1]), t = ch.ds[k] / (w * w);
+        g[k] -= t;
+        g[k + 1] -= t;
+      }
+      for (int j = 1; j < m; ++j) g[j] /= std::sqrt(theta[j]);
+      g[0] = g[m] = 0.0;
+    }
+    Eigen::VectorXd lo = ch.x_lo, hi = ch.x_hi;
+    lo[0] = hi[0] = theta[0];
+    lo[m] = hi[m] = theta[m];
+    ++trials;
+    ChainSimplex cs(ch, 0, m, lo, hi, 1, m - 1);
+    const double gap = cs.gap(theta, g, 1000);
+    if (!std::isfinite(gap)) continue;
+    ++solved;
+    pivots += cs.pivots();
+    const double opt = glpk_optimum(ch, lo, hi, theta, g);
+    const double gtheta = g.dot(theta), scale = std::abs(gtheta) + 1.0;
+    EXPECT_GE(gap, gtheta - opt - 1e-10 * scale) << "trial " << trial << ": the bound is not valid";
+    EXPECT_LE(gap, gtheta - opt + 1e-9 * scale) << "trial " << trial << ": the bound is loose";
+    EXPECT_NEAR(g.dot(cs.vertex()), opt, 1e-9 * scale) << "trial " << trial;
+    // The vertex is feasible.
+    for (Eigen::Index k = 0; k < m; ++k)
+      for (const Line& r : ch.rows(k))
+        EXPECT_LE(row_violation(r, cs.vertex()[k], cs.vertex()[k + 1]), 1e-9) << "trial " << trial;
+  }
+  EXPECT_GE(solved, trials * 95 / 100);  // gives up (singular basis, pivot budget) on at most 5 %
+  EXPECT_GT(pivots, trials);             // the chains are degenerate enough to need pivots
+}
