@@ -8,8 +8,10 @@
 #include <string>
 
 #include "pathpace/pathpace.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace;
+using test::error_of;
 
 namespace {
 
@@ -47,16 +49,6 @@ double push_brake_duration(const Eigen::VectorXd& s, Eigen::Index k_switch, doub
   double T = 0.0;
   for (Eigen::Index k = 0; k + 1 < s.size(); ++k) T += 2 * (s[k + 1] - s[k]) / (std::sqrt(th[k]) + std::sqrt(th[k + 1]));
   return T;
-}
-
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 }  // namespace

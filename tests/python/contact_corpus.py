@@ -230,7 +230,10 @@ def exact_support(A, lo, hi, bounds, directions):
 
 
 def directions(count: int = 64) -> np.ndarray:
-    ang = np.linspace(0, 2 * np.pi, count, endpoint=False)
+    """`count` unit directions, evenly spaced and half a step off the axes: along an axis, e.g. (-1, 1e-16)
+    on the edge ṡ² = 0 of a set unbounded in s̈, a point on the stand-in bound and one off it are equally
+    good to the LP, and which one it returns decides whether the direction reads as unbounded."""
+    ang = (np.arange(count) + 0.5) * (2 * np.pi / count)
     return np.stack([np.cos(ang), np.sin(ang)], axis=1)
 
 
@@ -250,14 +253,24 @@ def polygon_size(fs) -> float:
     return float(max(np.ptp(v[:, 0]), np.ptp(v[:, 1])))
 
 
+def same_unbounded_directions(ha, hb, what: str):
+    """Asserts that two support vectors are unbounded (nan: on a stand-in bound) in the same directions;
+    returns where both are finite, the directions to compare."""
+    na, nb = np.isnan(ha), np.isnan(hb)
+    assert np.array_equal(na, nb), (f"{what}: unbounded in directions {np.flatnonzero(na).tolist()} and "
+                                    f"{np.flatnonzero(nb).tolist()} (of {len(ha)})")
+    return ~na
+
+
 def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, points=None, dirs=None):
     """Each grid point's feasible set against the exact projection: returns (worst error / size, number
-    of points compared, number of empty points); asserts emptiness agrees."""
+    of points whose support values were compared, number of empty points); asserts that emptiness and the
+    unbounded directions agree."""
     dirs = directions() if dirs is None else dirs
     path = prob.path
     s = prob.grid
     ks = range(len(s)) if points is None else points
-    worst, empty = 0.0, 0
+    worst, compared, empty = 0.0, 0, 0
     for k in ks:
         q, dq, ddq = path.q(s[k]), path.dq(s[k]), path.ddq(s[k])
         fs = prob.feasible_set(k)
@@ -272,11 +285,20 @@ def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, point
         assert not fs.empty, f"k = {k}: pathpace's set is empty, the exact polytope is not (false INFEASIBLE)"
         assert fs.exact
         got = polygon_support(fs, dirs)
-        ok = np.isfinite(ref) & np.isfinite(got)
-        size = max(polygon_size(fs), 1e-12)
-        err = np.max(np.abs(got[ok] - ref[ok])) / size if ok.any() else 0.0
-        worst = max(worst, err)
-    return worst, len(ks), empty
+        ok = same_unbounded_directions(got, ref, f"k = {k}: pathpace's polygon and the exact projection")
+        if ok.any():
+            size = max(polygon_size(fs), 1e-12)
+            worst = max(worst, np.max(np.abs(got[ok] - ref[ok])) / size)
+            compared += 1
+    return worst, compared, empty
+
+
+def assert_nested(inner, outer, dirs, rtol: float, what: str):
+    """inner ⊆ outer by their support values: unbounded in the same directions, and in every other
+    inner's value <= outer's + rtol · outer's size."""
+    ha, hb = polygon_support(inner, dirs), polygon_support(outer, dirs)
+    ok = same_unbounded_directions(ha, hb, what)
+    assert np.all(ha[ok] <= hb[ok] + rtol * max(polygon_size(outer), 1e-12)), what
 
 
 def box_problem(h: Humanoid, mass: float = 3.0, knots: int = 21):
