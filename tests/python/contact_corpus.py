@@ -21,7 +21,7 @@ from scipy.optimize import linprog
 import pathpace as pp
 from pathpace.robots import example_robot_urdf
 
-from oracles import composite_floating_joint
+from oracles import composite_floating_joint, generators
 
 CAP = 1e6  # ContactOptions::cap, the stand-in bounds on ṡ² and |s̈|
 
@@ -148,16 +148,6 @@ def contacts(h: Humanoid, kind: str, grid: tuple[int, int] = (2, 2), friction: f
 
 # ---------------------------------------------------------------------------------------------------
 # The oracle: the full polytope from pinocchio, support values from HiGHS.
-
-def generators(normal, mu, k):
-    nrm = np.asarray(normal, float) / np.linalg.norm(normal)
-    e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
-    t1 = np.cross(nrm, e)
-    t1 /= np.linalg.norm(t1)
-    t2 = np.cross(nrm, t1)
-    phis = 2 * np.pi * np.arange(k) / k
-    return nrm[:, None] + mu * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
-
 
 def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0, min_normal_force=0.0,
                   min_link_normal_force=0.0):

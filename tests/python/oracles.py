@@ -175,6 +175,19 @@ def torque_rows(model, path, grid, scale):
     return np.hstack([a, -a]), np.hstack([b, -b]), np.hstack([tau_max - c, c + tau_max])
 
 
+def generators(normal, mu, k):
+    """The k edges of the friction pyramid inscribed in the cone of friction mu about `normal`, as columns: the
+    normal plus mu times unit tangents at multiples of 2π/k (the first tangent normal x e_x, or x e_y when the
+    normal is near x)."""
+    nrm = np.asarray(normal, float) / np.linalg.norm(normal)
+    e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
+    t1 = np.cross(nrm, e)
+    t1 /= np.linalg.norm(t1)
+    t2 = np.cross(nrm, t1)
+    phis = 2 * np.pi * np.arange(k) / k
+    return nrm[:, None] + mu * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
+
+
 def composite_floating_joint():
     """pinocchio's counterpart of our floating base: x, y, z, then rotations about z, y, x."""
     import pinocchio as pin

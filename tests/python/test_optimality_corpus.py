@@ -39,6 +39,16 @@ def case(i):
     return name, rng, int(rng.integers(50, 201)), i % 2 == 1
 
 
+def measured(res, grid, A, B, C):
+    """res and, where it is OPTIMAL, what the oracles say of it: its largest violation of the rows and HiGHS's
+    Frank-Wolfe bound on its distance to the optimum."""
+    out = dict(res=res)
+    if res.status == pp.Status.OPTIMAL:
+        out["violation"] = max_violation(res.s, res.sdot, A, B, C)
+        out["fw_gap"] = frank_wolfe_gap(grid, res.sdot**2, A, B, C)
+    return out
+
+
 @functools.cache
 def solved_case(i):
     """Case i solved and measured against the oracles, once per process: each case's test asserts on its own
@@ -63,12 +73,7 @@ def solved_case(i):
         prob = trial
         At, Bt, Ct = torque_rows(theirs, path, grid, scale)
         A, B, C = np.hstack([A, At]), np.hstack([B, Bt]), np.hstack([C, Ct])
-    res = prob.solve()
-    out = dict(res=res, N=N, ref=cvxpy_optimum(grid, A, B, C)[0])
-    if res.status == pp.Status.OPTIMAL:
-        out["violation"] = max_violation(res.s, res.sdot, A, B, C)
-        out["fw_gap"] = frank_wolfe_gap(grid, res.sdot**2, A, B, C)
-    return out
+    return dict(measured(prob.solve(), grid, A, B, C), N=N, ref=cvxpy_optimum(grid, A, B, C)[0])
 
 
 @pytest.mark.parametrize("i", range(CASES))
@@ -136,13 +141,9 @@ def solved_walk(i):
     A, B, C = kinematic_rows(path.dq(grid), path.ddq(grid), -v, v, -2 * v, 2 * v)
     ref, th = cvxpy_optimum(grid, A, B, C)
     shrunk = shrink_to_feasible(grid, th, A, B, C)
-    out = dict(res=res, ref=ref, cvxpy_feasible=max_violation(grid, np.sqrt(th), A, B, C) <= 1e-7,
-               shrunk=duration(grid, shrunk), shrunk_violation=max_violation(grid, np.sqrt(shrunk), A, B, C),
-               slp=prob.solve(method="slp", max_iterations=5000))
-    if res.status == pp.Status.OPTIMAL:
-        out["violation"] = max_violation(res.s, res.sdot, A, B, C)
-        out["fw_gap"] = frank_wolfe_gap(grid, res.sdot**2, A, B, C)
-    return out
+    return dict(measured(res, grid, A, B, C), ref=ref, cvxpy_feasible=max_violation(grid, np.sqrt(th), A, B, C) <= 1e-7,
+                shrunk=duration(grid, shrunk), shrunk_violation=max_violation(grid, np.sqrt(shrunk), A, B, C),
+                slp=prob.solve(method="slp", max_iterations=5000))
 
 
 @pytest.mark.parametrize("i", range(WALKS))
