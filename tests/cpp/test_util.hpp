@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the C++ tests (header-only).
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <utility>
@@ -21,6 +22,14 @@ inline std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "(no InvalidInput)";
+}
+
+// T of eq. (27) for squared speeds θ at the grid points of intervals of lengths ds:
+// Σ 2 Δs_k / (√θ_k + √θ_{k+1}).
+inline double duration_of(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta) {
+  double T = 0.0;
+  for (Eigen::Index k = 0; k < ds.size(); ++k) T += 2 * ds[k] / (std::sqrt(theta[k]) + std::sqrt(theta[k + 1]));
+  return T;
 }
 
 // A path on s in [0, 1] in closed form: f(s, q, dq, ddq) writes p(s), p'(s), p''(s). s outside [0, 1] is
