@@ -7,16 +7,12 @@
 #include <random>
 
 #include "detail/barrier.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace::detail;
+using pathpace::test::duration_of;
 
 namespace {
-
-double T_of(const Eigen::VectorXd& ds, const Eigen::VectorXd& th) {
-  double T = 0;
-  for (Eigen::Index k = 0; k < ds.size(); ++k) T += 2 * ds[k] / (std::sqrt(th[k]) + std::sqrt(th[k + 1]));
-  return T;
-}
 
 const auto kNoDeadline = std::chrono::steady_clock::time_point::max();
 
@@ -29,7 +25,7 @@ TEST(Barrier, BoxOnlyConvergesToTheUpperBounds) {
   Eigen::VectorXd ds = Eigen::VectorXd::Constant(m, 0.02), lo = Eigen::VectorXd::Zero(m + 1), hi(m + 1);
   for (int j = 0; j <= m; ++j) hi[j] = 1.0 + 0.5 * std::sin(0.3 * j);
   lo[0] = hi[0] = 0.25;  // a fixed end
-  const double Tstar = T_of(ds, hi);
+  const double Tstar = duration_of(ds, hi);
   const double target = 1e-9 * Tstar;
   const BarrierResult r = barrier_window(ds, {}, lo, hi, 0.5 * hi, target, 300, kNoDeadline);
   ASSERT_TRUE(r.ok);
@@ -83,7 +79,7 @@ TEST(Barrier, RandomChainsCertificateIsALowerBound) {
     Eigen::VectorXd start = Eigen::VectorXd::Zero(m + 1);
     const double cap = std::min(hi.segment(1, m - 1).minCoeff(), 0.4);
     for (int j = 1; j < m; ++j) start[j] = std::min(2 * a * ds[0] * std::min(j, m - j), cap);
-    const double T0 = T_of(ds, start);
+    const double T0 = duration_of(ds, start);
     const BarrierResult r = barrier_window(ds, rows, lo, hi, start, 1e-9 * T0, 400, kNoDeadline);
     ASSERT_TRUE(r.ok) << trial << " steps " << r.newton_steps << " T " << r.T << " lower " << r.lower;
     EXPECT_LE(r.lower, r.T);
@@ -96,7 +92,7 @@ TEST(Barrier, RandomChainsCertificateIsALowerBound) {
     for (int s = 0; s < 50; ++s) {
       const double l = U(gen), shrink = 0.9 + 0.1 * U(gen);
       const Eigen::VectorXd y = shrink * (l * r.theta + (1 - l) * start);
-      EXPECT_GE(T_of(ds, y), r.lower) << trial;
+      EXPECT_GE(duration_of(ds, y), r.lower) << trial;
     }
   }
 }

@@ -8,8 +8,10 @@
 #include <string>
 
 #include "pathpace/pathpace.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace;
+using test::error_of;
 
 namespace {
 
@@ -44,19 +46,7 @@ double push_brake_duration(const Eigen::VectorXd& s, Eigen::Index k_switch, doub
   Eigen::VectorXd th(s.size());
   for (Eigen::Index k = 0; k < s.size(); ++k) th[k] = std::min(2 * a * s[k], 2 * a * (2.0 - s[k]));
   th[k_switch] = std::min(th[k_switch - 1], th[k_switch + 1]);
-  double T = 0.0;
-  for (Eigen::Index k = 0; k + 1 < s.size(); ++k) T += 2 * (s[k + 1] - s[k]) / (std::sqrt(th[k]) + std::sqrt(th[k + 1]));
-  return T;
-}
-
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::duration_of(s.tail(s.size() - 1) - s.head(s.size() - 1), th);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "pathpace/errors.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 #include "pathpace/sampled_path.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace;
 using Eigen::MatrixXd;
@@ -51,12 +52,7 @@ VectorXd third_derivative(const Path& p, double a, double b) { return (eval(p, b
 // Runs `stmt` and checks that it throws InvalidInput with exactly `message`.
 template <typename F>
 void expect_invalid(F&& stmt, const std::string& message) {
-  try {
-    stmt();
-    ADD_FAILURE() << "no exception; expected: " << message;
-  } catch (const InvalidInput& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
+  EXPECT_EQ(test::error_of(stmt), message);
 }
 
 const SplineBoundary kBoundaries[] = {SplineBoundary::NotAKnot, SplineBoundary::Natural, SplineBoundary::Clamped};

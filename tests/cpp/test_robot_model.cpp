@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "pathpace/pathpace.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace;
 
@@ -101,12 +102,8 @@ TEST(RobotModel, ValidationNamesWhatIsWrong) {
   }
   RobotModelOptions o;
   o.locked_joints["nope"] = 0.0;
-  try {
-    RobotModel::from_urdf_string(kArm, o);
-    FAIL();
-  } catch (const InvalidInput& e) {
-    EXPECT_STREQ(e.what(), "locked_joints: 'nope' is not a movable joint of robot 'arm'");
-  }
+  EXPECT_EQ(test::error_of([&] { RobotModel::from_urdf_string(kArm, o); }),
+            "locked_joints: 'nope' is not a movable joint of robot 'arm'");
   const RobotModel r = RobotModel::from_urdf_string(kArm);
   EXPECT_THROW(r.frame_placement(Eigen::VectorXd::Zero(2), "tool"), InvalidInput);
   EXPECT_THROW(r.frame_placement(Eigen::VectorXd::Zero(3), "hand"), InvalidInput);

@@ -14,8 +14,10 @@
 #include "pathpace/feasible_set.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/trajectory.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace;
+using test::error_of;
 
 namespace {
 
@@ -42,15 +44,6 @@ std::string pendulum(const std::string& mass, const std::string& effort) {
   s.replace(s.find("MASS"), 4, mass);
   s.replace(s.find("EFFORT"), 6, effort);
   return s;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "no InvalidInput";
 }
 
 }  // namespace

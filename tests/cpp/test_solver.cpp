@@ -6,63 +6,43 @@
 
 #include "detail/polygon2d.hpp"
 #include "pathpace/pathpace.hpp"
+#include "test_util.hpp"
 
 using namespace pathpace;
 
 namespace {
 
-// q(s) = q0 + s (q1 - q0), s in [0, 1]: p' constant, p'' = 0.
-class LinePath : public Path {
- public:
-  LinePath(Eigen::VectorXd q0, Eigen::VectorXd q1) : q0_(std::move(q0)), q1_(std::move(q1)) {}
-  int dof() const override { return static_cast<int>(q0_.size()); }
-  double s_begin() const override { return 0.0; }
-  double s_end() const override { return 1.0; }
-  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
-                Eigen::Ref<Eigen::VectorXd> ddq) const override {
-    s = std::clamp(s, 0.0, 1.0);
-    q = q0_ + s * (q1_ - q0_);
-    dq = q1_ - q0_;
-    ddq.setZero();
-  }
+using test::ClosedFormPath;
+using test::error_of;
 
- private:
-  Eigen::VectorXd q0_, q1_;
-};
+// q(s) = s (length), s in [0, 1]: p' constant, p'' = 0.
+std::shared_ptr<Path> line1d(double length) {
+  return std::make_shared<ClosedFormPath>(1, [length](double s, auto q, auto dq, auto ddq) {
+    q[0] = s * length;
+    dq[0] = length;
+    ddq[0] = 0.0;
+  });
+}
 
 // q(s) = (cos 2πs, sin 2πs): a circle, p'' != 0.
-class CirclePath : public Path {
- public:
-  int dof() const override { return 2; }
-  double s_begin() const override { return 0.0; }
-  double s_end() const override { return 1.0; }
-  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
-                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+std::shared_ptr<Path> circle() {
+  return std::make_shared<ClosedFormPath>(2, [](double s, auto q, auto dq, auto ddq) {
     const double w = 2 * M_PI;
     q << std::cos(w * s), std::sin(w * s);
     dq << -w * std::sin(w * s), w * std::cos(w * s);
     ddq << -w * w * std::cos(w * s), -w * w * std::sin(w * s);
-  }
-};
+  });
+}
 
 // q(s) = (sin 3πs, s): the first coordinate reverses three times, where p' is small against p'': the
 // acceleration rows there couple θ_k and θ_{k+1} positively (no lattice), so SLP windows are needed.
-class ReversingPath : public Path {
- public:
-  int dof() const override { return 2; }
-  double s_begin() const override { return 0.0; }
-  double s_end() const override { return 1.0; }
-  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
-                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+std::shared_ptr<Path> reversing() {
+  return std::make_shared<ClosedFormPath>(2, [](double s, auto q, auto dq, auto ddq) {
     const double w = 3 * M_PI;
     q << std::sin(w * s), s;
     dq << w * std::cos(w * s), 1.0;
     ddq << -w * w * std::sin(w * s), 0.0;
-  }
-};
-
-std::shared_ptr<Path> line1d(double length) {
-  return std::make_shared<LinePath>(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, length));
+  });
 }
 
 }  // namespace
@@ -117,7 +97,7 @@ TEST(Solver, LineUnderVelocityAndAccelerationLimitsApproachesFourSeconds) {
 }
 
 TEST(Solver, SlpMatchesGreatestElementOnLatticeProblem) {
-  TimeScalingProblem prob(std::make_shared<CirclePath>(), 200);
+  TimeScalingProblem prob(circle(), 200);
   prob.add_velocity_limits(Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, 2));
   prob.add_acceleration_limits(Eigen::Vector2d(-3, -3), Eigen::Vector2d(3, 3));
   const Result fast = prob.solve();
@@ -147,12 +127,8 @@ TEST(Solver, InfeasibleReportsIndexAndRows) {
 TEST(Solver, BadInputNamesArgument) {
   EXPECT_THROW(TimeScalingProblem(line1d(1.0), 0), InvalidInput);
   TimeScalingProblem prob(line1d(1.0), 4);
-  try {
-    prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, -2));
-    FAIL();
-  } catch (const InvalidInput& e) {
-    EXPECT_STREQ(e.what(), "vmax[0] = -2 must be >= 0");
-  }
+  EXPECT_EQ(error_of([&] { prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, -2)); }),
+            "vmax[0] = -2 must be >= 0");
 }
 
 TEST(Paths, CubicSplineThroughWaypointsWithNaturalEnds) {
@@ -221,7 +197,7 @@ TEST(Trajectory, TimesFollowEquation25AndEndsAtRest) {
 namespace {
 
 TimeScalingProblem reversing_problem(int N) {
-  TimeScalingProblem prob(std::make_shared<ReversingPath>(), N);
+  TimeScalingProblem prob(reversing(), N);
   prob.add_velocity_limits(Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, 2));
   prob.add_acceleration_limits(Eigen::Vector2d(-3, -10), Eigen::Vector2d(3, 10));
   return prob;

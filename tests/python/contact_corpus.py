@@ -21,7 +21,7 @@ from scipy.optimize import linprog
 import pathpace as pp
 from pathpace.robots import example_robot_urdf
 
-from oracles import composite_floating_joint
+from oracles import composite_floating_joint, generators
 
 CAP = 1e6  # ContactOptions::cap, the stand-in bounds on ṡ² and |s̈|
 
@@ -149,16 +149,6 @@ def contacts(h: Humanoid, kind: str, grid: tuple[int, int] = (2, 2), friction: f
 # ---------------------------------------------------------------------------------------------------
 # The oracle: the full polytope from pinocchio, support values from HiGHS.
 
-def generators(normal, mu, k):
-    nrm = np.asarray(normal, float) / np.linalg.norm(normal)
-    e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
-    t1 = np.cross(nrm, e)
-    t1 /= np.linalg.norm(t1)
-    t2 = np.cross(nrm, t1)
-    phis = 2 * np.pi * np.arange(k) / k
-    return nrm[:, None] + mu * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
-
-
 def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0, min_normal_force=0.0,
                   min_link_normal_force=0.0):
     """(A, lo, hi, bounds) of {(x, u, λ): lo <= A (x, u, λ) <= hi} in pathpace's coordinate order."""
@@ -230,7 +220,10 @@ def exact_support(A, lo, hi, bounds, directions):
 
 
 def directions(count: int = 64) -> np.ndarray:
-    ang = np.linspace(0, 2 * np.pi, count, endpoint=False)
+    """`count` unit directions, evenly spaced and half a step off the axes: along an axis, e.g. (-1, 1e-16)
+    on the edge ṡ² = 0 of a set unbounded in s̈, a point on the stand-in bound and one off it are equally
+    good to the LP, and which one it returns decides whether the direction reads as unbounded."""
+    ang = (np.arange(count) + 0.5) * (2 * np.pi / count)
     return np.stack([np.cos(ang), np.sin(ang)], axis=1)
 
 
@@ -250,14 +243,24 @@ def polygon_size(fs) -> float:
     return float(max(np.ptp(v[:, 0]), np.ptp(v[:, 1])))
 
 
+def same_unbounded_directions(ha, hb, what: str):
+    """Asserts that two support vectors are unbounded (nan: on a stand-in bound) in the same directions;
+    returns where both are finite, the directions to compare."""
+    na, nb = np.isnan(ha), np.isnan(hb)
+    assert np.array_equal(na, nb), (f"{what}: unbounded in directions {np.flatnonzero(na).tolist()} and "
+                                    f"{np.flatnonzero(nb).tolist()} (of {len(ha)})")
+    return ~na
+
+
 def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, points=None, dirs=None):
     """Each grid point's feasible set against the exact projection: returns (worst error / size, number
-    of points compared, number of empty points); asserts emptiness agrees."""
+    of points whose support values were compared, number of empty points); asserts that emptiness and the
+    unbounded directions agree."""
     dirs = directions() if dirs is None else dirs
     path = prob.path
     s = prob.grid
     ks = range(len(s)) if points is None else points
-    worst, empty = 0.0, 0
+    worst, compared, empty = 0.0, 0, 0
     for k in ks:
         q, dq, ddq = path.q(s[k]), path.dq(s[k]), path.ddq(s[k])
         fs = prob.feasible_set(k)
@@ -272,11 +275,20 @@ def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, point
         assert not fs.empty, f"k = {k}: pathpace's set is empty, the exact polytope is not (false INFEASIBLE)"
         assert fs.exact
         got = polygon_support(fs, dirs)
-        ok = np.isfinite(ref) & np.isfinite(got)
-        size = max(polygon_size(fs), 1e-12)
-        err = np.max(np.abs(got[ok] - ref[ok])) / size if ok.any() else 0.0
-        worst = max(worst, err)
-    return worst, len(ks), empty
+        ok = same_unbounded_directions(got, ref, f"k = {k}: pathpace's polygon and the exact projection")
+        if ok.any():
+            size = max(polygon_size(fs), 1e-12)
+            worst = max(worst, np.max(np.abs(got[ok] - ref[ok])) / size)
+            compared += 1
+    return worst, compared, empty
+
+
+def assert_nested(inner, outer, dirs, rtol: float, what: str):
+    """inner ⊆ outer by their support values: unbounded in the same directions, and in every other
+    inner's value <= outer's + rtol · outer's size."""
+    ha, hb = polygon_support(inner, dirs), polygon_support(outer, dirs)
+    ok = same_unbounded_directions(ha, hb, what)
+    assert np.all(ha[ok] <= hb[ok] + rtol * max(polygon_size(outer), 1e-12)), what
 
 
 def box_problem(h: Humanoid, mass: float = 3.0, knots: int = 21):

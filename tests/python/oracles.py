@@ -1,4 +1,4 @@
-"""Independent reference computations for the tests: plain numpy and cvxpy, no pathpace numerics."""
+"""Independent reference computations for the tests: plain numpy, cvxpy, scipy and pinocchio, no pathpace numerics."""
 
 import warnings
 
@@ -39,6 +39,23 @@ def max_violation(s, sdot, A, B, C):
         viol = np.where(finite, (lhs - np.where(finite, c, 0.0)) / scale, -np.inf)
         worst = max(worst, float(np.max(viol)))
     return worst
+
+
+def shrink_to_feasible(s, theta, A, B, C):
+    """θ / f with the smallest f >= 1 that meets every row a·θ + b·u <= c (all c > 0) at every grid point,
+    with u of the interval on each side (eq. 26): the rows are homogeneous in (θ, u), so dividing θ by f
+    divides each left side by f. Turns a solver's θ that breaks the rows slightly into a feasible timing
+    (its T grows by √f)."""
+    ds = np.diff(s)
+    u = (theta[1:] - theta[:-1]) / (2 * ds)
+    f = 1.0
+    for ks in (np.arange(len(ds)), np.arange(1, len(s))):
+        lhs = A[ks] * theta[ks, None] + B[ks] * u[:, None]
+        finite = np.isfinite(C[ks])
+        c = np.where(finite, C[ks], 1.0)
+        assert np.all(c > 0)
+        f = max(f, float(np.max(np.where(finite, lhs / c, 0.0))))
+    return theta / f
 
 
 def cvxpy_optimum(s, A, B, C, theta_begin=0.0, theta_end=0.0):
@@ -131,6 +148,44 @@ def frank_wolfe_gap(s, theta, A, B, C, theta_begin=0.0, theta_end=0.0):
     lp = linprog(g, A_ub=M, b_ub=np.concatenate(rhs), bounds=bounds, method="highs")
     assert lp.status == 0, lp.message
     return float(g @ (theta - lp.x))
+
+
+def pinocchio_model(urdf, locked=()):
+    """pinocchio's model of the URDF with the joints named in `locked` fixed at their neutral position."""
+    import pinocchio as pin
+
+    full = pin.buildModelFromUrdf(str(urdf))
+    if not locked:
+        return full
+    return pin.buildReducedModel(full, [full.getJointId(n) for n in locked], pin.neutral(full))
+
+
+def torque_rows(model, path, grid, scale):
+    """τ = a x + b u + c along the path (eq. 12) from pinocchio's RNEA on `model`, as rows a x + b u <= τ_max - c
+    and -a x - b u <= τ_max + c, with τ_max = scale x the model's effort limits."""
+    import pinocchio as pin
+
+    data = model.createData()
+    q, dq, ddq = path.q(grid), path.dq(grid), path.ddq(grid)
+    zero = np.zeros(model.nv)
+    c = np.array([pin.computeGeneralizedGravity(model, data, qk) for qk in q])
+    a = np.array([pin.rnea(model, data, q[k], dq[k], ddq[k]) for k in range(len(grid))]) - c
+    b = np.array([pin.rnea(model, data, q[k], zero, dq[k]) for k in range(len(grid))]) - c
+    tau_max = scale * model.effortLimit
+    return np.hstack([a, -a]), np.hstack([b, -b]), np.hstack([tau_max - c, c + tau_max])
+
+
+def generators(normal, mu, k):
+    """The k edges of the friction pyramid inscribed in the cone of friction mu about `normal`, as columns: the
+    normal plus mu times unit tangents at multiples of 2π/k (the first tangent normal x e_x, or x e_y when the
+    normal is near x)."""
+    nrm = np.asarray(normal, float) / np.linalg.norm(normal)
+    e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
+    t1 = np.cross(nrm, e)
+    t1 /= np.linalg.norm(t1)
+    t2 = np.cross(nrm, t1)
+    phis = 2 * np.pi * np.arange(k) / k
+    return nrm[:, None] + mu * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
 
 
 def composite_floating_joint():

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 from pathpace import _core
 from pathpace.io import load_waypoints_csv, result_to_dict, save_result_json, save_trajectory_csv
 
@@ -39,11 +40,7 @@ def test_package_exports_everything_in_all():
 
 def problem():
     rng = np.random.default_rng(4)
-    path = pp.CubicSplinePath(rng.uniform(-1, 1, (6, 4)))
-    prob = pp.TimeScalingProblem(path, grid=400)
-    prob.add_velocity_limits(-np.ones(4), np.ones(4))
-    prob.add_acceleration_limits(-2 * np.ones(4), 2 * np.ones(4))
-    return prob
+    return kinematic_problem(rng.uniform(-1, 1, (6, 4)), 400, -np.ones(4), np.ones(4), -2 * np.ones(4), 2 * np.ones(4))
 
 
 @pytest.mark.parametrize("method", ["auto", "slp"])

@@ -9,18 +9,11 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem, two_joint_problem
 from pathpace.robots import example_robot_urdf
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
 PANDA_LOCK = {"panda_finger_joint1": 0.0, "panda_finger_joint2": 0.0}
-
-
-def kinematic_problem(N=200, **path_kw):
-    path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, 0.5], [0.2, 1.5]]), **path_kw)
-    prob = pp.TimeScalingProblem(path, grid=N)
-    prob.add_velocity_limits([-1, -1], [1, 1])
-    prob.add_acceleration_limits([-2, -2], [2, 2])
-    return prob
 
 
 def too_weak_pendulum():
@@ -32,7 +25,7 @@ def too_weak_pendulum():
 
 
 def test_result_bool_is_ok():
-    res = kinematic_problem().solve()
+    res = two_joint_problem().solve()
     assert res.ok and bool(res)
     bad = too_weak_pendulum().solve()
     assert bad.status == pp.Status.INFEASIBLE
@@ -40,7 +33,7 @@ def test_result_bool_is_ok():
 
 
 def test_trajectory_call_matches_q_qd_qdd():
-    traj = kinematic_problem().solve().trajectory()
+    traj = two_joint_problem().solve().trajectory()
     t = np.linspace(0, traj.duration, 37)
     np.testing.assert_array_equal(traj(t), traj.q(t))
     np.testing.assert_array_equal(traj(t, 1), traj.qd(t))
@@ -120,9 +113,7 @@ def test_robot_models_pickle_to_identical_models():
 def test_problems_results_trajectories_pickle():
     robot = pp.RobotModel.from_urdf(DATA / "pendulum.urdf")
     path = pp.CubicSplinePath(np.array([[0.0], [-0.3], [0.4]]), boundary="clamped")
-    prob = pp.TimeScalingProblem(path, grid=300)
-    prob.add_velocity_limits([-4], [4])
-    prob.add_acceleration_limits([-20], [20])
+    prob = kinematic_problem(path, 300, [-4], [4], [-20], [20])
     prob.add_torque_limits(robot, scale=0.9, margin=0.1)
     N = 301
     prob.add_linear_constraint(np.ones((N, 1)), np.zeros((N, 1)), np.zeros((N, 1)), np.full((N, 1), -np.inf),
@@ -182,7 +173,7 @@ def test_center_of_mass_matches_pinocchio():
 
 
 def test_boundary_velocities_set_speeds_along_the_tangent():
-    prob = kinematic_problem()
+    prob = two_joint_problem()
     d0, d1 = prob.path.dq(0.0), prob.path.dq(1.0)
     prob.set_boundary_velocities(0.2 * d0, 0.1 * d1)
     assert prob.sdot_begin == pytest.approx(0.2, rel=1e-12)
@@ -201,7 +192,7 @@ def test_boundary_velocities_set_speeds_along_the_tangent():
         prob.set_boundary_velocities(np.zeros(2), -0.2 * d1)  # backwards along the path
     with pytest.raises(pp.InvalidInputError, match=r"qd_begin has size 3, expected 2"):
         prob.set_boundary_velocities(np.zeros(3), np.zeros(2))
-    clamped = kinematic_problem(boundary="clamped")  # p'(0) = 0: only q̇ = 0 is possible
+    clamped = two_joint_problem(boundary="clamped")  # p'(0) = 0: only q̇ = 0 is possible
     with pytest.raises(pp.InvalidInputError, match=r"the path does not move at s = 0"):
         clamped.set_boundary_velocities([0.1, 0.0], np.zeros(2))
 
@@ -303,7 +294,7 @@ def test_pickle_state_and_tolerance_validation():
         pp.RobotModel.__new__(pp.RobotModel).__setstate__(("mesh",))
     with pytest.raises(pp.InvalidInputError, match=r"Contact pickle state: point and normal must have size 3"):
         pp.Contact.__new__(pp.Contact).__setstate__(("a", [0.0, 0.0], [0.0, 0.0, 1.0], 0.5, ""))
-    prob = kinematic_problem()
+    prob = two_joint_problem()
     with pytest.raises(pp.InvalidInputError, match=r"tolerance = -1 must be >= 0 and finite"):
         prob.set_boundary_velocities(np.zeros(2), np.zeros(2), tolerance=-1.0)
     box = pp.RobotModel.free_object("box", 1.0)
@@ -313,7 +304,7 @@ def test_pickle_state_and_tolerance_validation():
 
 def test_joint_names_in_limit_labels_and_messages():
     names = ["shoulder", "elbow"]
-    prob = kinematic_problem()
+    prob = two_joint_problem()
     prob2 = pp.TimeScalingProblem(prob.path, grid=200)
     prob2.add_constraint(pp.VelocityLimits([-1, -1], [1, 1], joint_names=names))
     prob2.add_constraint(pp.AccelerationLimits([-2, -2], [2, 2], joint_names=names))
@@ -329,7 +320,7 @@ def test_joint_names_in_limit_labels_and_messages():
     v = roundtrip(pp.VelocityLimits([-1, -1], [1, 1], joint_names=names))
     assert v.joint_names == names
     # Without names, as before: indices.
-    assert "velocity joint" in kinematic_problem().feasible_set(100).x_max_label
+    assert "velocity joint" in two_joint_problem().feasible_set(100).x_max_label
 
 
 def test_cpp_names_work_in_python():

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 
 
 def bent_path():
@@ -55,10 +56,8 @@ def test_auto_grid_shrinks_the_excursions_between_grid_points():
     path = bent_path()
     viol = []
     for tol in [1e-3, 1e-4, 1e-5]:
-        prob = pp.TimeScalingProblem(path, grid="auto", grid_tolerance=tol)
+        prob = kinematic_problem(path, "auto", [-1, -1], [1, 1], [-2, -2], [2, 2], grid_tolerance=tol)
         assert np.array_equal(prob.grid, pp.auto_grid(path, tol))
-        prob.add_velocity_limits([-1, -1], [1, 1])
-        prob.add_acceleration_limits([-2, -2], [2, 2])
         res = prob.solve()
         assert res.status == pp.Status.OPTIMAL
         tr = res.trajectory()

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 
 
 def corpus(count, N=100, seed=0):
@@ -14,10 +15,7 @@ def corpus(count, N=100, seed=0):
     rng = np.random.default_rng(seed)
     out = []
     for _ in range(count):
-        prob = pp.TimeScalingProblem(pp.CubicSplinePath(rng.uniform(-1, 1, (5, 3))), grid=N)
-        prob.add_velocity_limits([-1, -1.5, -2], [1, 1.5, 2])
-        prob.add_acceleration_limits([-2, -3, -4], [2, 3, 4])
-        out.append(prob)
+        out.append(kinematic_problem(rng.uniform(-1, 1, (5, 3)), N, [-1, -1.5, -2], [1, 1.5, 2], [-2, -3, -4], [2, 3, 4]))
     return out
 
 

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 import pathpace.robots
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
@@ -46,9 +47,8 @@ def problem(tmp_path):
 
 def api_result():
     robot = pp.RobotModel.from_urdf(DATA / "pendulum.urdf")
-    prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.array([[0.0], [-0.3], [0.4]]), boundary="clamped"), grid=400)
-    prob.add_velocity_limits([-3.0], [3.0])
-    prob.add_acceleration_limits([-15.0], [20.0])
+    prob = kinematic_problem(pp.CubicSplinePath(np.array([[0.0], [-0.3], [0.4]]), boundary="clamped"), 400, [-3.0], [3.0],
+                             [-15.0], [20.0])
     prob.add_torque_limits(robot, scale=0.9, margin=0.1)
     return prob.solve(tolerance=1e-6)
 

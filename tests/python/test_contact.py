@@ -7,6 +7,7 @@ import pytest
 from scipy.optimize import linprog
 
 import pathpace as pp
+from oracles import generators
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 G, MU, TAU = 9.81, 0.5, 2.0
@@ -164,13 +165,7 @@ def test_projection_matches_the_full_lp_solved_by_highs(seed, robot_robot):
             p_world = data.oMf[model.getFrameId(con.link)].act(np.asarray(con.point))
             J = J - world_jacobian(con.other_link, pose.actInv(p_world))
             R_normal = pose.rotation
-        nrm = np.asarray(con.normal) / np.linalg.norm(con.normal)
-        e = np.array([0.0, 1.0, 0.0]) if abs(nrm[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
-        t1 = np.cross(nrm, e)
-        t1 /= np.linalg.norm(t1)
-        t2 = np.cross(nrm, t1)
-        phis = 2 * np.pi * np.arange(k_edges) / k_edges
-        G = nrm[:, None] + con.friction * (np.cos(phis) * t1[:, None] + np.sin(phis) * t2[:, None])
+        G = generators(con.normal, con.friction, k_edges)
         cols.append(-J.T @ (R_normal @ G))
     A = np.hstack(cols)
     eff = robot.effort_limits

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from oracles import duration
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 A = 5.0  # the hand's 10 N on hand + box (2 kg)
@@ -35,7 +36,7 @@ def closed_form(grid, k):
     stances hold there: s̈ >= 0 and s̈ <= 0), 2a(2 - s) after; T = Σ 2Δs / (ṡ_k + ṡ_{k+1})."""
     th = np.minimum(2 * A * grid, 2 * A * (2.0 - grid))
     th[k] = min(th[k - 1], th[k + 1])
-    return float(np.sum(2 * np.diff(grid) / (np.sqrt(th[:-1]) + np.sqrt(th[1:]))))
+    return duration(grid, th)
 
 
 @pytest.fixture(scope="module")

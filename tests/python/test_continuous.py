@@ -6,15 +6,13 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 def kinematic(path, N, v, a, guarantee):
-    prob = pp.TimeScalingProblem(path, grid=N)
-    prob.add_velocity_limits(-np.asarray(v), v)
-    prob.add_acceleration_limits(-np.asarray(a), a)
-    return prob.solve(guarantee=guarantee)
+    return kinematic_problem(path, N, -np.asarray(v), v, -np.asarray(a), a).solve(guarantee=guarantee)
 
 
 def at_1khz(res):
@@ -97,9 +95,7 @@ def test_grid_guarantee_breaks_torque_between_grid_points_where_continuous_does_
 def test_restarted_problems_keep_polynomial_pieces():
     rng = np.random.default_rng(9)
     path = random_spline(rng)
-    prob = pp.TimeScalingProblem(path, grid=60)
-    prob.add_velocity_limits(-np.ones(3), np.ones(3))
-    prob.add_acceleration_limits(-2 * np.ones(3), 2 * np.ones(3))
+    prob = kinematic_problem(path, 60, -np.ones(3), np.ones(3), -2 * np.ones(3), 2 * np.ones(3))
     tail = prob.restarted(0.4321, 0.0)
     assert isinstance(tail.path, pp.PiecewisePolynomialPath)
     s = np.linspace(0.4321, 1.0, 50)

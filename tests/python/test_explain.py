@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem, two_joint_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -18,9 +19,7 @@ def line(length=1.0):
 
 
 def line_problem(N, v=1.0, a=1.0, length=1.0, sdot=(0.0, 0.0)):
-    prob = pp.TimeScalingProblem(line(length), grid=N)
-    prob.add_velocity_limits([-v], [v])
-    prob.add_acceleration_limits([-a], [a])
+    prob = kinematic_problem(line(length), N, [-v], [v], [-a], [a])
     prob.set_boundary_speeds(*sdot)
     return prob
 
@@ -155,14 +154,6 @@ def test_binding_labels_name_torque_limits_on_a_swing():
 
 
 # ------------------------------------------------------------------------------------ restarts
-def two_joint_problem(N=200):
-    path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, 0.5], [0.2, 1.5]]))
-    prob = pp.TimeScalingProblem(path, grid=N)
-    prob.add_velocity_limits([-1, -1], [1, 1])
-    prob.add_acceleration_limits([-2, -2], [2, 2])
-    return prob
-
-
 def test_restart_at_a_grid_point_continues_the_optimum():
     prob = two_joint_problem()
     res = prob.solve()

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
 VMAX = np.array([1.0, 1.5, 2.0])
@@ -16,10 +17,7 @@ AMAX = np.array([2.0, 3.0, 4.0])
 
 def random_problem(seed, N, acc_scale=1.0):
     rng = np.random.default_rng(seed)
-    prob = pp.TimeScalingProblem(pp.CubicSplinePath(rng.uniform(-1, 1, (6, 3))), grid=N)
-    prob.add_velocity_limits(-VMAX, VMAX)
-    prob.add_acceleration_limits(-acc_scale * AMAX, acc_scale * AMAX)
-    return prob
+    return kinematic_problem(rng.uniform(-1, 1, (6, 3)), N, -VMAX, VMAX, -acc_scale * AMAX, acc_scale * AMAX)
 
 
 def test_time_spline_interpolates_the_grid_and_is_c2():

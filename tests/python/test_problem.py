@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 from oracles import cvxpy_optimum, kinematic_rows, max_violation
 
 
@@ -21,13 +22,6 @@ def limits(n, seed):
     amax = rng.uniform(1.0, 4.0, n)
     amin = -rng.uniform(1.0, 4.0, n)
     return vmin, vmax, amin, amax
-
-
-def kinematic_problem(path, N, vmin, vmax, amin, amax):
-    prob = pp.TimeScalingProblem(path, grid=N)
-    prob.add_velocity_limits(vmin, vmax)
-    prob.add_acceleration_limits(amin, amax)
-    return prob
 
 
 def rows_for(prob, vmin, vmax, amin, amax):

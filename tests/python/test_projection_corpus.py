@@ -57,7 +57,9 @@ def test_every_polygon_matches_the_exact_projection(case, paths):
     prob = pp.TimeScalingProblem(path, grid=8)
     prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
     worst, compared, empty = cc.compare(h, prob, cons, opts)
-    assert compared == 9
+    # All 9 points but where the path turns back (p' ~ 0: s = 1/4, 3/4 of a sway, 1/2 of the squat): there
+    # s̈ is bounded by the stand-in bound only, every direction reads unbounded on both sides.
+    assert (compared, empty) == ((8, 0) if kind == "squat" else (7, 0))
     assert worst <= 1e-6
 
 
@@ -76,14 +78,11 @@ def test_k_edge_polygons_nest_in_2k_edge_ones_and_feasibility_carries_over(robot
             polys[k] = [prob.feasible_set(i) for i in range(41)]
             results[k] = prob.solve()
         for k in (4, 8):
-            for a, b in zip(polys[k], polys[2 * k]):
+            for i, (a, b) in enumerate(zip(polys[k], polys[2 * k])):
                 if a.empty:
                     continue
                 assert not b.empty
-                size = max(cc.polygon_size(b), 1e-12)
-                ha, hb = cc.polygon_support(a, dirs), cc.polygon_support(b, dirs)
-                ok = np.isfinite(ha) & np.isfinite(hb)
-                assert np.all(ha[ok] <= hb[ok] + 1e-9 * size)
+                cc.assert_nested(a, b, dirs, 1e-9, f"{margins} point {i}: {k} edges in {2 * k}")
             if results[k].ok:
                 assert results[2 * k].ok, results[2 * k].message
                 assert results[2 * k].duration <= results[k].duration * (1 + 1e-9)
@@ -117,6 +116,7 @@ def test_flat_soles_reduce_exactly_to_their_corners(paths):
         prob = pp.TimeScalingProblem(path, grid=8)
         prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
         worst, compared, _ = cc.compare(h, prob, cons, opts, points=[0, 3, 6])
+        assert compared == 2  # at point 6 (s = 3/4) the sway turns back: unbounded in every direction
         assert worst <= 1e-6
     assert len(pp.ContactConstraint(h.robot, cons, min_normal_force=1.0).projected_contacts) == 60
 
@@ -219,8 +219,4 @@ def test_stats_time_the_projection_and_report_an_exhausted_budget(paths):
     assert not any(cut.feasible_set(k).exact for k in range(21))
     dirs = cc.directions()
     for k in range(0, 21, 5):
-        inner, full = cut.feasible_set(k), prob.feasible_set(k)
-        size = cc.polygon_size(full)
-        ha, hb = cc.polygon_support(inner, dirs), cc.polygon_support(full, dirs)
-        ok = np.isfinite(ha) & np.isfinite(hb)
-        assert np.all(ha[ok] <= hb[ok] + 1e-9 * size)
+        cc.assert_nested(cut.feasible_set(k), prob.feasible_set(k), dirs, 1e-9, f"point {k}: inner hull in the exact set")

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 from pathpace import plot
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
@@ -18,10 +19,8 @@ DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
 def line_problem(N=200):
     """q = 3 s under |q̇| <= 1, |q̈| <= 1: accelerate (acceleration binds), cruise at the velocity limit,
     brake — T = 4 analytically."""
-    prob = pp.TimeScalingProblem(pp.PiecewisePolynomialPath([0.0, 1.0], np.array([[[0.0], [3.0]]])), grid=N)
-    prob.add_velocity_limits([-1.0], [1.0])
-    prob.add_acceleration_limits([-1.0], [1.0])
-    return prob
+    return kinematic_problem(pp.PiecewisePolynomialPath([0.0, 1.0], np.array([[[0.0], [3.0]]])), N, [-1.0], [1.0], [-1.0],
+                             [1.0])
 
 
 def test_phase_plane_colours_the_binding_limit():

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import kinematic_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -113,11 +114,7 @@ def test_crash5_a_path_with_fewer_coordinates_than_the_robot():
 
 def big_problem(n=20000):
     rng = np.random.default_rng(1)
-    path = pp.CubicSplinePath(rng.uniform(-1, 1, (8, 3)))
-    prob = pp.TimeScalingProblem(path, grid=n)
-    prob.add_velocity_limits(-np.ones(3), np.ones(3))
-    prob.add_acceleration_limits(-np.ones(3), np.ones(3))
-    return prob
+    return kinematic_problem(rng.uniform(-1, 1, (8, 3)), n, -np.ones(3), np.ones(3), -np.ones(3), np.ones(3))
 
 
 def test_crash6_adding_a_constraint_while_another_thread_solves_is_refused():
@@ -325,10 +322,7 @@ def solve_and_check(w, vmax, amax, N, amin=None):
     amin = -amax if amin is None else np.asarray(amin, dtype=float)
 
     def child():
-        prob = pp.TimeScalingProblem(pp.CubicSplinePath(w), grid=N)
-        prob.add_velocity_limits(-vmax, vmax)
-        prob.add_acceleration_limits(amin, amax)
-        r = prob.solve()
+        r = kinematic_problem(w, N, -vmax, vmax, amin, amax).solve()
         return r.status.name, np.array(r.s), np.array(r.sdot), float(r.duration)
 
     sys.path.insert(0, str(Path(__file__).parent / "fuzz"))

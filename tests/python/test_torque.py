@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import pathpace as pp
-from oracles import cvxpy_optimum, kinematic_rows, max_violation
+from helpers import kinematic_problem
+from oracles import cvxpy_optimum, kinematic_rows, max_violation, pinocchio_model, torque_rows
 from pathpace.robots import example_robot_urdf
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -63,46 +64,25 @@ def test_monotone_swing_up_is_infeasible_and_says_where(pendulum):
     assert any(c.startswith("torque hinge") for c in res.binding_constraints)
 
 
-def panda_torque_rows(path, grid, scale):
-    """Torque rows from pinocchio (independent of our dynamics): τ = a x + b u + c (eq. 12)."""
-    pin = pytest.importorskip("pinocchio")
-    urdf = str(example_robot_urdf("panda_description/urdf/panda.urdf"))
-    full = pin.buildModelFromUrdf(urdf)
-    lock = [full.getJointId(n) for n in ("panda_finger_joint1", "panda_finger_joint2")]
-    model = pin.buildReducedModel(full, lock, pin.neutral(full))
-    data = model.createData()
-    q, dq, ddq = path.q(grid), path.dq(grid), path.ddq(grid)
-    zero = np.zeros(7)
-    c = np.array([pin.computeGeneralizedGravity(model, data, qk) for qk in q])
-    a = np.array([pin.rnea(model, data, q[k], dq[k], ddq[k]) for k in range(len(grid))]) - c
-    b = np.array([pin.rnea(model, data, q[k], zero, dq[k]) for k in range(len(grid))]) - c
-    tau_max = scale * model.effortLimit
-    A = np.hstack([a, -a])
-    B = np.hstack([b, -b])
-    C = np.hstack([tau_max - c, c + tau_max])
-    return A, B, C
-
-
 def test_panda_torque_limited_optimum_matches_pinocchio_and_cvxpy_oracle():
+    pytest.importorskip("pinocchio")
     urdf = str(example_robot_urdf("panda_description/urdf/panda.urdf"))
-    robot = pp.RobotModel.from_urdf(urdf, locked_joints={"panda_finger_joint1": 0.0, "panda_finger_joint2": 0.0})
+    fingers = ("panda_finger_joint1", "panda_finger_joint2")
+    robot = pp.RobotModel.from_urdf(urdf, locked_joints={n: 0.0 for n in fingers})
     rng = np.random.default_rng(0)
     lo, hi = robot.position_limits
     path = pp.CubicSplinePath(lo + (hi - lo) * rng.uniform(0.1, 0.9, (5, 7)))
     N = 60
     vmax = robot.velocity_limits
-    prob = pp.TimeScalingProblem(path, grid=N)
-    prob.add_velocity_limits(-vmax, vmax)
+    prob = kinematic_problem(path, N, -vmax, vmax, None, None)
     prob.add_torque_limits(robot, scale=0.65)
     res = prob.solve()
     assert res.ok, res.message
-    At, Bt, Ct = panda_torque_rows(path, prob.grid, 0.65)
+    At, Bt, Ct = torque_rows(pinocchio_model(urdf, fingers), path, prob.grid, 0.65)  # independent of our dynamics
     Av, Bv, Cv = kinematic_rows(path.dq(prob.grid), path.ddq(prob.grid), -vmax, vmax, np.full(7, -np.inf), np.full(7, np.inf))
     A, B, C = np.hstack([Av, At]), np.hstack([Bv, Bt]), np.hstack([Cv, Ct])
     assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
     ref, _ = cvxpy_optimum(prob.grid, A, B, C)
     assert res.duration == pytest.approx(ref, rel=1e-6)
     # The torque limits bind: without them the path is faster.
-    free = pp.TimeScalingProblem(path, grid=N)
-    free.add_velocity_limits(-vmax, vmax)
-    assert res.duration > free.solve().duration * 1.01
+    assert res.duration > kinematic_problem(path, N, -vmax, vmax, None, None).solve().duration * 1.01

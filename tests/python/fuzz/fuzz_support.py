@@ -46,9 +46,25 @@ class ChildCrashed(AssertionError):
     pass
 
 
+def exception_info(e: BaseException) -> dict:
+    """What the parent judges of an exception raised in a child (picklable): its type name, message, kind
+    (TypeError, InvalidInputError, pathpace.Error, OSError) and the last frames of its traceback. Call it
+    inside the `except` block (the traceback is the one being handled)."""
+    import pathpace as pp
+
+    return {
+        "type": type(e).__module__ + "." + type(e).__qualname__,
+        "message": str(e),
+        "type_error": isinstance(e, TypeError),
+        "invalid_input": isinstance(e, pp.InvalidInputError),
+        "pp_error": isinstance(e, pp.Error),
+        "os_error": isinstance(e, OSError),
+        "traceback": traceback.format_exc(limit=4),
+    }
+
+
 def run_isolated(fn, *args, timeout: float = 60.0):
-    """fn(*args) in a forked child. Returns ("ok", value) or ("raised", info) where info is a dict with
-    the exception's type name, message and its kind (TypeError, InvalidInputError, Error). A child
+    """fn(*args) in a forked child. Returns ("ok", value) or ("raised", exception_info(e)). A child
     that dies (signal, sanitizer abort) or runs past `timeout` seconds raises ChildCrashed."""
     scratch = tempfile.mkdtemp(prefix="pathpace-fuzz-")  # files a bad "path" argument may create land here
     r, w = os.pipe()
@@ -62,17 +78,7 @@ def run_isolated(fn, *args, timeout: float = 60.0):
             try:
                 out = ("ok", fn(*args))
             except BaseException as e:  # noqa: BLE001 - the parent judges every exception
-                import pathpace as pp
-
-                out = ("raised", {
-                    "type": type(e).__module__ + "." + type(e).__qualname__,
-                    "message": str(e),
-                    "type_error": isinstance(e, TypeError),
-                    "invalid_input": isinstance(e, pp.InvalidInputError),
-                    "pp_error": isinstance(e, pp.Error),
-                    "os_error": isinstance(e, OSError),
-                    "traceback": traceback.format_exc(limit=4),
-                })
+                out = ("raised", exception_info(e))
             signal.alarm(0)
             data = pickle.dumps(out)
         except BaseException:  # noqa: BLE001

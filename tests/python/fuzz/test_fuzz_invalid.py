@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from fuzz_support import ChildCrashed, fuzz_settings, run_isolated
+from fuzz_support import ChildCrashed, exception_info, fuzz_settings, run_isolated
 
 import pathpace as pp
 from pathpace import io
@@ -116,10 +116,7 @@ def call_each(entry, arg):
             call_with(entry, arg, value)
             out.append((i, "ok", None))
         except BaseException as e:  # noqa: BLE001 - judged by the parent
-            out.append((i, "raised", {"type": type(e).__module__ + "." + type(e).__qualname__, "message": str(e),
-                                      "type_error": isinstance(e, TypeError),
-                                      "invalid_input": isinstance(e, pp.InvalidInputError),
-                                      "os_error": isinstance(e, OSError)}))
+            out.append((i, "raised", exception_info(e)))
     return out
 
 

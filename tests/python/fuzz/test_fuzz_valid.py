@@ -8,8 +8,9 @@ from hypothesis import strategies as st
 from scipy.interpolate import CubicSpline
 
 from fuzz_support import fuzz_settings, kinematic_violation, run_isolated
+from helpers import kinematic_problem
+from oracles import duration
 
-import pathpace as pp
 
 
 @st.composite
@@ -38,11 +39,8 @@ def problems(draw, min_N=20, max_N=400):
 
 
 def solve(p):
-    path = pp.CubicSplinePath(p["waypoints"])
-    prob = pp.TimeScalingProblem(path, grid=p["N"])
-    prob.add_velocity_limits(-p["vmax"], p["vmax"])
-    prob.add_acceleration_limits(p.get("amin", -p["amax"]), p["amax"])
-    r = prob.solve(method=p["method"])
+    r = kinematic_problem(p["waypoints"], p["N"], -p["vmax"], p["vmax"], p.get("amin", -p["amax"]), p["amax"]).solve(
+        method=p["method"])
     return dict(status=r.status.name, message=r.message, s=np.array(r.s), sdot=np.array(r.sdot),
                 duration=float(r.duration))
 
@@ -82,16 +80,13 @@ def check_optimal_and_feasible(p):
     dq, ddq = spline(s, 1), spline(s, 2)
     viol = kinematic_violation(s, sdot, dq, ddq, p["vmax"], p["amax"], p.get("amin"))
     assert viol <= 1e-6, f"a limit is exceeded by {viol:.3g} (relative)"
-    T = np.sum(2 * np.diff(s) / (sdot[:-1] + sdot[1:]))
+    T = duration(s, sdot**2)
     assert np.isfinite(out["duration"]) and abs(out["duration"] - T) <= 1e-9 * T
 
 
 def coarse_problem():
     w = np.array([[0.27392337], [-0.46042657], [-0.91805295], [-0.96694473], [0.62654048]])
-    prob = pp.TimeScalingProblem(pp.CubicSplinePath(w), grid=6)
-    prob.add_velocity_limits([-6.69131006], [6.69131006])
-    prob.add_acceleration_limits([-1.63407337], [1.63407337])
-    r = prob.solve()
+    r = kinematic_problem(w, 6, [-6.69131006], [6.69131006], [-1.63407337], [1.63407337]).solve()
     return r.status.name, r.message
 
 

@@ -1,0 +1,28 @@
+"""Builders shared by the Python tests (the independent reference computations are in oracles.py).
+
+Importable from every test folder: tests/python/conftest.py puts this folder on sys.path."""
+
+import numpy as np
+
+import pathpace as pp
+
+
+def kinematic_problem(path, grid, vmin, vmax, amin, amax, **problem_kw):
+    """A TimeScalingProblem on `path` (a pp.Path, or waypoints for a pp.CubicSplinePath with its default
+    knots and ends) with velocity limits vmin <= q̇ <= vmax (eq. 16) and acceleration limits amin <= q̈ <=
+    amax (eq. 14), in the order of oracles.kinematic_rows; a pair given as None is not added. problem_kw go
+    to the TimeScalingProblem (grid_tolerance, ...)."""
+    if not isinstance(path, pp.Path):
+        path = pp.CubicSplinePath(np.asarray(path, dtype=float))
+    prob = pp.TimeScalingProblem(path, grid=grid, **problem_kw)
+    if vmax is not None:
+        prob.add_velocity_limits(vmin, vmax)
+    if amax is not None:
+        prob.add_acceleration_limits(amin, amax)
+    return prob
+
+
+def two_joint_problem(N=200, **path_kw):
+    """Three waypoints in the plane under |q̇| <= 1, |q̈| <= 2, on N intervals; path_kw go to the spline."""
+    path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, 0.5], [0.2, 1.5]]), **path_kw)
+    return kinematic_problem(path, N, [-1, -1], [1, 1], [-2, -2], [2, 2])
