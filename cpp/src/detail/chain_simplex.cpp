@@ -20,10 +20,14 @@ ChainSimplex::ChainSimplex(const Chain& chain, Eigen::Index a, Eigen::Index m, c
   in_basis_.assign(rows_.size(), 0);
 }
 
-double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots) {
+double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots, bool warm) {
   const double inf = std::numeric_limits<double>::infinity();
-  y_ = theta;
-  if (!start_basis() || !match()) return inf;
+  if (!warm || !has_basis_) {
+    y_ = theta;
+    has_basis_ = start_basis() && match();
+    if (!has_basis_) return inf;
+  }
+  has_basis_ = false;  // until this call ends at an optimal basis
   lambda_.assign(n_, 0.0);
   double gmax = 0.0;
   for (std::size_t i = 0; i < n_; ++i) gmax = std::max(gmax, std::abs(g[col(i)]));
@@ -39,7 +43,10 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
         p = i;
         break;
       }
-    if (p == n_) break;
+    if (p == n_) {
+      has_basis_ = true;
+      break;
+    }
     if (pivot == max_pivots || !step(p, cl, cr)) return inf;
     ++pivots_;
   }

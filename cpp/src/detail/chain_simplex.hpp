@@ -42,7 +42,9 @@ class ChainSimplex {
   /// From the vertex `theta` (θ_0..θ_m, feasible; each free point at a bound or where a row of an adjacent
   /// interval is tight, as the greedy profile is), minimises g·y by at most `max_pivots` pivots; returns the
   /// bound above on g·θ - min g·y (>= 0), or +inf if it gave up (no start basis, singular, pivot budget).
-  double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots);
+  /// warm: start from the basis the previous call ended with (optimal for its g), whose vertex() must then be
+  /// `theta` (a Frank-Wolfe step of length 1 lands there): the basis stays primal feasible for a new g.
+  double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots, bool warm = false);
 
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
   const Eigen::VectorXd& vertex() const { return y_; }
@@ -81,6 +83,7 @@ class ChainSimplex {
   std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
   Eigen::VectorXd y_;
   int pivots_ = 0;
+  bool has_basis_ = false;
 };
 
 }  // namespace pathpace::detail
