@@ -80,11 +80,12 @@ double glpk_optimum(const Chain& ch, const Eigen::VectorXd& lo, const Eigen::Vec
 
 // 200 seeded random chains (30-150 intervals, 2-4 joints): from the greedy profile of the reachability
 // analysis (a vertex), the chain simplex reaches GLPK's optimum of the window LP for a random decreasing
-// objective and for ∇T, and its bound on g·θ - min g·y is valid (not below the true gap) and tight (1e-9).
+// objective and for ∇T, and its bound on g·θ - min g·y is valid (not below the true gap) and tight (1e-9); so
+// is the bound for a second objective from the first's optimal basis (warm start).
 TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> G(-1.0, -0.05);
-  int solved = 0, trials = 0, pivots = 0;
+  int solved = 0, trials = 0, pivots = 0, warm = 0;
   for (int trial = 0; trial < 200; ++trial) {
     const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
     const Chain ch = random_chain(rng, m, joints);
@@ -123,7 +124,18 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
     for (Eigen::Index k = 0; k < m; ++k)
       for (const Line& r : ch.rows(k))
         EXPECT_LE(row_violation(r, cs.vertex()[k], cs.vertex()[k + 1]), 1e-9) << "trial " << trial;
+    // A second objective from the vertex's basis (warm, as the Frank-Wolfe iterations of slp.cpp use it).
+    const Eigen::VectorXd v = cs.vertex();
+    Eigen::VectorXd g2(m + 1);
+    for (int j = 0; j <= m; ++j) g2[j] = G(rng);
+    const double gap2 = cs.gap(v, g2, 1000, true);
+    if (!std::isfinite(gap2)) continue;
+    ++warm;
+    const double opt2 = glpk_optimum(ch, lo, hi, v, g2), gv = g2.dot(v), scale2 = std::abs(gv) + 1.0;
+    EXPECT_GE(gap2, gv - opt2 - 1e-10 * scale2) << "trial " << trial << ": the warm bound is not valid";
+    EXPECT_LE(gap2, gv - opt2 + 1e-9 * scale2) << "trial " << trial << ": the warm bound is loose";
   }
+  EXPECT_GE(warm, solved * 95 / 100);
   EXPECT_GE(solved, trials * 95 / 100);  // gives up (singular basis, pivot budget) on at most 5 %
   EXPECT_GT(pivots, trials);             // the chains are degenerate enough to need pivots
 }

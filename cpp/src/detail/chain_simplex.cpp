@@ -11,31 +11,43 @@ namespace pathpace::detail {
 ChainSimplex::ChainSimplex(const Chain& chain, Eigen::Index a, Eigen::Index m, const Eigen::VectorXd& lo,
                            const Eigen::VectorXd& hi, Eigen::Index first, Eigen::Index last)
     : lo_(lo), hi_(hi), first_(first), last_(last), n_(static_cast<std::size_t>(last - first + 1)) {
-  for (Eigen::Index k = 0; k < m; ++k)
+  row_begin_.resize(static_cast<std::size_t>(m) + 1);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    row_begin_[static_cast<std::size_t>(k)] = rows_.size();
     for (const Line& r : chain.rows(a + k)) rows_.push_back({&r, k});
+  }
+  row_begin_[static_cast<std::size_t>(m)] = rows_.size();
   in_basis_.assign(rows_.size(), 0);
 }
 
-double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots) {
+double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots, bool warm) {
   const double inf = std::numeric_limits<double>::infinity();
-  y_ = theta;
-  if (!start_basis()) return inf;
-  if (!match()) return inf;
+  if (!warm || !has_basis_) {
+    y_ = theta;
+    has_basis_ = start_basis() && match();
+    if (!has_basis_) return inf;
+  }
+  has_basis_ = false;  // until this call ends at an optimal basis
+  lambda_.assign(n_, 0.0);
   double gmax = 0.0;
   for (std::size_t i = 0; i < n_; ++i) gmax = std::max(gmax, std::abs(g[col(i)]));
   pivots_ = 0;
+  std::size_t cl = 0, cr = n_ - 1;  // the columns whose multipliers must be solved again
   for (int pivot = 0;; ++pivot) {
-    if (!duals(g)) return inf;
+    if (!duals(g, cl, cr)) return inf;
     // Bland's rule: the first column whose constraint has a negative multiplier leaves (no cycling; Dantzig's
     // most negative multiplier took more pivots on the arm corpus).
     std::size_t p = n_;
     for (std::size_t i = 0; i < n_; ++i)
-      if (lambda_[i] * std::abs(coef(i, i)) < -1e-13 * gmax) {
+      if (lambda_[i] * std::abs(own_[i]) < -1e-13 * gmax) {
         p = i;
         break;
       }
-    if (p == n_) break;
-    if (pivot == max_pivots || !step(p)) return inf;
+    if (p == n_) {
+      has_basis_ = true;
+      break;
+    }
+    if (pivot == max_pivots || !step(p, cl, cr)) return inf;
     ++pivots_;
   }
   // The bound at the start θ, with the row multipliers of the final basis.
@@ -78,6 +90,7 @@ bool ChainSimplex::tight(const Row& r) const {
 bool ChainSimplex::start_basis() {
   bounds_.assign(n_, 0);
   std::fill(in_basis_.begin(), in_basis_.end(), 0);
+  srows_.clear();
   std::size_t r0 = 0;  // first row of interval j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
@@ -97,6 +110,7 @@ bool ChainSimplex::start_basis() {
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
       if (in_basis_[t] || on_j == 0.0 || !tight(r)) continue;
       in_basis_[t] = 1;
+      srows_.push_back(static_cast<int>(t));
       found = true;
     }
     if (!found) return false;
@@ -105,18 +119,21 @@ bool ChainSimplex::start_basis() {
 }
 
 // Earliest deadline first: column j takes its bound if that is in S, else an S-row that must serve it (of
-// interval j - 1, or of interval j with no coefficient on column j + 1), else one of interval j.
+// interval j - 1, or of interval j with no coefficient on column j + 1), else one of interval j. The S-rows are
+// walked in order (srows_ is sorted, rows_ by interval): O(n).
 bool ChainSimplex::match() {
   match_.assign(n_, kHi);
-  used_.assign(rows_.size(), 0);
-  std::size_t r0 = 0;
+  used_.assign(srows_.size(), 0);
+  std::size_t q = 0;  // first S-row of interval >= j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
-    while (r0 < rows_.size() && rows_[r0].k < j - 1) ++r0;
-    int best = -3, best_rank = 3;
-    for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j; ++t) {
-      if (!in_basis_[t] || used_[t]) continue;
-      const Row& r = rows_[t];
+    for (; q < srows_.size() && rows_[static_cast<std::size_t>(srows_[q])].k < j - 1; ++q)
+      if (!used_[q]) return false;  // a row of an earlier interval that no column took: singular
+    int best = -1, best_rank = 3;
+    for (std::size_t t = q; t < srows_.size(); ++t) {
+      const Row& r = rows_[static_cast<std::size_t>(srows_[t])];
+      if (r.k > j) break;
+      if (used_[t]) continue;
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
       if (on_j == 0.0) continue;
       const int rank = r.k == j - 1 ? 0 : (r.line->b == 0.0 || !free_col(j + 1)) ? 1 : 2;
@@ -131,49 +148,71 @@ bool ChainSimplex::match() {
       continue;
     }
     if (best < 0) return false;
-    match_[i] = best;
+    match_[i] = srows_[static_cast<std::size_t>(best)];
     used_[static_cast<std::size_t>(best)] = 1;
-    // Rows of interval j - 1 left now can serve no later column.
-    for (std::size_t t = r0; t < rows_.size() && rows_[t].k < j; ++t)
-      if (in_basis_[t] && !used_[t]) return false;
   }
-  for (std::size_t t = 0; t < rows_.size(); ++t)
-    if (in_basis_[t] && !used_[t]) return false;
+  for (; q < srows_.size(); ++q)
+    if (!used_[q]) return false;
+  own_.resize(n_);
+  left_.assign(n_, 0.0);
+  right_.assign(n_, 0.0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    own_[i] = coef(i, i);
+    if (i > 0) left_[i] = coef(i, i - 1);
+    if (i + 1 < n_) right_[i] = coef(i, i + 1);
+  }
   return true;
 }
 
-// Tridiagonal factors of B (transpose = false: constraint i's coefficients on columns i-1, i, i+1) or of Bᵀ.
-void ChainSimplex::fill(bool transpose) {
-  l_.assign(n_, 0.0);
-  d_.assign(n_, 0.0);
-  u_.assign(n_, 0.0);
-  for (std::size_t i = 0; i < n_; ++i) {
-    d_[i] = coef(i, i);
-    if (!transpose) {
-      if (i > 0) l_[i] = coef(i, i - 1);
-      if (i + 1 < n_) u_[i] = coef(i, i + 1);
-    } else {
-      if (i > 0) l_[i] = coef(i - 1, i);
-      if (i + 1 < n_) u_[i] = coef(i + 1, i);
-    }
+// The columns [bl, br] of column i's block: B (and Bᵀ) couple columns i and i + 1 only if the constraint matched
+// to one acts on the other; between blocks the systems are independent.
+void ChainSimplex::block(std::size_t i, std::size_t& bl, std::size_t& br) const {
+  bl = br = i;
+  while (bl > 0 && (right_[bl - 1] != 0.0 || left_[bl] != 0.0)) --bl;
+  while (br + 1 < n_ && (right_[br] != 0.0 || left_[br + 1] != 0.0)) ++br;
+}
+
+// Tridiagonal factors of B's rows [i0, i1] (transpose = false: constraint i's coefficients on columns i-1, i,
+// i+1) or of Bᵀ's, into l_, d_, u_ (from index 0).
+void ChainSimplex::fill(bool transpose, std::size_t i0, std::size_t i1) {
+  const std::size_t len = i1 - i0 + 1;
+  l_.assign(len, 0.0);
+  d_.assign(len, 0.0);
+  u_.assign(len, 0.0);
+  for (std::size_t i = i0; i <= i1; ++i) {
+    const std::size_t t = i - i0;
+    d_[t] = own_[i];
+    if (i > i0) l_[t] = transpose ? right_[i - 1] : left_[i];
+    if (i < i1) u_[t] = transpose ? left_[i + 1] : right_[i];
   }
 }
 
-bool ChainSimplex::duals(const Eigen::VectorXd& g) {
-  fill(true);
-  lambda_.resize(n_);
-  for (std::size_t i = 0; i < n_; ++i) lambda_[i] = -g[col(i)];
-  return solve_tridiagonal(l_, d_, u_, lambda_, u2_);
+// λ on the blocks that hold columns cl - 1 .. cr + 1 (the equations that the last pivot changed): Bᵀλ = -g there.
+bool ChainSimplex::duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr) {
+  std::size_t bl, br, tmp;
+  block(cl > 0 ? cl - 1 : 0, bl, tmp);
+  block(std::min(cr + 1, n_ - 1), tmp, br);
+  fill(true, bl, br);
+  rhs_.resize(br - bl + 1);
+  for (std::size_t i = bl; i <= br; ++i) rhs_[i - bl] = -g[col(i)];
+  if (!solve_tridiagonal(l_, d_, u_, rhs_, u2_)) return false;
+  std::copy(rhs_.begin(), rhs_.end(), lambda_.begin() + static_cast<long>(bl));
+  return true;
 }
 
-// Constraint p (matched to column p) leaves along d with B d = -e_p; the first constraint to block enters.
-bool ChainSimplex::step(std::size_t p) {
-  fill(false);
+// Constraint p (matched to column p) leaves along d with B d = -e_p (nonzero on p's block only); the first
+// constraint to block enters. On return [cl, cr] holds the columns whose matching changed.
+bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
+  std::size_t bl, br;
+  block(p, bl, br);
+  fill(false, bl, br);
+  rhs_.assign(br - bl + 1, 0.0);
+  rhs_[p - bl] = -1.0;
+  if (!solve_tridiagonal(l_, d_, u_, rhs_, u2_)) return false;
   dir_.assign(n_, 0.0);
-  dir_[p] = -1.0;
-  if (!solve_tridiagonal(l_, d_, u_, dir_, u2_)) return false;
+  std::copy(rhs_.begin(), rhs_.end(), dir_.begin() + static_cast<long>(bl));
   double dmax = 0.0;
-  for (double v : dir_) dmax = std::max(dmax, std::abs(v));
+  for (double v : rhs_) dmax = std::max(dmax, std::abs(v));
   double t_best = std::numeric_limits<double>::infinity();
   int enter = -3;
   std::size_t enter_col = 0;
@@ -185,7 +224,10 @@ bool ChainSimplex::step(std::size_t p) {
       enter_col = i;
     }
   };
-  for (std::size_t t = 0; t < rows_.size(); ++t) {
+  // The rows that act on the block's columns: intervals col(bl) - 1 .. col(br).
+  const Eigen::Index k0 = std::max<Eigen::Index>(col(bl) - 1, 0);
+  const Eigen::Index k1 = std::min<Eigen::Index>(col(br), static_cast<Eigen::Index>(row_begin_.size()) - 2);
+  for (std::size_t t = row_begin_[static_cast<std::size_t>(k0)]; t < row_begin_[static_cast<std::size_t>(k1) + 1]; ++t) {
     if (in_basis_[t]) continue;
     const Row& r = rows_[t];
     const double dk = free_col(r.k) ? dir_[local(r.k)] : 0.0, dk1 = free_col(r.k + 1) ? dir_[local(r.k + 1)] : 0.0;
@@ -193,25 +235,40 @@ bool ChainSimplex::step(std::size_t p) {
     if (ad <= 1e-12 * (std::abs(r.line->a) + std::abs(r.line->b)) * dmax) continue;
     consider(std::max(slack(r), 0.0) / ad, static_cast<int>(t), 0);
   }
-  for (std::size_t i = 0; i < n_; ++i) {
+  for (std::size_t i = bl; i <= br; ++i) {
     const Eigen::Index j = col(i);
     if (dir_[i] > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / dir_[i], kHi, i);
     if (dir_[i] < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -dir_[i], kLo, i);
   }
   if (enter == -3 || !std::isfinite(t_best)) return false;
-  for (std::size_t i = 0; i < n_; ++i) y_[col(i)] += t_best * dir_[i];
+  for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * dir_[i];
   // S := S - {p} + {enter}.
-  if (match_[p] >= 0) in_basis_[static_cast<std::size_t>(match_[p])] = 0;
-  else bounds_[p] = 0;
+  if (match_[p] >= 0) {
+    in_basis_[static_cast<std::size_t>(match_[p])] = 0;
+    srows_.erase(std::lower_bound(srows_.begin(), srows_.end(), match_[p]));
+  } else {
+    bounds_[p] = 0;
+  }
   if (enter >= 0) {
     in_basis_[static_cast<std::size_t>(enter)] = 1;
+    srows_.insert(std::upper_bound(srows_.begin(), srows_.end(), enter), enter);
   } else {
     if (bounds_[enter_col] != 0) return false;
     bounds_[enter_col] = enter;
     // The entering bound is exact: no drift from the step's rounding.
     y_[col(enter_col)] = enter == kHi ? hi_[col(enter_col)] : lo_[col(enter_col)];
   }
-  return match();
+  old_match_ = match_;
+  if (!match()) return false;
+  cl = n_;
+  cr = 0;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (match_[i] != old_match_[i] || (match_[i] < 0 && i == p)) {
+      cl = std::min(cl, i);
+      cr = std::max(cr, i);
+    }
+  if (cl > cr) cl = cr = p;
+  return true;
 }
 
 }  // namespace pathpace::detail

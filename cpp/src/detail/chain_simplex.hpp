@@ -42,7 +42,9 @@ class ChainSimplex {
   /// From the vertex `theta` (θ_0..θ_m, feasible; each free point at a bound or where a row of an adjacent
   /// interval is tight, as the greedy profile is), minimises g·y by at most `max_pivots` pivots; returns the
   /// bound above on g·θ - min g·y (>= 0), or +inf if it gave up (no start basis, singular, pivot budget).
-  double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots);
+  /// warm: start from the basis the previous call ended with (optimal for its g), whose vertex() must then be
+  /// `theta` (a Frank-Wolfe step of length 1 lands there): the basis stays primal feasible for a new g.
+  double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots, bool warm = false);
 
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
   const Eigen::VectorXd& vertex() const { return y_; }
@@ -64,19 +66,24 @@ class ChainSimplex {
   bool tight(const Row& r) const;
   bool start_basis();
   bool match();
-  void fill(bool transpose);
-  bool duals(const Eigen::VectorXd& g);
-  bool step(std::size_t p);
+  void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
+  void fill(bool transpose, std::size_t i0, std::size_t i1);
+  bool duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr);
+  bool step(std::size_t p, std::size_t& cl, std::size_t& cr);
 
   const Eigen::VectorXd &lo_, &hi_;
   Eigen::Index first_, last_;
   std::size_t n_;
-  std::vector<Row> rows_;
-  std::vector<char> in_basis_, used_;
-  std::vector<int> bounds_, match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
-  std::vector<double> l_, d_, u_, u2_, lambda_, dir_;
+  std::vector<Row> rows_;                 // the window's rows, by interval
+  std::vector<std::size_t> row_begin_;    // interval k's rows: [row_begin_[k], row_begin_[k + 1])
+  std::vector<char> in_basis_, used_;     // per row; used_: per S-row, during match()
+  std::vector<int> srows_;                // the rows in S, sorted
+  std::vector<int> bounds_, match_, old_match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
+  std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
+  std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
   Eigen::VectorXd y_;
   int pivots_ = 0;
+  bool has_basis_ = false;
 };
 
 }  // namespace pathpace::detail

@@ -78,7 +78,8 @@ constexpr int kSlpBeforeBarrier = 2;
 constexpr double kBarrierFirstBracket = 1e-2;
 constexpr int kBarrierFirstColumns = 2000;
 constexpr int kBarrierSteps = 300;  // its Newton step budget (then the SLP goes on)
-constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget (then GLPK)
+constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget per LP (then GLPK)
+constexpr int kChainFrankWolfe = 6; // its Frank-Wolfe iterations while they land on vertices (then GLPK)
 
 struct WindowResult {
   SlpOutcome::Status status = SlpOutcome::Status::Converged;
@@ -135,29 +136,37 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   }
   {
     // The first LP below is the Frank-Wolfe check at the start, and usually all that the window needs (with the
-    // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex).
+    // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex). While the
+    // steps go all the way to the LP's vertex (the optimum of a time-optimal problem is usually a vertex), the
+    // next check starts from that vertex's basis; a shorter step (an interior optimum) is left to the SLP below.
     ChainSimplex cs(chain, a, m, lo, hi, first, last);
-    const double gap = cs.gap(theta, g, kChainPivots);
-    if (std::isfinite(gap)) {
+    bool warm = false;
+    for (int fw = 0; fw < kChainFrankWolfe; ++fw) {
+      const double gap = cs.gap(theta, g, kChainPivots, warm);
+      if (!std::isfinite(gap)) break;
       ++out.lp_solves;  // an LP, solved without GLPK
-      out.gap = gap;
-      out.lower = out.T - gap;
-      if (gap <= rel_target * out.T) return out;
+      out.lower = std::max(out.lower, out.T - gap);
+      out.gap = out.T - out.lower;
+      if (out.gap <= rel_target * out.T) return out;
       // The Frank-Wolfe step to the LP's vertex with an exact line search; the bound above certifies it if the
       // step realises all but the target of the decrease the LP promised.
       d = cs.vertex() - theta;
+      // A step of nearly the whole way goes to the vertex itself (T there is above the segment's minimum by a
+      // second-order amount), so that the next check can start from its basis.
       const double alpha = line_search(ds, theta, d, floor, tmp, gtmp);
-      Eigen::VectorXd next = theta + alpha * d;
+      const bool to_vertex = alpha >= 0.999;
+      Eigen::VectorXd next = to_vertex ? cs.vertex() : Eigen::VectorXd(theta + alpha * d);
       for (Eigen::Index j = 0; j <= m; ++j) next[j] = std::clamp(next[j], lo[j], hi[j]);
       const double T_next = duration(ds, next);
-      if (T_next < out.T) {
-        theta = next;
-        out.theta = next;
-        out.T = T_next;
-        out.gap = T_next - out.lower;
-        gradient(ds, theta, floor, g);
-        if (out.gap <= rel_target * out.T) return out;
-      }
+      if (!(T_next < out.T)) break;
+      theta = next;
+      out.theta = next;
+      out.T = T_next;
+      out.gap = T_next - out.lower;
+      gradient(ds, theta, floor, g);
+      if (out.gap <= rel_target * out.T) return out;
+      if (!to_vertex) break;
+      warm = true;
     }
   }
   // Only the rows that support interval k's polygon within the column bounds' box can bind in any of the
