@@ -134,7 +134,11 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     out.status = SlpOutcome::Status::TimeLimit;
     return out;
   }
-  {
+  // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start.
+  const double T_hi = duration(ds, hi);
+  const bool far_start =
+      (std::isfinite(T_hi) && out.T - T_hi > kBarrierFirstBracket * out.T) || cols >= kBarrierFirstColumns;
+  if (!(use_barrier && far_start)) {
     // The first LP below is the Frank-Wolfe check at the start, and usually all that the window needs (with the
     // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex). While the
     // steps go all the way to the LP's vertex (the optimum of a time-optimal problem is usually a vertex), the
@@ -262,9 +266,6 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
 
   std::vector<double> cost(static_cast<size_t>(cols)), x;
   double T = out.T;
-  // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start.
-  const double T_hi = duration(ds, hi);
-  const bool far_start = (std::isfinite(T_hi) && T - T_hi > kBarrierFirstBracket * T) || cols >= kBarrierFirstColumns;
   double rho = options.initial_trust_region * theta_max;
   bool global = true;  // next LP without trust region (Frank-Wolfe)
 
