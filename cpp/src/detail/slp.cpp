@@ -11,14 +11,14 @@
 
 namespace pathpace::detail {
 
-double duration(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta) {
-  double T = 0.0;
-  for (Eigen::Index k = 0; k < ds.size(); ++k) {
-    const double w = std::sqrt(std::max(theta[k], 0.0)) + std::sqrt(std::max(theta[k + 1], 0.0));
-    if (w == 0.0) return std::numeric_limits<double>::infinity();
-    T += 2.0 * ds[k] / w;
-  }
-  return T;
+double duration(const Eigen::Ref<const Eigen::VectorXd>& ds, const Eigen::Ref<const Eigen::VectorXd>& theta) {
+  // Array expressions (no branch per interval): the square roots and divisions vectorise; called on the whole
+  // chain several times per solve.
+  const Eigen::Index n = ds.size();
+  const Eigen::ArrayXd r = theta.array().max(0.0).sqrt();
+  const Eigen::ArrayXd w = r.head(n) + r.tail(n);
+  if ((w == 0.0).any()) return std::numeric_limits<double>::infinity();
+  return (2.0 * ds.array() / w).sum();
 }
 
 namespace {

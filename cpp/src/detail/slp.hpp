@@ -41,7 +41,7 @@ struct SlpOutcome {
 };
 
 /// T(θ) = Σ 2Δs_k / (√θ_k + √θ_{k+1}) (eq. 27); +inf if some interval has θ_k = θ_{k+1} = 0.
-double duration(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta);
+double duration(const Eigen::Ref<const Eigen::VectorXd>& ds, const Eigen::Ref<const Eigen::VectorXd>& theta);
 
 /// The optimum of eq. (26)-(27) by SLP on windows (see above). `upper` bounds every feasible θ
 /// componentwise and satisfies every row except on the intervals the first windows must cover: the relaxed
