@@ -140,7 +140,9 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
         }
       }
       const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
-      out.push_back({cur, next_x});
+      out.emplace_back();  // member by member (see append_line)
+      out.back().line = cur;
+      out.back().x_end = next_x;
       if (next < 0) return true;
       cur = next;
       x = next_x;
@@ -292,24 +294,25 @@ bool Polygon2d::clip(const Line& line) {
       continue;
     }
     // Leaves through `line`: the vertex is edge_j ∩ line, then the line's own edge follows.
-    Vertex v;
+    // (Written in place: a Vertex copied out of a temporary stalls on store forwarding, see append_line.)
+    Vertex& v = out_v[out++];
     if (!intersect(edges[j], line, v)) {
       const double t = dist[jp] / (dist[jp] - dist[j]);
-      v = {verts[jp].x + t * (verts[j].x - verts[jp].x), verts[jp].y + t * (verts[j].y - verts[jp].y)};
+      v.x = verts[jp].x + t * (verts[j].x - verts[jp].x);
+      v.y = verts[jp].y + t * (verts[j].y - verts[jp].y);
     }
-    out_v[out++] = v;
     // The line's edge ends where the walk re-enters: line ∩ (first edge whose end is inside).
     std::size_t k = j + 1 == m ? 0 : j + 1;
     while (dist[k] > 0.0) k = k + 1 == m ? 0 : k + 1;
-    Vertex w;
+    inserted = out;
+    out_e[out] = line;
+    Vertex& w = out_v[out++];
     if (!intersect(line, edges[k], w)) {
       const std::size_t kp = k == 0 ? m - 1 : k - 1;
       const double t = dist[kp] / (dist[kp] - dist[k]);
-      w = {verts[kp].x + t * (verts[k].x - verts[kp].x), verts[kp].y + t * (verts[k].y - verts[kp].y)};
+      w.x = verts[kp].x + t * (verts[k].x - verts[kp].x);
+      w.y = verts[kp].y + t * (verts[k].y - verts[kp].y);
     }
-    inserted = out;
-    out_e[out] = line;
-    out_v[out++] = w;
     // A new vertex on top of an old one (the line passed through a vertex) leaves a zero-length edge.
     maybe_degenerate = on_line || (v.x == w.x && v.y == w.y);
   }
