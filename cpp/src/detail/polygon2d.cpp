@@ -56,9 +56,16 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   up_.clear();
   low_.clear();
   steep_.clear();
-  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input).
-  Line left{-1.0, 0.0, -x_lo, kBoxXLow}, right{1.0, 0.0, x_hi, kBoxXHigh};
-  const Line box[2] = {{0.0, -1.0, -y_lo, kBoxYLow}, {0.0, 1.0, y_hi, kBoxYHigh}};
+  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input). The
+  // box's sides are members, not locals: a local copied into the edges is first spilled by scalar stores
+  // and then read back with 16-byte loads, which stalls on store forwarding.
+  const Line* box = side_;
+  side_[0] = {0.0, -1.0, -y_lo, kBoxYLow};
+  side_[1] = {0.0, 1.0, y_hi, kBoxYHigh};
+  Line& left = side_[2];
+  Line& right = side_[3];
+  left = {-1.0, 0.0, -x_lo, kBoxXLow};
+  right = {1.0, 0.0, x_hi, kBoxXHigh};
   auto line_at = [&](int i) -> const Line& {
     const std::size_t u = static_cast<std::size_t>(i);
     return u < n ? lines[u] : box[u - n];

@@ -139,6 +139,7 @@ class Polygon2d {
   std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
   std::vector<int> up_, low_, steep_;
   std::vector<Piece> upper_, lower_;
+  Line side_[4];  // build(): the box's lower and upper sides, then the left and right x-bounds
   int cur_ = 0;
   std::size_t m_ = 0;
   bool empty_ = false;
