@@ -381,9 +381,27 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     Reachability& o = *outs[i];
     const double tol0 = 1e-12 * std::max(1.0, o.k_hi[0]);
     if (theta_begin < o.k_lo[0] - tol0 || theta_begin > o.k_hi[0] + tol0) return false;
-    o.theta = forward_pass(o, std::clamp(theta_begin, o.k_lo[0], o.k_hi[0]), nullptr);
-    o.theta[0] = theta_begin;
   }
+  relaxed.theta = forward_pass(relaxed, std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]), nullptr);
+  relaxed.theta[0] = theta_begin;
+  // The full greedy profile, as forward_pass computes it, but where it reaches interval k at the relaxed
+  // profile's θ_k and the interval's polygon is the relaxed one, θ_{k+1} is the relaxed profile's too (the
+  // same slice of the same polygon): only the stretches after a cut are sliced again.
+  Eigen::VectorXd& theta = full.theta;
+  theta.resize(n + 1);
+  theta[0] = std::clamp(theta_begin, full.k_lo[0], full.k_hi[0]);
+  const double start_relaxed = std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double at_k = k == 0 ? start_relaxed : relaxed.theta[k];
+    if (full.in_base[static_cast<size_t>(k)] && theta[k] == at_k) {
+      theta[k + 1] = relaxed.theta[k + 1];
+      continue;
+    }
+    double lo, hi;
+    slice(full, k, theta[k], lo, hi);
+    theta[k + 1] = hi;
+  }
+  theta[0] = theta_begin;
   return true;
 }
 
