@@ -28,8 +28,8 @@ namespace {
 // Four running sums so that the loop is not one chain of dependent additions (Eigen's allFinite() was
 // the larger part of adding velocity or acceleration limits). With cap, +inf is first mapped to cap
 // (allowed), NaN and -inf stay.
-template <bool kAllowPlusInf>
-bool finite_entries(const ConstraintRows::Matrix& m) {
+template <bool kAllowPlusInf, typename Matrix>
+bool finite_entries(const Matrix& m) {
   const double* p = m.data();
   const Eigen::Index n = m.size();
   const double cap = std::numeric_limits<double>::max();
@@ -107,6 +107,8 @@ TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::
 
 void TimeScalingProblem::init_samples() {
   path_->evaluate(samples_.s, samples_.q, samples_.dq, samples_.ddq);
+  if (finite_entries<false>(samples_.q) && finite_entries<false>(samples_.dq) && finite_entries<false>(samples_.ddq))
+    return;  // the element-wise loop below only names the entry that is not
   for (Eigen::Index k = 0; k < samples_.size(); ++k)
     for (Eigen::Index j = 0; j < samples_.dof(); ++j)
       if (!std::isfinite(samples_.q(k, j)) || !std::isfinite(samples_.dq(k, j)) || !std::isfinite(samples_.ddq(k, j)))
