@@ -24,6 +24,27 @@ namespace pathpace {
 
 namespace {
 
+// x · 0 is 0 for every finite x and NaN for ±inf and NaN, so the sum is 0 exactly when all are finite.
+// Four running sums so that the loop is not one chain of dependent additions (Eigen's allFinite() was
+// the larger part of adding velocity or acceleration limits). With cap, +inf is first mapped to cap
+// (allowed), NaN and -inf stay.
+template <bool kAllowPlusInf, typename Matrix>
+bool finite_entries(const Matrix& m) {
+  const double* p = m.data();
+  const Eigen::Index n = m.size();
+  const double cap = std::numeric_limits<double>::max();
+  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  auto term = [cap](double x) {
+    if (kAllowPlusInf) x = cap < x ? cap : x;
+    return x * 0.0;
+  };
+  Eigen::Index i = 0;
+  for (; i + 3 < n; i += 4)
+    for (int j = 0; j < 4; ++j) s[j] += term(p[i + j]);
+  for (; i < n; ++i) s[0] += term(p[i]);
+  return s[0] + s[1] + s[2] + s[3] == 0.0;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -108,6 +129,8 @@ TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::
 
 void TimeScalingProblem::init_samples() {
   path_->evaluate(samples_.s, samples_.q, samples_.dq, samples_.ddq);
+  if (finite_entries<false>(samples_.q) && finite_entries<false>(samples_.dq) && finite_entries<false>(samples_.ddq))
+    return;  // the element-wise loop below only names the entry that is not
   for (Eigen::Index k = 0; k < samples_.size(); ++k)
     for (Eigen::Index j = 0; j < samples_.dof(); ++j)
       if (!std::isfinite(samples_.q(k, j)) || !std::isfinite(samples_.dq(k, j)) || !std::isfinite(samples_.ddq(k, j)))
@@ -193,10 +216,10 @@ void TimeScalingProblem::check_rows(const Constraint& con, const ConstraintRows&
       rows.b.cols() != r || rows.c.cols() != r || static_cast<Eigen::Index>(rows.labels.size()) != r)
     detail::fail("constraint '" + constraint->name() + "' returned rows of inconsistent shapes");
   // The vectorised check first; the element-wise one (which names the entry) only if it fails.
-  if (!rows.a.allFinite()) detail::require_finite(constraint->name() + " a", rows.a);
-  if (!rows.b.allFinite()) detail::require_finite(constraint->name() + " b", rows.b);
+  if (!finite_entries<false>(rows.a)) detail::require_finite(constraint->name() + " a", rows.a);
+  if (!finite_entries<false>(rows.b)) detail::require_finite(constraint->name() + " b", rows.b);
   // c may be +inf (an inactive row), never NaN or -inf: -c < +inf holds exactly for the allowed values.
-  if (!((-rows.c.array()) < std::numeric_limits<double>::infinity()).all())
+  if (!finite_entries<true>(rows.c))
     for (Eigen::Index k = 0; k < rows.c.rows(); ++k)
       for (Eigen::Index j = 0; j < r; ++j)
         if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
@@ -361,7 +384,12 @@ void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
     else if (auto a = std::dynamic_pointer_cast<const AccelerationLimits>(constraints_[i]); a && a->joint_names().empty())
       named = std::make_shared<AccelerationLimits>(a->amin(), a->amax(), joint_names_);
     if (!named) continue;
-    rows_[i] = timed_evaluate(*named, samples_);
+    // Only the labels change (the rows do not depend on the names): they come from an evaluation at no
+    // grid point, instead of evaluating every point again.
+    PathSamples none;
+    none.q.resize(0, samples_.dof());
+    none.dq = none.ddq = none.q;
+    rows_[i].labels = named->evaluate(none).labels;
     constraints_[i] = std::move(named);
   }
 }

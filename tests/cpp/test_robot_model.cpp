@@ -132,14 +132,21 @@ TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
     RobotWorkspace ws(r);
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> U(-2.0, 2.0);
-    const int count = 7;
+    // The lanes take sin and cos from their own kernel (to 1.5 ulp of libm's): angles in every quadrant
+    // and many turns, multiples of pi/2, and one beyond its range (|q| > 1e5, libm in both lanes).
+    const int count = 41;
     Eigen::MatrixXd q(count, 3), dq(count, 3), ddq(count, 3);
     for (int s = 0; s < count; ++s)
       for (int j = 0; j < 3; ++j) {
-        q(s, j) = U(gen);
+        q(s, j) = U(gen) * (s < 7 ? 1.0 : s < 30 ? 50.0 : 1e4);
         dq(s, j) = U(gen);
         ddq(s, j) = U(gen);
       }
+    for (int j = 0; j < 3; ++j) {
+      q(30, j) = (j - 1) * 1.5707963267948966;
+      q(31, j) = 3.141592653589793 * (j + 1);
+      q(32, j) = 2.5e5;
+    }
     Eigen::MatrixXd A, B, C;
     r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
     ASSERT_EQ(A.rows(), count);

@@ -26,9 +26,10 @@ def two_joint_problem(N=50):
     return prob
 
 
-def test_set_joint_names_keeps_the_time_of_the_rows_it_evaluates_again():
-    """Limits added before the names are evaluated again with them; their rows' time is what
-    stats['time_constraints'] sums. It was left at 0 (the rows replaced by untimed ones)."""
+def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
+    """Limits added before the names get the names' labels (their rows are kept: they do not depend on the
+    names); their rows' time is still what stats['time_constraints'] sums. It was left at 0 when the rows
+    were replaced by untimed ones."""
     prob = two_joint_problem()
     assert prob.solve().stats["time_constraints"] > 0.0
     prob.set_joint_names(["shoulder", "elbow"])

@@ -15,7 +15,13 @@ std::vector<std::string> binding_labels(const Chain& chain, const GridSets& sets
     int best_id = 0;
     bool found = false;
     auto consider = [&](double slack, double scale, int id) {
-      const double rel = slack / std::max(scale, 1e-300);
+      const double sc = std::max(scale, 1e-300);
+      // Most rows have plenty of slack: a row whose slack is beyond twice min(best, tolerance) relative
+      // to its scale (far beyond rounding) can neither win nor be reported, so it is skipped before the
+      // division. The labels are those of dividing every row.
+      const double bound = std::min(best, tolerance);
+      if (bound > 0.0 ? slack > 2.0 * bound * sc : slack > 0.0) return;
+      const double rel = slack / sc;
       if (rel < best) {
         best = rel;
         best_id = id;

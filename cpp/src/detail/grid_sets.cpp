@@ -77,7 +77,12 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       // Normalised to unit norm below, only if it supports the polygon. Coefficients beyond 1e±100 (the
       // products of Cramer's rule overflow at 1e154) are first brought to ~1 by a power of two (exact).
       const double m = std::max(std::abs(a), std::abs(b));
-      lines.push_back(m > 1e-100 && m < 1e100 ? Line{a, b, c, id} : power_of_two_normalised({a, b, c, id}));
+      if (m > 1e-100 && m < 1e100) {
+        append_line(lines, a, b, c, id);
+      } else {
+        const Line l = power_of_two_normalised({a, b, c, id});
+        append_line(lines, l.a, l.b, l.c, l.id);
+      }
     }
     offset += static_cast<int>(cr.rows());
   }
@@ -114,7 +119,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   for (const Line& e : polygon.edges())
     if (e.id >= 0) {
       const double norm = std::sqrt(e.a * e.a + e.b * e.b);
-      out.push_back({e.a / norm, e.b / norm, e.c / norm, e.id});
+      append_line(out, e.a / norm, e.b / norm, e.c / norm, e.id);
     }
   return ps;
 }

@@ -56,9 +56,16 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   up_.clear();
   low_.clear();
   steep_.clear();
-  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input).
-  Line left{-1.0, 0.0, -x_lo, kBoxXLow}, right{1.0, 0.0, x_hi, kBoxXHigh};
-  const Line box[2] = {{0.0, -1.0, -y_lo, kBoxYLow}, {0.0, 1.0, y_hi, kBoxYHigh}};
+  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input). The
+  // box's sides are members, not locals: a local copied into the edges is first spilled by scalar stores
+  // and then read back with 16-byte loads, which stalls on store forwarding.
+  const Line* box = side_;
+  side_[0] = {0.0, -1.0, -y_lo, kBoxYLow};
+  side_[1] = {0.0, 1.0, y_hi, kBoxYHigh};
+  Line& left = side_[2];
+  Line& right = side_[3];
+  left = {-1.0, 0.0, -x_lo, kBoxXLow};
+  right = {1.0, 0.0, x_hi, kBoxXHigh};
   auto line_at = [&](int i) -> const Line& {
     const std::size_t u = static_cast<std::size_t>(i);
     return u < n ? lines[u] : box[u - n];
@@ -140,7 +147,9 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
         }
       }
       const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
-      out.push_back({cur, next_x});
+      out.emplace_back();  // member by member (see append_line)
+      out.back().line = cur;
+      out.back().x_end = next_x;
       if (next < 0) return true;
       cur = next;
       x = next_x;
@@ -292,24 +301,25 @@ bool Polygon2d::clip(const Line& line) {
       continue;
     }
     // Leaves through `line`: the vertex is edge_j ∩ line, then the line's own edge follows.
-    Vertex v;
+    // (Written in place: a Vertex copied out of a temporary stalls on store forwarding, see append_line.)
+    Vertex& v = out_v[out++];
     if (!intersect(edges[j], line, v)) {
       const double t = dist[jp] / (dist[jp] - dist[j]);
-      v = {verts[jp].x + t * (verts[j].x - verts[jp].x), verts[jp].y + t * (verts[j].y - verts[jp].y)};
+      v.x = verts[jp].x + t * (verts[j].x - verts[jp].x);
+      v.y = verts[jp].y + t * (verts[j].y - verts[jp].y);
     }
-    out_v[out++] = v;
     // The line's edge ends where the walk re-enters: line ∩ (first edge whose end is inside).
     std::size_t k = j + 1 == m ? 0 : j + 1;
     while (dist[k] > 0.0) k = k + 1 == m ? 0 : k + 1;
-    Vertex w;
+    inserted = out;
+    out_e[out] = line;
+    Vertex& w = out_v[out++];
     if (!intersect(line, edges[k], w)) {
       const std::size_t kp = k == 0 ? m - 1 : k - 1;
       const double t = dist[kp] / (dist[kp] - dist[k]);
-      w = {verts[kp].x + t * (verts[k].x - verts[kp].x), verts[kp].y + t * (verts[k].y - verts[kp].y)};
+      w.x = verts[kp].x + t * (verts[k].x - verts[kp].x);
+      w.y = verts[kp].y + t * (verts[k].y - verts[kp].y);
     }
-    inserted = out;
-    out_e[out] = line;
-    out_v[out++] = w;
     // A new vertex on top of an old one (the line passed through a vertex) leaves a zero-length edge.
     maybe_degenerate = on_line || (v.x == w.x && v.y == w.y);
   }

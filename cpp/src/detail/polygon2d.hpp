@@ -23,6 +23,18 @@ struct Line {
   int id = -1;  // caller's row id; box sides get negative ids (kBoxXLow, ...)
 };
 
+/// Appends {a, b, c, id}, written member by member into the vector's own storage. A Line built by scalar
+/// stores in a temporary and then copied with 16-byte loads stalls each copy on store forwarding (the
+/// load spans two smaller stores): that was half the time of the per-grid-point loop.
+inline void append_line(std::vector<Line>& v, double a, double b, double c, int id) {
+  v.emplace_back();
+  Line& l = v.back();
+  l.a = a;
+  l.b = b;
+  l.c = c;
+  l.id = id;
+}
+
 /// 2^-floor(log2 m) for a normal m > 0, else 1: a factor that scales by a power of two, so that
 /// multiplying by it is exact (no rounding) and every result computed from the scaled numbers is the
 /// same, scaled.
@@ -127,6 +139,7 @@ class Polygon2d {
   std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
   std::vector<int> up_, low_, steep_;
   std::vector<Piece> upper_, lower_;
+  Line side_[4];  // build(): the box's lower and upper sides, then the left and right x-bounds
   int cur_ = 0;
   std::size_t m_ = 0;
   bool empty_ = false;

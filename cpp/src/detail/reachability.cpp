@@ -42,9 +42,8 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
   ch.row_data.reserve(total);
   std::vector<Line> coupled;
   auto push = [&ch, &coupled](double alpha, double beta, double c, int id) {
-    const Line r{alpha, beta, c, id};
-    if (couples_positively(r)) coupled.push_back(r);
-    else ch.row_data.push_back(r);
+    const double tol = 1e-12 * (std::abs(alpha) + std::abs(beta));  // couples_positively, on the values
+    append_line(alpha > tol && beta > tol ? coupled : ch.row_data, alpha, beta, c, id);
   };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
@@ -79,20 +78,33 @@ double row_violation(const Line& r, double x, double y) {
   return (ax + by - r.c) / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)});
 }
 
+namespace {
+
+// max(worst, row_violation(r, x, y)) for worst >= 0: a row that holds (a x + b y - c <= 0) cannot raise
+// it, so the scale (and its division) is computed only for a violated row.
+inline double worse(double worst, const Line& r, double x, double y) {
+  const double ax = r.a * x, by = r.b * y, d = ax + by - r.c;
+  if (!(d > 0.0)) return worst;
+  return std::max(worst, d / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)}));
+}
+
+}  // namespace
+
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   double worst = 0.0;
   for (Eigen::Index k = 0; k < chain.intervals(); ++k)
-    for (const Line& r : chain.coupled_rows(k)) worst = std::max(worst, row_violation(r, theta[k], theta[k + 1]));
+    for (const Line& r : chain.coupled_rows(k)) worst = worse(worst, r, theta[k], theta[k + 1]);
   return worst;
 }
 
 double chain_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   double worst = 0.0;
   for (Eigen::Index k = 0; k < chain.intervals(); ++k)
-    for (const Line& r : chain.rows(k)) worst = std::max(worst, row_violation(r, theta[k], theta[k + 1]));
-  for (Eigen::Index k = 0; k < theta.size(); ++k)
-    worst = std::max({worst, (theta[k] - chain.x_hi[k]) / std::max(1.0, std::abs(chain.x_hi[k])),
-                      (chain.x_lo[k] - theta[k]) / std::max(1.0, std::abs(chain.x_lo[k]))});
+    for (const Line& r : chain.rows(k)) worst = worse(worst, r, theta[k], theta[k + 1]);
+  for (Eigen::Index k = 0; k < theta.size(); ++k) {
+    if (theta[k] > chain.x_hi[k]) worst = std::max(worst, (theta[k] - chain.x_hi[k]) / std::max(1.0, std::abs(chain.x_hi[k])));
+    if (chain.x_lo[k] > theta[k]) worst = std::max(worst, (chain.x_lo[k] - theta[k]) / std::max(1.0, std::abs(chain.x_lo[k])));
+  }
   return worst;
 }
 
@@ -154,6 +166,16 @@ void clip_rows(Polygon2d& poly, View<Line> rows) {
   for (const Line& r : rows) {
     poly.clip(r);
     if (poly.empty()) return;
+  }
+}
+
+// The polygon's extent in x (argmin_x and argmax_x in one pass).
+void x_range(const Polygon2d& poly, double& lo, double& hi) {
+  const View<Vertex> vs = poly.vertices();
+  lo = hi = vs[0].x;
+  for (size_t j = 1; j < vs.size(); ++j) {
+    lo = std::min(lo, vs[j].x);
+    hi = std::max(hi, vs[j].x);
   }
 }
 
@@ -240,8 +262,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     out.size[static_cast<size_t>(k)] = poly.vertices().size();
     out.vertices.insert(out.vertices.end(), poly.vertices().begin(), poly.vertices().end());
     out.edges.insert(out.edges.end(), poly.edges().begin(), poly.edges().end());
-    out.k_lo[k] = poly.vertices()[static_cast<size_t>(poly.argmin_x())].x;
-    out.k_hi[k] = poly.vertices()[static_cast<size_t>(poly.argmax_x())].x;
+    x_range(poly, out.k_lo[k], out.k_hi[k]);
     // θ_0 is the given start speed, so an unbounded K_0 (e.g. p'(s_0) = 0 with velocity limits only)
     // bounds nothing that is free; elsewhere it means the speed has no limit there.
     if (k > 0 && out.k_hi[k] >= chain.cap * (1 - 1e-9)) {
@@ -324,14 +345,19 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     interval_polygon(pr, chain.x_lo[k], chain.x_hi[k], relaxed.k_lo[k + 1], relaxed.k_hi[k + 1], chain.relaxed_rows(k));
     if (pr.empty()) return false;
     // K_full ⊆ K_relaxed, so the full polygon is the relaxed one cut to θ_{k+1} ∈ K_full,k+1 and by
-    // the coupling rows: one clipping pass serves both analyses.
-    pf.assign(pr);
+    // the coupling rows: one clipping pass serves both analyses. Most intervals have no coupling row and
+    // meet the same K_{k+1}: nothing can cut, and the copy is skipped.
+    const View<Line> coupled = chain.coupled_rows(k);
+    const bool cut_hi = full.k_hi[k + 1] < relaxed.k_hi[k + 1], cut_lo = full.k_lo[k + 1] > relaxed.k_lo[k + 1];
     bool cut = false;
-    if (full.k_hi[k + 1] < relaxed.k_hi[k + 1]) cut |= pf.clip({0.0, 1.0, full.k_hi[k + 1], kBoxYHigh});
-    if (full.k_lo[k + 1] > relaxed.k_lo[k + 1] && !pf.empty()) cut |= pf.clip({0.0, -1.0, -full.k_lo[k + 1], kBoxYLow});
-    for (const Line& r : chain.coupled_rows(k))
-      if (!pf.empty()) cut |= pf.clip(r);
-    if (pf.empty()) return false;
+    if (cut_hi || cut_lo || !coupled.empty()) {
+      pf.assign(pr);
+      if (cut_hi) cut |= pf.clip({0.0, 1.0, full.k_hi[k + 1], kBoxYHigh});
+      if (cut_lo && !pf.empty()) cut |= pf.clip({0.0, -1.0, -full.k_lo[k + 1], kBoxYLow});
+      for (const Line& r : coupled)
+        if (!pf.empty()) cut |= pf.clip(r);
+      if (pf.empty()) return false;
+    }
     // Usually nothing cut: the full analysis reads the relaxed one's copy of the polygon.
     full.in_base[static_cast<size_t>(k)] = !cut;
     const Polygon2d* polys[2] = {&pr, &pf};
@@ -347,8 +373,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
       o.size[static_cast<size_t>(k)] = p.vertices().size();
       o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());
       o.edges.insert(o.edges.end(), p.edges().begin(), p.edges().end());
-      outs[i]->k_lo[k] = p.vertices()[static_cast<size_t>(p.argmin_x())].x;
-      outs[i]->k_hi[k] = p.vertices()[static_cast<size_t>(p.argmax_x())].x;
+      x_range(p, outs[i]->k_lo[k], outs[i]->k_hi[k]);
       if (k > 0 && outs[i]->k_hi[k] >= chain.cap * (1 - 1e-9)) return false;  // K_0: θ_0 is given
     }
   }
@@ -356,9 +381,27 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     Reachability& o = *outs[i];
     const double tol0 = 1e-12 * std::max(1.0, o.k_hi[0]);
     if (theta_begin < o.k_lo[0] - tol0 || theta_begin > o.k_hi[0] + tol0) return false;
-    o.theta = forward_pass(o, std::clamp(theta_begin, o.k_lo[0], o.k_hi[0]), nullptr);
-    o.theta[0] = theta_begin;
   }
+  relaxed.theta = forward_pass(relaxed, std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]), nullptr);
+  relaxed.theta[0] = theta_begin;
+  // The full greedy profile, as forward_pass computes it, but where it reaches interval k at the relaxed
+  // profile's θ_k and the interval's polygon is the relaxed one, θ_{k+1} is the relaxed profile's too (the
+  // same slice of the same polygon): only the stretches after a cut are sliced again.
+  Eigen::VectorXd& theta = full.theta;
+  theta.resize(n + 1);
+  theta[0] = std::clamp(theta_begin, full.k_lo[0], full.k_hi[0]);
+  const double start_relaxed = std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double at_k = k == 0 ? start_relaxed : relaxed.theta[k];
+    if (full.in_base[static_cast<size_t>(k)] && theta[k] == at_k) {
+      theta[k + 1] = relaxed.theta[k + 1];
+      continue;
+    }
+    double lo, hi;
+    slice(full, k, theta[k], lo, hi);
+    theta[k + 1] = hi;
+  }
+  theta[0] = theta_begin;
   return true;
 }
 
