@@ -365,8 +365,6 @@ void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char*
 
 namespace {
 
-// ^iX_λ = X_J(q) X_tree of one body as its rotation E (column-major, 9 values) and the origin r of the
-// joint frame in parent coordinates.
 // The coordinate axis a revolute joint turns about (most URDF joints), else -1.
 int unit_axis(const RobotModel::Body& b) {
   if (b.type != RobotModel::JointType::Revolute) return -1;
@@ -387,6 +385,8 @@ void unit_axis_rotation(const RobotModel::Body& b, int unit, double cq, double s
   }
 }
 
+// ^iX_λ = X_J(q) X_tree of one body as its rotation E (column-major, 9 values) and the origin r of the
+// joint frame in parent coordinates.
 void joint_transform(const RobotModel::Body& b, double q, double* E, double* r) {
   const double* T = b.E_tree.data();
   if (b.type == RobotModel::JointType::Prismatic) {
