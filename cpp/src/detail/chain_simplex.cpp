@@ -86,35 +86,79 @@ bool ChainSimplex::tight(const Row& r) const {
   return slack(r) <= 1e-9 * std::max({1.0, std::abs(r.line->c), std::abs(ax), std::abs(by)});
 }
 
-// Per free column: its bound if at one, else a tight row of interval j - 1 (acting on θ_j), else of interval j.
+// The start basis at the vertex y_: per free point one constraint that holds there, a bound or a tight row of
+// interval j - 1 or j acting on θ_j, each row used once, with the least total slack (a bound that holds only to
+// the tolerance, θ_j 1e-10 below θ'_j say, loses to a row that holds exactly: taking it made every multiplier
+// along a deceleration ramp wrong, one degenerate pivot per point to mend, 64 pivots on a 250-point window and
+// then GLPK). Rows are shared only between neighbours (a row of interval j can serve point j or j + 1), so a
+// dynamic programme over the points whose state is "point j - 1 took row r of interval j - 1" finds it exactly;
+// ties go to bounds, then to earlier rows.
 bool ChainSimplex::start_basis() {
   bounds_.assign(n_, 0);
   std::fill(in_basis_.begin(), in_basis_.end(), 0);
   srows_.clear();
+  struct Option {
+    int code;        // kHi, kLo or a row index
+    bool side1;      // a row of interval j (it then is not available to point j + 1)
+    double cost;     // its relative slack at y_ (plus a tie-break)
+    double total;    // least total cost of points 0..i with this option at point i
+    int prev;        // the option of point i - 1 on that least-cost path (index into the previous point's)
+  };
+  std::vector<std::vector<Option>> opt(n_);
   std::size_t r0 = 0;  // first row of interval j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
     while (r0 < rows_.size() && rows_[r0].k < j - 1) ++r0;
-    const double tol = 1e-9 * std::max(std::abs(hi_[j]), 1e-300);
-    if (y_[j] >= hi_[j] - tol) {
-      bounds_[i] = kHi;
-      continue;
-    }
-    if (y_[j] <= lo_[j] + tol) {
-      bounds_[i] = kLo;
-      continue;
-    }
-    bool found = false;
-    for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j && !found; ++t) {
+    const double scale = std::max(std::abs(hi_[j]), 1e-300);
+    const double hi_gap = std::max(hi_[j] - y_[j], 0.0) / scale, lo_gap = std::max(y_[j] - lo_[j], 0.0) / scale;
+    std::vector<Option>& o = opt[i];
+    if (hi_gap <= 1e-9) o.push_back({kHi, false, hi_gap, 0.0, -1});
+    else if (lo_gap <= 1e-9) o.push_back({kLo, false, lo_gap, 0.0, -1});
+    for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j; ++t) {
       const Row& r = rows_[t];
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
-      if (in_basis_[t] || on_j == 0.0 || !tight(r)) continue;
-      in_basis_[t] = 1;
-      srows_.push_back(static_cast<int>(t));
-      found = true;
+      if (on_j == 0.0 || !tight(r)) continue;
+      const double ax = r.line->a * y_[r.k], by = r.line->b * y_[r.k + 1];
+      const double rel = std::max(slack(r), 0.0) / std::max({1.0, std::abs(r.line->c), std::abs(ax), std::abs(by)});
+      o.push_back({static_cast<int>(t), r.k == j, rel + 1e-15 * static_cast<double>(o.size() + 1), 0.0, -1});
     }
-    if (!found) return false;
+    if (o.empty()) return false;
+    for (Option& x : o) {
+      x.total = std::numeric_limits<double>::infinity();
+      if (i == 0) {
+        x.total = x.cost;
+        continue;
+      }
+      const std::vector<Option>& p = opt[i - 1];
+      for (std::size_t q = 0; q < p.size(); ++q) {
+        if (x.code >= 0 && p[q].code == x.code) continue;  // the row is point i - 1's already
+        if (p[q].total + x.cost < x.total) {
+          x.total = p[q].total + x.cost;
+          x.prev = static_cast<int>(q);
+        }
+      }
+    }
   }
+  int at = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t q = 0; q < opt[n_ - 1].size(); ++q)
+    if (opt[n_ - 1][q].total < best) {
+      best = opt[n_ - 1][q].total;
+      at = static_cast<int>(q);
+    }
+  if (at < 0) return false;
+  for (std::size_t i = n_; i-- > 0;) {
+    const Option& x = opt[i][static_cast<std::size_t>(at)];
+    if (x.code < 0) {
+      bounds_[i] = x.code;
+    } else {
+      in_basis_[static_cast<std::size_t>(x.code)] = 1;
+      srows_.push_back(x.code);
+    }
+    at = x.prev;
+    if (i > 0 && at < 0) return false;
+  }
+  std::sort(srows_.begin(), srows_.end());
   return true;
 }
 

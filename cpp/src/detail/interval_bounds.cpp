@@ -29,7 +29,10 @@ void taylor(const Eigen::MatrixXd& c, Eigen::Index j, double x0, std::vector<dou
 
 void bernstein(const double* c, int d, double h, double* b) {
   // a_j = c_j h^j are the coefficients in t = τ / h on [0, 1]; b_i = Σ_{j<=i} C(i, j) / C(d, j) a_j.
+  // The callers check the degrees (interval_rows: d = D - 1 <= 15; the velocity bounds: d <= 15); checked
+  // again here, which also tells the compiler that a[] is written before it is read.
   double a[16];
+  if (d < 0 || d > 15) fail("bernstein: degree " + std::to_string(d) + " is beyond 15");
   double hp = 1.0;
   for (int j = 0; j <= d; ++j, hp *= h) a[j] = c[j] * hp;
   for (int i = 0; i <= d; ++i) {
