@@ -97,58 +97,55 @@ bool ChainSimplex::start_basis() {
   bounds_.assign(n_, 0);
   std::fill(in_basis_.begin(), in_basis_.end(), 0);
   srows_.clear();
-  struct Option {
-    int code;        // kHi, kLo or a row index
-    bool side1;      // a row of interval j (it then is not available to point j + 1)
-    double cost;     // its relative slack at y_ (plus a tie-break)
-    double total;    // least total cost of points 0..i with this option at point i
-    int prev;        // the option of point i - 1 on that least-cost path (index into the previous point's)
-  };
-  std::vector<std::vector<Option>> opt(n_);
+  // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
+  opt_.clear();
+  opt_begin_.assign(n_ + 1, 0);
   std::size_t r0 = 0;  // first row of interval j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
     while (r0 < rows_.size() && rows_[r0].k < j - 1) ++r0;
     const double scale = std::max(std::abs(hi_[j]), 1e-300);
     const double hi_gap = std::max(hi_[j] - y_[j], 0.0) / scale, lo_gap = std::max(y_[j] - lo_[j], 0.0) / scale;
-    std::vector<Option>& o = opt[i];
-    if (hi_gap <= 1e-9) o.push_back({kHi, false, hi_gap, 0.0, -1});
-    else if (lo_gap <= 1e-9) o.push_back({kLo, false, lo_gap, 0.0, -1});
+    const std::size_t o0 = opt_.size();
+    opt_begin_[i] = o0;
+    if (hi_gap <= 1e-9) opt_.push_back({kHi, hi_gap, 0.0, -1});
+    else if (lo_gap <= 1e-9) opt_.push_back({kLo, lo_gap, 0.0, -1});
     for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j; ++t) {
       const Row& r = rows_[t];
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
       if (on_j == 0.0 || !tight(r)) continue;
       const double ax = r.line->a * y_[r.k], by = r.line->b * y_[r.k + 1];
       const double rel = std::max(slack(r), 0.0) / std::max({1.0, std::abs(r.line->c), std::abs(ax), std::abs(by)});
-      o.push_back({static_cast<int>(t), r.k == j, rel + 1e-15 * static_cast<double>(o.size() + 1), 0.0, -1});
+      opt_.push_back({static_cast<int>(t), rel + 1e-15 * static_cast<double>(opt_.size() - o0 + 1), 0.0, -1});
     }
-    if (o.empty()) return false;
-    for (Option& x : o) {
-      x.total = std::numeric_limits<double>::infinity();
+    if (opt_.size() == o0) return false;
+    for (std::size_t x = o0; x < opt_.size(); ++x) {
+      Option& o = opt_[x];
       if (i == 0) {
-        x.total = x.cost;
+        o.total = o.cost;
         continue;
       }
-      const std::vector<Option>& p = opt[i - 1];
-      for (std::size_t q = 0; q < p.size(); ++q) {
-        if (x.code >= 0 && p[q].code == x.code) continue;  // the row is point i - 1's already
-        if (p[q].total + x.cost < x.total) {
-          x.total = p[q].total + x.cost;
-          x.prev = static_cast<int>(q);
+      o.total = std::numeric_limits<double>::infinity();
+      for (std::size_t q = opt_begin_[i - 1]; q < o0; ++q) {
+        if (o.code >= 0 && opt_[q].code == o.code) continue;  // the row is point i - 1's already
+        if (opt_[q].total + o.cost < o.total) {
+          o.total = opt_[q].total + o.cost;
+          o.prev = static_cast<int>(q);
         }
       }
     }
   }
+  opt_begin_[n_] = opt_.size();
   int at = -1;
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t q = 0; q < opt[n_ - 1].size(); ++q)
-    if (opt[n_ - 1][q].total < best) {
-      best = opt[n_ - 1][q].total;
+  for (std::size_t q = opt_begin_[n_ - 1]; q < opt_.size(); ++q)
+    if (opt_[q].total < best) {
+      best = opt_[q].total;
       at = static_cast<int>(q);
     }
-  if (at < 0) return false;
   for (std::size_t i = n_; i-- > 0;) {
-    const Option& x = opt[i][static_cast<std::size_t>(at)];
+    if (at < 0) return false;
+    const Option& x = opt_[static_cast<std::size_t>(at)];
     if (x.code < 0) {
       bounds_[i] = x.code;
     } else {
@@ -156,7 +153,6 @@ bool ChainSimplex::start_basis() {
       srows_.push_back(x.code);
     }
     at = x.prev;
-    if (i > 0 && at < 0) return false;
   }
   std::sort(srows_.begin(), srows_.end());
   return true;

@@ -57,6 +57,13 @@ class ChainSimplex {
   };
   // Constraint codes: >= 0 a row index; kHi / kLo the upper / lower bound of the column it is matched to.
   static constexpr int kHi = -1, kLo = -2;
+  // start_basis's dynamic programme: a constraint that point i could take.
+  struct Option {
+    int code;      // kHi, kLo or a row index
+    double cost;   // its relative slack at y_ (plus a tie-break: bounds, then earlier rows)
+    double total;  // least total cost of points 0..i with this option at point i
+    int prev;      // the option of point i - 1 on that least-cost path (index into opt_)
+  };
 
   Eigen::Index col(std::size_t i) const { return first_ + static_cast<Eigen::Index>(i); }
   std::size_t local(Eigen::Index j) const { return static_cast<std::size_t>(j - first_); }
@@ -78,6 +85,8 @@ class ChainSimplex {
   std::vector<std::size_t> row_begin_;    // interval k's rows: [row_begin_[k], row_begin_[k + 1])
   std::vector<char> in_basis_, used_;     // per row; used_: per S-row, during match()
   std::vector<int> srows_;                // the rows in S, sorted
+  std::vector<Option> opt_;               // start_basis: the options of every point, point i's from opt_begin_[i]
+  std::vector<std::size_t> opt_begin_;
   std::vector<int> bounds_, match_, old_match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
   std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
   std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
