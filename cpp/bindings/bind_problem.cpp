@@ -446,7 +446,7 @@ void bind_problem(py::module_& m) {
       .def_readonly("relaxation", &Result::relaxation,
                     "For an INFEASIBLE result: dict family -> smallest scale of that family's limits that makes the "
                     "problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see TimeScalingProblem.relaxation)")
-      .def_readonly("binding", &Result::binding,
+      .def_property_readonly("binding", [](const Result& r) { return r.binding.strings(); },
                     "For a timed result: per interval (N entries) the label of the constraint that binds there, "
                     "'' where none does, typically the interval of a switch (to colour a phase-plane plot by the active limit)")
       .def("trajectory", [](const Result& r) { return std::make_shared<Trajectory>(r.trajectory()); })
@@ -457,7 +457,7 @@ void bind_problem(py::module_& m) {
                             py::make_tuple(r.infeasibility.grid_index, r.infeasibility.s, r.infeasibility.constraints),
                             stats_state(r.stats),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
-                            std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding,
+                            std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding.strings(),
                             phases_list(r.contact_phases));
                       },
                       [](const py::tuple& t) {
@@ -479,7 +479,7 @@ void bind_problem(py::module_& m) {
                         r.robot = optional_ptr<RobotModel>(t[10]);
                         r.contacts = optional_ptr<ContactConstraint>(t[11]);
                         r.relaxation = t[12].cast<std::map<std::string, double>>();
-                        r.binding = t[13].cast<std::vector<std::string>>();
+                        r.binding = BindingLabels(t[13].cast<std::vector<std::string>>());
                         r.contact_phases = phases_vector(t[14]);
                         return r;
                       }))

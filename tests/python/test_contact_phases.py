@@ -81,7 +81,9 @@ def test_contact_forces_use_the_phase_at_each_time_the_later_one_at_a_switch(pus
     # Pickled, the trajectory keeps its phases.
     again = pickle.loads(pickle.dumps(traj))
     assert list(again.contact_forces(t).phase) == [0, 1, 1]
-    assert pickle.loads(pickle.dumps(res)).trajectory().contact_phases[1].active_begin == 1.0
+    back = pickle.loads(pickle.dumps(res))
+    assert back.trajectory().contact_phases[1].active_begin == 1.0
+    assert back.binding == res.binding and len(res.binding) == len(res.s) - 1
     # plot.contacts_data lays the forces out over every contact of every phase (NaN where it does not hold).
     from pathpace.plot import contacts_data
 

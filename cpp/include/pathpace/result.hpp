@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "pathpace/binding_labels.hpp"
 #include "pathpace/path.hpp"
 
 namespace pathpace {
@@ -81,7 +82,7 @@ class Result {
   /// For a timed result: per interval k (N entries), the label of the constraint that binds on it
   /// (the row with the least relative slack at the solution, if below 1e-6), "" if none does: typically
   /// the interval of a bang-bang switch, whose end speeds are set by its neighbours' limits.
-  std::vector<std::string> binding;
+  BindingLabels binding;
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any

@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <utility>
 
 namespace pathpace::detail {
 
-std::vector<std::string> binding_labels(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta,
-                                        double tolerance) {
+BindingLabels binding_labels(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, double tolerance) {
   const Eigen::Index n = chain.intervals();
-  std::vector<std::string> out(static_cast<size_t>(n));
+  std::vector<int> out(static_cast<size_t>(n), -1);
+  // The row labels, shared by the intervals (plus the names of ids outside them, e.g. the box's sides).
+  auto names = std::make_shared<std::vector<std::string>>(sets.labels);
+  const int rows = static_cast<int>(sets.labels.size());
+  std::vector<std::pair<int, int>> extra;  // (id, index into names)
   for (Eigen::Index k = 0; k < n; ++k) {
     double best = std::numeric_limits<double>::infinity();
     int best_id = 0;
@@ -38,9 +43,19 @@ std::vector<std::string> binding_labels(const Chain& chain, const GridSets& sets
       const int id = chain.x_hi_id[static_cast<size_t>(j)];
       if (id >= 0 && j > 0 && j < n) consider(chain.x_hi[j] - theta[j], std::abs(chain.x_hi[j]), id);
     }
-    if (found && best <= tolerance) out[static_cast<size_t>(k)] = sets.label(best_id);
+    if (!(found && best <= tolerance)) continue;
+    int index = best_id;
+    if (best_id < 0 || best_id >= rows) {
+      auto it = std::find_if(extra.begin(), extra.end(), [best_id](const auto& e) { return e.first == best_id; });
+      if (it == extra.end()) {
+        names->push_back(sets.label(best_id));
+        it = extra.insert(extra.end(), {best_id, static_cast<int>(names->size()) - 1});
+      }
+      index = it->second;
+    }
+    out[static_cast<size_t>(k)] = index;
   }
-  return out;
+  return BindingLabels(std::move(out), std::move(names));
 }
 
 }  // namespace pathpace::detail
