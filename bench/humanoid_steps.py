@@ -29,6 +29,11 @@ sys.path.insert(0, str(ROOT / "examples"))
 import humanoid_steps as hs  # noqa: E402
 
 
+def off(r):
+    """The held contact points' largest distance from the plan, mm."""
+    return 1e3 * max(r["held_xy"], r["held_z"])
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--grid", type=int, default=100)
@@ -54,7 +59,6 @@ def main(argv=None):
                     continue
                 trajs = [("margins", res["margins"].trajectory()), ("bare", res["bare"].trajectory())]
                 audit = hs.audit(trajs[0][1], robot, 10 * args.grid + 1, cone_edges=16)
-                off = lambda r: 1e3 * max(r["held_xy"], r["held_z"])  # noqa: E731
                 sim_cols = "- | -"
                 m = b = None
                 if rise == 0.0:
@@ -66,8 +70,14 @@ def main(argv=None):
                 print(f"| {100 * step:g} | {100 * lift:g} | {100 * rise:g} | {trajs[0][1].duration:.3f} | "
                       f"{trajs[1][1].duration:.3f} | {audit['worst']:.3f} | {sim_cols} | {time.perf_counter() - wall:.1f} |",
                       flush=True)
+    if not rows:
+        print("\nno path timed with and without margins")
+        return
     a = np.array([[r[0], r[1], r[2]] for r in rows])
     simmed = [r for r in rows if r[3] is not None]
+    if not simmed:
+        print(f"\n{len(rows)} paths timed, none simulated")
+        return
     offs = np.array([off(r[3]) for r in simmed])
     print(f"\n{len(rows)} paths timed, worst true-cone margin at 1001 times: median {np.median(a[:, 2]):.3f} N, "
           f"worst {a[:, 2].min():.3f} N; T cost of the margins: median {100 * np.median(a[:, 0] / a[:, 1] - 1):.1f} %, "

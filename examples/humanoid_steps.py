@@ -121,8 +121,7 @@ def simulate(robot: pp.RobotModel, path: pp.Path, timings: list[tuple[str, pp.Tr
     LP of the timing's own phases). Reported: whether it fell, the largest tilt, and how far the contact
     points that a phase holds are from where the plan puts them: |horizontal displacement - planned| (a lower
     bound of the horizontal error, as pathpace.sim records distances) and |vertical - planned|."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    import humanoid_sim  # noqa: E402  (MuJoCo; imported only here)
+    import humanoid_sim  # noqa: E402  (MuJoCo; imported only here; examples/ is on sys.path, see the top)
 
     contacts = phases()[0][2]  # both soles: the simulator's spheres
     key = [(c.link, tuple(c.point)) for c in contacts]
@@ -195,7 +194,7 @@ def main(argv: list[str] | None = None) -> dict:
         res_bare = bare.solve()
         timings = [("contact phases, margins", traj), ("contact phases, no margins", res_bare.trajectory())]
         for factor in (1.0, 2.0):
-            uniform = talos_sway.uniform_timing(path, 100, factor * res.duration)
+            uniform = talos_sway.uniform_timing(path, args.grid, factor * res.duration)
             timings.append((f"uniform, {factor:.0f} x T(margins)", uniform))
         print("MuJoCo (pathpace.sim):")
         sim_rows = simulate(robot, path, timings)

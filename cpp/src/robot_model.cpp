@@ -398,11 +398,10 @@ void joint_transform(const RobotModel::Body& b, double q, double* E, double* r) 
   }
   // E = E_J E_tree with E_J = Rot(axis, q)^T; r = r_tree.
   std::copy(b.r_tree.data(), b.r_tree.data() + 3, r);
-  const Eigen::Vector3d& ax = b.axis;
-  const int unit = ax.x() == 1.0 ? 0 : ax.y() == 1.0 ? 1 : ax.z() == 1.0 ? 2 : -1;
+  const int unit = unit_axis(b);  // revolute here (prismatic returned above)
   if (unit < 0) {
     Eigen::Map<Eigen::Matrix3d> rotation(E);
-    rotation.noalias() = Eigen::AngleAxisd(-q, ax).toRotationMatrix() * b.E_tree;
+    rotation.noalias() = Eigen::AngleAxisd(-q, b.axis).toRotationMatrix() * b.E_tree;
     return;
   }
   unit_axis_rotation(b, unit, std::cos(q), std::sin(q), E);

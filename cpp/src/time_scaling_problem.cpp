@@ -208,22 +208,21 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   }
 }
 
-void TimeScalingProblem::check_rows(const Constraint& con, const ConstraintRows& rows, Eigen::Index points) {
-  const Constraint* constraint = &con;
+void TimeScalingProblem::check_rows(const Constraint& constraint, const ConstraintRows& rows, Eigen::Index points) {
   // A constraint of ours is trusted, but a user's own Constraint subclass may hand back anything.
   const Eigen::Index r = rows.rows();
   if (rows.a.rows() != points || rows.b.rows() != points || rows.c.rows() != points ||
       rows.b.cols() != r || rows.c.cols() != r || static_cast<Eigen::Index>(rows.labels.size()) != r)
-    detail::fail("constraint '" + constraint->name() + "' returned rows of inconsistent shapes");
+    detail::fail("constraint '" + constraint.name() + "' returned rows of inconsistent shapes");
   // The vectorised check first; the element-wise one (which names the entry) only if it fails.
-  if (!finite_entries<false>(rows.a)) detail::require_finite(constraint->name() + " a", rows.a);
-  if (!finite_entries<false>(rows.b)) detail::require_finite(constraint->name() + " b", rows.b);
+  if (!finite_entries<false>(rows.a)) detail::require_finite(constraint.name() + " a", rows.a);
+  if (!finite_entries<false>(rows.b)) detail::require_finite(constraint.name() + " b", rows.b);
   // c may be +inf (an inactive row), never NaN or -inf: -c < +inf holds exactly for the allowed values.
   if (!finite_entries<true>(rows.c))
     for (Eigen::Index k = 0; k < rows.c.rows(); ++k)
       for (Eigen::Index j = 0; j < r; ++j)
         if (std::isnan(rows.c(k, j)) || rows.c(k, j) == -std::numeric_limits<double>::infinity())
-          detail::fail(constraint->name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
+          detail::fail(constraint.name() + " c" + "[" + std::to_string(k) + ", " + std::to_string(j) +
                        "] = " + detail::fmt(rows.c(k, j)) + " must be a number or +inf");
 }
 
@@ -300,7 +299,12 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     path_->evaluate(samples.s, samples.q, samples.dq, samples.ddq);
     if (!samples.q.allFinite() || !samples.dq.allFinite() || !samples.ddq.allFinite())
       detail::fail("path is not finite at an inserted switch point");
-    for (size_t c = 0; c < constraints_.size(); ++c) rows[c] = timed_evaluate(*constraints_[c], samples);
+    // Every constraint again on the new grid, checked as add_constraint checks it (a user's own Constraint
+    // may hand back anything there).
+    for (size_t c = 0; c < constraints_.size(); ++c) {
+      rows[c] = timed_evaluate(*constraints_[c], samples);
+      check_rows(*constraints_[c], rows[c], samples.size());
+    }
   }
   // TorqueLimits of this robot join every phase (as add_constraint merges them into one contact constraint).
   std::vector<size_t> replaced;
@@ -324,7 +328,6 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     Eigen::MatrixXd normal, speed, unused;
     probe[i]->point_velocities(samples, unused, speed);
     probe[i]->point_velocities(before_switch, normal, unused);
-    const Eigen::Index k = 0;
     const std::vector<Contact>& now = probe[i]->contacts();
     const std::vector<Contact>& before = probe[i - 1]->contacts();
     for (size_t c = 0; c < now.size(); ++c) {
@@ -333,7 +336,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
       });
       if (kept) continue;
       const Eigen::Index j = static_cast<Eigen::Index>(c);
-      const double vn = normal(k, j), scale = speed.col(j).maxCoeff();
+      const double vn = normal(0, j), scale = speed.col(j).maxCoeff();
       if (!(std::abs(vn) > impact_tolerance * scale) || scale == 0.0) continue;
       std::ostringstream os;
       os.precision(4);
@@ -708,11 +711,6 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
                                 " (relative, certified)"
                           : "the timing returned is NOT feasible: it breaks a constraint by " + detail::fmt(violation) +
                                 " (relative); T exceeds the optimum by at most " + detail::fmt(res.stats.gap);
-    if (violation > 1e-9 && out.status == detail::SlpOutcome::Status::Converged && res.stats.gap <= options.tolerance) {
-      res.status = Status::NumericalError;
-      res.message = "SLP converged, but its repaired timing breaks a constraint by " + detail::fmt(violation) +
-                    " (relative)";
-    }
     switch (out.status) {
       case detail::SlpOutcome::Status::Converged:
         if (res.stats.gap > options.tolerance) {
@@ -733,6 +731,13 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
         res.status = Status::NumericalError;
         res.message = "GLPK failed in SLP; the timing returned is the last feasible one, " + bound;
         break;
+    }
+    if (violation > 1e-9) {
+      // Whatever ended the SLP, a timing that breaks a row is not a result to execute (ok() is false).
+      if (res.status == Status::Optimal)
+        res.message = "SLP converged, but its repaired timing breaks a constraint by " + detail::fmt(violation) +
+                      " (relative)";
+      res.status = Status::NumericalError;
     }
   }
   res.binding = detail::binding_labels(chain, sets, theta);

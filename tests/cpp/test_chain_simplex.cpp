@@ -1,8 +1,8 @@
 // detail::ChainSimplex (the SLP window's LP by a primal simplex on the chain) against GLPK on random chains.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
-#include <limits>
 #include <random>
 #include <vector>
 

@@ -2,6 +2,8 @@
 // (closed-form discrete optimum), the no-impact rule, grid insertion and validation messages.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -104,6 +106,31 @@ TEST(ContactPhases, ASwitchOffTheGridIsInserted) {
   EXPECT_EQ(snapped.intervals(), 20);
   EXPECT_EQ(std::dynamic_pointer_cast<const ContactConstraint>(snapped.constraints()[1])->options().active_begin,
             snapped.grid()[10]);
+}
+
+// A user's own constraint whose rows are not finite at s = 1 only (a point the grid of 7 intervals lacks).
+class BadAtOne : public Constraint {
+ public:
+  std::string name() const override { return "bad at one"; }
+  ConstraintRows evaluate(const PathSamples& samples) const override {
+    ConstraintRows r;
+    r.resize(samples.size(), 1);
+    r.labels = {"bad at one"};
+    for (Eigen::Index k = 0; k < samples.size(); ++k) {
+      r.a(k, 0) = samples.s[k] == 1.0 ? std::numeric_limits<double>::quiet_NaN() : 1.0;
+      r.c(k, 0) = 100.0;
+    }
+    return r;
+  }
+};
+
+// The constraints evaluated again at an inserted switch are checked as add_constraint checks them.
+TEST(ContactPhases, ConstraintsEvaluatedAtAnInsertedSwitchAreChecked) {
+  auto robot = load("hand_box.urdf");
+  TimeScalingProblem prob(together(), 7);
+  prob.add_constraint(std::make_shared<BadAtOne>());  // finite on the grid of 7 intervals
+  const std::string msg = error_of([&] { prob.add_contact_phases(robot, push_then_brake()); });
+  EXPECT_NE(msg.find("bad at one"), std::string::npos) << msg;
 }
 
 TEST(ContactPhases, TorqueLimitsJoinEveryPhaseAddedBeforeOrAfter) {

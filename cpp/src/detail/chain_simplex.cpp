@@ -28,12 +28,11 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
     if (!has_basis_) return inf;
   }
   has_basis_ = false;  // until this call ends at an optimal basis
-  lambda_.assign(n_, 0.0);
+  lambda_.resize(n_);  // every entry written by the first duals() (the whole range)
   double gmax = 0.0;
   for (std::size_t i = 0; i < n_; ++i) gmax = std::max(gmax, std::abs(g[col(i)]));
-  pivots_ = 0;
   std::size_t cl = 0, cr = n_ - 1;  // the columns whose multipliers must be solved again
-  for (int pivot = 0;; ++pivot) {
+  for (pivots_ = 0;; ++pivots_) {
     if (!duals(g, cl, cr)) return inf;
     // Bland's rule: the first column whose constraint has a negative multiplier leaves (no cycling; Dantzig's
     // most negative multiplier took more pivots on the arm corpus).
@@ -47,8 +46,7 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
       has_basis_ = true;
       break;
     }
-    if (pivot == max_pivots || !step(p, cl, cr)) return inf;
-    ++pivots_;
+    if (pivots_ == max_pivots || !step(p, cl, cr)) return inf;
   }
   // The bound at the start θ, with the row multipliers of the final basis.
   double out = 0.0;
@@ -81,11 +79,6 @@ double ChainSimplex::coef(std::size_t owner, std::size_t i) const {
   return j == r.k ? r.line->a : j == r.k + 1 ? r.line->b : 0.0;
 }
 
-bool ChainSimplex::tight(const Row& r) const {
-  const double ax = r.line->a * y_[r.k], by = r.line->b * y_[r.k + 1];
-  return slack(r) <= 1e-9 * std::max({1.0, std::abs(r.line->c), std::abs(ax), std::abs(by)});
-}
-
 // The start basis at the vertex y_: per free point one constraint that holds there, a bound or a tight row of
 // interval j - 1 or j acting on θ_j, each row used once, with the least total slack (a bound that holds only to
 // the tolerance, θ_j 1e-10 below θ'_j say, loses to a row that holds exactly: taking it made every multiplier
@@ -99,7 +92,7 @@ bool ChainSimplex::start_basis() {
   srows_.clear();
   // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
   opt_.clear();
-  opt_begin_.assign(n_ + 1, 0);
+  opt_begin_.assign(n_, 0);
   std::size_t r0 = 0;  // first row of interval j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
@@ -113,9 +106,11 @@ bool ChainSimplex::start_basis() {
     for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j; ++t) {
       const Row& r = rows_[t];
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
-      if (on_j == 0.0 || !tight(r)) continue;
-      const double ax = r.line->a * y_[r.k], by = r.line->b * y_[r.k + 1];
-      const double rel = std::max(slack(r), 0.0) / std::max({1.0, std::abs(r.line->c), std::abs(ax), std::abs(by)});
+      if (on_j == 0.0) continue;
+      // Tight: a relative slack (reachability's row_violation, negated) of at most 1e-9.
+      const double v = row_violation(*r.line, y_[r.k], y_[r.k + 1]);
+      if (v < -1e-9) continue;
+      const double rel = std::max(-v, 0.0);
       opt_.push_back({static_cast<int>(t), rel + 1e-15 * static_cast<double>(opt_.size() - o0 + 1), 0.0, -1});
     }
     if (opt_.size() == o0) return false;
@@ -135,7 +130,6 @@ bool ChainSimplex::start_basis() {
       }
     }
   }
-  opt_begin_[n_] = opt_.size();
   int at = -1;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t q = opt_begin_[n_ - 1]; q < opt_.size(); ++q)
@@ -280,7 +274,7 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
     if (dir_[i] > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / dir_[i], kHi, i);
     if (dir_[i] < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -dir_[i], kLo, i);
   }
-  if (enter == -3 || !std::isfinite(t_best)) return false;
+  if (!std::isfinite(t_best)) return false;  // no constraint blocks: an unbounded ray
   for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * dir_[i];
   // S := S - {p} + {enter}.
   if (match_[p] >= 0) {
@@ -303,7 +297,7 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   cl = n_;
   cr = 0;
   for (std::size_t i = 0; i < n_; ++i)
-    if (match_[i] != old_match_[i] || (match_[i] < 0 && i == p)) {
+    if (match_[i] != old_match_[i]) {
       cl = std::min(cl, i);
       cr = std::max(cr, i);
     }

@@ -70,7 +70,6 @@ class ChainSimplex {
   bool free_col(Eigen::Index j) const { return j >= first_ && j <= last_; }
   double coef(std::size_t owner, std::size_t i) const;
   double slack(const Row& r) const { return r.line->c - r.line->a * y_[r.k] - r.line->b * y_[r.k + 1]; }
-  bool tight(const Row& r) const;
   bool start_basis();
   bool match();
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;

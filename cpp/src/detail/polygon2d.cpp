@@ -370,20 +370,13 @@ void Polygon2d::erase(std::size_t j) {
   --m_;
 }
 
-int Polygon2d::argmax_x() const {
+void Polygon2d::x_range(double& lo, double& hi) const {
   const Vertex* v = vertices_[cur_].data();
-  int best = 0;
-  for (std::size_t j = 1; j < m_; ++j)
-    if (v[j].x > v[best].x) best = static_cast<int>(j);
-  return best;
-}
-
-int Polygon2d::argmin_x() const {
-  const Vertex* v = vertices_[cur_].data();
-  int best = 0;
-  for (std::size_t j = 1; j < m_; ++j)
-    if (v[j].x < v[best].x) best = static_cast<int>(j);
-  return best;
+  lo = hi = v[0].x;
+  for (std::size_t j = 1; j < m_; ++j) {
+    lo = std::min(lo, v[j].x);
+    hi = std::max(hi, v[j].x);
+  }
 }
 
 }  // namespace pathpace::detail

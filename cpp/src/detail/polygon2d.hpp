@@ -115,9 +115,8 @@ class Polygon2d {
   /// vertices()[j] is the end of edges()[j] (= edges()[j] ∩ edges()[j+1]), counter-clockwise.
   View<Vertex> vertices() const { return {vertices_[cur_].data(), m_}; }
 
-  /// Index of the vertex with the largest / smallest x.
-  int argmax_x() const;
-  int argmin_x() const;
+  /// The polygon's extent in x: the smallest and largest x of its vertices (one pass).
+  void x_range(double& lo, double& hi) const;
 
   /// After empty(): the line that emptied the polygon and the two edges meeting at the vertex that
   /// violated it least. Those three half-planes alone are infeasible (a 2-D Helly certificate).

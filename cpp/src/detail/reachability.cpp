@@ -42,8 +42,7 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
   ch.row_data.reserve(total);
   std::vector<Line> coupled;
   auto push = [&ch, &coupled](double alpha, double beta, double c, int id) {
-    const double tol = 1e-12 * (std::abs(alpha) + std::abs(beta));  // couples_positively, on the values
-    append_line(alpha > tol && beta > tol ? coupled : ch.row_data, alpha, beta, c, id);
+    append_line(couples_positively(alpha, beta) ? coupled : ch.row_data, alpha, beta, c, id);
   };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
@@ -68,9 +67,9 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
   return ch;
 }
 
-bool couples_positively(const Line& r) {
-  const double tol = 1e-12 * (std::abs(r.a) + std::abs(r.b));
-  return r.a > tol && r.b > tol;
+bool couples_positively(double alpha, double beta) {
+  const double tol = 1e-12 * (std::abs(alpha) + std::abs(beta));
+  return alpha > tol && beta > tol;
 }
 
 double row_violation(const Line& r, double x, double y) {
@@ -169,16 +168,6 @@ void clip_rows(Polygon2d& poly, View<Line> rows) {
   }
 }
 
-// The polygon's extent in x (argmin_x and argmax_x in one pass).
-void x_range(const Polygon2d& poly, double& lo, double& hi) {
-  const View<Vertex> vs = poly.vertices();
-  lo = hi = vs[0].x;
-  for (size_t j = 1; j < vs.size(); ++j) {
-    lo = std::min(lo, vs[j].x);
-    hi = std::max(hi, vs[j].x);
-  }
-}
-
 void push_unique(std::vector<int>& v, int id) {
   if (id >= 0 && std::find(v.begin(), v.end(), id) == v.end()) v.push_back(id);
 }
@@ -262,7 +251,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
     out.size[static_cast<size_t>(k)] = poly.vertices().size();
     out.vertices.insert(out.vertices.end(), poly.vertices().begin(), poly.vertices().end());
     out.edges.insert(out.edges.end(), poly.edges().begin(), poly.edges().end());
-    x_range(poly, out.k_lo[k], out.k_hi[k]);
+    poly.x_range(out.k_lo[k], out.k_hi[k]);
     // θ_0 is the given start speed, so an unbounded K_0 (e.g. p'(s_0) = 0 with velocity limits only)
     // bounds nothing that is free; elsewhere it means the speed has no limit there.
     if (k > 0 && out.k_hi[k] >= chain.cap * (1 - 1e-9)) {
@@ -373,7 +362,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
       o.size[static_cast<size_t>(k)] = p.vertices().size();
       o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());
       o.edges.insert(o.edges.end(), p.edges().begin(), p.edges().end());
-      x_range(p, outs[i]->k_lo[k], outs[i]->k_hi[k]);
+      p.x_range(outs[i]->k_lo[k], outs[i]->k_hi[k]);
       if (k > 0 && outs[i]->k_hi[k] >= chain.cap * (1 - 1e-9)) return false;  // K_0: θ_0 is given
     }
   }

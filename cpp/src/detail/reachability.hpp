@@ -56,7 +56,8 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
                   const Scale& scale = {});
 
 /// True for a row with α > 0 and β > 0 (beyond rounding): the only kind that breaks max-closure.
-bool couples_positively(const Line& r);
+bool couples_positively(double alpha, double beta);
+inline bool couples_positively(const Line& r) { return couples_positively(r.a, r.b); }
 
 
 /// Violation of α x + β y <= c at (x, y), relative to max(1, |c|, |α x|, |β y|) (<= 0 when it holds).

@@ -129,21 +129,24 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   const double theta_max = std::max(theta.maxCoeff(), 1e-300);
   const double floor = 1e-24 * theta_max * theta_max + 1e-300;
   Eigen::VectorXd g, d(m + 1), tmp, gtmp;
-  gradient(ds, theta, floor, g);
   if (Clock::now() >= deadline) {
     out.status = SlpOutcome::Status::TimeLimit;
     return out;
   }
-  // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start.
-  const double T_hi = duration(ds, hi);
-  const bool far_start =
-      (std::isfinite(T_hi) && out.T - T_hi > kBarrierFirstBracket * out.T) || cols >= kBarrierFirstColumns;
+  // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start
+  // (read only to choose the barrier).
+  bool far_start = false;
+  if (use_barrier) {
+    const double T_hi = duration(ds, hi);
+    far_start = (std::isfinite(T_hi) && out.T - T_hi > kBarrierFirstBracket * out.T) || cols >= kBarrierFirstColumns;
+  }
   if (!(use_barrier && far_start)) {
     // The first LP below is the Frank-Wolfe check at the start, and usually all that the window needs (with the
     // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex). While the
     // steps go all the way to the LP's vertex (the optimum of a time-optimal problem is usually a vertex), the
     // next check starts from that vertex's basis; a shorter step (an interior optimum) is left to the SLP below.
     ChainSimplex cs(chain, a, m, lo, hi, first, last);
+    gradient(ds, theta, floor, g);
     bool warm = false;
     for (int fw = 0; fw < kChainFrankWolfe; ++fw) {
       const double gap = cs.gap(theta, g, kChainPivots, warm);

@@ -1,5 +1,5 @@
 #pragma once
-// A general tridiagonal solve (the dual system of a basis of the chain LP, see slp.cpp's vertex_gap).
+// A general tridiagonal solve (the bases of the chain LP, see ChainSimplex in chain_simplex.hpp).
 
 #include <vector>
 
