@@ -68,6 +68,7 @@ bool avoid_stopped_profile(const detail::Chain& chain, detail::Reachability& rea
   Eigen::VectorXd start = detail::unstopped_profile(reach, th0);
   if (detail::has_stopped_interval(start)) return false;
   theta = reach.theta = std::move(start);
+  reach.theta_is_greedy = false;
   return true;
 }
 

@@ -28,10 +28,16 @@ void Polygon2d::reset(double x_lo, double x_hi, double y_lo, double y_hi) {
   v[1] = {x_hi, y_hi};
   v[2] = {x_lo, y_hi};
   v[3] = {x_lo, y_lo};
+  range_known_ = true;
+  x_min_ = x_lo;
+  x_max_ = x_hi;
 }
 
 void Polygon2d::assign(const Polygon2d& other) {
   empty_ = other.empty_;
+  range_known_ = other.range_known_;
+  x_min_ = other.x_min_;
+  x_max_ = other.x_max_;
   emptied_by_ = other.emptied_by_;
   certificate_[0] = other.certificate_[0];
   certificate_[1] = other.certificate_[1];
@@ -51,8 +57,24 @@ void Polygon2d::assign(const Polygon2d& other) {
             vertices_[0].begin());
 }
 
+void Polygon2d::assign(const Vertex* vertices, const Line* edges, std::size_t m) {
+  empty_ = false;
+  range_known_ = false;
+  m_ = m;
+  cur_ = 0;
+  for (int b = 0; b < 2; ++b)
+    if (edges_[b].size() < m + 2 || edges_[b].size() < 16) {
+      edges_[b].resize(std::max<std::size_t>(2 * m + 2, 16));
+      vertices_[b].resize(std::max<std::size_t>(2 * m + 2, 16));
+    }
+  if (dist_.size() < m) dist_.resize(2 * m);
+  std::copy(edges, edges + m, edges_[0].begin());
+  std::copy(vertices, vertices + m, vertices_[0].begin());
+}
+
 bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n) {
   empty_ = false;
+  range_known_ = false;
   up_.clear();
   low_.clear();
   steep_.clear();
@@ -230,8 +252,16 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   Vertex* v = vertices_[nxt].data();
   for (std::size_t j = 0; j < cnt; ++j)
     if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
+  double lo = v[0].x, hi = v[0].x;  // as x_range() computes it, while the vertices are in registers' reach
+  for (std::size_t j = 1; j < cnt; ++j) {
+    lo = std::min(lo, v[j].x);
+    hi = std::max(hi, v[j].x);
+  }
   cur_ = nxt;
   m_ = cnt;
+  range_known_ = true;
+  x_min_ = lo;
+  x_max_ = hi;
   for (const int i : steep_) {
     clip(line_at(i));
     if (empty_) return false;  // left to clipping line by line, which gives the certificate
@@ -270,6 +300,7 @@ bool Polygon2d::clip(const Line& line) {
     n_in += in;
   }
   if (n_in == m) return false;
+  range_known_ = false;
   if (n_in == 0) {
     std::size_t lv = 0;
     for (std::size_t j = 1; j < m; ++j)
@@ -371,6 +402,11 @@ void Polygon2d::erase(std::size_t j) {
 }
 
 void Polygon2d::x_range(double& lo, double& hi) const {
+  if (range_known_) {
+    lo = x_min_;
+    hi = x_max_;
+    return;
+  }
   const Vertex* v = vertices_[cur_].data();
   lo = hi = v[0].x;
   for (std::size_t j = 1; j < m_; ++j) {

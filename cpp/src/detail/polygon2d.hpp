@@ -104,6 +104,8 @@ class Polygon2d {
 
   /// Becomes a copy of `other` (no allocation once warm).
   void assign(const Polygon2d& other);
+  /// Becomes the polygon of a stored copy of vertices() and edges() (m of each, m >= 3).
+  void assign(const Vertex* vertices, const Line* edges, std::size_t m);
 
   /// Intersects with a·x + b·y <= c. Returns true if the line now supports an edge of the polygon
   /// (it cut something off), false if it was redundant. After an intersection that empties the polygon,
@@ -115,7 +117,8 @@ class Polygon2d {
   /// vertices()[j] is the end of edges()[j] (= edges()[j] ∩ edges()[j+1]), counter-clockwise.
   View<Vertex> vertices() const { return {vertices_[cur_].data(), m_}; }
 
-  /// The polygon's extent in x: the smallest and largest x of its vertices (one pass).
+  /// The polygon's extent in x: the smallest and largest x of its vertices (kept by build() and reset(),
+  /// which compute every vertex anyway; one pass over the vertices after a clip()).
   void x_range(double& lo, double& hi) const;
 
   /// After empty(): the line that emptied the polygon and the two edges meeting at the vertex that
@@ -141,6 +144,8 @@ class Polygon2d {
   Line side_[4];  // build(): the box's lower and upper sides, then the left and right x-bounds
   int cur_ = 0;
   std::size_t m_ = 0;
+  bool range_known_ = false;  // x_min_, x_max_ are those of the current vertices
+  double x_min_ = 0.0, x_max_ = 0.0;
   bool empty_ = false;
   Line emptied_by_;
   Line certificate_[2];

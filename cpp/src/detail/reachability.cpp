@@ -111,12 +111,8 @@ namespace {
 
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through
 // v[i - 1] and v[i].
-void slice(const Vertex* v, const Line* e, size_t m, double x, double& y_lo, double& y_hi) {
-  double x_min = v[0].x, x_max = v[0].x;
-  for (size_t i = 1; i < m; ++i) {
-    x_min = std::min(x_min, v[i].x);
-    x_max = std::max(x_max, v[i].x);
-  }
+// [x_min, x_max] is the polygon's x-range (its vertices' extremes, as Polygon2d::x_range gives them).
+void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max, double x, double& y_lo, double& y_hi) {
   x = std::clamp(x, x_min, x_max);
   // An edge whose ends differ in x by rounding only is vertical: at such x the whole edge is the slice.
   // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.) Rounding is relative to
@@ -158,7 +154,8 @@ void slice(const Reachability& reach, Eigen::Index k, double x, double& y_lo, do
   const size_t i = static_cast<size_t>(k);
   const Reachability& src = reach.base && reach.in_base[i] ? *reach.base : reach;
   const size_t o = src.start[i];
-  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], x, y_lo, y_hi);
+  // The stored K_k is the polygon's x-range (every analysis sets it with x_range from the same polygon).
+  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], src.k_lo[k], src.k_hi[k], x, y_lo, y_hi);
 }
 
 void clip_rows(Polygon2d& poly, View<Line> rows) {
@@ -184,7 +181,17 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
   const Eigen::Index n = static_cast<Eigen::Index>(reach.start.size());
   Eigen::VectorXd theta(n + 1);
   theta[0] = theta_begin;
+  // Where a capped pass arrives at θ_k of the analysis's own greedy profile g (k >= 1: g_0 is the start
+  // speed, which the greedy pass may have clamped into K_0), the slice there is the one g was read from,
+  // so its top is g_{k+1} to the bit; a cap at or above it gives g_{k+1} again, without slicing. (The
+  // SLP's repair runs along g outside its windows.)
+  const Eigen::VectorXd& g = reach.theta;
+  const bool have_g = caps && reach.theta_is_greedy && g.size() == n + 1;
   for (Eigen::Index k = 0; k < n; ++k) {
+    if (have_g && k > 0 && theta[k] == g[k] && (*caps)[k + 1] >= g[k + 1]) {
+      theta[k + 1] = g[k + 1];
+      continue;
+    }
     double lo, hi;
     slice(reach, k, theta[k], lo, hi);
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
@@ -304,6 +311,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
   }
   out.theta = forward_pass(out, std::clamp(theta_begin, out.k_lo[0], out.k_hi[0]), nullptr);
   out.theta[0] = theta_begin;
+  out.theta_is_greedy = true;
   return out;
 }
 
@@ -373,6 +381,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
   }
   relaxed.theta = forward_pass(relaxed, std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]), nullptr);
   relaxed.theta[0] = theta_begin;
+  relaxed.theta_is_greedy = true;
   // The full greedy profile, as forward_pass computes it, but where it reaches interval k at the relaxed
   // profile's θ_k and the interval's polygon is the relaxed one, θ_{k+1} is the relaxed profile's too (the
   // same slice of the same polygon): only the stretches after a cut are sliced again.
@@ -391,6 +400,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
     theta[k + 1] = hi;
   }
   theta[0] = theta_begin;
+  full.theta_is_greedy = true;
   return true;
 }
 

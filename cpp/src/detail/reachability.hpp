@@ -88,6 +88,7 @@ struct Reachability {
   const Reachability* base = nullptr;
   std::vector<char> in_base;
   Eigen::VectorXd theta;       // greedy forward profile (when feasible)
+  bool theta_is_greedy = false;  // theta is the greedy profile itself (forward_pass may then reuse it)
   Eigen::Index failed_index = -1;
   std::vector<int> binding;    // row ids (labels) that bind where it fails
   std::string reason;
