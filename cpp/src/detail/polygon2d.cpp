@@ -57,21 +57,6 @@ void Polygon2d::assign(const Polygon2d& other) {
             vertices_[0].begin());
 }
 
-void Polygon2d::assign(const Vertex* vertices, const Line* edges, std::size_t m) {
-  empty_ = false;
-  range_known_ = false;
-  m_ = m;
-  cur_ = 0;
-  for (int b = 0; b < 2; ++b)
-    if (edges_[b].size() < m + 2 || edges_[b].size() < 16) {
-      edges_[b].resize(std::max<std::size_t>(2 * m + 2, 16));
-      vertices_[b].resize(std::max<std::size_t>(2 * m + 2, 16));
-    }
-  if (dist_.size() < m) dist_.resize(2 * m);
-  std::copy(edges, edges + m, edges_[0].begin());
-  std::copy(vertices, vertices + m, vertices_[0].begin());
-}
-
 bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n) {
   empty_ = false;
   range_known_ = false;

@@ -104,8 +104,6 @@ class Polygon2d {
 
   /// Becomes a copy of `other` (no allocation once warm).
   void assign(const Polygon2d& other);
-  /// Becomes the polygon of a stored copy of vertices() and edges() (m of each, m >= 3).
-  void assign(const Vertex* vertices, const Line* edges, std::size_t m);
 
   /// Intersects with a·x + b·y <= c. Returns true if the line now supports an edge of the polygon
   /// (it cut something off), false if it was redundant. After an intersection that empties the polygon,
