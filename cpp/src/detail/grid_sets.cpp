@@ -54,13 +54,25 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   PointSet ps;
   ps.x_hi = scale.cap;
   int offset = 0;
-  lines.clear();
+  // The rows are written through a pointer into storage sized for all of them, and the vector is cut to
+  // the count once: appending row by row reloaded and stored the vector's end at every row (it may alias
+  // the stores of the row), a chain of store-to-load forwards through the whole gather.
+  Eigen::Index total = 0;
+  for (const ConstraintRows& cr : constraints) total += cr.rows();
+  if (lines.size() < static_cast<size_t>(total)) lines.resize(static_cast<size_t>(total));
+  Line* out = lines.data();
+  size_t count = 0;
   for (const ConstraintRows& cr : constraints) {
-    for (Eigen::Index j = 0; j < cr.rows(); ++j) {
+    const Eigen::Index r = cr.rows();
+    // Row-major: the rows of grid point k are contiguous.
+    const double* pa = cr.a.data() + k * r;
+    const double* pb = cr.b.data() + k * r;
+    const double* pc = cr.c.data() + k * r;
+    for (Eigen::Index j = 0; j < r; ++j) {
       const int id = offset + static_cast<int>(j);
-      const double c = cr.c(k, j);
+      const double c = pc[j];
       if (c == std::numeric_limits<double>::infinity()) continue;  // inactive here
-      const double a = cr.a(k, j) * scale.x_unit, b = cr.b(k, j) * scale.u_unit;
+      const double a = pa[j] * scale.x_unit, b = pb[j] * scale.u_unit;
       if (b == 0.0) {
         // A bound on x alone (eq. 16, or p'_j = 0 in eq. 14): fold it into the x range.
         if (a > 0.0) {
@@ -77,15 +89,24 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       // Normalised to unit norm below, only if it supports the polygon. Coefficients beyond 1e±100 (the
       // products of Cramer's rule overflow at 1e154) are first brought to ~1 by a power of two (exact).
       const double m = std::max(std::abs(a), std::abs(b));
+      Line& l = out[count++];
       if (m > 1e-100 && m < 1e100) {
-        append_line(lines, a, b, c, id);
+        l.a = a;
+        l.b = b;
+        l.c = c;
+        l.id = id;
       } else {
-        const Line l = power_of_two_normalised({a, b, c, id});
-        append_line(lines, l.a, l.b, l.c, l.id);
+        const Line n = power_of_two_normalised({a, b, c, id});
+        l.a = n.a;
+        l.b = n.b;
+        l.c = n.c;
+        l.id = n.id;
       }
     }
-    offset += static_cast<int>(cr.rows());
+    offset += static_cast<int>(r);
   }
+  // lines[0, count) are this point's rows; the vector keeps its size for the next point.
+  Line* const lines_end = out + count;
   if (ps.x_lo > ps.x_hi * (1 + 1e-12) + 1e-300) {
     ps.empty = true;
     ps.certificate = {ps.x_lo_id, ps.x_hi_id};
@@ -94,20 +115,20 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
   // One pass over the envelopes; clipping row by row only when that declines (empty or degenerate
   // sets: clipping also names the rows that empty it).
-  if (!polygon.build(ps.x_lo, ps.x_hi, -scale.cap, scale.cap, lines.data(), lines.size())) {
+  if (!polygon.build(ps.x_lo, ps.x_hi, -scale.cap, scale.cap, out, count)) {
     if (!hint.empty()) {
       // The rows that supported the previous grid point's polygon most likely support this one too.
       // Cut with them first: the polygon is then nearly final early and the other rows are rejected by
       // the cheap inside test instead of rebuilding it.
-      std::partition(lines.begin(), lines.end(), [hint](const Line& l) {
+      std::partition(out, lines_end, [hint](const Line& l) {
         for (const Line& h : hint)
           if (h.id == l.id) return true;
         return false;
       });
     }
     polygon.reset(ps.x_lo, ps.x_hi, -scale.cap, scale.cap);
-    for (const Line& l : lines) {
-      polygon.clip(l);
+    for (const Line* l = out; l != lines_end; ++l) {
+      polygon.clip(*l);
       if (polygon.empty()) {
         ps.empty = true;
         ps.certificate = {polygon.emptied_by().id, polygon.certificate_edge(0).id, polygon.certificate_edge(1).id};
@@ -115,11 +136,11 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       }
     }
   }
-  std::vector<Line>& out = out_rows ? *out_rows : ps.rows;
+  std::vector<Line>& dest = out_rows ? *out_rows : ps.rows;
   for (const Line& e : polygon.edges())
     if (e.id >= 0) {
       const double norm = std::sqrt(e.a * e.a + e.b * e.b);
-      append_line(out, e.a / norm, e.b / norm, e.c / norm, e.id);
+      append_line(dest, e.a / norm, e.b / norm, e.c / norm, e.id);
     }
   return ps;
 }
