@@ -39,10 +39,22 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
   size_t total = 0;
   for (Eigen::Index k = 0; k < n; ++k)
     total += sets.rows(k).size() + sets.rows(k + 1).size() + (extra ? extra->rows[static_cast<size_t>(k)].size() : 0);
-  ch.row_data.reserve(total);
+  // Written through a pointer into storage sized for every row (see build_point_set: appending row by row
+  // reloads and stores the vector's end at every row); the coupling rows of an interval go after its others.
+  ch.row_data.resize(total);
+  Line* out = ch.row_data.data();
+  size_t count = 0;
   std::vector<Line> coupled;
-  auto push = [&ch, &coupled](double alpha, double beta, double c, int id) {
-    append_line(couples_positively(alpha, beta) ? coupled : ch.row_data, alpha, beta, c, id);
+  auto push = [&](double alpha, double beta, double c, int id) {
+    if (couples_positively(alpha, beta)) {
+      append_line(coupled, alpha, beta, c, id);
+      return;
+    }
+    Line& l = out[count++];
+    l.a = alpha;
+    l.b = beta;
+    l.c = c;
+    l.id = id;
   };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
@@ -57,13 +69,14 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
         const Line r = power_of_two_normalised({l.a * scale.x_unit, l.b * scale.x_unit, l.c, l.id});
         push(r.a, r.b, r.c, r.id);
       }
-    ch.coupled_offset[static_cast<size_t>(k)] = ch.row_data.size();
+    ch.coupled_offset[static_cast<size_t>(k)] = count;
     if (!coupled.empty()) {
       ch.lattice = false;
-      ch.row_data.insert(ch.row_data.end(), coupled.begin(), coupled.end());
+      for (const Line& l : coupled) out[count++] = l;
     }
-    ch.row_offset[static_cast<size_t>(k) + 1] = ch.row_data.size();
+    ch.row_offset[static_cast<size_t>(k) + 1] = count;
   }
+  ch.row_data.resize(count);
   return ch;
 }
 
