@@ -60,9 +60,17 @@ void Polygon2d::assign(const Polygon2d& other) {
 bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n) {
   empty_ = false;
   range_known_ = false;
-  up_.clear();
-  low_.clear();
-  steep_.clear();
+  // Index lists and pieces are written through counts into storage sized for every line: push_back on a
+  // member vector reloads and stores its end at every push (it may alias the stores), a store-forwarding
+  // chain through the whole pass.
+  if (up_.size() < n + 2) {
+    up_.resize(n + 2);
+    low_.resize(n + 2);
+    steep_.resize(n + 2);
+    upper_.resize(n + 3);
+    lower_.resize(n + 3);
+  }
+  std::size_t n_up = 0, n_low = 0, n_steep = 0;
   // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input). The
   // box's sides are members, not locals: a local copied into the edges is first spilled by scalar stores
   // and then read back with 16-byte loads, which stalls on store forwarding.
@@ -104,22 +112,23 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
       // Nearly vertical (an edge of a contact polygon between two LP optima whose x differ by rounding):
       // as an envelope line its slope -a/b ~ 1e14 and intercept c/b ~ 1e16 ruin the breakpoints, and
       // its edge was seen to be dropped. It is clipped exactly once the polygon stands (few such lines).
-      steep_.push_back(static_cast<int>(i));
+      steep_[n_steep++] = static_cast<int>(i);
       continue;
     }
     const double inv = 1.0 / l.b;
     p_[i] = l.c * inv;
     q_[i] = -l.a * inv;
-    (l.b > 0.0 ? up_ : low_).push_back(static_cast<int>(i));
+    if (l.b > 0.0) up_[n_up++] = static_cast<int>(i);
+    else low_[n_low++] = static_cast<int>(i);
   }
   if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
   // One envelope over [x_lo, x_hi]: the minimum of the upper bounds (sign = 1) or the maximum of the
   // lower bounds (sign = -1). Pieces in increasing x; a switch at x' < x (rounding) happens at x.
-  auto envelope = [&](const std::vector<int>& ids, double sign, std::vector<Piece>& out) {
-    out.clear();
+  auto envelope = [&](const int* ids, std::size_t m, double sign, Piece* out, std::size_t& pieces) {
+    pieces = 0;
     int cur = ids[0];
     double best_v = sign * (p_[cur] + q_[cur] * x_lo);
-    for (std::size_t t = 1; t < ids.size(); ++t) {
+    for (std::size_t t = 1; t < m; ++t) {
       const int i = ids[t];
       const double v = sign * (p_[i] + q_[i] * x_lo);
       // Ties: the one that stays extreme longer (smaller slope for the minimum, larger for the maximum).
@@ -129,12 +138,13 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
       }
     }
     double x = x_lo;
-    for (std::size_t guard = 0; guard <= ids.size(); ++guard) {
+    for (std::size_t guard = 0; guard <= m; ++guard) {
       // The next breakpoint: the nearest x' >= x where a line of steeper descent (ascent) takes over.
       // Candidates are compared as fractions num/den (den > 0), one division for the winner only.
       int next = -1;
       double best_num = x_hi, best_den = 1.0;
-      for (const int j : ids) {
+      for (std::size_t t = 0; t < m; ++t) {
+        const int j = ids[t];
         double den = q_[cur] - q_[j];
         if (!(sign * den > 0.0)) continue;  // j never overtakes cur to the right
         double num = p_[j] - p_[cur];
@@ -154,19 +164,22 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
         }
       }
       const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
-      out.emplace_back();  // member by member (see append_line)
-      out.back().line = cur;
-      out.back().x_end = next_x;
+      Piece& pc = out[pieces++];  // member by member (see append_line)
+      pc.line = cur;
+      pc.x_end = next_x;
       if (next < 0) return true;
       cur = next;
       x = next_x;
     }
     return false;  // cannot happen (slopes strictly monotone); be safe
   };
-  if (!envelope(up_, 1.0, upper_) || !envelope(low_, -1.0, lower_)) return false;
+  std::size_t n_upper = 0, n_lower = 0;
+  if (!envelope(up_.data(), n_up, 1.0, upper_.data(), n_upper) ||
+      !envelope(low_.data(), n_low, -1.0, lower_.data(), n_lower))
+    return false;
   // g(x) = U(x) - L(x) is concave: evaluate it at every breakpoint to find where it is >= 0.
-  auto value = [&](const std::vector<Piece>& pcs, double x, std::size_t& hint) {
-    while (hint + 1 < pcs.size() && pcs[hint].x_end < x) ++hint;
+  auto value = [&](const Piece* pcs, std::size_t count, double x, std::size_t& hint) {
+    while (hint + 1 < count && pcs[hint].x_end < x) ++hint;
     const int i = pcs[hint].line;
     return p_[i] + q_[i] * x;
   };
@@ -180,13 +193,13 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     if (first) {
       x = x_lo;
     } else {
-      const double xu = iu < upper_.size() ? upper_[iu].x_end : x_hi;
-      const double xl = il < lower_.size() ? lower_[il].x_end : x_hi;
+      const double xu = iu < n_upper ? upper_[iu].x_end : x_hi;
+      const double xl = il < n_lower ? lower_[il].x_end : x_hi;
       x = std::min(xu, xl);
       if (x == xu) ++iu;
       if (x == xl) ++il;
     }
-    const double U = value(upper_, x, hu), L = value(lower_, x, hl);
+    const double U = value(upper_.data(), n_upper, x, hu), L = value(lower_.data(), n_lower, x, hl);
     const double g = U - L;
     if (std::abs(g) <= 1e-9 * (std::abs(U) + std::abs(L)) + 1e-300) return false;  // touching: degenerate
     if (first) {
@@ -215,7 +228,7 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   // Edges counter-clockwise: lower pieces left to right, the right side if x_hi is reached, upper pieces
   // right to left, the left side if x_lo is reached. Vertex j = edge j ∩ edge j+1 (Cramer, exact lines).
   const int nxt = 1 - cur_;
-  const std::size_t cap = lower_.size() + upper_.size() + 2;
+  const std::size_t cap = n_lower + n_upper + 2;
   if (edges_[nxt].size() < cap) {
     edges_[nxt].resize(2 * cap);
     vertices_[nxt].resize(2 * cap);
@@ -223,15 +236,15 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   Line* e = edges_[nxt].data();
   std::size_t cnt = 0;
   const bool has_left = xa == x_lo, has_right = xb == x_hi;
-  auto overlaps = [&](const std::vector<Piece>& pcs, std::size_t k) {
+  auto overlaps = [&](const Piece* pcs, std::size_t k) {
     const double start = k == 0 ? x_lo : pcs[k - 1].x_end;
     return pcs[k].x_end > xa && start < xb;
   };
-  for (std::size_t k = 0; k < lower_.size(); ++k)
-    if (overlaps(lower_, k)) e[cnt++] = line_at(lower_[k].line);
+  for (std::size_t k = 0; k < n_lower; ++k)
+    if (overlaps(lower_.data(), k)) e[cnt++] = line_at(lower_[k].line);
   if (has_right) e[cnt++] = right;
-  for (std::size_t k = upper_.size(); k-- > 0;)
-    if (overlaps(upper_, k)) e[cnt++] = line_at(upper_[k].line);
+  for (std::size_t k = n_upper; k-- > 0;)
+    if (overlaps(upper_.data(), k)) e[cnt++] = line_at(upper_[k].line);
   if (has_left) e[cnt++] = left;
   if (cnt < 3) return false;
   Vertex* v = vertices_[nxt].data();
@@ -247,8 +260,8 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   range_known_ = true;
   x_min_ = lo;
   x_max_ = hi;
-  for (const int i : steep_) {
-    clip(line_at(i));
+  for (std::size_t t = 0; t < n_steep; ++t) {
+    clip(line_at(steep_[t]));
     if (empty_) return false;  // left to clipping line by line, which gives the certificate
   }
   return true;
