@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detail/gather_rows.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/errors.hpp"
@@ -145,14 +146,8 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
     for (Eigen::Index i = 0; i < t.size(); ++i)
       if (phase[i] == static_cast<int>(p)) idx.push_back(i);
     if (idx.empty()) continue;
-    const auto m = static_cast<Eigen::Index>(idx.size());
-    Eigen::MatrixXd qp(m, q.cols()), qdp(m, q.cols()), qddp(m, q.cols());
-    for (size_t j = 0; j < idx.size(); ++j) {
-      qp.row(static_cast<Eigen::Index>(j)) = q.row(idx[j]);
-      qdp.row(static_cast<Eigen::Index>(j)) = qd.row(idx[j]);
-      qddp.row(static_cast<Eigen::Index>(j)) = qdd.row(idx[j]);
-    }
-    std::vector<ContactForces> f = contact_phases_[p]->force_distribution(qp, qdp, qddp);
+    std::vector<ContactForces> f = contact_phases_[p]->force_distribution(
+        detail::gather_rows(q, idx), detail::gather_rows(qd, idx), detail::gather_rows(qdd, idx));
     for (size_t j = 0; j < idx.size(); ++j) out[static_cast<size_t>(idx[j])] = std::move(f[j]);
   }
   return out;
