@@ -77,7 +77,9 @@ TEST(ContactPhases, PushThenBrakeHasTheClosedFormOptimumAndNamesThePhases) {
   EXPECT_EQ(phase[0], 0);
   EXPECT_EQ(phase[1], 1);
   EXPECT_EQ(phase[2], 1);
-  const auto f = tr.contact_forces(t);
+  Eigen::VectorXi used;
+  const auto f = tr.contact_forces(t, &used);
+  EXPECT_EQ(used, phase);  // the phases that served the forces, from the same evaluation
   EXPECT_NEAR(f[0].forces(0, 0), 5.0, 1e-6);
   EXPECT_NEAR(f[1].forces(0, 0), 0.0, 1e-6);
   EXPECT_NEAR(f[2].forces(0, 0), -5.0, 1e-6);
