@@ -20,13 +20,13 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import common  # noqa: E402  (first: pins BLAS/OpenMP to one thread before numpy is imported)
+import numpy as np  # noqa: E402
 
-import pathpace as pp
+import pathpace as pp  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "examples"))
-import humanoid_steps as hs  # noqa: E402
+hs = common.import_example("humanoid_steps")
 
 
 def off(r):
