@@ -15,10 +15,12 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUME
              "VECLIB_MAXIMUM_THREADS", "BLIS_NUM_THREADS"):
     os.environ[_var] = "1"
 
+import importlib  # noqa: E402
 import importlib.metadata  # noqa: E402
 import platform  # noqa: E402
 import statistics  # noqa: E402
 import subprocess  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
 import xml.etree.ElementTree as ET  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -67,6 +69,17 @@ def panda_problem(seed: int = 0, n_waypoints: int = 5):
     waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (n_waypoints, len(PANDA_JOINTS)))
     v = lim["velocity"]
     return waypoints, v, 2.0 * v
+
+
+def import_example(name: str):
+    """examples/<name>.py as a module (talos_sway, humanoid_steps, ...), with examples/ first on sys.path: the
+    examples import each other by name, and bench/humanoid_steps.py must not find itself under its example's
+    name. Importing it through here also means a bench script has imported common, so its one-thread BLAS
+    pinning came before numpy."""
+    examples = str(Path(__file__).resolve().parents[1] / "examples")
+    if not sys.path or sys.path[0] != examples:
+        sys.path.insert(0, examples)
+    return importlib.import_module(name)
 
 
 # ------------------------------------------------------------------------------- independent reference

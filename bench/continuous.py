@@ -29,7 +29,6 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parent / "examples"))
 import common  # noqa: E402  (pins BLAS/OpenMP to one thread before numpy)
 import numpy as np  # noqa: E402
 
@@ -89,7 +88,7 @@ def arm_rows(seeds, sizes, repeat):
 
 
 def humanoid_rows(repeat, sizes=(100, 1000)):
-    import talos_sway as ts
+    ts = common.import_example("talos_sway")
 
     robot = ts.load_talos()
     path = ts.sway_path(robot)

@@ -20,13 +20,11 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import common  # noqa: E402  (first: pins BLAS/OpenMP to one thread before numpy is imported)
+import numpy as np  # noqa: E402
 
-import pathpace as pp
-
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "examples"))
-import humanoid_steps as hs  # noqa: E402
+hs = common.import_example("humanoid_steps")
 
 
 def off(r):
@@ -50,9 +48,7 @@ def main(argv=None):
                 path = hs.steps_path(robot, step, lift, rise=rise)
                 res = {}
                 for name, opts in (("margins", hs.CONTACT_OPTIONS), ("bare", dict(cone_edges=8))):
-                    prob = pp.TimeScalingProblem(path, grid=args.grid)
-                    prob.add_contact_phases(robot, hs.phases(), drift_tolerance=2e-4, **opts)
-                    res[name] = prob.solve()
+                    res[name] = hs.phase_timing(robot, path, args.grid, drift_tolerance=2e-4, **opts)[1]
                 if not (res["margins"].ok and res["bare"].ok):
                     print(f"| {100 * step:g} | {100 * lift:g} | {100 * rise:g} | {res['margins'].status.name} | "
                           f"{res['bare'].status.name} | | | | |")

@@ -16,14 +16,14 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "examples"))
-import humanoid_sim  # noqa: E402
-import talos_sway  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import common  # noqa: E402  (first: pins BLAS/OpenMP to one thread before numpy is imported)
+import numpy as np  # noqa: E402
 
 from pathpace.sim import find_executable_margin  # noqa: E402
+
+humanoid_sim = common.import_example("humanoid_sim")
+talos_sway = common.import_example("talos_sway")
 
 
 def main(argv=None):

@@ -48,6 +48,9 @@ import numpy as np  # noqa: E402
 import pathpace as pp  # noqa: E402
 from pathpace.robots import example_robot_urdf  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
+import helpers  # noqa: E402  (the random walk, shared with test_optimality_corpus.py)
+
 logging.disable(logging.CRITICAL)  # toppra logs at INFO/DEBUG
 
 HERE = Path(__file__).resolve().parent
@@ -208,15 +211,7 @@ def random_walk(N, seed=0, K=400):
     and 90 % of each range), velocity + acceleration limits; pathpace only (and toppra at N = 1000). Timed by
     wall clock and thread CPU time (best of 3, one call at N = 100000)."""
     arm = Arm("panda")
-    rng = np.random.default_rng(seed)
-    lo, hi = arm.lo + 0.1 * (arm.hi - arm.lo), arm.hi - 0.1 * (arm.hi - arm.lo)
-    q = [0.5 * (lo + hi)]
-    for _ in range(K - 1):
-        x = q[-1] + rng.normal(0, 0.2, len(lo))
-        x = np.where(x > hi, 2 * hi - x, x)
-        x = np.where(x < lo, 2 * lo - x, x)
-        q.append(np.clip(x, lo, hi))
-    wp = np.array(q)
+    wp = helpers.random_walk(arm.lo, arm.hi, np.random.default_rng(seed), K)  # test_optimality_corpus's walk
     # A budget, so that the benchmark ends: the issue's target is 2 s at N = 100000.
     grid, _, ours, theirs = make(arm, wp, N, None, time_limit=10.0)
     ts, cpu = [], []

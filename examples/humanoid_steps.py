@@ -99,6 +99,19 @@ def phases(friction: float = 0.5) -> list[tuple[float, float, list[pp.Contact]]]
     return [(0.0, 1.0, both), (1.0, 2.0, right), (2.0, 3.0, both), (3.0, 4.0, left), (4.0, 5.0, both)]
 
 
+def phase_timing(robot: pp.RobotModel, path: pp.Path, grid: int, drift_tolerance: float = 1e-4,
+                 **options) -> tuple[pp.TimeScalingProblem, pp.Result, float, float]:
+    """The path timed with the contacts of phases() on `grid` intervals, `options` (cone and margins, e.g.
+    CONTACT_OPTIONS) for every phase: (problem, result, projection time, solve time), times in s."""
+    prob = pp.TimeScalingProblem(path, grid=grid)
+    t0 = time.perf_counter()
+    prob.add_contact_phases(robot, phases(), drift_tolerance=drift_tolerance, **options)
+    t_sets = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    res = prob.solve()
+    return prob, res, t_sets, time.perf_counter() - t0
+
+
 def audit(traj: pp.Trajectory, robot: pp.RobotModel, samples: int, **options) -> dict:
     """The force-distribution LP at `samples` uniform times, each with its phase's contacts (the later
     phase at a switch) and the cone given by `options`: the worst margin (N) per phase."""
@@ -162,13 +175,7 @@ def main(argv: list[str] | None = None) -> dict:
     path = steps_path(robot, args.step, args.lift, rise=args.rise)
     print(f"Talos, nq = {robot.nq}; two-step sole-IK path built in {time.perf_counter() - t0:.2f} s")
 
-    prob = pp.TimeScalingProblem(path, grid=args.grid)
-    t0 = time.perf_counter()
-    prob.add_contact_phases(robot, phases(), drift_tolerance=1e-4, **CONTACT_OPTIONS)
-    t_sets = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    res = prob.solve()
-    t_solve = time.perf_counter() - t0
+    prob, res, t_sets, t_solve = phase_timing(robot, path, args.grid, **CONTACT_OPTIONS)
     print(f"contact-phase timing: {res.status.name}, T = {res.duration:.4f} s (projection {t_sets:.2f} s, "
           f"solve {t_solve * 1e3:.1f} ms, N = {prob.grid.size - 1})")
     if not res.ok:
@@ -189,9 +196,7 @@ def main(argv: list[str] | None = None) -> dict:
     print("  true cone (no margin): " + "  ".join(f"{m:8.3f}" for m in true_cone["worst_per_phase"]))
     sim_rows = None
     if args.sim:
-        bare = pp.TimeScalingProblem(path, grid=args.grid)
-        bare.add_contact_phases(robot, phases(), drift_tolerance=1e-4, cone_edges=8)
-        res_bare = bare.solve()
+        res_bare = phase_timing(robot, path, args.grid, cone_edges=8)[1]
         timings = [("contact phases, margins", traj), ("contact phases, no margins", res_bare.trajectory())]
         for factor in (1.0, 2.0):
             uniform = talos_sway.uniform_timing(path, args.grid, factor * res.duration)

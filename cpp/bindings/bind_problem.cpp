@@ -323,9 +323,10 @@ void bind_problem(py::module_& m) {
       .def("contact_forces", [](const Trajectory& tr, py::handle t) {
         const Eigen::VectorXd tv = to_vector(t, "t");
         std::vector<ContactForces> out;
+        Eigen::VectorXi phase;  // with the forces, inside the release: the phase of each t is evaluated once
         {
           py::gil_scoped_release release;
-          out = tr.contact_forces(tv);
+          out = tr.contact_forces(tv, &phase);
         }
         if (tr.contact_phases().empty())
           return to_force_samples(out, static_cast<int>(tr.contacts()->contacts().size()), tr.contacts()->robot()->nq(),
@@ -333,7 +334,7 @@ void bind_problem(py::module_& m) {
         size_t m = 0;
         for (const auto& c : tr.contact_phases()) m = std::max(m, c->contacts().size());
         ForceSamples f = to_force_samples(out, static_cast<int>(m), tr.contact_phases()[0]->robot()->nq(), is_scalar(t));
-        f.phase = tr.contact_phase(tv);
+        f.phase = std::move(phase);
         return f;
       }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces). With "
                 "contact phases each t uses its phase (the later one at a switch; .phase says which), forces padded "

@@ -45,6 +45,19 @@ bool finite_entries(const Matrix& m) {
   return s[0] + s[1] + s[2] + s[3] == 0.0;
 }
 
+// p, p', p'' at samples.s (the grid of a new problem, or one with a contact switch inserted), with the entry
+// that is not finite named.
+void sample_path(const Path& path, PathSamples& samples) {
+  path.evaluate(samples.s, samples.q, samples.dq, samples.ddq);
+  if (finite_entries<false>(samples.q) && finite_entries<false>(samples.dq) && finite_entries<false>(samples.ddq))
+    return;  // the element-wise loop below only names the entry that is not
+  for (Eigen::Index k = 0; k < samples.size(); ++k)
+    for (Eigen::Index j = 0; j < samples.dof(); ++j)
+      if (!std::isfinite(samples.q(k, j)) || !std::isfinite(samples.dq(k, j)) || !std::isfinite(samples.ddq(k, j)))
+        detail::fail("path is not finite at grid[" + std::to_string(k) + "] = " + detail::fmt(samples.s[k]) +
+                     " (coordinate " + std::to_string(j) + ")");
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -108,7 +121,7 @@ TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, int int
   if (!path_) detail::fail("path must not be None");
   if (intervals < 1) detail::fail("grid = " + std::to_string(intervals) + " must be >= 1 (number of intervals N)");
   samples_.s = Eigen::VectorXd::LinSpaced(intervals + 1, path_->s_begin(), path_->s_end());
-  init_samples();
+  sample_path(*path_, samples_);
 }
 
 TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::VectorXd grid) : path_(std::move(path)) {
@@ -125,18 +138,7 @@ TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::
   grid[0] = a;
   grid[n] = b;
   samples_.s = std::move(grid);
-  init_samples();
-}
-
-void TimeScalingProblem::init_samples() {
-  path_->evaluate(samples_.s, samples_.q, samples_.dq, samples_.ddq);
-  if (finite_entries<false>(samples_.q) && finite_entries<false>(samples_.dq) && finite_entries<false>(samples_.ddq))
-    return;  // the element-wise loop below only names the entry that is not
-  for (Eigen::Index k = 0; k < samples_.size(); ++k)
-    for (Eigen::Index j = 0; j < samples_.dof(); ++j)
-      if (!std::isfinite(samples_.q(k, j)) || !std::isfinite(samples_.dq(k, j)) || !std::isfinite(samples_.ddq(k, j)))
-        detail::fail("path is not finite at grid[" + std::to_string(k) + "] = " + detail::fmt(samples_.s[k]) +
-                     " (coordinate " + std::to_string(j) + ")");
+  sample_path(*path_, samples_);
 }
 
 void TimeScalingProblem::add_velocity_limits(const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax) {
@@ -293,20 +295,6 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     edge[i] = sw;
     inserted = true;
   }
-  PathSamples samples = samples_;
-  std::vector<ConstraintRows> rows = rows_;
-  if (inserted) {
-    samples.s = Eigen::Map<const Eigen::VectorXd>(grid.data(), static_cast<Eigen::Index>(grid.size()));
-    path_->evaluate(samples.s, samples.q, samples.dq, samples.ddq);
-    if (!samples.q.allFinite() || !samples.dq.allFinite() || !samples.ddq.allFinite())
-      detail::fail("path is not finite at an inserted switch point");
-    // Every constraint again on the new grid, checked as add_constraint checks it (a user's own Constraint
-    // may hand back anything there).
-    for (size_t c = 0; c < constraints_.size(); ++c) {
-      rows[c] = timed_evaluate(*constraints_[c], samples);
-      check_rows(*constraints_[c], rows[c], samples.size());
-    }
-  }
   // TorqueLimits of this robot join every phase (as add_constraint merges them into one contact constraint).
   std::vector<size_t> replaced;
   Eigen::VectorXd lo = Eigen::VectorXd::Constant(robot->nq(), -std::numeric_limits<double>::infinity());
@@ -317,9 +305,34 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
       hi = hi.cwiseMin(t->tau_max());
       replaced.push_back(c);
     }
+  // A switch inserted: the path and every constraint that stays on the new grid, checked as add_constraint
+  // checks them (a user's own Constraint may hand back anything there); kept apart until the commit below.
+  // Without one the problem's samples and rows serve as they are.
+  PathSamples new_samples;
+  std::vector<ConstraintRows> new_rows;
+  if (inserted) {
+    new_samples.s = Eigen::Map<const Eigen::VectorXd>(grid.data(), static_cast<Eigen::Index>(grid.size()));
+    sample_path(*path_, new_samples);
+    new_rows.resize(constraints_.size());
+    for (size_t c = 0; c < constraints_.size(); ++c) {
+      if (std::find(replaced.begin(), replaced.end(), c) != replaced.end()) continue;  // merged into the phases
+      new_rows[c] = timed_evaluate(*constraints_[c], new_samples);
+      check_rows(*constraints_[c], new_rows[c], new_samples.size());
+    }
+  }
+  const PathSamples& samples = inserted ? new_samples : samples_;
   // The no-impact rule at each switch, from the contact points' velocities along the path (eq. 10: c' = J p').
   std::vector<std::string> rest(phases.size());
   for (size_t i = 1; i < phases.size(); ++i) {
+    const std::vector<Contact>& now = probe[i]->contacts();
+    const std::vector<Contact>& before = probe[i - 1]->contacts();
+    std::vector<size_t> made;  // the contacts of phase i that phase i-1 does not have
+    for (size_t c = 0; c < now.size(); ++c)
+      if (std::none_of(before.begin(), before.end(), [&](const Contact& o) {
+            return o.link == now[c].link && o.other_link == now[c].other_link && (o.point - now[c].point).norm() <= 1e-9;
+          }))
+        made.push_back(c);
+    if (made.empty()) continue;  // contacts kept or broken only: nothing to check
     // The approach velocity: c' just before the switch (1e-9 of the length), from the path of the phase that
     // ends there. On a path that is C¹ at the switch a contact held fixed after it has c' = 0 there; a
     // kinked path (p' jumps) can bring the point in at speed.
@@ -329,13 +342,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     Eigen::MatrixXd normal, speed, unused;
     probe[i]->point_velocities(samples, unused, speed);
     probe[i]->point_velocities(before_switch, normal, unused);
-    const std::vector<Contact>& now = probe[i]->contacts();
-    const std::vector<Contact>& before = probe[i - 1]->contacts();
-    for (size_t c = 0; c < now.size(); ++c) {
-      const bool kept = std::any_of(before.begin(), before.end(), [&](const Contact& o) {
-        return o.link == now[c].link && o.other_link == now[c].other_link && (o.point - now[c].point).norm() <= 1e-9;
-      });
-      if (kept) continue;
+    for (size_t c : made) {
       const Eigen::Index j = static_cast<Eigen::Index>(c);
       const double vn = normal(0, j), scale = speed.col(j).maxCoeff();
       if (!(std::abs(vn) > impact_tolerance * scale) || scale == 0.0) continue;
@@ -362,8 +369,10 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     added.push_back(std::move(c));
   }
   // Commit: nothing above changed the problem.
-  samples_ = std::move(samples);
-  rows_ = std::move(rows);
+  if (inserted) {
+    samples_ = std::move(new_samples);
+    rows_ = std::move(new_rows);
+  }
   for (size_t t = replaced.size(); t-- > 0;) {
     constraints_.erase(constraints_.begin() + static_cast<long>(replaced[t]));
     rows_.erase(rows_.begin() + static_cast<long>(replaced[t]));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detail/gather_rows.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/errors.hpp"
@@ -131,30 +132,29 @@ Eigen::VectorXi Trajectory::contact_phase(const Eigen::Ref<const Eigen::VectorXd
   return out;
 }
 
-std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
+                                                      Eigen::VectorXi* phase_out) const {
   if (!contacts_ && contact_phases_.empty())
     throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
   Eigen::MatrixXd q, qd, qdd;
   evaluate(t, q, qd, qdd);
-  if (contact_phases_.empty()) return contacts_->force_distribution(q, qd, qdd);
+  if (contact_phases_.empty()) {
+    if (phase_out) *phase_out = Eigen::VectorXi::Constant(t.size(), -1);
+    return contacts_->force_distribution(q, qd, qdd);
+  }
   // One force-distribution batch per phase, each with that phase's contacts.
-  const Eigen::VectorXi phase = contact_phase(t);
+  Eigen::VectorXi phase = contact_phase(t);
   std::vector<ContactForces> out(static_cast<size_t>(t.size()));
   for (size_t p = 0; p < contact_phases_.size(); ++p) {
     std::vector<Eigen::Index> idx;
     for (Eigen::Index i = 0; i < t.size(); ++i)
       if (phase[i] == static_cast<int>(p)) idx.push_back(i);
     if (idx.empty()) continue;
-    const auto m = static_cast<Eigen::Index>(idx.size());
-    Eigen::MatrixXd qp(m, q.cols()), qdp(m, q.cols()), qddp(m, q.cols());
-    for (size_t j = 0; j < idx.size(); ++j) {
-      qp.row(static_cast<Eigen::Index>(j)) = q.row(idx[j]);
-      qdp.row(static_cast<Eigen::Index>(j)) = qd.row(idx[j]);
-      qddp.row(static_cast<Eigen::Index>(j)) = qdd.row(idx[j]);
-    }
-    std::vector<ContactForces> f = contact_phases_[p]->force_distribution(qp, qdp, qddp);
+    std::vector<ContactForces> f = contact_phases_[p]->force_distribution(
+        detail::gather_rows(q, idx), detail::gather_rows(qd, idx), detail::gather_rows(qdd, idx));
     for (size_t j = 0; j < idx.size(); ++j) out[static_cast<size_t>(idx[j])] = std::move(f[j]);
   }
+  if (phase_out) *phase_out = std::move(phase);
   return out;
 }
 

@@ -67,7 +67,9 @@ TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
   ASSERT_TRUE(traj.contacts());
   Eigen::VectorXd t(1);
   t << 0.25 * res.duration;
-  const ContactForces f = traj.contact_forces(t)[0];
+  Eigen::VectorXi phase;
+  const ContactForces f = traj.contact_forces(t, &phase)[0];
+  EXPECT_EQ(phase, Eigen::VectorXi::Constant(1, -1));  // no phases
   ASSERT_TRUE(f.feasible);
   EXPECT_GE(f.margin, -1e-8);
   const Eigen::Vector3d total = f.forces.colwise().sum().transpose();

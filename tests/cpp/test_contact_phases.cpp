@@ -77,7 +77,9 @@ TEST(ContactPhases, PushThenBrakeHasTheClosedFormOptimumAndNamesThePhases) {
   EXPECT_EQ(phase[0], 0);
   EXPECT_EQ(phase[1], 1);
   EXPECT_EQ(phase[2], 1);
-  const auto f = tr.contact_forces(t);
+  Eigen::VectorXi used;
+  const auto f = tr.contact_forces(t, &used);
+  EXPECT_EQ(used, phase);  // the phases that served the forces, from the same evaluation
   EXPECT_NEAR(f[0].forces(0, 0), 5.0, 1e-6);
   EXPECT_NEAR(f[1].forces(0, 0), 0.0, 1e-6);
   EXPECT_NEAR(f[2].forces(0, 0), -5.0, 1e-6);
@@ -131,6 +133,91 @@ TEST(ContactPhases, ConstraintsEvaluatedAtAnInsertedSwitchAreChecked) {
   prob.add_constraint(std::make_shared<BadAtOne>());  // finite on the grid of 7 intervals
   const std::string msg = error_of([&] { prob.add_contact_phases(robot, push_then_brake()); });
   EXPECT_NE(msg.find("bad at one"), std::string::npos) << msg;
+}
+
+// A path that is not finite at an inserted switch is named as the constructor names it: grid index, s and
+// coordinate (the one check of the path's samples).
+TEST(ContactPhases, APathNotFiniteAtAnInsertedSwitchIsNamed) {
+  auto robot = load("hand_box.urdf");
+  auto path = std::make_shared<test::ClosedFormPath>(2, [](double s, auto q, auto dq, auto ddq) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    q << (s == 0.5 ? nan : s), s;  // hand and box together, x = s
+    dq << 1.0, 1.0;
+    ddq << 0.0, 0.0;
+  });
+  TimeScalingProblem prob(path, 7);  // finite at the multiples of 1/7; 0.5 is not one
+  const std::vector<ContactPhase> ph = {{0.0, 0.5, {hand_on_box(1.0)}, std::nullopt},
+                                        {0.5, 1.0, {hand_on_box(-1.0)}, std::nullopt}};
+  EXPECT_EQ(error_of([&] { prob.add_contact_phases(robot, ph); }), "path is not finite at grid[4] = 0.5 (coordinate 0)");
+  EXPECT_EQ(prob.intervals(), 7);  // nothing changed
+  EXPECT_TRUE(prob.constraints().empty());
+}
+
+namespace {
+
+// TorqueLimits that count their evaluations.
+class CountedTorqueLimits : public TorqueLimits {
+ public:
+  CountedTorqueLimits(std::shared_ptr<const RobotModel> robot, Eigen::VectorXd lo, Eigen::VectorXd hi, int* calls)
+      : TorqueLimits(std::move(robot), std::move(lo), std::move(hi)), calls_(calls) {}
+  ConstraintRows evaluate(const PathSamples& samples) const override {
+    ++*calls_;
+    return TorqueLimits::evaluate(samples);
+  }
+
+ private:
+  int* calls_;
+};
+
+// A user's constraint that counts its evaluations: ṡ² <= 100, which never binds here.
+class CountedCap : public Constraint {
+ public:
+  explicit CountedCap(int* calls) : calls_(calls) {}
+  std::string name() const override { return "cap"; }
+  ConstraintRows evaluate(const PathSamples& samples) const override {
+    ++*calls_;
+    ConstraintRows r;
+    r.resize(samples.size(), 1);
+    r.labels = {"cap"};
+    r.a.setOnes();
+    r.c.setConstant(100.0);
+    return r;
+  }
+
+ private:
+  int* calls_;
+};
+
+}  // namespace
+
+// TorqueLimits that the phases absorb are not evaluated again on a grid with an inserted switch (their rows
+// would be dropped); the constraints that stay are, and only then.
+TEST(ContactPhases, OnlyTheConstraintsThatStayAreEvaluatedAgainAtAnInsertedSwitch) {
+  auto robot = load("hand_box.urdf");
+  const auto& names = robot->joint_names();
+  const Eigen::Index hand = std::find(names.begin(), names.end(), "hand_x") - names.begin();
+  Eigen::Vector2d lo(0, 0), hi(0, 0);
+  lo[hand] = -4.0;
+  hi[hand] = 4.0;
+  for (int intervals : {7, 20}) {  // s = 1 is not a grid point of 7 intervals over [0, 2]; it is one of 20
+    const bool inserted = intervals == 7;
+    int torque_calls = 0, cap_calls = 0;
+    TimeScalingProblem prob(together(), intervals);
+    prob.add_constraint(std::make_shared<CountedTorqueLimits>(robot, lo, hi, &torque_calls));
+    prob.add_constraint(std::make_shared<CountedCap>(&cap_calls));
+    ASSERT_EQ(torque_calls, 1);
+    ASSERT_EQ(cap_calls, 1);
+    prob.add_contact_phases(robot, push_then_brake());
+    EXPECT_EQ(prob.intervals(), inserted ? 8 : 20);
+    EXPECT_EQ(torque_calls, 1) << intervals;
+    EXPECT_EQ(cap_calls, inserted ? 2 : 1) << intervals;
+    ASSERT_EQ(prob.constraints().size(), 3u);  // the cap and the two phases, the torque limits merged into them
+    for (size_t i = 1; i < 3; ++i)
+      EXPECT_EQ(std::dynamic_pointer_cast<const ContactConstraint>(prob.constraints()[i])->tau_max()[hand], 4.0);
+    const Result r = prob.solve();
+    ASSERT_EQ(r.status, Status::Optimal) << r.message;
+    EXPECT_NEAR(r.duration, push_brake_duration(prob.grid(), inserted ? 4 : 10, 2.0), 1e-9) << intervals;
+  }
 }
 
 TEST(ContactPhases, TorqueLimitsJoinEveryPhaseAddedBeforeOrAfter) {

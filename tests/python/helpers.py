@@ -26,3 +26,16 @@ def two_joint_problem(N=200, **path_kw):
     """Three waypoints in the plane under |q̇| <= 1, |q̈| <= 2, on N intervals; path_kw go to the spline."""
     path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, 0.5], [0.2, 1.5]]), **path_kw)
     return kinematic_problem(path, N, [-1, -1], [1, 1], [-2, -2], [2, 2])
+
+
+def random_walk(lo, hi, rng, K):
+    """K waypoints of a random walk inside 10-90 % of each joint's range [lo, hi] (the position limits): from
+    the middle, steps of 0.2 rad (normal, per joint) reflected at the bounds. The long paths of
+    test_optimality_corpus.py and bench/sweep.py (which imports it from here)."""
+    lo, hi = lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo)
+    q = [0.5 * (lo + hi)]
+    for _ in range(K - 1):
+        x = q[-1] + rng.normal(0, 0.2, len(lo))
+        x = np.where(x > hi, 2 * hi - x, x)
+        q.append(np.clip(np.where(x < lo, 2 * lo - x, x), lo, hi))
+    return np.array(q)

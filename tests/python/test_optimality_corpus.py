@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
-from helpers import kinematic_problem
+from helpers import kinematic_problem, random_walk
 from oracles import (cvxpy_optimum, duration, frank_wolfe_gap, kinematic_rows, max_violation, pinocchio_model,
                      shrink_to_feasible, torque_rows)
 from pathpace.robots import example_robot_urdf
@@ -105,18 +105,6 @@ def test_corpus_exercises_the_windows():
     assert len(oracle_high) <= 2, oracle_high
 
 
-def random_walk(ours, rng, K):
-    """K waypoints of a random walk inside 10-90 % of each joint's range (steps of 0.2 rad, reflected)."""
-    lo, hi = ours.position_limits
-    lo, hi = lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo)
-    q = [0.5 * (lo + hi)]
-    for _ in range(K - 1):
-        x = q[-1] + rng.normal(0, 0.2, len(lo))
-        x = np.where(x > hi, 2 * hi - x, x)
-        q.append(np.clip(np.where(x < lo, 2 * lo - x, x), lo, hi))
-    return np.array(q)
-
-
 WALKS = 4
 
 
@@ -132,7 +120,7 @@ def solved_walk(i):
     ours, _ = arm(name)
     v = ours.velocity_limits
     N = int(rng.integers(500, 701))
-    path = pp.CubicSplinePath(random_walk(ours, rng, int(rng.integers(60, 121))), knots="uniform",
+    path = pp.CubicSplinePath(random_walk(*ours.position_limits, rng, int(rng.integers(60, 121))), knots="uniform",
                               boundary="not-a-knot")
     prob = kinematic_problem(path, N, -v, v, -2 * v, 2 * v)
     res = prob.solve()
@@ -180,7 +168,7 @@ def test_the_bench_random_walk_is_certified_by_newton_steps_alone():
     its whole budget when started 1e-4 from the boundary); optimal to HiGHS's Frank-Wolfe certificate."""
     ours, _ = arm("panda")
     v = ours.velocity_limits
-    path = pp.CubicSplinePath(random_walk(ours, np.random.default_rng(0), 400), knots="uniform",
+    path = pp.CubicSplinePath(random_walk(*ours.position_limits, np.random.default_rng(0), 400), knots="uniform",
                               boundary="not-a-knot")
     prob = kinematic_problem(path, 1000, -v, v, -2 * v, 2 * v)
     res = prob.solve()

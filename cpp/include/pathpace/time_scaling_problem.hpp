@@ -128,7 +128,6 @@ class TimeScalingProblem {
   static std::string describe_relaxation(const std::map<std::string, double>& relaxation);
 
  private:
-  void init_samples();
   /// Throws InvalidInput unless `rows` fit the grid (a user's own Constraint may return anything).
   static void check_rows(const Constraint& constraint, const ConstraintRows& rows, Eigen::Index points);
   /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).

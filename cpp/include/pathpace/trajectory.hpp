@@ -64,8 +64,10 @@ class Trajectory {
   /// The force-distribution LP at each t (see ContactForces): contact forces and their margin between
   /// the grid points, where the solver did not look. With contact phases, each t uses its phase (see
   /// contact_phase: the later one at a switch), so the number of rows of `forces` is that phase's number
-  /// of contacts. Throws Error if no contact constraint shaped it.
-  std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+  /// of contacts. Throws Error if no contact constraint shaped it. If `phase` is given it receives
+  /// contact_phase(t), the phase that served each t, from the same evaluation (-1 everywhere without phases).
+  std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
+                                            Eigen::VectorXi* phase = nullptr) const;
 
   /// A C² cubic spline in time through the grid (as toppra's ParametrizeSpline): a CubicSplinePath whose
   /// parameter is t in [0, T], through q(t_k) = p(s_k) at every grid time, clamped to q̇ = p'(s) ṡ at

@@ -9,6 +9,7 @@
 
 #include <Eigen/SVD>
 
+#include "detail/gather_rows.hpp"
 #include "detail/glpk_guard.hpp"
 #include "detail/glpk_util.hpp"
 #include "detail/projection.hpp"
@@ -17,6 +18,18 @@
 #include "pathpace/robot_workspace.hpp"
 
 namespace pathpace {
+
+namespace detail {
+namespace {
+
+// s is a phase's first point, active_begin (to 1e-12 relative, as active_at): where its no-impact row
+// ṡ² <= 0 holds (evaluate writes it, check_point imposes it).
+bool at_active_begin(const ContactOptions& options, double s) {
+  return std::abs(s - options.active_begin) <= 1e-12 * std::max(1.0, std::abs(s));
+}
+
+}  // namespace
+}  // namespace detail
 
 ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, std::vector<Contact> contacts,
                                      const ContactOptions& options, Eigen::VectorXd tau_min, Eigen::VectorXd tau_max)
@@ -354,17 +367,10 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     sub = project(samples);
   } else {
     PathSamples ps;
-    ps.s.resize(static_cast<Eigen::Index>(in.size()));
-    ps.q.resize(ps.s.size(), n);
-    ps.dq.resize(ps.s.size(), n);
-    ps.ddq.resize(ps.s.size(), n);
-    for (size_t i = 0; i < in.size(); ++i) {
-      const Eigen::Index j = static_cast<Eigen::Index>(i);
-      ps.s[j] = samples.s[in[i]];
-      ps.q.row(j) = samples.q.row(in[i]);
-      ps.dq.row(j) = samples.dq.row(in[i]);
-      ps.ddq.row(j) = samples.ddq.row(in[i]);
-    }
+    ps.s = detail::gather_rows(samples.s, in);
+    ps.q = detail::gather_rows(samples.q, in);
+    ps.dq = detail::gather_rows(samples.dq, in);
+    ps.ddq = detail::gather_rows(samples.ddq, in);
     sub = project(ps);
   }
   const Eigen::Index r = sub.rows() + (rest ? 1 : 0);
@@ -384,7 +390,7 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     // ṡ² <= 0 at the switch (a·x + b·u <= c with a = 1, b = 0, c = 0): the no-impact rule.
     out.labels[static_cast<size_t>(r - 1)] = prefix + options_.rest_at_begin;
     for (Eigen::Index p = 0; p < samples.size(); ++p)
-      if (std::abs(samples.s[p] - options_.active_begin) <= 1e-12 * std::max(1.0, std::abs(samples.s[p]))) {
+      if (detail::at_active_begin(options_, samples.s[p])) {
         out.a(p, r - 1) = 1.0;
         out.c(p, r - 1) = 0.0;
       }
@@ -504,9 +510,7 @@ ContactConstraint::PointCheck ContactConstraint::check_point(const PathSamples& 
   lp.col_hi[0] = lp.col_hi[1] = std::numeric_limits<double>::infinity();
   lp.col_lo[1] = -std::numeric_limits<double>::infinity();
   // The no-impact row of a phase (ṡ² <= 0 at its first point) is part of this constraint.
-  if (!options_.rest_at_begin.empty() &&
-      std::abs(samples.s[k] - options_.active_begin) <= 1e-12 * std::max(1.0, std::abs(samples.s[k])))
-    lp.col_hi[0] = 0.0;
+  if (!options_.rest_at_begin.empty() && detail::at_active_begin(options_, samples.s[k])) lp.col_hi[0] = 0.0;
   detail::PolytopeProjector solver;
   PointCheck out;
   out.feasible = solver.feasible(lp);
