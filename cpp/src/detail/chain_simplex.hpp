@@ -42,8 +42,10 @@ class ChainSimplex {
   /// From the vertex `theta` (θ_0..θ_m, feasible; each free point at a bound or where a row of an adjacent
   /// interval is tight, as the greedy profile is), minimises g·y by at most `max_pivots` pivots; returns the
   /// bound above on g·θ - min g·y (>= 0), or +inf if it gave up (no start basis, singular, pivot budget).
-  /// warm: start from the basis the previous call ended with (optimal for its g), whose vertex() must then be
-  /// `theta` (a Frank-Wolfe step of length 1 lands there): the basis stays primal feasible for a new g.
+  /// warm: start from the basis the previous call ended with (optimal for its g) at its vertex(), which stays
+  /// primal feasible for a new g (lo, hi and the rows are the same); `theta` is then any feasible point (the
+  /// Frank-Wolfe iterate, on the segment to that vertex or at it): the bound is computed there, whatever
+  /// vertex the simplex stands on.
   double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots, bool warm = false);
 
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
