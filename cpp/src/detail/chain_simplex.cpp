@@ -93,6 +93,10 @@ bool ChainSimplex::start_basis() {
   // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
   opt_.clear();
   opt_begin_.assign(n_, 0);
+  // Each row's relative slack at y_ (reachability's row_violation, negated), once: a row is an option of both
+  // its points.
+  viol_.resize(rows_.size());
+  for (std::size_t t = 0; t < rows_.size(); ++t) viol_[t] = row_violation(*rows_[t].line, y_[rows_[t].k], y_[rows_[t].k + 1]);
   std::size_t r0 = 0;  // first row of interval j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
@@ -107,9 +111,8 @@ bool ChainSimplex::start_basis() {
       const Row& r = rows_[t];
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
       if (on_j == 0.0) continue;
-      // Tight: a relative slack (reachability's row_violation, negated) of at most 1e-9.
-      const double v = row_violation(*r.line, y_[r.k], y_[r.k + 1]);
-      if (v < -1e-9) continue;
+      const double v = viol_[t];
+      if (v < -1e-9) continue;  // not tight: a relative slack of more than 1e-9
       const double rel = std::max(-v, 0.0);
       opt_.push_back({static_cast<int>(t), rel + 1e-15 * static_cast<double>(opt_.size() - o0 + 1), 0.0, -1});
     }

@@ -91,6 +91,7 @@ class ChainSimplex {
   std::vector<int> bounds_, match_, old_match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
   std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
   std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
+  std::vector<double> viol_;  // start_basis: each row's row_violation at y_
   Eigen::VectorXd y_;
   int pivots_ = 0;
   bool has_basis_ = false;
