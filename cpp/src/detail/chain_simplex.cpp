@@ -26,6 +26,10 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
     y_ = theta;
     has_basis_ = start_basis() && match();
     if (!has_basis_) return inf;
+    own_.resize(n_);
+    left_.resize(n_);
+    right_.resize(n_);
+    coefs(0, n_ - 1);
   }
   has_basis_ = false;  // until this call ends at an optimal basis
   lambda_.resize(n_);  // every entry written by the first duals() (the whole range)
@@ -190,15 +194,16 @@ bool ChainSimplex::match() {
   }
   for (; q < srows_.size(); ++q)
     if (!used_[q]) return false;
-  own_.resize(n_);
-  left_.assign(n_, 0.0);
-  right_.assign(n_, 0.0);
-  for (std::size_t i = 0; i < n_; ++i) {
-    own_[i] = coef(i, i);
-    if (i > 0) left_[i] = coef(i, i - 1);
-    if (i + 1 < n_) right_[i] = coef(i, i + 1);
-  }
   return true;
+}
+
+// B's row i (the constraint matched to column i: its coefficients on columns i-1, i, i+1) for i in [i0, i1].
+void ChainSimplex::coefs(std::size_t i0, std::size_t i1) {
+  for (std::size_t i = i0; i <= i1; ++i) {
+    own_[i] = coef(i, i);
+    left_[i] = i > 0 ? coef(i, i - 1) : 0.0;
+    right_[i] = i + 1 < n_ ? coef(i, i + 1) : 0.0;
+  }
 }
 
 // The columns [bl, br] of column i's block: B (and Bᵀ) couple columns i and i + 1 only if the constraint matched
@@ -304,7 +309,11 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
       cl = std::min(cl, i);
       cr = std::max(cr, i);
     }
-  if (cl > cr) cl = cr = p;
+  if (cl > cr) {
+    cl = cr = p;
+  } else {
+    coefs(cl, cr);  // B's other rows are unchanged
+  }
   return true;
 }
 

@@ -74,6 +74,7 @@ class ChainSimplex {
   double slack(const Row& r) const { return r.line->c - r.line->a * y_[r.k] - r.line->b * y_[r.k + 1]; }
   bool start_basis();
   bool match();
+  void coefs(std::size_t i0, std::size_t i1);
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
   void fill(bool transpose, std::size_t i0, std::size_t i1);
   bool duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr);
