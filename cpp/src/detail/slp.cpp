@@ -77,7 +77,7 @@ constexpr int kSlpBeforeBarrier = 2;
 constexpr double kBarrierFirstBracket = 1e-2;
 constexpr int kBarrierFirstColumns = 2000;
 constexpr int kBarrierSteps = 300;  // its Newton step budget (then the SLP goes on)
-constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget per LP (then GLPK)
+constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget per LP (then the barrier or GLPK)
 constexpr int kChainFrankWolfe = 6; // its Frank-Wolfe iterations (then the barrier or GLPK)
 
 struct WindowResult {
