@@ -105,6 +105,31 @@ def test_corpus_exercises_the_windows():
     assert len(oracle_high) <= 2, oracle_high
 
 
+def test_window_with_an_interior_optimum():
+    """The bench's slowest (b) path at N = 1000 (bench/sweep.py: xArm7, seed 3, torque 0.6 x effort): one
+    window's optimum is interior (the Frank-Wolfe step to the LP's vertex stops at 0.48), where the chain
+    simplex's next check runs warm from the LP's last basis instead of a cold GLPK LP. Against cvxpy's optimum,
+    HiGHS's Frank-Wolfe certificate and every grid-point limit."""
+    ours, theirs = arm("xarm7")
+    lo, hi = ours.position_limits
+    v = ours.velocity_limits
+    rng = np.random.default_rng(3)
+    waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (int(rng.integers(5, 9)), len(v)))
+    path = pp.CubicSplinePath(waypoints, knots="uniform", boundary="not-a-knot", s_begin=0.0, s_end=1.0)
+    grid = np.linspace(0.0, 1.0, 1001)
+    prob = kinematic_problem(path, grid, -v, v, -2 * v, 2 * v)
+    prob.add_torque_limits(ours, scale=0.6)
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    assert res.stats["gap"] <= 1e-7 and res.stats["lp_solves"] > 0 and res.stats["newton_steps"] == 0
+    A, B, C = kinematic_rows(path.dq(grid), path.ddq(grid), -v, v, -2 * v, 2 * v)
+    At, Bt, Ct = torque_rows(theirs, path, grid, 0.6)
+    A, B, C = np.hstack([A, At]), np.hstack([B, Bt]), np.hstack([C, Ct])
+    assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
+    assert frank_wolfe_gap(grid, res.sdot**2, A, B, C) <= 1e-6 * res.duration
+    assert res.duration <= cvxpy_optimum(grid, A, B, C)[0] * (1 + 1e-6)
+
+
 WALKS = 4
 
 

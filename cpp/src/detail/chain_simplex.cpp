@@ -26,6 +26,10 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
     y_ = theta;
     has_basis_ = start_basis() && match();
     if (!has_basis_) return inf;
+    own_.resize(n_);
+    left_.resize(n_);
+    right_.resize(n_);
+    coefs(0, n_ - 1);
   }
   has_basis_ = false;  // until this call ends at an optimal basis
   lambda_.resize(n_);  // every entry written by the first duals() (the whole range)
@@ -93,6 +97,10 @@ bool ChainSimplex::start_basis() {
   // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
   opt_.clear();
   opt_begin_.assign(n_, 0);
+  // Each row's relative slack at y_ (reachability's row_violation, negated), once: a row is an option of both
+  // its points.
+  viol_.resize(rows_.size());
+  for (std::size_t t = 0; t < rows_.size(); ++t) viol_[t] = row_violation(*rows_[t].line, y_[rows_[t].k], y_[rows_[t].k + 1]);
   std::size_t r0 = 0;  // first row of interval j - 1
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
@@ -107,9 +115,8 @@ bool ChainSimplex::start_basis() {
       const Row& r = rows_[t];
       const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
       if (on_j == 0.0) continue;
-      // Tight: a relative slack (reachability's row_violation, negated) of at most 1e-9.
-      const double v = row_violation(*r.line, y_[r.k], y_[r.k + 1]);
-      if (v < -1e-9) continue;
+      const double v = viol_[t];
+      if (v < -1e-9) continue;  // not tight: a relative slack of more than 1e-9
       const double rel = std::max(-v, 0.0);
       opt_.push_back({static_cast<int>(t), rel + 1e-15 * static_cast<double>(opt_.size() - o0 + 1), 0.0, -1});
     }
@@ -187,15 +194,16 @@ bool ChainSimplex::match() {
   }
   for (; q < srows_.size(); ++q)
     if (!used_[q]) return false;
-  own_.resize(n_);
-  left_.assign(n_, 0.0);
-  right_.assign(n_, 0.0);
-  for (std::size_t i = 0; i < n_; ++i) {
-    own_[i] = coef(i, i);
-    if (i > 0) left_[i] = coef(i, i - 1);
-    if (i + 1 < n_) right_[i] = coef(i, i + 1);
-  }
   return true;
+}
+
+// B's row i (the constraint matched to column i: its coefficients on columns i-1, i, i+1) for i in [i0, i1].
+void ChainSimplex::coefs(std::size_t i0, std::size_t i1) {
+  for (std::size_t i = i0; i <= i1; ++i) {
+    own_[i] = coef(i, i);
+    left_[i] = i > 0 ? coef(i, i - 1) : 0.0;
+    right_[i] = i + 1 < n_ ? coef(i, i + 1) : 0.0;
+  }
 }
 
 // The columns [bl, br] of column i's block: B (and Bᵀ) couple columns i and i + 1 only if the constraint matched
@@ -301,7 +309,11 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
       cl = std::min(cl, i);
       cr = std::max(cr, i);
     }
-  if (cl > cr) cl = cr = p;
+  if (cl > cr) {
+    cl = cr = p;
+  } else {
+    coefs(cl, cr);  // B's other rows are unchanged
+  }
   return true;
 }
 

@@ -42,8 +42,10 @@ class ChainSimplex {
   /// From the vertex `theta` (θ_0..θ_m, feasible; each free point at a bound or where a row of an adjacent
   /// interval is tight, as the greedy profile is), minimises g·y by at most `max_pivots` pivots; returns the
   /// bound above on g·θ - min g·y (>= 0), or +inf if it gave up (no start basis, singular, pivot budget).
-  /// warm: start from the basis the previous call ended with (optimal for its g), whose vertex() must then be
-  /// `theta` (a Frank-Wolfe step of length 1 lands there): the basis stays primal feasible for a new g.
+  /// warm: start from the basis the previous call ended with (optimal for its g) at its vertex(), which stays
+  /// primal feasible for a new g (lo, hi and the rows are the same); `theta` is then any feasible point (the
+  /// Frank-Wolfe iterate, on the segment to that vertex or at it): the bound is computed there, whatever
+  /// vertex the simplex stands on.
   double gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g, int max_pivots, bool warm = false);
 
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
@@ -72,6 +74,7 @@ class ChainSimplex {
   double slack(const Row& r) const { return r.line->c - r.line->a * y_[r.k] - r.line->b * y_[r.k + 1]; }
   bool start_basis();
   bool match();
+  void coefs(std::size_t i0, std::size_t i1);
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
   void fill(bool transpose, std::size_t i0, std::size_t i1);
   bool duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr);
@@ -89,6 +92,7 @@ class ChainSimplex {
   std::vector<int> bounds_, match_, old_match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
   std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
   std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
+  std::vector<double> viol_;  // start_basis: each row's row_violation at y_
   Eigen::VectorXd y_;
   int pivots_ = 0;
   bool has_basis_ = false;

@@ -63,23 +63,22 @@ double line_search(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, cons
 
 namespace {
 
-// When the barrier method takes over a window (see slp_window): first, if the greedy profile is far from the
-// relaxation's bound on the window (relative bracket above kBarrierFirstBracket: many reversals per stretch,
-// an interior optimum, where the SLP from the greedy start needs many trust-region steps); otherwise after
-// kSlpBeforeBarrier SLP iterations that did not certify it. Measured: on the arm corpus of bench/sweep.py
-// the bracket is up to ~1e-3 (N = 100) and the first LP (the Frank-Wolfe check at the greedy profile) nearly
-// always certifies the window, cheaper than ~25-30 Newton steps (at N = 10000, windows of ~800 points: one
-// LP ~1 ms, the barrier ~3 ms; with the barrier first from a bracket of 1e-4 the N = 100 corpus went from
-// 10.9x to 7.6x toppra); on the 400-waypoint random walk the greedy profile is 6 % above the optimum and the
-// barrier certifies a 1001-point window in ~8 ms where SLP took 1.4 s. Also first on windows of
-// kBarrierFirstColumns free points or more, where one GLPK LP costs more than the whole barrier solve
-// (the walk at N = 100000: windows of ~5000 points, one LP each ~75 ms, the barrier ~30 ms).
+// When the barrier method takes over a window (see slp_window), after the chain simplex's Frank-Wolfe
+// iterations (which certify nearly every window of the arm corpus, at N = 100 also those whose bracket is
+// large, in fewer µs than ~25 Newton steps) have given up: at once if the greedy profile is far from the
+// relaxation's bound on the window (relative bracket above kBarrierFirstBracket: many reversals per stretch, an
+// interior optimum, where the SLP from the greedy start needs many trust-region steps); otherwise after
+// kSlpBeforeBarrier GLPK SLP iterations that did not certify it. Measured: at N = 10000, windows of ~800
+// points: one GLPK LP ~1 ms, the barrier ~3 ms; on the 400-waypoint random walk the greedy profile is 6 % above
+// the optimum and the barrier certifies a 1001-point window in ~8 ms where SLP took 1.4 s. On windows of
+// kBarrierFirstColumns free points or more the barrier comes first of all, before the chain simplex too
+// (the walk at N = 100000: windows of ~5000 points, one GLPK LP each ~75 ms, the barrier ~30 ms).
 constexpr int kSlpBeforeBarrier = 2;
 constexpr double kBarrierFirstBracket = 1e-2;
 constexpr int kBarrierFirstColumns = 2000;
 constexpr int kBarrierSteps = 300;  // its Newton step budget (then the SLP goes on)
-constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget per LP (then GLPK)
-constexpr int kChainFrankWolfe = 6; // its Frank-Wolfe iterations while they land on vertices (then GLPK)
+constexpr int kChainPivots = 64;    // ChainSimplex's pivot budget per LP (then the barrier or GLPK)
+constexpr int kChainFrankWolfe = 6; // its Frank-Wolfe iterations (then the barrier or GLPK)
 
 struct WindowResult {
   SlpOutcome::Status status = SlpOutcome::Status::Converged;
@@ -140,11 +139,16 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     const double T_hi = duration(ds, hi);
     far_start = (std::isfinite(T_hi) && out.T - T_hi > kBarrierFirstBracket * out.T) || cols >= kBarrierFirstColumns;
   }
-  if (!(use_barrier && far_start)) {
+  if (!(use_barrier && cols >= kBarrierFirstColumns)) {
     // The first LP below is the Frank-Wolfe check at the start, and usually all that the window needs (with the
-    // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex). While the
-    // steps go all the way to the LP's vertex (the optimum of a time-optimal problem is usually a vertex), the
-    // next check starts from that vertex's basis; a shorter step (an interior optimum) is left to the SLP below.
+    // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex). Each next
+    // check starts from the previous LP's optimal basis, whether the step went all the way to its vertex (the
+    // optimum of a time-optimal problem is usually a vertex) or stopped short of it (an interior optimum): the
+    // window's set and bounds do not change, so that basis is still primal feasible, and the bound is computed
+    // at the new iterate whatever vertex the simplex stands on. An interior optimum on a face of low
+    // dimension (a coupling row traded between its two points) is typically certified by the second check
+    // (xArm7 seed 3 (b), N = 1000: a 122-point window, step 0.48, then a check from the same basis with 2
+    // pivots, where GLPK's cold LP took ~1 ms); kChainFrankWolfe iterations, then GLPK (or the barrier).
     ChainSimplex cs(chain, a, m, lo, hi, first, last);
     gradient(ds, theta, floor, g);
     bool warm = false;
@@ -159,7 +163,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       // step realises all but the target of the decrease the LP promised.
       d = cs.vertex() - theta;
       // A step of nearly the whole way goes to the vertex itself (T there is above the segment's minimum by a
-      // second-order amount), so that the next check can start from its basis.
+      // second-order amount), whose tight rows then hold exactly.
       const double alpha = line_search(ds, theta, d, floor, tmp, gtmp);
       const bool to_vertex = alpha >= 0.999;
       Eigen::VectorXd next = to_vertex ? cs.vertex() : Eigen::VectorXd(theta + alpha * d);
@@ -172,7 +176,6 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       out.gap = T_next - out.lower;
       gradient(ds, theta, floor, g);
       if (out.gap <= rel_target * out.T) return out;
-      if (!to_vertex) break;
       warm = true;
     }
   }
@@ -203,6 +206,24 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     }
     for (const Line& r : kept) wrows.push_back({k, r.a, r.b, r.c});
   }
+
+  // Newton's method on a log barrier (detail/barrier.hpp: O(n) per step, certified by the same kind of bound)
+  // from the current iterate, where the optimum is not at a vertex of the window's set (typically a long
+  // stretch where the optimum is interior: many short path pieces) and trust-region SLP crawls; true if it
+  // certified the window. First (before GLPK is set up) on a far start, else after kSlpBeforeBarrier SLP
+  // iterations; the SLP goes on only if it fails.
+  auto barrier = [&]() {
+    const BarrierResult br = barrier_window(ds, wrows, lo, hi, theta, rel_target * out.T, kBarrierSteps, deadline);
+    out.newton_steps = br.newton_steps;
+    if (!(br.ok && br.T <= out.T)) return false;
+    out.theta = br.theta;
+    out.T = br.T;
+    out.lower = std::max(out.lower, br.lower);
+    out.gap = out.T - out.lower;
+    out.status = SlpOutcome::Status::Converged;
+    return true;
+  };
+  if (use_barrier && far_start && barrier()) return out;
 
   lp.reset(cols);
   // The LP is posed in y_j = θ_j / σ_j with σ_j the start's θ_j (floored), and each row divided by its size
@@ -354,22 +375,8 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   };
 
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
-    if (use_barrier && out.iterations == (far_start ? 0 : kSlpBeforeBarrier)) {
-      // The SLP has not certified the window in a few LPs: its optimum is not at a vertex of the window's
-      // set (typically a long stretch where the optimum is interior: many short path pieces), where
-      // trust-region SLP crawls. Newton's method on a log barrier (detail/barrier.hpp: O(n) per step,
-      // certified by the same kind of bound) from the current iterate; the SLP goes on only if it fails.
-      const BarrierResult br = barrier_window(ds, wrows, lo, hi, theta, rel_target * T, kBarrierSteps, deadline);
-      out.newton_steps = br.newton_steps;
-      if (br.ok && br.T <= T) {
-        out.theta = br.theta;
-        out.T = br.T;
-        out.lower = std::max(out.lower, br.lower);
-        out.gap = out.T - out.lower;
-        out.status = SlpOutcome::Status::Converged;
-        return out;
-      }
-    }
+    // The SLP has not certified the window in a few LPs: see barrier above.
+    if (use_barrier && !far_start && out.iterations == kSlpBeforeBarrier && barrier()) return out;
     if (Clock::now() >= deadline) {
       out.status = SlpOutcome::Status::TimeLimit;
       return out;
