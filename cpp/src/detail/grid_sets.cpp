@@ -115,7 +115,8 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   if (ps.x_hi < ps.x_lo) ps.x_hi = ps.x_lo;  // within rounding: a single speed
   // One pass over the envelopes; clipping row by row only when that declines (empty or degenerate
   // sets: clipping also names the rows that empty it).
-  if (!polygon.build(ps.x_lo, ps.x_hi, -scale.cap, scale.cap, out, count)) {
+  // Into the grid's storage (out_rows) only the rows go: the polygon's vertices are not computed.
+  if (!polygon.build(ps.x_lo, ps.x_hi, -scale.cap, scale.cap, out, count, out_rows != nullptr)) {
     if (!hint.empty()) {
       // The rows that supported the previous grid point's polygon most likely support this one too.
       // Cut with them first: the polygon is then nearly final early and the other rows are rejected by

@@ -66,7 +66,8 @@ GridSets build_grid_sets(const PathSamples& samples, const std::vector<Constrain
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon);
 /// Same, with a caller-owned scratch vector (no allocation per grid point in a loop) and optionally the
 /// neighbouring point's supporting rows, which are clipped first (same result, less work). With
-/// out_rows the supporting rows are appended there instead of to the returned PointSet::rows.
+/// out_rows the supporting rows are appended there instead of to the returned PointSet::rows, and
+/// `polygon` keeps only its edges (Polygon2d::build's edges_only).
 /// Rows and bounds are in the units of `scale`.
 PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::Index k, Polygon2d& polygon,
                          std::vector<Line>& scratch, View<Line> hint = {}, std::vector<Line>* out_rows = nullptr,

@@ -57,7 +57,8 @@ void Polygon2d::assign(const Polygon2d& other) {
             vertices_[0].begin());
 }
 
-bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n) {
+bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n,
+                      bool edges_only) {
   empty_ = false;
   range_known_ = false;
   // Index lists and pieces are written through counts into storage sized for every line: push_back on a
@@ -247,6 +248,14 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     if (overlaps(upper_.data(), k)) e[cnt++] = line_at(upper_[k].line);
   if (has_left) e[cnt++] = left;
   if (cnt < 3) return false;
+  if (edges_only && n_steep == 0) {
+    // intersect()'s test for parallel neighbours without its division and products.
+    for (std::size_t j = 0; j < cnt; ++j)
+      if (!independent(e[j], e[j + 1 == cnt ? 0 : j + 1])) return false;
+    cur_ = nxt;
+    m_ = cnt;
+    return true;
+  }
   Vertex* v = vertices_[nxt].data();
   for (std::size_t j = 0; j < cnt; ++j)
     if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
@@ -265,6 +274,12 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     if (empty_) return false;  // left to clipping line by line, which gives the certificate
   }
   return true;
+}
+
+bool Polygon2d::independent(const Line& l1, const Line& l2) {
+  const double det = l1.a * l2.b - l2.a * l1.b;
+  const double scale = std::abs(l1.a * l2.b) + std::abs(l2.a * l1.b);
+  return std::abs(det) > 1e-15 * scale && scale != 0.0;
 }
 
 bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {

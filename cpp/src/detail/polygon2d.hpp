@@ -100,7 +100,12 @@ class Polygon2d {
   /// O(n · vertices) clips. Returns false, with the polygon left
   /// unspecified, when the result is empty or nearly degenerate (touching envelopes, parallel lines):
   /// the caller then clips line by line, which also yields the emptiness certificate.
-  bool build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n);
+  /// With edges_only, a caller that reads only edges() afterwards (the per-grid-point sets keep the
+  /// supporting rows) spares the vertices' divisions: unless a nearly vertical line must be clipped in,
+  /// vertices() and x_range() are then unspecified and the polygon must not be clipped until rebuilt.
+  /// Whether it succeeds is the same either way (adjacent edges are still checked for being parallel).
+  bool build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n,
+             bool edges_only = false);
 
   /// Becomes a copy of `other` (no allocation once warm).
   void assign(const Polygon2d& other);
@@ -126,6 +131,7 @@ class Polygon2d {
 
  private:
   static bool intersect(const Line& l1, const Line& l2, Vertex& v);
+  static bool independent(const Line& l1, const Line& l2);  // intersect() would succeed
   bool degenerate(std::size_t j) const;
   void erase(std::size_t j);
 
