@@ -8,6 +8,7 @@
 
 #include "pathpace/pathpace.hpp"
 #include "test_util.hpp"
+#include "torque_lanes.hpp"
 
 using namespace pathpace;
 
@@ -124,17 +125,21 @@ TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
 
 TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
   // kArm: coordinate-axis revolute joints and a tilted prismatic one; the same tree with a tilted
-  // revolute axis (the general rotation in each lane). An odd sample count leaves a one-sample tail.
+  // revolute axis (the general rotation in each lane). Every lane width this CPU runs (SSE2, AVX2 + FMA,
+  // AVX-512: the batch takes the widest), and 43 samples leave a partial last group for each (1 of 2,
+  // 3 of 4 and of 8 lanes).
   std::string tilted = kArm;
   tilted.replace(tilted.find("<axis xyz=\"0 1 0\"/>"), 19, "<axis xyz=\"0 0.6 0.8\"/>");
+  std::vector<int> widths;
+  for (int lanes = 1; lanes <= detail::torque_lanes_supported(); lanes *= 2) widths.push_back(lanes);
   for (const std::string& xml : {std::string(kArm), tilted}) {
     const RobotModel r = RobotModel::from_urdf_string(xml);
     RobotWorkspace ws(r);
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> U(-2.0, 2.0);
     // The lanes take sin and cos from their own kernel (to 1.5 ulp of libm's): angles in every quadrant
-    // and many turns, multiples of pi/2, and one beyond its range (|q| > 1e5, libm in both lanes).
-    const int count = 41;
+    // and many turns, multiples of pi/2, and one beyond its range (|q| > 1e5, libm in every lane).
+    const int count = 43;
     Eigen::MatrixXd q(count, 3), dq(count, 3), ddq(count, 3);
     for (int s = 0; s < count; ++s)
       for (int j = 0; j < 3; ++j) {
@@ -150,14 +155,19 @@ TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
     Eigen::MatrixXd A, B, C;
     r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
     ASSERT_EQ(A.rows(), count);
-    for (int s = 0; s < count; ++s) {
-      Eigen::VectorXd a(3), b(3), c(3);
-      r.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b, c);
-      EXPECT_NEAR((A.row(s).transpose() - a).norm(), 0.0, 1e-12 * (1.0 + a.norm())) << s;
-      EXPECT_NEAR((B.row(s).transpose() - b).norm(), 0.0, 1e-12 * (1.0 + b.norm())) << s;
-      EXPECT_NEAR((C.row(s).transpose() - c).norm(), 0.0, 1e-12 * (1.0 + c.norm())) << s;
-      EXPECT_GT(a.norm() + b.norm(), 1e-3);
+    for (int lanes : widths) {
+      if (lanes > 1) detail::path_torque_coefficients_lanes(r, ws, q, dq, ddq, A, B, C, lanes);
+      for (int s = 0; s < count; ++s) {
+        Eigen::VectorXd a(3), b(3), c(3);
+        r.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b, c);
+        EXPECT_NEAR((A.row(s).transpose() - a).norm(), 0.0, 1e-12 * (1.0 + a.norm())) << s << " lanes " << lanes;
+        EXPECT_NEAR((B.row(s).transpose() - b).norm(), 0.0, 1e-12 * (1.0 + b.norm())) << s << " lanes " << lanes;
+        EXPECT_NEAR((C.row(s).transpose() - c).norm(), 0.0, 1e-12 * (1.0 + c.norm())) << s << " lanes " << lanes;
+        EXPECT_GT(a.norm() + b.norm(), 1e-3);
+      }
     }
     EXPECT_THROW(r.path_torque_coefficients_batch(ws, q.leftCols(2), dq, ddq, A, B, C), InvalidInput);
+    EXPECT_EQ(test::error_of([&] { detail::path_torque_coefficients_lanes(r, ws, q, dq, ddq, A, B, C, 3); }),
+              "lanes = 3 must be a power of 2 <= " + std::to_string(detail::torque_lanes_supported()));
   }
 }

@@ -1,0 +1,22 @@
+#pragma once
+// Internal: the SIMD variants of RobotModel::path_torque_coefficients_batch (robot_model.cpp), exposed
+// so that tests can compare them on one machine.
+
+#include <Eigen/Core>
+
+#include "pathpace/robot_model.hpp"
+#include "pathpace/robot_workspace.hpp"
+
+namespace pathpace::detail {
+
+/// Samples per sweep of the widest variant this CPU runs: 8 (AVX-512), 4 (AVX2 + FMA), 2 (SSE2 or
+/// another compiler-vector target) or 1 (no vector types).
+int torque_lanes_supported();
+
+/// path_torque_coefficients_batch with `lanes` samples per sweep (1 = one sample at a time, a power of
+/// 2 up to torque_lanes_supported(), else InvalidInput). A robot with mimic joints takes the widest.
+void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
+                                    const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a,
+                                    Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes);
+
+}  // namespace pathpace::detail
