@@ -778,12 +778,12 @@ PATHPACE_LANE_INLINE bool sincos_lanes(const V& x, V& s, V& c) {
 }
 
 // path_torque_coefficients_batch without mimic joints, W = sizeof(V) / 8 samples per sweep. q, dq, ddq
-// and a, b, c are column-major (samples, bodies) with leading dimension `count`; a last group of fewer
-// than W samples fills its spare lanes with its last sample and stores only its own.
+// are column-major (samples, bodies) with leading dimension `count`; a last group of fewer than W
+// samples fills its spare lanes with its last sample and stores only its own.
 template <typename V, typename L>
 PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity,
                                             RobotWorkspace& ws, Eigen::Index count, const double* q, const double* dq,
-                                            const double* ddq, double* a, double* b, double* c) {
+                                            const double* ddq, const detail::TorqueOutput& out) {
   constexpr Eigen::Index W = sizeof(V) / sizeof(double);
   const size_t nb = bodies.size();
   AbcBody<V>* S = abc_bodies<V>(ws, nb, 5 * nb);
@@ -830,17 +830,18 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
       }
     }
     abc_sweep<V>(bodies, S, qd, qdd, gravity, av, bv, cv);
+    const Eigen::Index ss = out.sample_stride;
     for (size_t i = 0; i < nb; ++i) {
-      const Eigen::Index at = static_cast<Eigen::Index>(i) * count + s;
-      if (valid == W) {
-        std::memcpy(a + at, &av[i], sizeof(V));
-        std::memcpy(b + at, &bv[i], sizeof(V));
-        std::memcpy(c + at, &cv[i], sizeof(V));
+      const Eigen::Index at = static_cast<Eigen::Index>(i) * out.joint_stride + s * ss;
+      if (valid == W && ss == 1) {
+        std::memcpy(out.a + at, &av[i], sizeof(V));
+        std::memcpy(out.b + at, &bv[i], sizeof(V));
+        std::memcpy(out.c + at, &cv[i], sizeof(V));
       } else {
         for (Eigen::Index l = 0; l < valid; ++l) {
-          a[at + l] = av[i][l];
-          b[at + l] = bv[i][l];
-          c[at + l] = cv[i][l];
+          out.a[at + l * ss] = av[i][l];
+          out.b[at + l * ss] = bv[i][l];
+          out.c[at + l * ss] = cv[i][l];
         }
       }
     }
@@ -848,9 +849,9 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
 }
 
 void path_torque_lanes2(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity, RobotWorkspace& ws,
-                        Eigen::Index count, const double* q, const double* dq, const double* ddq, double* a, double* b,
-                        double* c) {
-  path_torque_lanes<Double2, Long2>(bodies, gravity, ws, count, q, dq, ddq, a, b, c);
+                        Eigen::Index count, const double* q, const double* dq, const double* ddq,
+                        const detail::TorqueOutput& out) {
+  path_torque_lanes<Double2, Long2>(bodies, gravity, ws, count, q, dq, ddq, out);
 }
 #if defined(PATHPACE_WIDE_LANES)
 // The same code with the wider registers of newer x86-64 CPUs, chosen at run time (the library itself
@@ -859,13 +860,13 @@ void path_torque_lanes2(const std::vector<RobotModel::Body>& bodies, const Eigen
 __attribute__((target("avx2,fma"))) void path_torque_lanes4(const std::vector<RobotModel::Body>& bodies,
                                                              const Eigen::Vector3d& gravity, RobotWorkspace& ws,
                                                              Eigen::Index count, const double* q, const double* dq,
-                                                             const double* ddq, double* a, double* b, double* c) {
-  path_torque_lanes<Double4, Long4>(bodies, gravity, ws, count, q, dq, ddq, a, b, c);
+                                                             const double* ddq, const detail::TorqueOutput& out) {
+  path_torque_lanes<Double4, Long4>(bodies, gravity, ws, count, q, dq, ddq, out);
 }
 __attribute__((target("avx512f,avx512dq,avx2,fma"))) void path_torque_lanes8(
     const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity, RobotWorkspace& ws, Eigen::Index count,
-    const double* q, const double* dq, const double* ddq, double* a, double* b, double* c) {
-  path_torque_lanes<Double8, Long8>(bodies, gravity, ws, count, q, dq, ddq, a, b, c);
+    const double* q, const double* dq, const double* ddq, const detail::TorqueOutput& out) {
+  path_torque_lanes<Double8, Long8>(bodies, gravity, ws, count, q, dq, ddq, out);
 }
 #endif
 #endif
@@ -887,46 +888,68 @@ int torque_lanes_supported() {
 #endif
 }
 
-void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
-                                    const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a,
-                                    Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes) {
+void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
+                                   const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, const TorqueOutput& out,
+                                   int lanes) {
   const Eigen::Index n = robot.nq(), count = q.rows();
   if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
     fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
-  if (!robot.mimic_joints().empty()) {
-    robot.path_torque_coefficients_batch(ws, q, dq, ddq, a, b, c);
-    return;
-  }
+  if (lanes == 0) lanes = torque_lanes_supported();
   if (lanes < 1 || lanes > torque_lanes_supported() || (lanes & (lanes - 1)) != 0)
     fail("lanes = " + std::to_string(lanes) + " must be a power of 2 <= " + std::to_string(torque_lanes_supported()));
-  a.resize(count, n);
-  b.resize(count, n);
-  c.resize(count, n);
   const std::vector<RobotModel::Body>& bodies = robot.bodies();
-  switch (lanes) {
+  if (robot.mimic_joints().empty()) {
+    switch (lanes) {
 #if defined(PATHPACE_WIDE_LANES)
-    case 8:
-      path_torque_lanes8(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), a.data(), b.data(), c.data());
-      return;
-    case 4:
-      path_torque_lanes4(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), a.data(), b.data(), c.data());
-      return;
+      case 8:
+        path_torque_lanes8(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), out);
+        return;
+      case 4:
+        path_torque_lanes4(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), out);
+        return;
 #endif
 #if defined(__GNUC__)
-    case 2:
-      path_torque_lanes2(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), a.data(), b.data(), c.data());
-      return;
+      case 2:
+        path_torque_lanes2(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), out);
+        return;
 #endif
-    default:
-      break;
+      default:
+        break;
+    }
   }
-  Eigen::VectorXd as(n), bs(n), cs(n);
-  for (Eigen::Index s = 0; s < count; ++s) {
-    robot.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), as, bs, cs);
-    a.row(s) = as.transpose();
-    b.row(s) = bs.transpose();
-    c.row(s) = cs.transpose();
+  // One sample at a time, or a robot with mimic joints (the batch maps them onto its bodies' model).
+  Eigen::MatrixXd A(count, n), B(count, n), C(count, n);
+  if (robot.mimic_joints().empty()) {
+    Eigen::VectorXd as(n), bs(n), cs(n);
+    for (Eigen::Index s = 0; s < count; ++s) {
+      robot.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), as, bs,
+                                     cs);
+      A.row(s) = as.transpose();
+      B.row(s) = bs.transpose();
+      C.row(s) = cs.transpose();
+    }
+  } else {
+    robot.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
   }
+  for (Eigen::Index s = 0; s < count; ++s)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Eigen::Index at = s * out.sample_stride + j * out.joint_stride;
+      out.a[at] = A(s, j);
+      out.b[at] = B(s, j);
+      out.c[at] = C(s, j);
+    }
+}
+
+void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
+                                    const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a,
+                                    Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes) {
+  const Eigen::Index count = q.rows();
+  if (q.cols() == robot.nq()) {  // else path_torque_coefficients_into says what is wrong
+    a.resize(count, robot.nq());
+    b.resize(count, robot.nq());
+    c.resize(count, robot.nq());
+  }
+  path_torque_coefficients_into(robot, ws, q, dq, ddq, TorqueOutput{a.data(), b.data(), c.data(), 1, count}, lanes);
 }
 
 }  // namespace detail

@@ -13,10 +13,23 @@ namespace pathpace::detail {
 /// another compiler-vector target) or 1 (no vector types).
 int torque_lanes_supported();
 
-/// path_torque_coefficients_batch with `lanes` samples per sweep (1 = one sample at a time, a power of
-/// 2 up to torque_lanes_supported(), else InvalidInput). A robot with mimic joints takes the widest.
+/// Where path_torque_coefficients_into writes sample s, joint j: a[s * sample_stride + j * joint_stride]
+/// (and b, c likewise); each a distinct entry.
+struct TorqueOutput {
+  double *a, *b, *c;
+  Eigen::Index sample_stride, joint_stride;
+};
+
+/// path_torque_coefficients_batch into caller-laid-out arrays (TorqueLimits writes its rows directly),
+/// with `lanes` samples per sweep: 0 = the widest the CPU runs, 1 = one sample at a time, else a power of
+/// 2 up to torque_lanes_supported() (InvalidInput beyond). A robot with mimic joints takes the widest.
+void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
+                                   const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, const TorqueOutput& out,
+                                   int lanes = 0);
+
+/// The same into (samples, nq) matrices, resized here.
 void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
                                     const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a,
-                                    Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes);
+                                    Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes = 0);
 
 }  // namespace pathpace::detail

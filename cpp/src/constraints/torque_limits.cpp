@@ -5,6 +5,7 @@
 
 #include "detail/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
+#include "torque_lanes.hpp"
 
 namespace pathpace {
 
@@ -44,20 +45,25 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
     rows.labels[static_cast<size_t>(2 * j)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " upper";
     rows.labels[static_cast<size_t>(2 * j + 1)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " lower";
   }
+  // The coefficients go straight into the upper rows' columns (no (samples, n) copies to transpose);
+  // each lower row is then its upper row's negation.
   RobotWorkspace ws(*robot_);
-  Eigen::MatrixXd A, B, C;
-  robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, A, B, C);
+  const Eigen::Index r = 2 * n;
+  detail::path_torque_coefficients_into(*robot_, ws, samples.q, samples.dq, samples.ddq,
+                                        detail::TorqueOutput{rows.a.data(), rows.b.data(), rows.c.data(), r, 2});
+  const double inf = std::numeric_limits<double>::infinity();
   for (Eigen::Index k = 0; k < samples.size(); ++k) {
-    const auto a = A.row(k), b = B.row(k), c = C.row(k);
+    double* a = rows.a.data() + k * r;
+    double* b = rows.b.data() + k * r;
+    double* c = rows.c.data() + k * r;
     for (int j = 0; j < n; ++j) {
       // eq. (15): τ_L <= a x + b u + c <= τ_U
       // An infinite limit gives c = +inf: an inactive row.
-      rows.a(k, 2 * j) = a[j];
-      rows.b(k, 2 * j) = b[j];
-      rows.c(k, 2 * j) = std::isfinite(tau_max_[j]) ? tau_max_[j] - c[j] : std::numeric_limits<double>::infinity();
-      rows.a(k, 2 * j + 1) = -a[j];
-      rows.b(k, 2 * j + 1) = -b[j];
-      rows.c(k, 2 * j + 1) = std::isfinite(tau_min_[j]) ? c[j] - tau_min_[j] : std::numeric_limits<double>::infinity();
+      const double g = c[2 * j];
+      a[2 * j + 1] = -a[2 * j];
+      b[2 * j + 1] = -b[2 * j];
+      c[2 * j] = std::isfinite(tau_max_[j]) ? tau_max_[j] - g : inf;
+      c[2 * j + 1] = std::isfinite(tau_min_[j]) ? g - tau_min_[j] : inf;
     }
   }
   return rows;
