@@ -729,24 +729,19 @@ AbcBody<T>* abc_bodies(RobotWorkspace& ws, size_t nb, size_t extra = 0) {
 
 #if defined(__GNUC__)
 using Double2 = double __attribute__((vector_size(16)));  // two samples, one per SIMD lane (SSE2, NEON)
-using Long2 = long long __attribute__((vector_size(16)));  // a lane mask of a Double2 comparison
 #if defined(__x86_64__) || defined(__i386__)
 #define PATHPACE_WIDE_LANES 1
 using Double4 = double __attribute__((vector_size(32)));  // AVX2
-using Long4 = long long __attribute__((vector_size(32)));
 using Double8 = double __attribute__((vector_size(64)));  // AVX-512
-using Long8 = long long __attribute__((vector_size(64)));
 #endif
 
-// sin and cos of every lane at once, to within 1.5 ulp of libm's (checked over 2.4e7 arguments in
-// [-1e5, 1e5]): the reduction by π/2 in three parts (Cody-Waite, fdlibm's constants; exact for
-// |x| <= 1e5) and fdlibm's kernels on [-π/4, π/4]. One libm sincos per joint and sample was a fifth of
-// the torque rows' time. False (nothing written) if a lane is beyond 1e5 or not finite: libm then.
-template <typename V, typename L>
-PATHPACE_LANE_INLINE bool sincos_lanes(const V& x, V& s, V& c) {
-  const L in_range = (x <= 1e5) & (x >= -1e5);
-  for (size_t l = 0; l < sizeof(V) / sizeof(double); ++l)
-    if (!in_range[l]) return false;
+// sin and cos of every lane at once, to within 2 ulp of libm's (checked over 1.6e7 arguments in
+// [-1e5, 1e5] and [-7, 7]): the reduction by π/2 in three parts (Cody-Waite, fdlibm's constants; exact for
+// |x| <= 1e5, which the caller ensures) and fdlibm's kernels on [-π/4, π/4]. One libm sincos per joint
+// and sample was a fifth of the torque rows' time. The quadrant picks and signs the kernels by products
+// with 0, 1 and ±1 (exact), not by lane comparisons: GCC does those one lane at a time with AVX-512.
+template <typename V>
+PATHPACE_LANE_INLINE void sincos_lanes(const V& x, V& s, V& c) {
   const double magic = 6755399441055744.0;  // 1.5 · 2^52: y + magic - magic rounds y to an integer
   const V k = (x * 0.63661977236758134308 + magic) - magic;  // nearest multiple of π/2
   V r = x - k * 1.57079632673412561417e+00;
@@ -766,21 +761,22 @@ PATHPACE_LANE_INLINE bool sincos_lanes(const V& x, V& s, V& c) {
            z * (-1.38888888888741095749e-03 +
                 z * (2.48015872894767294178e-05 +
                      z * (-2.75573143513906633035e-07 + z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-  // The quadrant k mod 4 as m in -2..2 (all in doubles: SSE2 has no 64-bit integer compare).
-  const V m = k - 4.0 * ((k * 0.25 + magic) - magic);
-  const L odd = (m == 1.0) | (m == -1.0);
-  const L sin_neg = (m < 0.0) | (m > 1.5);
-  const L cos_neg = (m > 0.5) | (m < -1.5);
-  const V ss = odd ? cp : sp, cc = odd ? sp : cp;
-  s = sin_neg ? -ss : ss;
-  c = cos_neg ? -cc : cc;
-  return true;
+  // The quadrant q = k mod 4 in 0..3 = 2 hi + odd: sin x = ±(sp or cp), cos x = ±(cp or sp); every
+  // step is exact in doubles (|k| < 2^50).
+  const V q = k - 4.0 * ((k * 0.25 - 0.375 + magic) - magic);
+  const V hi = (q * 0.5 - 0.25 + magic) - magic;
+  const V odd = q - 2.0 * hi;
+  const V even = 1.0 - odd;
+  const V sin_sign = 1.0 - 2.0 * hi;
+  const V cos_sign = 1.0 - 2.0 * (hi + odd - 2.0 * hi * odd);  // + in quadrants 0 and 3
+  s = sin_sign * (sp * even + cp * odd);
+  c = cos_sign * (cp * even + sp * odd);
 }
 
 // path_torque_coefficients_batch without mimic joints, W = sizeof(V) / 8 samples per sweep. q, dq, ddq
 // are column-major (samples, bodies) with leading dimension `count`; a last group of fewer than W
 // samples fills its spare lanes with its last sample and stores only its own.
-template <typename V, typename L>
+template <typename V>
 PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity,
                                             RobotWorkspace& ws, Eigen::Index count, const double* q, const double* dq,
                                             const double* ddq, const detail::TorqueOutput& out) {
@@ -789,6 +785,16 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
   AbcBody<V>* S = abc_bodies<V>(ws, nb, 5 * nb);
   V* qd = reinterpret_cast<V*>(S + nb);
   V *qdd = qd + nb, *av = qdd + nb, *bv = av + nb, *cv = bv + nb;
+  // Per body: the coordinate axis of a revolute joint whose angles all lie within sincos_lanes' range,
+  // else -1 (joint_transform in each lane, with libm's sin and cos).
+  std::vector<int> unit(nb);
+  for (size_t i = 0; i < nb; ++i) {
+    unit[i] = unit_axis(bodies[i]);
+    const double* col = q + static_cast<Eigen::Index>(i) * count;
+    bool in_range = true;
+    for (Eigen::Index s = 0; s < count; ++s) in_range &= std::abs(col[s]) <= 1e5;  // false for NaN
+    if (!in_range) unit[i] = -1;
+  }
   for (Eigen::Index s = 0; s < count; s += W) {
     const Eigen::Index valid = std::min(W, count - s);
     const auto load = [&](const double* x, Eigen::Index j, V& y) {
@@ -806,16 +812,16 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
       load(ddq, j, qdd[i]);
       V qv;
       load(q, j, qv);
-      const int unit = unit_axis(bd);
-      V sq, cq;
       AbcBody<V>& B = S[i];
-      if (unit >= 0 && sincos_lanes<V, L>(qv, sq, cq)) {
+      if (unit[i] >= 0) {
         // unit_axis_rotation in every lane
+        V sq, cq;
+        sincos_lanes(qv, sq, cq);
         const double* T = bd.E_tree.data();
-        const int i1 = (unit + 1) % 3, i2 = (unit + 2) % 3;
+        const int u = unit[i], i1 = (u + 1) % 3, i2 = (u + 2) % 3;
         for (int col = 0; col < 3; ++col) {
           const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
-          splat(B.E[3 * col + unit], T[3 * col + unit]);
+          splat(B.E[3 * col + u], T[3 * col + u]);
           B.E[3 * col + i1] = cq * t1 + sq * t2;
           B.E[3 * col + i2] = cq * t2 - sq * t1;
         }
@@ -851,7 +857,7 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
 void path_torque_lanes2(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity, RobotWorkspace& ws,
                         Eigen::Index count, const double* q, const double* dq, const double* ddq,
                         const detail::TorqueOutput& out) {
-  path_torque_lanes<Double2, Long2>(bodies, gravity, ws, count, q, dq, ddq, out);
+  path_torque_lanes<Double2>(bodies, gravity, ws, count, q, dq, ddq, out);
 }
 #if defined(PATHPACE_WIDE_LANES)
 // The same code with the wider registers of newer x86-64 CPUs, chosen at run time (the library itself
@@ -861,12 +867,12 @@ __attribute__((target("avx2,fma"))) void path_torque_lanes4(const std::vector<Ro
                                                              const Eigen::Vector3d& gravity, RobotWorkspace& ws,
                                                              Eigen::Index count, const double* q, const double* dq,
                                                              const double* ddq, const detail::TorqueOutput& out) {
-  path_torque_lanes<Double4, Long4>(bodies, gravity, ws, count, q, dq, ddq, out);
+  path_torque_lanes<Double4>(bodies, gravity, ws, count, q, dq, ddq, out);
 }
 __attribute__((target("avx512f,avx512dq,avx2,fma"))) void path_torque_lanes8(
     const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity, RobotWorkspace& ws, Eigen::Index count,
     const double* q, const double* dq, const double* ddq, const detail::TorqueOutput& out) {
-  path_torque_lanes<Double8, Long8>(bodies, gravity, ws, count, q, dq, ddq, out);
+  path_torque_lanes<Double8>(bodies, gravity, ws, count, q, dq, ddq, out);
 }
 #endif
 #endif
