@@ -600,6 +600,52 @@ PATHPACE_LANE_INLINE void splat(T& y, double x) {  // every lane x (not 0 + x, w
 }
 PATHPACE_LANE_INLINE void splat(double& y, double x) { y = x; }
 
+// u if the axis is the coordinate axis e_u exactly, else -1.
+inline int coordinate_axis(const Eigen::Vector3d& axis) {
+  for (int u = 0; u < 3; ++u)
+    if (axis[u] == 1.0 && axis[(u + 1) % 3] == 0.0 && axis[(u + 2) % 3] == 0.0) return u;
+  return -1;
+}
+
+// abc_sweep's joint terms for the axis e_U (URDF joints mostly have one): vJ = q̇ e_U, and x × vJ =
+// q̇ (x[U+2], -x[U+1]) at (U+1, U+2) mod 3, without the products with the axis' zeros. U a constant,
+// so that every array stays in registers.
+template <int U, typename T>
+PATHPACE_LANE_INLINE void joint_motion_on_axis(bool revolute, const T& qd, const T& qdd, T* aw, T* al, T* v) {
+  constexpr int i1 = (U + 1) % 3, i2 = (U + 2) % 3;
+  if (revolute) {
+    aw[U] += qdd;
+    v[U] += qd;
+    aw[i1] += v[i2] * qd;  // ω × vJ
+    aw[i2] -= v[i1] * qd;
+    al[i1] += v[3 + i2] * qd;  // v × vJ
+    al[i2] -= v[3 + i1] * qd;
+  } else {
+    al[U] += qdd;
+    v[3 + U] += qd;
+    al[i1] += v[i2] * qd;  // ω × vJ
+    al[i2] -= v[i1] * qd;
+  }
+}
+
+template <typename T>
+struct AbcBody;
+
+// abc_sweep's projections on the axis e_U: a component, and one component of the gravity moment.
+template <int U, typename T>
+PATHPACE_LANE_INLINE void project_on_axis(bool revolute, const AbcBody<T>& B, T& a, T& b, T& c) {
+  constexpr int i1 = (U + 1) % 3, i2 = (U + 2) % 3;
+  if (revolute) {
+    a = B.fw[U];
+    b = B.fw[3 + U];
+    c = B.h[i1] * B.g[i2] - B.h[i2] * B.g[i1];
+  } else {
+    a = B.fl[U];
+    b = B.fl[3 + U];
+    c = B.m * B.g[U];
+  }
+}
+
 // eq. (12) by one sweep carrying three RNEA channels: a with q̇ = p', q̈ = p'' (velocity products
 // included), b with q̇ = 0, q̈ = p', c with gravity only. S[i].E and S[i].r must hold body i's
 // transform. Channel b's acceleration obeys the recursion of channel a's velocity (a_i = ^iX_λ a_λ +
@@ -640,8 +686,16 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
     }
     const T qd = dq[i], qdd = ddq[i];
     const double ax[3] = {bd.axis[0], bd.axis[1], bd.axis[2]};
-    const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
-    if (bd.type == RobotModel::JointType::Revolute) {
+    const bool revolute = bd.type == RobotModel::JointType::Revolute;
+    const int u = coordinate_axis(bd.axis);
+    if (u == 0) {
+      joint_motion_on_axis<0>(revolute, qd, qdd, B.aw, B.al, v);
+    } else if (u == 1) {
+      joint_motion_on_axis<1>(revolute, qd, qdd, B.aw, B.al, v);
+    } else if (u == 2) {
+      joint_motion_on_axis<2>(revolute, qd, qdd, B.aw, B.al, v);
+    } else if (revolute) {
+      const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
       for (int k = 0; k < 3; ++k) {
         B.aw[k] += ax[k] * qdd;
         v[k] += vj[k];
@@ -649,6 +703,7 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
       add_cross(v, vj, B.aw);      // ω × vJ
       add_cross(v + 3, vj, B.al);  // v × vJ (angular joint motion)
     } else {
+      const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
       for (int k = 0; k < 3; ++k) {
         B.al[k] += ax[k] * qdd;
         v[3 + k] += vj[k];
@@ -682,7 +737,14 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
     const RobotModel::Body& bd = bodies[i];
     AbcBody<T>& B = S[i];
     const double* ax = bd.axis.data();
-    if (bd.type == RobotModel::JointType::Revolute) {
+    const int u = coordinate_axis(bd.axis);
+    if (u == 0) {
+      project_on_axis<0>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
+    } else if (u == 1) {
+      project_on_axis<1>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
+    } else if (u == 2) {
+      project_on_axis<2>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
+    } else if (bd.type == RobotModel::JointType::Revolute) {
       dot_axis(ax, B.fw, a[i]);
       dot_axis(ax, B.fw + 3, b[i]);
       T n[3];

@@ -123,6 +123,40 @@ TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
   EXPECT_EQ(t.tau_max()[7], 40.0);
 }
 
+TEST(RobotModel, TorqueCoefficientsReproduceInverseDynamicsOnEveryJointKind) {
+  // eq. (12) against the separate RNEA of inverse_dynamics: revolute and prismatic joints on coordinate
+  // axes (the sweep's specialised path) and on tilted ones, and a floating base, one sample at a time and
+  // in the lanes of the batch.
+  std::string tilted = kArm, straight = kArm;
+  tilted.replace(tilted.find("<axis xyz=\"0 1 0\"/>"), 19, "<axis xyz=\"0 0.6 0.8\"/>");
+  straight.replace(straight.find("<axis xyz=\"0.6 0 0.8\"/>"), 23, "<axis xyz=\"1 0 0\"/>");
+  RobotModelOptions floating;
+  floating.floating_base = true;
+  const std::vector<RobotModel> models = {RobotModel::from_urdf_string(kArm), RobotModel::from_urdf_string(tilted),
+                                          RobotModel::from_urdf_string(straight),
+                                          RobotModel::from_urdf_string(kArm, floating)};
+  for (const RobotModel& r : models) {
+    RobotWorkspace ws(r);
+    const int n = r.nq(), count = 11;
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<double> U(-1.5, 1.5);
+    Eigen::MatrixXd q(count, n), dq(count, n), ddq(count, n), A, B, C;
+    for (int s = 0; s < count; ++s)
+      for (int j = 0; j < n; ++j) q(s, j) = U(gen), dq(s, j) = U(gen), ddq(s, j) = U(gen);
+    r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
+    for (int s = 0; s < count; ++s) {
+      const Eigen::VectorXd qs = q.row(s).transpose(), dqs = dq.row(s).transpose(), ddqs = ddq.row(s).transpose();
+      Eigen::VectorXd a(n), b(n), c(n);
+      r.path_torque_coefficients(ws, qs, dqs, ddqs, a, b, c);
+      const double sd = 0.3 + 0.2 * s, sdd = 1.1 - 0.25 * s;
+      const Eigen::VectorXd tau = r.inverse_dynamics(qs, dqs * sd, ddqs * sd * sd + dqs * sdd);
+      EXPECT_NEAR((a * sd * sd + b * sdd + c - tau).norm(), 0.0, 1e-11 * (1.0 + tau.norm())) << n << " " << s;
+      const Eigen::VectorXd batch = A.row(s).transpose() * sd * sd + B.row(s).transpose() * sdd + C.row(s).transpose();
+      EXPECT_NEAR((batch - tau).norm(), 0.0, 1e-11 * (1.0 + tau.norm())) << n << " " << s;
+    }
+  }
+}
+
 TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
   // kArm: coordinate-axis revolute joints and a tilted prismatic one; the same tree with a tilted
   // revolute axis (the general rotation in each lane). Every lane width this CPU runs (SSE2, AVX2 + FMA,
