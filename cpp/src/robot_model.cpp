@@ -550,7 +550,7 @@ struct alignas(sizeof(T)) AbcBody {
   T fw[6], fl[6];  // forces (moment, linear) of channel a at [0, 3), b at [3, 6)
   T g[3];          // channel c: the base's upward acceleration -gravity in body coordinates
   T h[3];          // channel c: first moment of mass of the subtree about the body origin
-  T E[9], r[3];    // ^iX_λ's rotation and origin
+  T E[9], r[3];    // ^iX_λ's rotation and origin (r read for prismatic joints only: see transform_from_parent)
   double m;        // channel c: mass of the subtree
 };
 
@@ -628,9 +628,6 @@ PATHPACE_LANE_INLINE void joint_motion_on_axis(bool revolute, const T& qd, const
   }
 }
 
-template <typename T>
-struct AbcBody;
-
 // abc_sweep's projections on the axis e_U: a component, and one component of the gravity moment.
 template <int U, typename T>
 PATHPACE_LANE_INLINE void project_on_axis(bool revolute, const AbcBody<T>& B, T& a, T& b, T& c) {
@@ -644,6 +641,42 @@ PATHPACE_LANE_INLINE void project_on_axis(bool revolute, const AbcBody<T>& B, T&
     b = B.fl[3 + U];
     c = B.m * B.g[U];
   }
+}
+
+// Body i's channels from its parent's by ^iX_λ: ω' = E ω, v' = E (v - r × ω). r is the joint's
+// origin: the same in every lane for a revolute joint (r_tree, so a constant operand), else B.r.
+template <typename R, typename T>
+PATHPACE_LANE_INLINE void transform_from_parent(const R* r, const AbcBody<T>& P, AbcBody<T>& B) {
+  const T* E = B.E;
+  mul_E(E, P.aw, B.aw);
+  T t[3] = {P.al[0], P.al[1], P.al[2]};
+  sub_cross(r, P.aw, t);
+  mul_E(E, t, B.al);
+  mul_E(E, P.v, B.v);
+  T vt[3] = {P.v[3], P.v[4], P.v[5]};
+  sub_cross(r, P.v, vt);
+  mul_E(E, vt, B.v + 3);
+  mul_E(E, P.g, B.g);
+}
+
+// f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f, for channels a and b; the first moment of
+// mass moves as a point mass. r as in transform_from_parent.
+template <typename R, typename T>
+PATHPACE_LANE_INLINE void add_to_parent(const R* r, const AbcBody<T>& B, AbcBody<T>& P) {
+  for (int ch = 0; ch < 2; ++ch) {
+    T fl[3], fw[3];
+    mul_Et(B.E, B.fl + 3 * ch, fl);
+    mul_Et(B.E, B.fw + 3 * ch, fw);
+    for (int k = 0; k < 3; ++k) {
+      P.fw[3 * ch + k] += fw[k];
+      P.fl[3 * ch + k] += fl[k];
+    }
+    add_cross(r, fl, P.fw + 3 * ch);
+  }
+  T hp[3];
+  mul_Et(B.E, B.h, hp);
+  for (int k = 0; k < 3; ++k) P.h[k] += hp[k] + B.m * r[k];
+  P.m += B.m;
 }
 
 // eq. (12) by one sweep carrying three RNEA channels: a with q̇ = p', q̈ = p'' (velocity products
@@ -665,20 +698,11 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
     const RobotModel::Body& bd = bodies[i];
     AbcBody<T>& B = S[i];
     const T* E = B.E;
-    const T* r = B.r;
     T* v = B.v;
     if (bd.parent >= 0) {
-      // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
       const AbcBody<T>& P = S[static_cast<size_t>(bd.parent)];
-      mul_E(E, P.aw, B.aw);
-      T t[3] = {P.al[0], P.al[1], P.al[2]};
-      sub_cross(r, P.aw, t);
-      mul_E(E, t, B.al);
-      mul_E(E, P.v, v);
-      T u[3] = {P.v[3], P.v[4], P.v[5]};
-      sub_cross(r, P.v, u);
-      mul_E(E, u, v + 3);
-      mul_E(E, P.g, B.g);
+      if (bd.type == RobotModel::JointType::Revolute) transform_from_parent(bd.r_tree.data(), P, B);
+      else transform_from_parent(B.r, P, B);
     } else {
       for (int k = 0; k < 3; ++k) B.aw[k] = B.al[k] = zero;
       for (int k = 0; k < 6; ++k) v[k] = zero;
@@ -759,20 +783,8 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
     if (bd.parent >= 0) {
       // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f; the first moment moves as a point mass.
       AbcBody<T>& P = S[static_cast<size_t>(bd.parent)];
-      for (int ch = 0; ch < 2; ++ch) {
-        T fl[3], fw[3];
-        mul_Et(B.E, B.fl + 3 * ch, fl);
-        mul_Et(B.E, B.fw + 3 * ch, fw);
-        for (int k = 0; k < 3; ++k) {
-          P.fw[3 * ch + k] += fw[k];
-          P.fl[3 * ch + k] += fl[k];
-        }
-        add_cross(B.r, fl, P.fw + 3 * ch);
-      }
-      T hp[3];
-      mul_Et(B.E, B.h, hp);
-      for (int k = 0; k < 3; ++k) P.h[k] += hp[k] + B.m * B.r[k];
-      P.m += B.m;
+      if (bd.type == RobotModel::JointType::Revolute) add_to_parent(bd.r_tree.data(), B, P);
+      else add_to_parent(B.r, B, P);
     }
   }
 }
@@ -887,7 +899,6 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
           B.E[3 * col + i1] = cq * t1 + sq * t2;
           B.E[3 * col + i2] = cq * t2 - sq * t1;
         }
-        for (int k = 0; k < 3; ++k) splat(B.r[k], bd.r_tree[k]);
       } else {
         for (Eigen::Index l = 0; l < W; ++l) {
           double E[9], r[3];
