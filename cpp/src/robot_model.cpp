@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <fstream>
@@ -912,7 +913,20 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
     const Eigen::Index ss = out.sample_stride;
     for (size_t i = 0; i < nb; ++i) {
       const Eigen::Index at = static_cast<Eigen::Index>(i) * out.joint_stride + s * ss;
-      if (valid == W && ss == 1) {
+      if (out.upper) {  // a constraint's row pair, see TorqueOutput
+        const double up = out.upper[i], lo = out.lower[i], inf = std::numeric_limits<double>::infinity();
+        const bool has_up = std::isfinite(up), has_lo = std::isfinite(lo);
+        for (Eigen::Index l = 0; l < valid; ++l) {
+          const Eigen::Index k = at + l * ss;
+          const double al = av[i][l], bl = bv[i][l], cl = cv[i][l];
+          out.a[k] = al;
+          out.a[k + 1] = -al;
+          out.b[k] = bl;
+          out.b[k + 1] = -bl;
+          out.c[k] = has_up ? up - cl : inf;
+          out.c[k + 1] = has_lo ? cl - lo : inf;
+        }
+      } else if (valid == W && ss == 1) {
         std::memcpy(out.a + at, &av[i], sizeof(V));
         std::memcpy(out.b + at, &bv[i], sizeof(V));
         std::memcpy(out.c + at, &cv[i], sizeof(V));
@@ -1010,12 +1024,19 @@ void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, 
   } else {
     robot.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
   }
+  const double inf = std::numeric_limits<double>::infinity();
   for (Eigen::Index s = 0; s < count; ++s)
     for (Eigen::Index j = 0; j < n; ++j) {
       const Eigen::Index at = s * out.sample_stride + j * out.joint_stride;
       out.a[at] = A(s, j);
       out.b[at] = B(s, j);
       out.c[at] = C(s, j);
+      if (out.upper) {
+        out.a[at + 1] = -A(s, j);
+        out.b[at + 1] = -B(s, j);
+        out.c[at] = std::isfinite(out.upper[j]) ? out.upper[j] - C(s, j) : inf;
+        out.c[at + 1] = std::isfinite(out.lower[j]) ? C(s, j) - out.lower[j] : inf;
+      }
     }
 }
 

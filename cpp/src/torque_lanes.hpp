@@ -14,10 +14,14 @@ namespace pathpace::detail {
 int torque_lanes_supported();
 
 /// Where path_torque_coefficients_into writes sample s, joint j: a[s * sample_stride + j * joint_stride]
-/// (and b, c likewise); each a distinct entry.
+/// (and b, c likewise); each a distinct entry. With `upper` and `lower` (one per joint), the entry and the
+/// next one get TorqueLimits' row pair of eq. (15) instead: (a, -a), (b, -b), (upper - c, c - lower),
+/// +inf for an infinite limit (an inactive row).
 struct TorqueOutput {
   double *a, *b, *c;
   Eigen::Index sample_stride, joint_stride;
+  const double* upper = nullptr;
+  const double* lower = nullptr;
 };
 
 /// path_torque_coefficients_batch into caller-laid-out arrays (TorqueLimits writes its rows directly),

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <Eigen/Eigenvalues>
@@ -121,6 +122,48 @@ TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
   TorqueLimits t(r);
   EXPECT_EQ(t.tau_min()[0], 0.0);
   EXPECT_EQ(t.tau_max()[7], 40.0);
+}
+
+TEST(TorqueLimits, RowsAreTheCoefficientsOfEquation15) {
+  // The row pair of joint j at sample k: (a, b, τ_U - c) and (-a, -b, c - τ_L), written from the lanes;
+  // an infinite limit is an inactive row (c = +inf). 13 samples: a partial last group of lanes.
+  const auto r = std::make_shared<RobotModel>(RobotModel::from_urdf_string(kArm));
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd lo(3), hi(3);
+  lo << -50.0, -inf, -100.0;
+  hi << 45.0, 40.0, inf;
+  const TorqueLimits t(r, lo, hi, 0.5, 1.0);
+  PathSamples smp;
+  const int count = 13;
+  smp.s = Eigen::VectorXd::LinSpaced(count, 0.0, 1.0);
+  smp.q.resize(count, 3);
+  smp.dq.resize(count, 3);
+  smp.ddq.resize(count, 3);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int k = 0; k < count; ++k)
+    for (int j = 0; j < 3; ++j) smp.q(k, j) = U(gen), smp.dq(k, j) = U(gen), smp.ddq(k, j) = U(gen);
+  const ConstraintRows rows = t.evaluate(smp);
+  ASSERT_EQ(rows.rows(), 6);
+  EXPECT_EQ(rows.labels[2], "torque j2 upper");
+  EXPECT_EQ(rows.labels[3], "torque j2 lower");
+  RobotWorkspace ws(*r);
+  for (int k = 0; k < count; ++k) {
+    Eigen::VectorXd a(3), b(3), c(3);
+    r->path_torque_coefficients(ws, smp.q.row(k).transpose(), smp.dq.row(k).transpose(), smp.ddq.row(k).transpose(), a,
+                                b, c);
+    for (int j = 0; j < 3; ++j) {
+      const double tol = 1e-12 * (1.0 + std::abs(a[j]) + std::abs(b[j]) + std::abs(c[j]));
+      EXPECT_NEAR(rows.a(k, 2 * j), a[j], tol) << k << " " << j;
+      EXPECT_EQ(rows.a(k, 2 * j + 1), -rows.a(k, 2 * j));
+      EXPECT_NEAR(rows.b(k, 2 * j), b[j], tol);
+      EXPECT_EQ(rows.b(k, 2 * j + 1), -rows.b(k, 2 * j));
+      if (std::isfinite(hi[j])) EXPECT_NEAR(rows.c(k, 2 * j), 0.5 * hi[j] - 1.0 - c[j], tol);
+      else EXPECT_EQ(rows.c(k, 2 * j), inf);
+      if (std::isfinite(lo[j])) EXPECT_NEAR(rows.c(k, 2 * j + 1), c[j] - (0.5 * lo[j] + 1.0), tol);
+      else EXPECT_EQ(rows.c(k, 2 * j + 1), inf);
+    }
+  }
 }
 
 TEST(RobotModel, TorqueCoefficientsReproduceInverseDynamicsOnEveryJointKind) {

@@ -45,27 +45,11 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
     rows.labels[static_cast<size_t>(2 * j)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " upper";
     rows.labels[static_cast<size_t>(2 * j + 1)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " lower";
   }
-  // The coefficients go straight into the upper rows' columns (no (samples, n) copies to transpose);
-  // each lower row is then its upper row's negation.
+  // eq. (15): τ_L <= a x + b u + c <= τ_U as the rows (a, b, τ_U - c) and (-a, -b, c - τ_L), written
+  // straight from the sweeps' lanes; an infinite limit gives c = +inf: an inactive row.
   RobotWorkspace ws(*robot_);
-  const Eigen::Index r = 2 * n;
-  detail::path_torque_coefficients_into(*robot_, ws, samples.q, samples.dq, samples.ddq,
-                                        detail::TorqueOutput{rows.a.data(), rows.b.data(), rows.c.data(), r, 2});
-  const double inf = std::numeric_limits<double>::infinity();
-  for (Eigen::Index k = 0; k < samples.size(); ++k) {
-    double* a = rows.a.data() + k * r;
-    double* b = rows.b.data() + k * r;
-    double* c = rows.c.data() + k * r;
-    for (int j = 0; j < n; ++j) {
-      // eq. (15): τ_L <= a x + b u + c <= τ_U
-      // An infinite limit gives c = +inf: an inactive row.
-      const double g = c[2 * j];
-      a[2 * j + 1] = -a[2 * j];
-      b[2 * j + 1] = -b[2 * j];
-      c[2 * j] = std::isfinite(tau_max_[j]) ? tau_max_[j] - g : inf;
-      c[2 * j + 1] = std::isfinite(tau_min_[j]) ? g - tau_min_[j] : inf;
-    }
-  }
+  detail::TorqueOutput out{rows.a.data(), rows.b.data(), rows.c.data(), 2 * n, 2, tau_max_.data(), tau_min_.data()};
+  detail::path_torque_coefficients_into(*robot_, ws, samples.q, samples.dq, samples.ddq, out);
   return rows;
 }
 
