@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <fstream>
@@ -14,6 +16,7 @@
 
 #include "detail/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
+#include "torque_lanes.hpp"
 
 namespace pathpace {
 
@@ -526,214 +529,530 @@ Eigen::MatrixXd RobotModel::mass_matrix(const Eigen::VectorXd& q) const {
 
 namespace {
 
+// Every helper of the fused sweep is forced inline, so that it is compiled with the instruction set of
+// the lane-width variant that calls it (path_torque_lanes below: a function of target("avx2,fma") gets
+// AVX2 code for its whole body).
+#if defined(__GNUC__)
+#define PATHPACE_LANE_INLINE inline __attribute__((always_inline))
+#else
+#define PATHPACE_LANE_INLINE inline
+#endif
+
 // The fused sweep of path_torque_coefficients, written once for a scalar T (double: one sample) or a
-// GCC vector of two doubles (two samples in the two SIMD lanes; the baseline x86-64 has SSE2). Plain
-// arrays, E column-major as Eigen stores it: the compiler unrolls every 3x3 kernel completely.
+// GCC vector of W doubles (W samples, one per SIMD lane). Plain arrays, E column-major as Eigen stores
+// it: the compiler unrolls every 3x3 kernel completely. Aligned to the size of T: outside AVX code (this
+// file's baseline) GCC gives a 32- or 64-byte vector type only 16-byte alignment, while the AVX code of
+// the variants below moves whole vectors with aligned loads and stores. T members only, m last: each
+// lies on a multiple of sizeof(T).
 template <typename T>
-struct AbcBody {
-  T aw[6], al[9], fw[9], fl[9], v[6];  // channel c of a 3-row block at [3c, 3c + 3)
-  T E[9], r[3];                        // ^iX_λ's rotation and origin
+struct alignas(sizeof(T)) AbcBody {
+  T aw[3], al[3];  // channel a (q̇ = p', q̈ = p''): acceleration (ω̇, v̇)
+  T v[6];          // its velocity (ω then linear), which is channel b's acceleration (q̇ = 0, q̈ = p')
+  T fw[6], fl[6];  // forces (moment, linear) of channel a at [0, 3), b at [3, 6)
+  T g[3];          // channel c: the base's upward acceleration -gravity in body coordinates
+  T h[3];          // channel c: first moment of mass of the subtree about the body origin
+  T E[9], r[3];    // ^iX_λ's rotation and origin (r read for prismatic joints only: see transform_from_parent)
+  double m;        // channel c: mass of the subtree
 };
 
 template <typename T, typename M>
-inline void mul_E(const M* E, const T* x, T* y) {  // y = E x
+PATHPACE_LANE_INLINE void mul_E(const M* E, const T* x, T* y) {  // y = E x
   y[0] = E[0] * x[0] + E[3] * x[1] + E[6] * x[2];
   y[1] = E[1] * x[0] + E[4] * x[1] + E[7] * x[2];
   y[2] = E[2] * x[0] + E[5] * x[1] + E[8] * x[2];
 }
 template <typename T>
-inline void mul_Et(const T* E, const T* x, T* y) {  // y = E^T x
+PATHPACE_LANE_INLINE void mul_Et(const T* E, const T* x, T* y) {  // y = E^T x
   y[0] = E[0] * x[0] + E[1] * x[1] + E[2] * x[2];
   y[1] = E[3] * x[0] + E[4] * x[1] + E[5] * x[2];
   y[2] = E[6] * x[0] + E[7] * x[1] + E[8] * x[2];
 }
 template <typename A, typename B, typename T>
-inline void cross(const A* a, const B* b, T* y) {  // y = a × b
+PATHPACE_LANE_INLINE void cross(const A* a, const B* b, T* y) {  // y = a × b
   y[0] = a[1] * b[2] - a[2] * b[1];
   y[1] = a[2] * b[0] - a[0] * b[2];
   y[2] = a[0] * b[1] - a[1] * b[0];
 }
 template <typename A, typename B, typename T>
-inline void add_cross(const A* a, const B* b, T* y) {  // y += a × b
+PATHPACE_LANE_INLINE void add_cross(const A* a, const B* b, T* y) {  // y += a × b
   y[0] += a[1] * b[2] - a[2] * b[1];
   y[1] += a[2] * b[0] - a[0] * b[2];
   y[2] += a[0] * b[1] - a[1] * b[0];
 }
 template <typename A, typename B, typename T>
-inline void sub_cross(const A* a, const B* b, T* y) {  // y -= a × b
+PATHPACE_LANE_INLINE void sub_cross(const A* a, const B* b, T* y) {  // y -= a × b
   y[0] -= a[1] * b[2] - a[2] * b[1];
   y[1] -= a[2] * b[0] - a[0] * b[2];
   y[2] -= a[0] * b[1] - a[1] * b[0];
 }
 template <typename T>
-inline void mul_sym(const double* I, const T* x, T* y) {  // y = Ī x, Ī the 6x6's top-left block
+PATHPACE_LANE_INLINE void mul_sym(const double* I, const T* x, T* y) {  // y = Ī x, Ī the 6x6's top-left block
   y[0] = I[0] * x[0] + I[6] * x[1] + I[12] * x[2];
   y[1] = I[1] * x[0] + I[7] * x[1] + I[13] * x[2];
   y[2] = I[2] * x[0] + I[8] * x[1] + I[14] * x[2];
 }
-
-// eq. (12) by one sweep carrying three RNEA channels: 0 with q̇ = p', q̈ = p'' (velocity products
-// included), 1 with q̇ = 0, q̈ = p', 2 with gravity only (never an angular part). S[i].E and S[i].r
-// must hold body i's transform. The spatial inertia is applied through its parts (m, h = m c, Ī about
-// the body origin): I (ω, v) = (Ī ω + h × v, m v - h × ω).
 template <typename T>
-void abc_sweep(const std::vector<RobotModel::Body>& bodies, AbcBody<T>* S, const T* dq, const T* ddq,
-               const Eigen::Vector3d& gravity, T* a, T* b, T* c) {
+PATHPACE_LANE_INLINE void dot_axis(const double* ax, const T* x, T& y) {  // y = ax · x
+  y = ax[0] * x[0] + ax[1] * x[1] + ax[2] * x[2];
+}
+template <typename T>
+PATHPACE_LANE_INLINE void splat(T& y, double x) {  // every lane x (not 0 + x, which would turn -0 into +0)
+  for (size_t l = 0; l < sizeof(T) / sizeof(double); ++l) y[l] = x;
+}
+PATHPACE_LANE_INLINE void splat(double& y, double x) { y = x; }
+
+// u if the axis is the coordinate axis e_u exactly, else -1.
+inline int coordinate_axis(const Eigen::Vector3d& axis) {
+  for (int u = 0; u < 3; ++u)
+    if (axis[u] == 1.0 && axis[(u + 1) % 3] == 0.0 && axis[(u + 2) % 3] == 0.0) return u;
+  return -1;
+}
+
+// abc_sweep's joint terms for the axis e_U (URDF joints mostly have one): vJ = q̇ e_U, and x × vJ =
+// q̇ (x[U+2], -x[U+1]) at (U+1, U+2) mod 3, without the products with the axis' zeros. U a constant,
+// so that every array stays in registers.
+template <int U, typename T>
+PATHPACE_LANE_INLINE void joint_motion_on_axis(bool revolute, const T& qd, const T& qdd, T* aw, T* al, T* v) {
+  constexpr int i1 = (U + 1) % 3, i2 = (U + 2) % 3;
+  if (revolute) {
+    aw[U] += qdd;
+    v[U] += qd;
+    aw[i1] += v[i2] * qd;  // ω × vJ
+    aw[i2] -= v[i1] * qd;
+    al[i1] += v[3 + i2] * qd;  // v × vJ
+    al[i2] -= v[3 + i1] * qd;
+  } else {
+    al[U] += qdd;
+    v[3 + U] += qd;
+    al[i1] += v[i2] * qd;  // ω × vJ
+    al[i2] -= v[i1] * qd;
+  }
+}
+
+// abc_sweep's projections on the axis e_U: a component, and one component of the gravity moment.
+template <int U, typename T>
+PATHPACE_LANE_INLINE void project_on_axis(bool revolute, const AbcBody<T>& B, T& a, T& b, T& c) {
+  constexpr int i1 = (U + 1) % 3, i2 = (U + 2) % 3;
+  if (revolute) {
+    a = B.fw[U];
+    b = B.fw[3 + U];
+    c = B.h[i1] * B.g[i2] - B.h[i2] * B.g[i1];
+  } else {
+    a = B.fl[U];
+    b = B.fl[3 + U];
+    c = B.m * B.g[U];
+  }
+}
+
+// Body i's channels from its parent's by ^iX_λ: ω' = E ω, v' = E (v - r × ω). r is the joint's
+// origin: the same in every lane for a revolute joint (r_tree, so a constant operand), else B.r.
+template <typename R, typename T>
+PATHPACE_LANE_INLINE void transform_from_parent(const R* r, const AbcBody<T>& P, AbcBody<T>& B) {
+  const T* E = B.E;
+  mul_E(E, P.aw, B.aw);
+  T t[3] = {P.al[0], P.al[1], P.al[2]};
+  sub_cross(r, P.aw, t);
+  mul_E(E, t, B.al);
+  mul_E(E, P.v, B.v);
+  T vt[3] = {P.v[3], P.v[4], P.v[5]};
+  sub_cross(r, P.v, vt);
+  mul_E(E, vt, B.v + 3);
+  mul_E(E, P.g, B.g);
+}
+
+// f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f, for channels a and b; the first moment of
+// mass moves as a point mass. r as in transform_from_parent.
+template <typename R, typename T>
+PATHPACE_LANE_INLINE void add_to_parent(const R* r, const AbcBody<T>& B, AbcBody<T>& P) {
+  for (int ch = 0; ch < 2; ++ch) {
+    T fl[3], fw[3];
+    mul_Et(B.E, B.fl + 3 * ch, fl);
+    mul_Et(B.E, B.fw + 3 * ch, fw);
+    for (int k = 0; k < 3; ++k) {
+      P.fw[3 * ch + k] += fw[k];
+      P.fl[3 * ch + k] += fl[k];
+    }
+    add_cross(r, fl, P.fw + 3 * ch);
+  }
+  T hp[3];
+  mul_Et(B.E, B.h, hp);
+  for (int k = 0; k < 3; ++k) P.h[k] += hp[k] + B.m * r[k];
+  P.m += B.m;
+}
+
+// eq. (12) by one sweep carrying three RNEA channels: a with q̇ = p', q̈ = p'' (velocity products
+// included), b with q̇ = 0, q̈ = p', c with gravity only. S[i].E and S[i].r must hold body i's
+// transform. Channel b's acceleration obeys the recursion of channel a's velocity (a_i = ^iX_λ a_λ +
+// S_i p'_i from zero at the root), so it is that velocity, and its force I a is the I v that a's velocity
+// product needs. Channel c's acceleration is the base's -gravity rotated into each body (no angular
+// part), the same vector for every body of a subtree, so its forces need no backward transform of their
+// own: the torque about joint i is the subtree's first moment of mass × that acceleration. The spatial
+// inertia is applied through its parts (m, h = m c, Ī about the body origin): I (ω, v) = (Ī ω + h × v,
+// m v - h × ω).
+template <typename T>
+PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies, AbcBody<T>* S, const T* dq,
+                                    const T* ddq, const Eigen::Vector3d& gravity, T* a, T* b, T* c) {
   const size_t nb = bodies.size();
   const T zero = T{} * 0.0;
-  T root_aw[6], root_al[9];
-  for (int k = 0; k < 6; ++k) root_aw[k] = zero;
-  for (int k = 0; k < 6; ++k) root_al[k] = zero;
-  for (int k = 0; k < 3; ++k) root_al[6 + k] = zero - gravity[k];  // gravity as an upward base acceleration
+  const T root_g[3] = {zero - gravity[0], zero - gravity[1], zero - gravity[2]};  // an upward base acceleration
   for (size_t i = 0; i < nb; ++i) {
     const RobotModel::Body& bd = bodies[i];
     AbcBody<T>& B = S[i];
     const T* E = B.E;
-    const T* r = B.r;
-    const AbcBody<T>* P = bd.parent >= 0 ? &S[static_cast<size_t>(bd.parent)] : nullptr;
-    const T* pw = P ? P->aw : root_aw;
-    const T* pl = P ? P->al : root_al;
-    // ^iX_λ: ω' = E ω, v' = E (v - r × ω)
-    for (int ch = 0; ch < 2; ++ch) {
-      mul_E(E, pw + 3 * ch, B.aw + 3 * ch);
-      T t[3] = {pl[3 * ch], pl[3 * ch + 1], pl[3 * ch + 2]};
-      sub_cross(r, pw + 3 * ch, t);
-      mul_E(E, t, B.al + 3 * ch);
-    }
-    mul_E(E, pl + 6, B.al + 6);
-    const T qd = dq[i], qdd = ddq[i];
-    T* v = B.v;  // ω then linear
-    if (P) {
-      mul_E(E, P->v, v);
-      T t[3] = {P->v[3], P->v[4], P->v[5]};
-      sub_cross(r, P->v, t);
-      mul_E(E, t, v + 3);
+    T* v = B.v;
+    if (bd.parent >= 0) {
+      const AbcBody<T>& P = S[static_cast<size_t>(bd.parent)];
+      if (bd.type == RobotModel::JointType::Revolute) transform_from_parent(bd.r_tree.data(), P, B);
+      else transform_from_parent(B.r, P, B);
     } else {
+      for (int k = 0; k < 3; ++k) B.aw[k] = B.al[k] = zero;
       for (int k = 0; k < 6; ++k) v[k] = zero;
+      mul_E(E, root_g, B.g);
     }
+    const T qd = dq[i], qdd = ddq[i];
     const double ax[3] = {bd.axis[0], bd.axis[1], bd.axis[2]};
-    const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
-    if (bd.type == RobotModel::JointType::Revolute) {
+    const bool revolute = bd.type == RobotModel::JointType::Revolute;
+    const int u = coordinate_axis(bd.axis);
+    if (u == 0) {
+      joint_motion_on_axis<0>(revolute, qd, qdd, B.aw, B.al, v);
+    } else if (u == 1) {
+      joint_motion_on_axis<1>(revolute, qd, qdd, B.aw, B.al, v);
+    } else if (u == 2) {
+      joint_motion_on_axis<2>(revolute, qd, qdd, B.aw, B.al, v);
+    } else if (revolute) {
+      const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
       for (int k = 0; k < 3; ++k) {
         B.aw[k] += ax[k] * qdd;
-        B.aw[3 + k] += vj[k];
         v[k] += vj[k];
       }
       add_cross(v, vj, B.aw);      // ω × vJ
       add_cross(v + 3, vj, B.al);  // v × vJ (angular joint motion)
     } else {
+      const T vj[3] = {ax[0] * qd, ax[1] * qd, ax[2] * qd};
       for (int k = 0; k < 3; ++k) {
         B.al[k] += ax[k] * qdd;
-        B.al[3 + k] += vj[k];
         v[3 + k] += vj[k];
       }
       add_cross(v, vj, B.al);  // ω × vJ (linear joint motion)
     }
-    // f = I a (+ v ×* I v in channel 0)
     const double* I6 = bd.inertia.data();
     const double m = I6[21];
     const double h[3] = {I6[26], I6[30], I6[19]};  // (I(2,4), I(0,5), I(1,3)) of m [c]x
-    for (int ch = 0; ch < 3; ++ch) {
-      T* fw = B.fw + 3 * ch;
-      T* fl = B.fl + 3 * ch;
-      const T* alc = B.al + 3 * ch;
-      if (ch < 2) {
-        mul_sym(I6, B.aw + 3 * ch, fw);
-        cross(h, B.aw + 3 * ch, fl);
-        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k] - fl[k];
-      } else {
-        fw[0] = fw[1] = fw[2] = zero;
-        for (int k = 0; k < 3; ++k) fl[k] = m * alc[k];
-      }
-      add_cross(h, alc, fw);
-    }
-    T Iw[3], Il[3], t[3];
+    // Channel b: f = I v.
+    T* Iw = B.fw + 3;
+    T* Il = B.fl + 3;
     mul_sym(I6, v, Iw);
     add_cross(h, v + 3, Iw);
+    T t[3];
     cross(h, v, t);
     for (int k = 0; k < 3; ++k) Il[k] = m * v[3 + k] - t[k];
+    // Channel a: f = I a + v ×* I v.
+    mul_sym(I6, B.aw, B.fw);
+    cross(h, B.aw, t);
+    for (int k = 0; k < 3; ++k) B.fl[k] = m * B.al[k] - t[k];
+    add_cross(h, B.al, B.fw);
     add_cross(v, Iw, B.fw);
     add_cross(v + 3, Il, B.fw);
     add_cross(v, Il, B.fl);
+    // Channel c: the body's own mass and moment; the children add theirs below.
+    for (int k = 0; k < 3; ++k) splat(B.h[k], h[k]);
+    B.m = m;
   }
   for (size_t i = nb; i-- > 0;) {
     const RobotModel::Body& bd = bodies[i];
     AbcBody<T>& B = S[i];
-    const T* F = bd.type == RobotModel::JointType::Revolute ? B.fw : B.fl;
     const double* ax = bd.axis.data();
-    a[i] = ax[0] * F[0] + ax[1] * F[1] + ax[2] * F[2];
-    b[i] = ax[0] * F[3] + ax[1] * F[4] + ax[2] * F[5];
-    c[i] = ax[0] * F[6] + ax[1] * F[7] + ax[2] * F[8];
+    const int u = coordinate_axis(bd.axis);
+    if (u == 0) {
+      project_on_axis<0>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
+    } else if (u == 1) {
+      project_on_axis<1>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
+    } else if (u == 2) {
+      project_on_axis<2>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
+    } else if (bd.type == RobotModel::JointType::Revolute) {
+      dot_axis(ax, B.fw, a[i]);
+      dot_axis(ax, B.fw + 3, b[i]);
+      T n[3];
+      cross(B.h, B.g, n);
+      dot_axis(ax, n, c[i]);
+    } else {
+      dot_axis(ax, B.fl, a[i]);
+      dot_axis(ax, B.fl + 3, b[i]);
+      dot_axis(ax, B.g, c[i]);
+      c[i] *= B.m;
+    }
     if (bd.parent >= 0) {
-      // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f
+      // f_λ += ^iX_λ^T f: n' = E^T n + r × (E^T f), f' = E^T f; the first moment moves as a point mass.
       AbcBody<T>& P = S[static_cast<size_t>(bd.parent)];
-      for (int ch = 0; ch < 3; ++ch) {
-        T fl[3], fw[3];
-        mul_Et(B.E, B.fl + 3 * ch, fl);
-        mul_Et(B.E, B.fw + 3 * ch, fw);
-        for (int k = 0; k < 3; ++k) {
-          P.fw[3 * ch + k] += fw[k];
-          P.fl[3 * ch + k] += fl[k];
-        }
-        add_cross(B.r, fl, P.fw + 3 * ch);
-      }
+      if (bd.type == RobotModel::JointType::Revolute) add_to_parent(bd.r_tree.data(), B, P);
+      else add_to_parent(B.r, B, P);
     }
   }
 }
 
-// The AbcBody array of a workspace's byte buffer, aligned for T.
+// The AbcBody array of a workspace's byte buffer, aligned for T, followed by `extra` more T.
 template <typename T>
-AbcBody<T>* abc_bodies(RobotWorkspace& ws, size_t nb) {
-  const size_t bytes = nb * sizeof(AbcBody<T>) + alignof(AbcBody<T>);
+AbcBody<T>* abc_bodies(RobotWorkspace& ws, size_t nb, size_t extra = 0) {
+  const size_t size = nb * sizeof(AbcBody<T>) + extra * sizeof(T);
+  const size_t bytes = size + alignof(AbcBody<T>);
   if (ws.abc_buffer.size() < bytes) ws.abc_buffer.resize(bytes);
   void* p = ws.abc_buffer.data();
   size_t space = ws.abc_buffer.size();
-  p = std::align(alignof(AbcBody<T>), nb * sizeof(AbcBody<T>), p, space);
+  p = std::align(alignof(AbcBody<T>), size, p, space);
   return static_cast<AbcBody<T>*>(p);
 }
 
 #if defined(__GNUC__)
-using Double2 = double __attribute__((vector_size(16)));  // two samples, one per SIMD lane
-using Long2 = long long __attribute__((vector_size(16)));  // a lane mask of a Double2 comparison
+using Double2 = double __attribute__((vector_size(16)));  // two samples, one per SIMD lane (SSE2, NEON)
+#if defined(__x86_64__) || defined(__i386__)
+#define PATHPACE_WIDE_LANES 1
+using Double4 = double __attribute__((vector_size(32)));  // AVX2
+using Double8 = double __attribute__((vector_size(64)));  // AVX-512
+#endif
 
-// sin and cos of both lanes at once, to within 1.5 ulp of libm's (checked over 2.4e7 arguments in
-// [-1e5, 1e5]): the reduction by π/2 in three parts (Cody-Waite, fdlibm's constants; exact for
-// |x| <= 1e5) and fdlibm's kernels on [-π/4, π/4]. One libm sincos per joint and sample was a fifth of
-// the torque rows' time. False (nothing written) if a lane is beyond 1e5 or not finite: libm then.
-bool sincos2(Double2 x, Double2& s, Double2& c) {
-  if (!(std::abs(x[0]) <= 1e5 && std::abs(x[1]) <= 1e5)) return false;
+// sin and cos of every lane at once, to within 2 ulp of libm's (checked over 1.6e7 arguments in
+// [-1e5, 1e5] and [-7, 7]): the reduction by π/2 in three parts (Cody-Waite, fdlibm's constants; exact for
+// |x| <= 1e5, which the caller ensures) and fdlibm's kernels on [-π/4, π/4]. One libm sincos per joint
+// and sample was a fifth of the torque rows' time. The quadrant picks and signs the kernels by products
+// with 0, 1 and ±1 (exact), not by lane comparisons: GCC does those one lane at a time with AVX-512.
+template <typename V>
+PATHPACE_LANE_INLINE void sincos_lanes(const V& x, V& s, V& c) {
   const double magic = 6755399441055744.0;  // 1.5 · 2^52: y + magic - magic rounds y to an integer
-  const Double2 k = (x * 0.63661977236758134308 + magic) - magic;  // nearest multiple of π/2
-  Double2 r = x - k * 1.57079632673412561417e+00;
+  const V k = (x * 0.63661977236758134308 + magic) - magic;  // nearest multiple of π/2
+  V r = x - k * 1.57079632673412561417e+00;
   r = r - k * 6.07710050630396597660e-11;
   r = r - k * 2.02226624879595063154e-21;
-  const Double2 z = r * r;
-  const Double2 sp =
+  const V z = r * r;
+  const V sp =
       r + r * z *
               (-1.66666666666666324348e-01 +
                z * (8.33333333332248946124e-03 +
                     z * (-1.98412698298579493134e-04 +
                          z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
-  const Double2 cp =
+  const V cp =
       1.0 - 0.5 * z +
       z * z *
           (4.16666666666666019037e-02 +
            z * (-1.38888888888741095749e-03 +
                 z * (2.48015872894767294178e-05 +
                      z * (-2.75573143513906633035e-07 + z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-  // The quadrant k mod 4 as m in -2..2 (all in doubles: SSE2 has no 64-bit integer compare).
-  const Double2 m = k - 4.0 * ((k * 0.25 + magic) - magic);
-  const Long2 odd = (m == 1.0) | (m == -1.0);
-  const Long2 sin_neg = (m < 0.0) | (m > 1.5);
-  const Long2 cos_neg = (m > 0.5) | (m < -1.5);
-  const Double2 ss = odd ? cp : sp, cc = odd ? sp : cp;
-  s = sin_neg ? -ss : ss;
-  c = cos_neg ? -cc : cc;
-  return true;
+  // The quadrant q = k mod 4 in 0..3 = 2 hi + odd: sin x = ±(sp or cp), cos x = ±(cp or sp); every
+  // step is exact in doubles (|k| < 2^50).
+  const V q = k - 4.0 * ((k * 0.25 - 0.375 + magic) - magic);
+  const V hi = (q * 0.5 - 0.25 + magic) - magic;
+  const V odd = q - 2.0 * hi;
+  const V even = 1.0 - odd;
+  const V sin_sign = 1.0 - 2.0 * hi;
+  const V cos_sign = 1.0 - 2.0 * (hi + odd - 2.0 * hi * odd);  // + in quadrants 0 and 3
+  s = sin_sign * (sp * even + cp * odd);
+  c = cos_sign * (cp * even + sp * odd);
 }
+
+// path_torque_coefficients_batch without mimic joints, W = sizeof(V) / 8 samples per sweep. q, dq, ddq
+// are column-major (samples, bodies) with leading dimension `count`; a last group of fewer than W
+// samples fills its spare lanes with its last sample and stores only its own.
+template <typename V>
+PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity,
+                                            RobotWorkspace& ws, Eigen::Index count, const double* q, const double* dq,
+                                            const double* ddq, const detail::TorqueOutput& out) {
+  constexpr Eigen::Index W = sizeof(V) / sizeof(double);
+  const size_t nb = bodies.size();
+  AbcBody<V>* S = abc_bodies<V>(ws, nb, 5 * nb);
+  V* qd = reinterpret_cast<V*>(S + nb);
+  V *qdd = qd + nb, *av = qdd + nb, *bv = av + nb, *cv = bv + nb;
+  // Per body: the coordinate axis of a revolute joint whose angles all lie within sincos_lanes' range,
+  // else -1 (joint_transform in each lane, with libm's sin and cos).
+  std::vector<int> unit(nb);
+  for (size_t i = 0; i < nb; ++i) {
+    unit[i] = unit_axis(bodies[i]);
+    const double* col = q + static_cast<Eigen::Index>(i) * count;
+    bool in_range = true;
+    for (Eigen::Index s = 0; s < count; ++s) in_range &= std::abs(col[s]) <= 1e5;  // false for NaN
+    if (!in_range) unit[i] = -1;
+  }
+  for (Eigen::Index s = 0; s < count; s += W) {
+    const Eigen::Index valid = std::min(W, count - s);
+    const auto load = [&](const double* x, Eigen::Index j, V& y) {
+      const double* col = x + j * count + s;
+      if (valid == W) {
+        std::memcpy(&y, col, sizeof(V));
+      } else {
+        for (Eigen::Index l = 0; l < W; ++l) y[l] = col[std::min(l, valid - 1)];
+      }
+    };
+    for (size_t i = 0; i < nb; ++i) {
+      const RobotModel::Body& bd = bodies[i];
+      const Eigen::Index j = static_cast<Eigen::Index>(i);
+      load(dq, j, qd[i]);
+      load(ddq, j, qdd[i]);
+      V qv;
+      load(q, j, qv);
+      AbcBody<V>& B = S[i];
+      if (unit[i] >= 0) {
+        // unit_axis_rotation in every lane
+        V sq, cq;
+        sincos_lanes(qv, sq, cq);
+        const double* T = bd.E_tree.data();
+        const int u = unit[i], i1 = (u + 1) % 3, i2 = (u + 2) % 3;
+        for (int col = 0; col < 3; ++col) {
+          const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
+          splat(B.E[3 * col + u], T[3 * col + u]);
+          B.E[3 * col + i1] = cq * t1 + sq * t2;
+          B.E[3 * col + i2] = cq * t2 - sq * t1;
+        }
+      } else {
+        for (Eigen::Index l = 0; l < W; ++l) {
+          double E[9], r[3];
+          joint_transform(bd, qv[l], E, r);
+          for (int k = 0; k < 9; ++k) B.E[k][l] = E[k];
+          for (int k = 0; k < 3; ++k) B.r[k][l] = r[k];
+        }
+      }
+    }
+    abc_sweep<V>(bodies, S, qd, qdd, gravity, av, bv, cv);
+    const Eigen::Index ss = out.sample_stride;
+    for (size_t i = 0; i < nb; ++i) {
+      const Eigen::Index at = static_cast<Eigen::Index>(i) * out.joint_stride + s * ss;
+      if (out.upper) {  // a constraint's row pair, see TorqueOutput
+        const double up = out.upper[i], lo = out.lower[i], inf = std::numeric_limits<double>::infinity();
+        const bool has_up = std::isfinite(up), has_lo = std::isfinite(lo);
+        for (Eigen::Index l = 0; l < valid; ++l) {
+          const Eigen::Index k = at + l * ss;
+          const double al = av[i][l], bl = bv[i][l], cl = cv[i][l];
+          out.a[k] = al;
+          out.a[k + 1] = -al;
+          out.b[k] = bl;
+          out.b[k + 1] = -bl;
+          out.c[k] = has_up ? up - cl : inf;
+          out.c[k + 1] = has_lo ? cl - lo : inf;
+        }
+      } else if (valid == W && ss == 1) {
+        std::memcpy(out.a + at, &av[i], sizeof(V));
+        std::memcpy(out.b + at, &bv[i], sizeof(V));
+        std::memcpy(out.c + at, &cv[i], sizeof(V));
+      } else {
+        for (Eigen::Index l = 0; l < valid; ++l) {
+          out.a[at + l * ss] = av[i][l];
+          out.b[at + l * ss] = bv[i][l];
+          out.c[at + l * ss] = cv[i][l];
+        }
+      }
+    }
+  }
+}
+
+void path_torque_lanes2(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity, RobotWorkspace& ws,
+                        Eigen::Index count, const double* q, const double* dq, const double* ddq,
+                        const detail::TorqueOutput& out) {
+  path_torque_lanes<Double2>(bodies, gravity, ws, count, q, dq, ddq, out);
+}
+#if defined(PATHPACE_WIDE_LANES)
+// The same code with the wider registers of newer x86-64 CPUs, chosen at run time (the library itself
+// is built for the x86-64 baseline, SSE2). FMA contracts the products and sums: the results differ from
+// the SSE2 variant's by rounding.
+__attribute__((target("avx2,fma"))) void path_torque_lanes4(const std::vector<RobotModel::Body>& bodies,
+                                                             const Eigen::Vector3d& gravity, RobotWorkspace& ws,
+                                                             Eigen::Index count, const double* q, const double* dq,
+                                                             const double* ddq, const detail::TorqueOutput& out) {
+  path_torque_lanes<Double4>(bodies, gravity, ws, count, q, dq, ddq, out);
+}
+__attribute__((target("avx512f,avx512dq,avx2,fma"))) void path_torque_lanes8(
+    const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity, RobotWorkspace& ws, Eigen::Index count,
+    const double* q, const double* dq, const double* ddq, const detail::TorqueOutput& out) {
+  path_torque_lanes<Double8>(bodies, gravity, ws, count, q, dq, ddq, out);
+}
+#endif
 #endif
 
 }  // namespace
+
+namespace detail {
+
+int torque_lanes_supported() {
+#if defined(PATHPACE_WIDE_LANES)
+  static const int widest = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") ? 8
+                            : __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? 4
+                                                                                             : 2;
+  return widest;
+#elif defined(__GNUC__)
+  return 2;
+#else
+  return 1;
+#endif
+}
+
+void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
+                                   const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, const TorqueOutput& out,
+                                   int lanes) {
+  const Eigen::Index n = robot.nq(), count = q.rows();
+  if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
+    fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
+  if (lanes == 0) lanes = torque_lanes_supported();
+  if (lanes < 1 || lanes > torque_lanes_supported() || (lanes & (lanes - 1)) != 0)
+    fail("lanes = " + std::to_string(lanes) + " must be a power of 2 <= " + std::to_string(torque_lanes_supported()));
+  const std::vector<RobotModel::Body>& bodies = robot.bodies();
+  if (robot.mimic_joints().empty()) {
+    switch (lanes) {
+#if defined(PATHPACE_WIDE_LANES)
+      case 8:
+        path_torque_lanes8(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), out);
+        return;
+      case 4:
+        path_torque_lanes4(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), out);
+        return;
+#endif
+#if defined(__GNUC__)
+      case 2:
+        path_torque_lanes2(bodies, robot.gravity(), ws, count, q.data(), dq.data(), ddq.data(), out);
+        return;
+#endif
+      default:
+        break;
+    }
+  }
+  // One sample at a time, or a robot with mimic joints (the batch maps them onto its bodies' model).
+  Eigen::MatrixXd A(count, n), B(count, n), C(count, n);
+  if (robot.mimic_joints().empty()) {
+    Eigen::VectorXd as(n), bs(n), cs(n);
+    for (Eigen::Index s = 0; s < count; ++s) {
+      robot.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), as, bs,
+                                     cs);
+      A.row(s) = as.transpose();
+      B.row(s) = bs.transpose();
+      C.row(s) = cs.transpose();
+    }
+  } else {
+    robot.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  for (Eigen::Index s = 0; s < count; ++s)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Eigen::Index at = s * out.sample_stride + j * out.joint_stride;
+      out.a[at] = A(s, j);
+      out.b[at] = B(s, j);
+      out.c[at] = C(s, j);
+      if (out.upper) {
+        out.a[at + 1] = -A(s, j);
+        out.b[at + 1] = -B(s, j);
+        out.c[at] = std::isfinite(out.upper[j]) ? out.upper[j] - C(s, j) : inf;
+        out.c[at + 1] = std::isfinite(out.lower[j]) ? C(s, j) - out.lower[j] : inf;
+      }
+    }
+}
+
+void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
+                                    const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a,
+                                    Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes) {
+  const Eigen::Index count = q.rows();
+  if (q.cols() == robot.nq()) {  // else path_torque_coefficients_into says what is wrong
+    a.resize(count, robot.nq());
+    b.resize(count, robot.nq());
+    c.resize(count, robot.nq());
+  }
+  path_torque_coefficients_into(robot, ws, q, dq, ddq, TorqueOutput{a.data(), b.data(), c.data(), 1, count}, lanes);
+}
+
+}  // namespace detail
 
 void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                                           const Eigen::Ref<const Eigen::VectorXd>& dq,
@@ -775,58 +1094,8 @@ void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen:
     c.noalias() = cb * mm.E;
     return;
   }
-  a.resize(count, n);
-  b.resize(count, n);
-  c.resize(count, n);
-  Eigen::Index s = 0;
-#if defined(__GNUC__)
-  // Two samples per sweep, one in each SIMD lane.
-  const size_t nb = bodies_.size();
-  AbcBody<Double2>* S = abc_bodies<Double2>(ws, nb);
-  std::vector<Double2> qd2(nb), qdd2(nb), a2(nb), b2(nb), c2(nb);
-  std::vector<int> unit(nb);
-  for (size_t i = 0; i < nb; ++i) unit[i] = unit_axis(bodies_[i]);
-  for (; s + 1 < count; s += 2) {
-    for (size_t i = 0; i < nb; ++i) {
-      const Eigen::Index j = static_cast<Eigen::Index>(i);
-      qd2[i] = Double2{dq(s, j), dq(s + 1, j)};
-      qdd2[i] = Double2{ddq(s, j), ddq(s + 1, j)};
-      double E0[9], E1[9], r0[3], r1[3];
-      Double2 sin2, cos2;
-      if (unit[i] >= 0 && sincos2(Double2{q(s, j), q(s + 1, j)}, sin2, cos2)) {
-        const RobotModel::Body& b = bodies_[i];
-        unit_axis_rotation(b, unit[i], cos2[0], sin2[0], E0);
-        unit_axis_rotation(b, unit[i], cos2[1], sin2[1], E1);
-        for (int k = 0; k < 3; ++k) r0[k] = r1[k] = b.r_tree[k];
-      } else {
-        joint_transform(bodies_[i], q(s, j), E0, r0);
-        joint_transform(bodies_[i], q(s + 1, j), E1, r1);
-      }
-      for (int k = 0; k < 9; ++k) S[i].E[k] = Double2{E0[k], E1[k]};
-      for (int k = 0; k < 3; ++k) S[i].r[k] = Double2{r0[k], r1[k]};
-    }
-    abc_sweep<Double2>(bodies_, S, qd2.data(), qdd2.data(), gravity_, a2.data(), b2.data(), c2.data());
-    for (size_t i = 0; i < nb; ++i) {
-      const Eigen::Index j = static_cast<Eigen::Index>(i);
-      a(s, j) = a2[i][0];
-      a(s + 1, j) = a2[i][1];
-      b(s, j) = b2[i][0];
-      b(s + 1, j) = b2[i][1];
-      c(s, j) = c2[i][0];
-      c(s + 1, j) = c2[i][1];
-    }
-  }
-#endif
-  Eigen::VectorXd qs(n), dqs(n), ddqs(n), as(n), bs(n), cs(n);
-  for (; s < count; ++s) {
-    qs = q.row(s).transpose();
-    dqs = dq.row(s).transpose();
-    ddqs = ddq.row(s).transpose();
-    path_torque_coefficients(ws, qs, dqs, ddqs, as, bs, cs);
-    a.row(s) = as.transpose();
-    b.row(s) = bs.transpose();
-    c.row(s) = cs.transpose();
-  }
+  // As many samples per sweep as the CPU has SIMD lanes (8 with AVX-512, 4 with AVX2, 2 with SSE2).
+  detail::path_torque_coefficients_lanes(*this, ws, q, dq, ddq, a, b, c, detail::torque_lanes_supported());
 }
 
 int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const {

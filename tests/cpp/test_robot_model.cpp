@@ -2,12 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <Eigen/Eigenvalues>
 
 #include "pathpace/pathpace.hpp"
 #include "test_util.hpp"
+#include "torque_lanes.hpp"
 
 using namespace pathpace;
 
@@ -122,19 +124,99 @@ TEST(TorqueLimits, LockedJointAndFloatingBaseShapes) {
   EXPECT_EQ(t.tau_max()[7], 40.0);
 }
 
+TEST(TorqueLimits, RowsAreTheCoefficientsOfEquation15) {
+  // The row pair of joint j at sample k: (a, b, τ_U - c) and (-a, -b, c - τ_L), written from the lanes;
+  // an infinite limit is an inactive row (c = +inf). 13 samples: a partial last group of lanes.
+  const auto r = std::make_shared<RobotModel>(RobotModel::from_urdf_string(kArm));
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd lo(3), hi(3);
+  lo << -50.0, -inf, -100.0;
+  hi << 45.0, 40.0, inf;
+  const TorqueLimits t(r, lo, hi, 0.5, 1.0);
+  PathSamples smp;
+  const int count = 13;
+  smp.s = Eigen::VectorXd::LinSpaced(count, 0.0, 1.0);
+  smp.q.resize(count, 3);
+  smp.dq.resize(count, 3);
+  smp.ddq.resize(count, 3);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int k = 0; k < count; ++k)
+    for (int j = 0; j < 3; ++j) smp.q(k, j) = U(gen), smp.dq(k, j) = U(gen), smp.ddq(k, j) = U(gen);
+  const ConstraintRows rows = t.evaluate(smp);
+  ASSERT_EQ(rows.rows(), 6);
+  EXPECT_EQ(rows.labels[2], "torque j2 upper");
+  EXPECT_EQ(rows.labels[3], "torque j2 lower");
+  RobotWorkspace ws(*r);
+  for (int k = 0; k < count; ++k) {
+    Eigen::VectorXd a(3), b(3), c(3);
+    r->path_torque_coefficients(ws, smp.q.row(k).transpose(), smp.dq.row(k).transpose(), smp.ddq.row(k).transpose(), a,
+                                b, c);
+    for (int j = 0; j < 3; ++j) {
+      const double tol = 1e-12 * (1.0 + std::abs(a[j]) + std::abs(b[j]) + std::abs(c[j]));
+      EXPECT_NEAR(rows.a(k, 2 * j), a[j], tol) << k << " " << j;
+      EXPECT_EQ(rows.a(k, 2 * j + 1), -rows.a(k, 2 * j));
+      EXPECT_NEAR(rows.b(k, 2 * j), b[j], tol);
+      EXPECT_EQ(rows.b(k, 2 * j + 1), -rows.b(k, 2 * j));
+      if (std::isfinite(hi[j])) EXPECT_NEAR(rows.c(k, 2 * j), 0.5 * hi[j] - 1.0 - c[j], tol);
+      else EXPECT_EQ(rows.c(k, 2 * j), inf);
+      if (std::isfinite(lo[j])) EXPECT_NEAR(rows.c(k, 2 * j + 1), c[j] - (0.5 * lo[j] + 1.0), tol);
+      else EXPECT_EQ(rows.c(k, 2 * j + 1), inf);
+    }
+  }
+}
+
+TEST(RobotModel, TorqueCoefficientsReproduceInverseDynamicsOnEveryJointKind) {
+  // eq. (12) against the separate RNEA of inverse_dynamics: revolute and prismatic joints on coordinate
+  // axes (the sweep's specialised path) and on tilted ones, and a floating base, one sample at a time and
+  // in the lanes of the batch.
+  std::string tilted = kArm, straight = kArm;
+  tilted.replace(tilted.find("<axis xyz=\"0 1 0\"/>"), 19, "<axis xyz=\"0 0.6 0.8\"/>");
+  straight.replace(straight.find("<axis xyz=\"0.6 0 0.8\"/>"), 23, "<axis xyz=\"1 0 0\"/>");
+  RobotModelOptions floating;
+  floating.floating_base = true;
+  const std::vector<RobotModel> models = {RobotModel::from_urdf_string(kArm), RobotModel::from_urdf_string(tilted),
+                                          RobotModel::from_urdf_string(straight),
+                                          RobotModel::from_urdf_string(kArm, floating)};
+  for (const RobotModel& r : models) {
+    RobotWorkspace ws(r);
+    const int n = r.nq(), count = 11;
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<double> U(-1.5, 1.5);
+    Eigen::MatrixXd q(count, n), dq(count, n), ddq(count, n), A, B, C;
+    for (int s = 0; s < count; ++s)
+      for (int j = 0; j < n; ++j) q(s, j) = U(gen), dq(s, j) = U(gen), ddq(s, j) = U(gen);
+    r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
+    for (int s = 0; s < count; ++s) {
+      const Eigen::VectorXd qs = q.row(s).transpose(), dqs = dq.row(s).transpose(), ddqs = ddq.row(s).transpose();
+      Eigen::VectorXd a(n), b(n), c(n);
+      r.path_torque_coefficients(ws, qs, dqs, ddqs, a, b, c);
+      const double sd = 0.3 + 0.2 * s, sdd = 1.1 - 0.25 * s;
+      const Eigen::VectorXd tau = r.inverse_dynamics(qs, dqs * sd, ddqs * sd * sd + dqs * sdd);
+      EXPECT_NEAR((a * sd * sd + b * sdd + c - tau).norm(), 0.0, 1e-11 * (1.0 + tau.norm())) << n << " " << s;
+      const Eigen::VectorXd batch = A.row(s).transpose() * sd * sd + B.row(s).transpose() * sdd + C.row(s).transpose();
+      EXPECT_NEAR((batch - tau).norm(), 0.0, 1e-11 * (1.0 + tau.norm())) << n << " " << s;
+    }
+  }
+}
+
 TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
   // kArm: coordinate-axis revolute joints and a tilted prismatic one; the same tree with a tilted
-  // revolute axis (the general rotation in each lane). An odd sample count leaves a one-sample tail.
+  // revolute axis (the general rotation in each lane). Every lane width this CPU runs (SSE2, AVX2 + FMA,
+  // AVX-512: the batch takes the widest), and 43 samples leave a partial last group for each (1 of 2,
+  // 3 of 4 and of 8 lanes).
   std::string tilted = kArm;
   tilted.replace(tilted.find("<axis xyz=\"0 1 0\"/>"), 19, "<axis xyz=\"0 0.6 0.8\"/>");
+  std::vector<int> widths;
+  for (int lanes = 1; lanes <= detail::torque_lanes_supported(); lanes *= 2) widths.push_back(lanes);
   for (const std::string& xml : {std::string(kArm), tilted}) {
     const RobotModel r = RobotModel::from_urdf_string(xml);
     RobotWorkspace ws(r);
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> U(-2.0, 2.0);
     // The lanes take sin and cos from their own kernel (to 1.5 ulp of libm's): angles in every quadrant
-    // and many turns, multiples of pi/2, and one beyond its range (|q| > 1e5, libm in both lanes).
-    const int count = 41;
+    // and many turns, multiples of pi/2, and one beyond its range (|q| > 1e5, libm in every lane).
+    const int count = 43;
     Eigen::MatrixXd q(count, 3), dq(count, 3), ddq(count, 3);
     for (int s = 0; s < count; ++s)
       for (int j = 0; j < 3; ++j) {
@@ -150,14 +232,19 @@ TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
     Eigen::MatrixXd A, B, C;
     r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
     ASSERT_EQ(A.rows(), count);
-    for (int s = 0; s < count; ++s) {
-      Eigen::VectorXd a(3), b(3), c(3);
-      r.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b, c);
-      EXPECT_NEAR((A.row(s).transpose() - a).norm(), 0.0, 1e-12 * (1.0 + a.norm())) << s;
-      EXPECT_NEAR((B.row(s).transpose() - b).norm(), 0.0, 1e-12 * (1.0 + b.norm())) << s;
-      EXPECT_NEAR((C.row(s).transpose() - c).norm(), 0.0, 1e-12 * (1.0 + c.norm())) << s;
-      EXPECT_GT(a.norm() + b.norm(), 1e-3);
+    for (int lanes : widths) {
+      if (lanes > 1) detail::path_torque_coefficients_lanes(r, ws, q, dq, ddq, A, B, C, lanes);
+      for (int s = 0; s < count; ++s) {
+        Eigen::VectorXd a(3), b(3), c(3);
+        r.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b, c);
+        EXPECT_NEAR((A.row(s).transpose() - a).norm(), 0.0, 1e-12 * (1.0 + a.norm())) << s << " lanes " << lanes;
+        EXPECT_NEAR((B.row(s).transpose() - b).norm(), 0.0, 1e-12 * (1.0 + b.norm())) << s << " lanes " << lanes;
+        EXPECT_NEAR((C.row(s).transpose() - c).norm(), 0.0, 1e-12 * (1.0 + c.norm())) << s << " lanes " << lanes;
+        EXPECT_GT(a.norm() + b.norm(), 1e-3);
+      }
     }
     EXPECT_THROW(r.path_torque_coefficients_batch(ws, q.leftCols(2), dq, ddq, A, B, C), InvalidInput);
+    EXPECT_EQ(test::error_of([&] { detail::path_torque_coefficients_lanes(r, ws, q, dq, ddq, A, B, C, 3); }),
+              "lanes = 3 must be a power of 2 <= " + std::to_string(detail::torque_lanes_supported()));
   }
 }

@@ -83,8 +83,9 @@ class RobotModel {
                                 Eigen::Ref<Eigen::VectorXd> a, Eigen::Ref<Eigen::VectorXd> b,
                                 Eigen::Ref<Eigen::VectorXd> c) const;
 
-  /// The same at many samples: row s of q, dq, ddq (each (samples, nq)) gives row s of a, b, c. Two
-  /// samples go through each sweep in the two SIMD lanes where the compiler has vector types (GCC, Clang).
+  /// The same at many samples: row s of q, dq, ddq (each (samples, nq)) gives row s of a, b, c. Where the
+  /// compiler has vector types (GCC, Clang), each sweep takes as many samples as the CPU has SIMD lanes
+  /// for doubles (x86-64: 2 with SSE2, 4 with AVX2 + FMA, 8 with AVX-512; chosen at run time).
   void path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
                                       const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                       Eigen::MatrixXd& c) const;

@@ -5,6 +5,7 @@
 
 #include "detail/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
+#include "torque_lanes.hpp"
 
 namespace pathpace {
 
@@ -44,22 +45,11 @@ ConstraintRows TorqueLimits::evaluate(const PathSamples& samples) const {
     rows.labels[static_cast<size_t>(2 * j)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " upper";
     rows.labels[static_cast<size_t>(2 * j + 1)] = "torque " + robot_->joint_names()[static_cast<size_t>(j)] + " lower";
   }
+  // eq. (15): τ_L <= a x + b u + c <= τ_U as the rows (a, b, τ_U - c) and (-a, -b, c - τ_L), written
+  // straight from the sweeps' lanes; an infinite limit gives c = +inf: an inactive row.
   RobotWorkspace ws(*robot_);
-  Eigen::MatrixXd A, B, C;
-  robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, A, B, C);
-  for (Eigen::Index k = 0; k < samples.size(); ++k) {
-    const auto a = A.row(k), b = B.row(k), c = C.row(k);
-    for (int j = 0; j < n; ++j) {
-      // eq. (15): τ_L <= a x + b u + c <= τ_U
-      // An infinite limit gives c = +inf: an inactive row.
-      rows.a(k, 2 * j) = a[j];
-      rows.b(k, 2 * j) = b[j];
-      rows.c(k, 2 * j) = std::isfinite(tau_max_[j]) ? tau_max_[j] - c[j] : std::numeric_limits<double>::infinity();
-      rows.a(k, 2 * j + 1) = -a[j];
-      rows.b(k, 2 * j + 1) = -b[j];
-      rows.c(k, 2 * j + 1) = std::isfinite(tau_min_[j]) ? c[j] - tau_min_[j] : std::numeric_limits<double>::infinity();
-    }
-  }
+  detail::TorqueOutput out{rows.a.data(), rows.b.data(), rows.c.data(), 2 * n, 2, tau_max_.data(), tau_min_.data()};
+  detail::path_torque_coefficients_into(*robot_, ws, samples.q, samples.dq, samples.ddq, out);
   return rows;
 }
 
