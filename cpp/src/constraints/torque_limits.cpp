@@ -5,7 +5,7 @@
 
 #include "detail/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
-#include "torque_lanes.hpp"
+#include "detail/torque_lanes.hpp"
 
 namespace pathpace {
 
