@@ -90,6 +90,20 @@ Eigen::VectorXd grad_T(const Chain& ch, const Eigen::VectorXd& theta) {
   return g;
 }
 
+// The simplex's bound at `at` for objective g is GLPK's (valid to 1e-10, tight to 1e-9), and the vertex it
+// ends on is GLPK's optimum and meets every row.
+void expect_certified(const Chain& ch, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const ChainSimplex& cs,
+                      const Eigen::VectorXd& at, const Eigen::VectorXd& g, double gap, int trial) {
+  const double opt = glpk_optimum(ch, lo, hi, at, g);
+  const double gat = g.dot(at), scale = std::abs(gat) + 1.0;
+  EXPECT_GE(gap, gat - opt - 1e-10 * scale) << "trial " << trial << ": the bound is not valid";
+  EXPECT_LE(gap, gat - opt + 1e-9 * scale) << "trial " << trial << ": the bound is loose";
+  EXPECT_NEAR(g.dot(cs.vertex()), opt, 1e-9 * scale) << "trial " << trial;
+  for (Eigen::Index k = 0; k < ch.intervals(); ++k)
+    for (const Line& r : ch.rows(k))
+      EXPECT_LE(row_violation(r, cs.vertex()[k], cs.vertex()[k + 1]), 1e-9) << "trial " << trial;
+}
+
 }  // namespace
 
 // 200 seeded random chains (30-150 intervals, 2-4 joints): from the greedy profile of the reachability
@@ -121,15 +135,7 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
     if (!std::isfinite(gap)) continue;
     ++solved;
     pivots += cs.pivots();
-    const double opt = glpk_optimum(ch, lo, hi, theta, g);
-    const double gtheta = g.dot(theta), scale = std::abs(gtheta) + 1.0;
-    EXPECT_GE(gap, gtheta - opt - 1e-10 * scale) << "trial " << trial << ": the bound is not valid";
-    EXPECT_LE(gap, gtheta - opt + 1e-9 * scale) << "trial " << trial << ": the bound is loose";
-    EXPECT_NEAR(g.dot(cs.vertex()), opt, 1e-9 * scale) << "trial " << trial;
-    // The vertex is feasible.
-    for (Eigen::Index k = 0; k < m; ++k)
-      for (const Line& r : ch.rows(k))
-        EXPECT_LE(row_violation(r, cs.vertex()[k], cs.vertex()[k + 1]), 1e-9) << "trial " << trial;
+    expect_certified(ch, lo, hi, cs, theta, g, gap, trial);
     // A second objective from the vertex's basis (warm, as the Frank-Wolfe iterations of slp.cpp use it).
     const Eigen::VectorXd v = cs.vertex();
     Eigen::VectorXd g2(m + 1);
@@ -149,8 +155,9 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
 // The Frank-Wolfe iterations of slp.cpp after a step that stops short of the LP's vertex (an interior optimum):
 // the next check runs warm from the previous optimal basis, which stands on that vertex, not on the iterate.
 // On 200 seeded random chains, v the optimum for a random decreasing objective from θ_g, with the iterate
-// θ_α = θ_g + α (v - θ_g) (α in (0.05, 0.95), feasible by convexity, at no vertex) and g = ∇T(θ_α): the bound on g·θ_α - min g·y is valid and tight (1e-9 against
-// GLPK), and the simplex ends at GLPK's optimum, feasible.
+// θ_α = θ_g + α (v - θ_g) (α in (0.05, 0.95), feasible by convexity, at no vertex) and g = ∇T(θ_α): the
+// bound on g·θ_α - min g·y is valid and tight (1e-9 against GLPK), and the simplex ends at GLPK's optimum,
+// feasible.
 TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> A(0.05, 0.95), G(-1.0, -0.05);
@@ -176,14 +183,7 @@ TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
     const double gap = cs.gap(it, g, 1000, true);
     if (!std::isfinite(gap)) continue;
     ++solved;
-    const double opt = glpk_optimum(ch, lo, hi, it, g);
-    const double git = g.dot(it), scale = std::abs(git) + 1.0;
-    EXPECT_GE(gap, git - opt - 1e-10 * scale) << "trial " << trial << ": the bound is not valid";
-    EXPECT_LE(gap, git - opt + 1e-9 * scale) << "trial " << trial << ": the bound is loose";
-    EXPECT_NEAR(g.dot(cs.vertex()), opt, 1e-9 * scale) << "trial " << trial;
-    for (Eigen::Index k = 0; k < m; ++k)
-      for (const Line& r : ch.rows(k))
-        EXPECT_LE(row_violation(r, cs.vertex()[k], cs.vertex()[k + 1]), 1e-9) << "trial " << trial;
+    expect_certified(ch, lo, hi, cs, it, g, gap, trial);
   }
   EXPECT_GE(trials, 190);
   // Most iterates are off the vertex (on the others the first objective was already optimal at θ_g).

@@ -51,6 +51,20 @@ double push_brake_duration(const Eigen::VectorXd& s, Eigen::Index k_switch, doub
   return test::duration_of(s.tail(s.size() - 1) - s.head(s.size() - 1), th);
 }
 
+// The hand's force limited to `force` (the hand_x joint; the box's joint unlimited), as TorqueLimits bounds.
+struct HandForce {
+  Eigen::Index hand;
+  Eigen::Vector2d lo, hi;
+};
+HandForce hand_force(const RobotModel& robot, double force) {
+  const auto& names = robot.joint_names();
+  HandForce h{std::find(names.begin(), names.end(), "hand_x") - names.begin(), Eigen::Vector2d::Zero(),
+              Eigen::Vector2d::Zero()};
+  h.lo[h.hand] = -force;
+  h.hi[h.hand] = force;
+  return h;
+}
+
 }  // namespace
 
 TEST(ContactPhases, PushThenBrakeHasTheClosedFormOptimumAndNamesThePhases) {
@@ -194,11 +208,7 @@ class CountedCap : public Constraint {
 // would be dropped); the constraints that stay are, and only then.
 TEST(ContactPhases, OnlyTheConstraintsThatStayAreEvaluatedAgainAtAnInsertedSwitch) {
   auto robot = load("hand_box.urdf");
-  const auto& names = robot->joint_names();
-  const Eigen::Index hand = std::find(names.begin(), names.end(), "hand_x") - names.begin();
-  Eigen::Vector2d lo(0, 0), hi(0, 0);
-  lo[hand] = -4.0;
-  hi[hand] = 4.0;
+  const auto [hand, lo, hi] = hand_force(*robot, 4.0);
   for (int intervals : {7, 20}) {  // s = 1 is not a grid point of 7 intervals over [0, 2]; it is one of 20
     const bool inserted = intervals == 7;
     int torque_calls = 0, cap_calls = 0;
@@ -223,11 +233,7 @@ TEST(ContactPhases, OnlyTheConstraintsThatStayAreEvaluatedAgainAtAnInsertedSwitc
 TEST(ContactPhases, TorqueLimitsJoinEveryPhaseAddedBeforeOrAfter) {
   // The hand's force limited to 4 N (a = 4 / 2 kg = 2) by a TorqueLimits, before or after the phases.
   auto robot = load("hand_box.urdf");
-  const auto& names = robot->joint_names();
-  const Eigen::Index hand = std::find(names.begin(), names.end(), "hand_x") - names.begin();
-  Eigen::Vector2d lo(0, 0), hi(0, 0);
-  lo[hand] = -4.0;
-  hi[hand] = 4.0;
+  const auto [hand, lo, hi] = hand_force(*robot, 4.0);
   for (bool before : {true, false}) {
     TimeScalingProblem prob(together(), 20);
     if (before) prob.add_constraint(std::make_shared<TorqueLimits>(robot, lo, hi));
