@@ -414,12 +414,7 @@ void Polygon2d::erase(std::size_t j) {
   --m_;
 }
 
-void Polygon2d::x_range(double& lo, double& hi) const {
-  if (range_known_) {
-    lo = x_min_;
-    hi = x_max_;
-    return;
-  }
+void Polygon2d::vertex_x_range(double& lo, double& hi) const {
   const Vertex* v = vertices_[cur_].data();
   lo = hi = v[0].x;
   for (std::size_t j = 1; j < m_; ++j) {

@@ -449,6 +449,7 @@ struct Window {
   Eigen::Index a, b;
   bool solved = false;
   WindowResult result;
+  double t_upper = 0.0;  // T(upper) on the window, set when it is solved
 };
 
 // Sorts by start and merges windows that overlap or touch (a shared point would need one value from two
@@ -470,7 +471,8 @@ void merge(std::vector<Window>& ws) {
 }  // namespace
 
 SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eigen::VectorXd& upper, bool relaxed,
-                        double theta_begin, const SolverOptions& options, Clock::time_point deadline) {
+                        double theta_begin, const SolverOptions& options, Clock::time_point deadline,
+                        double T_upper) {
   SlpOutcome out;
   const Eigen::Index n = chain.intervals();
   std::vector<Window> ws;
@@ -504,11 +506,14 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
   }
   merge(ws);
 
-  const double T_upper = duration(chain.ds, upper);
+  if (std::isnan(T_upper)) T_upper = duration(chain.ds, upper);
+  auto window_upper = [&](const Window& w) {
+    return duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
+  };
   // The windows share half the tolerance on T (the rest is for the repair), each in proportion to its T:
   // relative to its own T, a window may be off by 0.5 tol T / Σ_windows T_i.
   double t_windows = 0.0;
-  for (const Window& w : ws) t_windows += duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
+  for (Window& w : ws) t_windows += (w.t_upper = window_upper(w));
   const double rel_target = 0.5 * options.tolerance * std::max(1.0, T_upper / std::max(t_windows, 1e-300));
   GlpkLp lp;
   const bool use_barrier = options.method == Method::Auto;
@@ -518,6 +523,7 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
       if (w.solved) continue;
       w.result = slp_window(chain, w.a, w.b, upper, full.theta, w.a == 0, w.b == n, rel_target, options, deadline, lp,
                             use_barrier);
+      if (out.widenings > 0) w.t_upper = window_upper(w);  // widened or merged since the first cover
       out.newton_steps += w.result.newton_steps;
       w.solved = true;
       out.iterations += w.result.iterations;
@@ -530,14 +536,13 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
     double lower = T_upper;
     for (const Window& w : ws) {
       z.segment(w.a, w.b - w.a + 1) = w.result.theta;
-      const double t_up = duration(chain.ds.segment(w.a, w.b - w.a), upper.segment(w.a, w.b - w.a + 1));
       // Every feasible y <= upper, so the window's part of T(y) is >= its part of T(upper) as well.
-      lower += std::max(t_up, w.result.lower) - t_up;
+      lower += std::max(w.t_upper, w.result.lower) - w.t_upper;
     }
     out.theta = forward_pass(full, theta_begin, &z);  // θ_0 = theta_begin
     out.lower = lower;
-    const double T = duration(chain.ds, out.theta);
-    if (T - lower <= options.tolerance * lower || out.status != SlpOutcome::Status::Converged) break;
+    out.T = duration(chain.ds, out.theta);
+    if (out.T - lower <= options.tolerance * lower || out.status != SlpOutcome::Status::Converged) break;
     // Widen the windows whose optimum presses an edge below θ': there the seam with θ' is not feasible.
     bool widened = false;
     for (Window& w : ws) {

@@ -17,6 +17,7 @@
 // is returned is made exactly feasible by the capped forward pass, and its T - LB is the certified gap.
 
 #include <chrono>
+#include <limits>
 
 #include <Eigen/Core>
 
@@ -31,6 +32,7 @@ struct SlpOutcome {
   enum class Status { Converged, IterationLimit, TimeLimit, LpFailed };
   Status status = Status::Converged;
   Eigen::VectorXd theta;  // feasible profile (repaired by the capped forward pass)
+  double T = 0.0;         // its duration, T(theta)
   double lower = 0.0;     // certified lower bound on T*
   int iterations = 0;     // SLP iterations, all windows
   int lp_solves = 0;
@@ -48,8 +50,10 @@ double duration(const Eigen::Ref<const Eigen::VectorXd>& ds, const Eigen::Ref<co
 /// greatest element θ' with `relaxed` = true (windows around the intervals where it violates a coupling
 /// row), or any bound (e.g. θ_hi) with `relaxed` = false (one window, the whole chain). `full` is the full
 /// reachability analysis: its greedy profile is each window's feasible start and its polygons repair the
-/// result. Stops at `deadline` with the best feasible profile and its bound.
+/// result. Stops at `deadline` with the best feasible profile and its bound. T_upper is T(upper) when the
+/// caller has it (NaN: computed here).
 SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eigen::VectorXd& upper, bool relaxed,
-                        double theta_begin, const SolverOptions& options, Clock::time_point deadline);
+                        double theta_begin, const SolverOptions& options, Clock::time_point deadline,
+                        double T_upper = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace pathpace::detail
