@@ -190,3 +190,30 @@ TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
   EXPECT_GE(moved, trials / 2);
   EXPECT_GE(solved, trials * 95 / 100);
 }
+
+// forward_pass with caps reuses the analysis's own greedy profile where it runs along it
+// (Reachability::theta_is_greedy): the same profile, to the bit, as slicing every interval. Caps at, above and
+// below the greedy profile on 200 seeded random chains.
+TEST(ForwardPass, ReusingTheGreedyProfileChangesNothing) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> F(0.8, 1.2);
+  int reused = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
+    const Chain ch = random_chain(rng, m, joints);
+    Reachability reach = reachability(ch, 0.0, 0.0);
+    ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
+    ASSERT_TRUE(reach.theta_is_greedy);
+    // The greedy profile itself on a stretch, above it (no cap) and below it (a cap that binds) elsewhere.
+    Eigen::VectorXd caps = reach.theta;
+    for (int k = 0; k <= m; ++k)
+      if ((k / 10) % 3 == 1) caps[k] *= F(rng);
+    const Eigen::VectorXd fast = forward_pass(reach, 0.0, &caps);
+    reach.theta_is_greedy = false;
+    const Eigen::VectorXd slow = forward_pass(reach, 0.0, &caps);
+    ASSERT_EQ(fast.size(), slow.size());
+    for (int k = 0; k <= m; ++k) EXPECT_EQ(fast[k], slow[k]) << "trial " << trial << " k " << k;
+    reused += (fast.array() == reach.theta.array()).count() > m / 4;
+  }
+  EXPECT_GT(reused, 150);  // the reuse is exercised: long stretches run along the greedy profile
+}

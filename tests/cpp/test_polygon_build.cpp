@@ -49,10 +49,18 @@ TEST(PolygonBuild, MatchesClippingOnRandomSlabs) {
     Polygon2d ref, fast;
     ref.reset(0.0, xhi, -yb, yb);
     for (const Line& l : lines) ref.clip(l);
+    // edges_only (the grid's per-point sets): the same decision and the same edges, without the vertices.
+    Polygon2d edges;
+    const bool edges_built = edges.build(0.0, xhi, -yb, yb, lines.data(), lines.size(), true);
     if (!fast.build(0.0, xhi, -yb, yb, lines.data(), lines.size())) {
+      EXPECT_FALSE(edges_built) << "trial " << trial;
       ++(ref.empty() ? declined_empty : declined_nonempty);
       continue;
     }
+    EXPECT_TRUE(edges_built) << "trial " << trial;
+    ASSERT_EQ(edges.edges().size(), fast.edges().size()) << "trial " << trial;
+    for (size_t j = 0; j < fast.edges().size(); ++j)
+      EXPECT_EQ(edges.edges()[j].id, fast.edges()[j].id) << "trial " << trial;
     ++built;
     ASSERT_FALSE(ref.empty()) << "trial " << trial;
     for (int d = 0; d < 24; ++d) {

@@ -125,10 +125,7 @@ namespace {
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through
 // v[i - 1] and v[i].
 // [x_min, x_max] is the polygon's x-range (its vertices' extremes, as Polygon2d::x_range gives them).
-// With want_lo false only y_hi is computed (y_lo is then meaningless): the edges of the lower chain, which
-// run to the right (counter-clockwise order), are skipped unless vertical.
-void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max, double x, double& y_lo, double& y_hi,
-           bool want_lo = true) {
+void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max, double x, double& y_lo, double& y_hi) {
   x = std::clamp(x, x_min, x_max);
   // An edge whose ends differ in x by rounding only is vertical: at such x the whole edge is the slice.
   // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.) Rounding is relative to
@@ -146,7 +143,6 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
       y_hi = std::max({y_hi, p.y, q.y});
       continue;
     }
-    if (!want_lo && q.x > p.x) continue;
     // Interpolating between the vertices errs by rounding relative to the vertices, the edge's own line
     // (y = (c - a x) / b) by rounding relative to its terms at x: the backward pass keeps speeds that
     // only the start makes unreachable, so an edge may run from ṡ² ~ 1e-2 to 1e13 (limits over many
@@ -167,12 +163,12 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
 }
 
 // The slice of interval k's stored polygon (its own copy, or the relaxed analysis's when they are equal).
-void slice(const Reachability& reach, Eigen::Index k, double x, double& y_lo, double& y_hi, bool want_lo = true) {
+void slice(const Reachability& reach, Eigen::Index k, double x, double& y_lo, double& y_hi) {
   const size_t i = static_cast<size_t>(k);
   const Reachability& src = reach.base && reach.in_base[i] ? *reach.base : reach;
   const size_t o = src.start[i];
   // The stored K_k is the polygon's x-range (every analysis sets it with x_range from the same polygon).
-  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], src.k_lo[k], src.k_hi[k], x, y_lo, y_hi, want_lo);
+  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], src.k_lo[k], src.k_hi[k], x, y_lo, y_hi);
 }
 
 void clip_rows(Polygon2d& poly, View<Line> rows) {
@@ -210,7 +206,7 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
       continue;
     }
     double lo, hi;
-    slice(reach, k, theta[k], lo, hi, caps != nullptr);
+    slice(reach, k, theta[k], lo, hi);
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
@@ -413,7 +409,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
       continue;
     }
     double lo, hi;
-    slice(full, k, theta[k], lo, hi, false);
+    slice(full, k, theta[k], lo, hi);
     theta[k + 1] = hi;
   }
   theta[0] = theta_begin;
