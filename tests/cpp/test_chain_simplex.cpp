@@ -46,6 +46,12 @@ Chain random_chain(std::mt19937& rng, int m, int joints) {
   return ch;
 }
 
+// A window of the sizes the corpus's windows have: 30-150 intervals, 2-4 joints.
+Chain random_window(std::mt19937& rng) {
+  const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
+  return random_chain(rng, m, joints);
+}
+
 // min g·y over the chain's rows and lo <= y <= hi with y_0, y_m fixed at theta's values, by GLPK.
 double glpk_optimum(const Chain& ch, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd& theta,
                     const Eigen::VectorXd& g) {
@@ -115,8 +121,8 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
   std::uniform_real_distribution<double> G(-1.0, -0.05);
   int solved = 0, trials = 0, pivots = 0, warm = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
-    const Chain ch = random_chain(rng, m, joints);
+    const Chain ch = random_window(rng);
+    const int m = static_cast<int>(ch.intervals());
     const Reachability reach = reachability(ch, 0.0, 0.0);
     ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
     const Eigen::VectorXd& theta = reach.theta;
@@ -163,8 +169,8 @@ TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
   std::uniform_real_distribution<double> A(0.05, 0.95), G(-1.0, -0.05);
   int trials = 0, solved = 0, moved = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
-    const Chain ch = random_chain(rng, m, joints);
+    const Chain ch = random_window(rng);
+    const int m = static_cast<int>(ch.intervals());
     const Reachability reach = reachability(ch, 0.0, 0.0);
     ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
     const Eigen::VectorXd& theta = reach.theta;
@@ -199,8 +205,8 @@ TEST(ForwardPass, ReusingTheGreedyProfileChangesNothing) {
   std::uniform_real_distribution<double> F(0.8, 1.2);
   int reused = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
-    const Chain ch = random_chain(rng, m, joints);
+    const Chain ch = random_window(rng);
+    const int m = static_cast<int>(ch.intervals());
     Reachability reach = reachability(ch, 0.0, 0.0);
     ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
     ASSERT_TRUE(reach.theta_is_greedy);
