@@ -46,6 +46,15 @@ Chain random_chain(std::mt19937& rng, int m, int joints) {
   return ch;
 }
 
+// The window LP's column bounds: the chain's, with both ends fixed at theta's values (as slp_window fixes them).
+void window_bounds(const Chain& ch, const Eigen::VectorXd& theta, Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
+  const Eigen::Index m = ch.intervals();
+  lo = ch.x_lo;
+  hi = ch.x_hi;
+  lo[0] = hi[0] = theta[0];
+  lo[m] = hi[m] = theta[m];
+}
+
 // A window of the sizes the corpus's windows have: 30-150 intervals, 2-4 joints.
 Chain random_window(std::mt19937& rng) {
   const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
@@ -132,9 +141,8 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
     } else {
       g = grad_T(ch, theta);
     }
-    Eigen::VectorXd lo = ch.x_lo, hi = ch.x_hi;
-    lo[0] = hi[0] = theta[0];
-    lo[m] = hi[m] = theta[m];
+    Eigen::VectorXd lo, hi;
+    window_bounds(ch, theta, lo, hi);
     ++trials;
     ChainSimplex cs(ch, 0, m, lo, hi, 1, m - 1);
     const double gap = cs.gap(theta, g, 1000);
@@ -174,9 +182,8 @@ TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
     const Reachability reach = reachability(ch, 0.0, 0.0);
     ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
     const Eigen::VectorXd& theta = reach.theta;
-    Eigen::VectorXd lo = ch.x_lo, hi = ch.x_hi;
-    lo[0] = hi[0] = theta[0];
-    lo[m] = hi[m] = theta[m];
+    Eigen::VectorXd lo, hi;
+    window_bounds(ch, theta, lo, hi);
     ChainSimplex cs(ch, 0, m, lo, hi, 1, m - 1);
     Eigen::VectorXd g0(m + 1);
     for (int j = 0; j <= m; ++j) g0[j] = G(rng);

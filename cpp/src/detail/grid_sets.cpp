@@ -54,9 +54,9 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
   PointSet ps;
   ps.x_hi = scale.cap;
   int offset = 0;
-  // The rows are written through a pointer into storage sized for all of them, and the vector is cut to
-  // the count once: appending row by row reloaded and stored the vector's end at every row (it may alias
-  // the stores of the row), a chain of store-to-load forwards through the whole gather.
+  // The rows are written through a pointer into storage sized for all of them (the vector keeps that size
+  // from point to point): appending row by row reloaded and stored the vector's end at every row (it may
+  // alias the stores of the row), a chain of store-to-load forwards through the whole gather.
   Eigen::Index total = 0;
   for (const ConstraintRows& cr : constraints) total += cr.rows();
   if (lines.size() < static_cast<size_t>(total)) lines.resize(static_cast<size_t>(total));
@@ -91,16 +91,10 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       const double m = std::max(std::abs(a), std::abs(b));
       Line& l = out[count++];
       if (m > 1e-100 && m < 1e100) {
-        l.a = a;
-        l.b = b;
-        l.c = c;
-        l.id = id;
+        assign_line(l, a, b, c, id);
       } else {
         const Line n = power_of_two_normalised({a, b, c, id});
-        l.a = n.a;
-        l.b = n.b;
-        l.c = n.c;
-        l.id = n.id;
+        assign_line(l, n.a, n.b, n.c, n.id);
       }
     }
     offset += static_cast<int>(r);

@@ -259,16 +259,10 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   Vertex* v = vertices_[nxt].data();
   for (std::size_t j = 0; j < cnt; ++j)
     if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
-  double lo = v[0].x, hi = v[0].x;  // as x_range() computes it, while the vertices are in registers' reach
-  for (std::size_t j = 1; j < cnt; ++j) {
-    lo = std::min(lo, v[j].x);
-    hi = std::max(hi, v[j].x);
-  }
   cur_ = nxt;
   m_ = cnt;
+  vertex_x_range(x_min_, x_max_);  // kept for x_range(): every caller of build() asks for it
   range_known_ = true;
-  x_min_ = lo;
-  x_max_ = hi;
   for (std::size_t t = 0; t < n_steep; ++t) {
     clip(line_at(steep_[t]));
     if (empty_) return false;  // left to clipping line by line, which gives the certificate
@@ -283,9 +277,8 @@ bool Polygon2d::independent(const Line& l1, const Line& l2) {
 }
 
 bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {
+  if (!independent(l1, l2)) return false;
   const double det = l1.a * l2.b - l2.a * l1.b;
-  const double scale = std::abs(l1.a * l2.b) + std::abs(l2.a * l1.b);
-  if (!(std::abs(det) > 1e-15 * scale) || scale == 0.0) return false;
   const double inv = 1.0 / det;  // one division for both coordinates (within an ulp of dividing twice)
   v.x = (l1.c * l2.b - l2.c * l1.b) * inv;
   v.y = (l1.a * l2.c - l2.a * l1.c) * inv;

@@ -23,16 +23,20 @@ struct Line {
   int id = -1;  // caller's row id; box sides get negative ids (kBoxXLow, ...)
 };
 
-/// Appends {a, b, c, id}, written member by member into the vector's own storage. A Line built by scalar
-/// stores in a temporary and then copied with 16-byte loads stalls each copy on store forwarding (the
-/// load spans two smaller stores): that was half the time of the per-grid-point loop.
-inline void append_line(std::vector<Line>& v, double a, double b, double c, int id) {
-  v.emplace_back();
-  Line& l = v.back();
+/// Sets l to {a, b, c, id} member by member. A Line built by scalar stores in a temporary and then copied
+/// with 16-byte loads stalls each copy on store forwarding (the load spans two smaller stores): that was
+/// half the time of the per-grid-point loop.
+inline void assign_line(Line& l, double a, double b, double c, int id) {
   l.a = a;
   l.b = b;
   l.c = c;
   l.id = id;
+}
+
+/// Appends {a, b, c, id}, written member by member into the vector's own storage (see assign_line).
+inline void append_line(std::vector<Line>& v, double a, double b, double c, int id) {
+  v.emplace_back();
+  assign_line(v.back(), a, b, c, id);
 }
 
 /// 2^-floor(log2 m) for a normal m > 0, else 1: a factor that scales by a power of two, so that

@@ -50,11 +50,7 @@ Chain build_chain(const Eigen::VectorXd& s, const GridSets& sets, const Interval
       append_line(coupled, alpha, beta, c, id);
       return;
     }
-    Line& l = out[count++];
-    l.a = alpha;
-    l.b = beta;
-    l.c = c;
-    l.id = id;
+    assign_line(out[count++], alpha, beta, c, id);
   };
   for (Eigen::Index k = 0; k < n; ++k) {
     const double h = 1.0 / (2.0 * ch.ds[k]);
