@@ -186,19 +186,22 @@ void interval_polygon(Polygon2d& poly, double x_lo, double x_hi, double y_lo, do
   clip_rows(poly, rows);
 }
 
-Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps) {
+namespace {
+
+// The greedy pass below caps (none: the greedy maximum), reusing a profile g that was read from the same
+// slices: on interval k (k >= 1, and same[k] if given), a pass that arrives at g_k finds the slice g_{k+1} was
+// the top of, to the bit, so a cap at or above g_{k+1} gives g_{k+1} again without slicing. (g_0 is the start
+// speed, which the pass that made g may have clamped into K_0: interval 0 is always sliced.)
+Eigen::VectorXd guided_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps,
+                            const Eigen::VectorXd* g, const std::vector<char>* same) {
   const Eigen::Index n = static_cast<Eigen::Index>(reach.start.size());
   Eigen::VectorXd theta(n + 1);
   theta[0] = theta_begin;
-  // Where a capped pass arrives at θ_k of the analysis's own greedy profile g (k >= 1: g_0 is the start
-  // speed, which the greedy pass may have clamped into K_0), the slice there is the one g was read from,
-  // so its top is g_{k+1} to the bit; a cap at or above it gives g_{k+1} again, without slicing. (The
-  // SLP's repair runs along g outside its windows.)
-  const Eigen::VectorXd& g = reach.theta;
-  const bool have_g = caps && reach.theta_is_greedy && g.size() == n + 1;
+  if (g && g->size() != n + 1) g = nullptr;
   for (Eigen::Index k = 0; k < n; ++k) {
-    if (have_g && k > 0 && theta[k] == g[k] && (*caps)[k + 1] >= g[k + 1]) {
-      theta[k + 1] = g[k + 1];
+    if (g && k > 0 && theta[k] == (*g)[k] && (!same || (*same)[static_cast<size_t>(k)]) &&
+        (!caps || (*caps)[k + 1] >= (*g)[k + 1])) {
+      theta[k + 1] = (*g)[k + 1];
       continue;
     }
     double lo, hi;
@@ -206,6 +209,13 @@ Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, cons
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
+}
+
+}  // namespace
+
+Eigen::VectorXd forward_pass(const Reachability& reach, double theta_begin, const Eigen::VectorXd* caps) {
+  // A capped pass (the SLP's repair) runs along the analysis's own greedy profile outside its windows.
+  return guided_pass(reach, theta_begin, caps, caps && reach.theta_is_greedy ? &reach.theta : nullptr, nullptr);
 }
 
 bool has_stopped_interval(const Eigen::VectorXd& theta) {
@@ -391,24 +401,11 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
   relaxed.theta = forward_pass(relaxed, std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]), nullptr);
   relaxed.theta[0] = theta_begin;
   relaxed.theta_is_greedy = true;
-  // The full greedy profile, as forward_pass computes it, but where it reaches interval k at the relaxed
-  // profile's θ_k and the interval's polygon is the relaxed one, θ_{k+1} is the relaxed profile's too (the
-  // same slice of the same polygon): only the stretches after a cut are sliced again.
-  Eigen::VectorXd& theta = full.theta;
-  theta.resize(n + 1);
-  theta[0] = std::clamp(theta_begin, full.k_lo[0], full.k_hi[0]);
-  const double start_relaxed = std::clamp(theta_begin, relaxed.k_lo[0], relaxed.k_hi[0]);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double at_k = k == 0 ? start_relaxed : relaxed.theta[k];
-    if (full.in_base[static_cast<size_t>(k)] && theta[k] == at_k) {
-      theta[k + 1] = relaxed.theta[k + 1];
-      continue;
-    }
-    double lo, hi;
-    slice(full, k, theta[k], lo, hi);
-    theta[k + 1] = hi;
-  }
-  theta[0] = theta_begin;
+  // The full greedy profile, reusing the relaxed one where the interval's polygon is the relaxed one
+  // (in_base): only the stretches after a cut are sliced again.
+  full.theta = guided_pass(full, std::clamp(theta_begin, full.k_lo[0], full.k_hi[0]), nullptr, &relaxed.theta,
+                           &full.in_base);
+  full.theta[0] = theta_begin;
   full.theta_is_greedy = true;
   return true;
 }
