@@ -15,7 +15,6 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUME
              "VECLIB_MAXIMUM_THREADS", "BLIS_NUM_THREADS"):
     os.environ[_var] = "1"
 
-import importlib  # noqa: E402
 import importlib.metadata  # noqa: E402
 import platform  # noqa: E402
 import statistics  # noqa: E402

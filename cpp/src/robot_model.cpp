@@ -368,11 +368,17 @@ void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char*
 
 namespace {
 
-// The coordinate axis a revolute joint turns about (most URDF joints), else -1.
+// u if the axis is the coordinate axis e_u exactly, else -1.
+inline int coordinate_axis(const Eigen::Vector3d& axis) {
+  for (int u = 0; u < 3; ++u)
+    if (axis[u] == 1.0 && axis[(u + 1) % 3] == 0.0 && axis[(u + 2) % 3] == 0.0) return u;
+  return -1;
+}
+
+// The coordinate axis a revolute joint turns about (most URDF joints), else -1. (The test abc_sweep makes:
+// an axis with x = 1 after normalisation but a 1e-9 component left is not e_x for either.)
 int unit_axis(const RobotModel::Body& b) {
-  if (b.type != RobotModel::JointType::Revolute) return -1;
-  const Eigen::Vector3d& ax = b.axis;
-  return ax.x() == 1.0 ? 0 : ax.y() == 1.0 ? 1 : ax.z() == 1.0 ? 2 : -1;
+  return b.type == RobotModel::JointType::Revolute ? coordinate_axis(b.axis) : -1;
 }
 
 // E = E_J E_tree for a rotation by q about coordinate axis `unit`, given cos q and sin q: E_J mixes two
@@ -600,13 +606,6 @@ PATHPACE_LANE_INLINE void splat(T& y, double x) {  // every lane x (not 0 + x, w
   for (size_t l = 0; l < sizeof(T) / sizeof(double); ++l) y[l] = x;
 }
 PATHPACE_LANE_INLINE void splat(double& y, double x) { y = x; }
-
-// u if the axis is the coordinate axis e_u exactly, else -1.
-inline int coordinate_axis(const Eigen::Vector3d& axis) {
-  for (int u = 0; u < 3; ++u)
-    if (axis[u] == 1.0 && axis[(u + 1) % 3] == 0.0 && axis[(u + 2) % 3] == 0.0) return u;
-  return -1;
-}
 
 // abc_sweep's joint terms for the axis e_U (URDF joints mostly have one): vJ = q̇ e_U, and x × vJ =
 // q̇ (x[U+2], -x[U+1]) at (U+1, U+2) mod 3, without the products with the axis' zeros. U a constant,

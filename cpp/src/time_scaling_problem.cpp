@@ -661,15 +661,15 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     // coupling rows it is the optimum; if the bracket is within the tolerance, θ is optimal to it.
     if (detail::reachability_pair(chain, th0, thN, relaxed, reach)) {
       have_full = true;
-      const double lower = T_relaxed = detail::duration(chain.ds, relaxed.theta);
+      T_relaxed = detail::duration(chain.ds, relaxed.theta);  // a lower bound on T*
       if (detail::coupled_violation(chain, relaxed.theta) <= 1e-12) {
         theta = relaxed.theta;
         proven = true;
       } else {
         theta = reach.theta;
         const double upper = detail::duration(chain.ds, theta);
-        if (upper - lower <= options.tolerance * lower) {
-          res.stats.gap = std::max(0.0, upper - lower) / lower;
+        if (upper - T_relaxed <= options.tolerance * T_relaxed) {
+          res.stats.gap = std::max(0.0, upper - T_relaxed) / T_relaxed;
           proven = true;
         }
       }
@@ -814,8 +814,7 @@ bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const C
   detail::Reachability reach = detail::reachability(chain, th0, sdot_end_ * sdot_end_ / scale.x_unit);
   if (reach.outcome != detail::Reachability::Outcome::Feasible) return reach.outcome == detail::Reachability::Outcome::Unbounded;
   // As solve() judges it: a speed forced to zero on an interval means the path cannot be traversed.
-  Eigen::VectorXd theta = reach.theta;
-  return avoid_stopped_profile(chain, reach, th0, theta);
+  return avoid_stopped_profile(chain, reach, th0, reach.theta);
 }
 
 std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance,

@@ -214,8 +214,9 @@ TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
     RobotWorkspace ws(r);
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> U(-2.0, 2.0);
-    // The lanes take sin and cos from their own kernel (to 1.5 ulp of libm's): angles in every quadrant
-    // and many turns, multiples of pi/2, and one beyond its range (|q| > 1e5, libm in every lane).
+    // The lanes take sin and cos from their own kernel (to 2 ulp of libm's): angles in every quadrant and
+    // many turns, and multiples of pi/2. A joint with any |q| > 1e5 (beyond the kernel's range) takes libm's
+    // in every lane: that is a second batch, so that the first one reaches the kernel on every joint.
     const int count = 43;
     Eigen::MatrixXd q(count, 3), dq(count, 3), ddq(count, 3);
     for (int s = 0; s < count; ++s)
@@ -227,20 +228,31 @@ TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
     for (int j = 0; j < 3; ++j) {
       q(30, j) = (j - 1) * 1.5707963267948966;
       q(31, j) = 3.141592653589793 * (j + 1);
-      q(32, j) = 2.5e5;
     }
+    Eigen::MatrixXd far = q;
+    far.row(32).setConstant(2.5e5);
     Eigen::MatrixXd A, B, C;
-    r.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
-    ASSERT_EQ(A.rows(), count);
-    for (int lanes : widths) {
-      if (lanes > 1) detail::path_torque_coefficients_lanes(r, ws, q, dq, ddq, A, B, C, lanes);
+    for (const Eigen::MatrixXd* qs : {&q, &far}) {
+      // One sample at a time, the reference.
+      Eigen::MatrixXd a1(count, 3), b1(count, 3), c1(count, 3);
       for (int s = 0; s < count; ++s) {
         Eigen::VectorXd a(3), b(3), c(3);
-        r.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b, c);
-        EXPECT_NEAR((A.row(s).transpose() - a).norm(), 0.0, 1e-12 * (1.0 + a.norm())) << s << " lanes " << lanes;
-        EXPECT_NEAR((B.row(s).transpose() - b).norm(), 0.0, 1e-12 * (1.0 + b.norm())) << s << " lanes " << lanes;
-        EXPECT_NEAR((C.row(s).transpose() - c).norm(), 0.0, 1e-12 * (1.0 + c.norm())) << s << " lanes " << lanes;
+        r.path_torque_coefficients(ws, qs->row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), a, b,
+                                   c);
+        a1.row(s) = a.transpose();
+        b1.row(s) = b.transpose();
+        c1.row(s) = c.transpose();
         EXPECT_GT(a.norm() + b.norm(), 1e-3);
+      }
+      // The batch (the widest lanes), then each width.
+      for (size_t w = 0; w <= widths.size(); ++w) {
+        const int lanes = w == 0 ? 0 : widths[w - 1];
+        if (w == 0) r.path_torque_coefficients_batch(ws, *qs, dq, ddq, A, B, C);
+        else detail::path_torque_coefficients_lanes(r, ws, *qs, dq, ddq, A, B, C, lanes);
+        ASSERT_EQ(A.rows(), count);
+        for (int s = 0; s < count; ++s)
+          for (const auto& [X, R] : {std::pair{&A, &a1}, std::pair{&B, &b1}, std::pair{&C, &c1}})
+            EXPECT_NEAR((X->row(s) - R->row(s)).norm(), 0.0, 1e-12 * (1.0 + R->row(s).norm())) << s << " lanes " << lanes;
       }
     }
     EXPECT_THROW(r.path_torque_coefficients_batch(ws, q.leftCols(2), dq, ddq, A, B, C), InvalidInput);

@@ -1,11 +1,10 @@
 #include "pathpace/constraints/torque_limits.hpp"
 
 #include <cmath>
-#include <limits>
 
+#include "detail/torque_lanes.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
-#include "detail/torque_lanes.hpp"
 
 namespace pathpace {
 

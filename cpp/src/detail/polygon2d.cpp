@@ -28,16 +28,10 @@ void Polygon2d::reset(double x_lo, double x_hi, double y_lo, double y_hi) {
   v[1] = {x_hi, y_hi};
   v[2] = {x_lo, y_hi};
   v[3] = {x_lo, y_lo};
-  range_known_ = true;
-  x_min_ = x_lo;
-  x_max_ = x_hi;
 }
 
 void Polygon2d::assign(const Polygon2d& other) {
   empty_ = other.empty_;
-  range_known_ = other.range_known_;
-  x_min_ = other.x_min_;
-  x_max_ = other.x_max_;
   emptied_by_ = other.emptied_by_;
   certificate_[0] = other.certificate_[0];
   certificate_[1] = other.certificate_[1];
@@ -60,7 +54,6 @@ void Polygon2d::assign(const Polygon2d& other) {
 bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n,
                       bool edges_only) {
   empty_ = false;
-  range_known_ = false;
   // Index lists and pieces are written through counts into storage sized for every line: push_back on a
   // member vector reloads and stores its end at every push (it may alias the stores), a store-forwarding
   // chain through the whole pass.
@@ -261,8 +254,6 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
   cur_ = nxt;
   m_ = cnt;
-  vertex_x_range(x_min_, x_max_);  // kept for x_range(): every caller of build() asks for it
-  range_known_ = true;
   for (std::size_t t = 0; t < n_steep; ++t) {
     clip(line_at(steep_[t]));
     if (empty_) return false;  // left to clipping line by line, which gives the certificate
@@ -306,7 +297,6 @@ bool Polygon2d::clip(const Line& line) {
     n_in += in;
   }
   if (n_in == m) return false;
-  range_known_ = false;
   if (n_in == 0) {
     std::size_t lv = 0;
     for (std::size_t j = 1; j < m; ++j)
@@ -407,7 +397,7 @@ void Polygon2d::erase(std::size_t j) {
   --m_;
 }
 
-void Polygon2d::vertex_x_range(double& lo, double& hi) const {
+void Polygon2d::x_range(double& lo, double& hi) const {
   const Vertex* v = vertices_[cur_].data();
   lo = hi = v[0].x;
   for (std::size_t j = 1; j < m_; ++j) {

@@ -126,11 +126,7 @@ class Polygon2d {
 
   /// The polygon's extent in x: the smallest and largest x of its vertices (kept by build() and reset(),
   /// which compute every vertex anyway; one pass over the vertices after a clip()).
-  void x_range(double& lo, double& hi) const {
-    if (!range_known_) return vertex_x_range(lo, hi);
-    lo = x_min_;
-    hi = x_max_;
-  }
+  void x_range(double& lo, double& hi) const;
 
   /// After empty(): the line that emptied the polygon and the two edges meeting at the vertex that
   /// violated it least. Those three half-planes alone are infeasible (a 2-D Helly certificate).
@@ -138,7 +134,6 @@ class Polygon2d {
   const Line& certificate_edge(int i) const { return certificate_[i]; }
 
  private:
-  void vertex_x_range(double& lo, double& hi) const;
   static bool intersect(const Line& l1, const Line& l2, Vertex& v);
   static bool independent(const Line& l1, const Line& l2);  // intersect() would succeed
   bool degenerate(std::size_t j) const;
@@ -157,8 +152,6 @@ class Polygon2d {
   Line side_[4];  // build(): the box's lower and upper sides, then the left and right x-bounds
   int cur_ = 0;
   std::size_t m_ = 0;
-  bool range_known_ = false;  // x_min_, x_max_ are those of the current vertices
-  double x_min_ = 0.0, x_max_ = 0.0;
   bool empty_ = false;
   Line emptied_by_;
   Line certificate_[2];

@@ -16,7 +16,7 @@ double duration(const Eigen::Ref<const Eigen::VectorXd>& ds, const Eigen::Ref<co
   // chain several times per solve.
   const Eigen::Index n = ds.size();
   const Eigen::ArrayXd r = theta.array().max(0.0).sqrt();
-  const Eigen::ArrayXd w = r.head(n) + r.tail(n);
+  const auto w = r.head(n) + r.tail(n);  // an expression: one temporary per call, not two
   if ((w == 0.0).any()) return std::numeric_limits<double>::infinity();
   return (2.0 * ds.array() / w).sum();
 }
@@ -134,12 +134,13 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   }
   // Every feasible θ <= hi on the window, so T(hi) bounds its optimum from below: the bracket of the start
   // (read only to choose the barrier).
-  bool far_start = false;
-  if (use_barrier) {
+  const bool barrier_first = use_barrier && cols >= kBarrierFirstColumns;
+  bool far_start = barrier_first;  // implies use_barrier
+  if (use_barrier && !far_start) {
     const double T_hi = duration(ds, hi);
-    far_start = (std::isfinite(T_hi) && out.T - T_hi > kBarrierFirstBracket * out.T) || cols >= kBarrierFirstColumns;
+    far_start = std::isfinite(T_hi) && out.T - T_hi > kBarrierFirstBracket * out.T;
   }
-  if (!(use_barrier && cols >= kBarrierFirstColumns)) {
+  if (!barrier_first) {
     // The first LP below is the Frank-Wolfe check at the start, and usually all that the window needs (with the
     // step to its vertex): the chain simplex does both without GLPK when it can (see ChainSimplex). Each next
     // check starts from the previous LP's optimal basis, whether the step went all the way to its vertex (the
@@ -223,7 +224,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     out.status = SlpOutcome::Status::Converged;
     return true;
   };
-  if (use_barrier && far_start && barrier()) return out;
+  if (far_start && barrier()) return out;
 
   lp.reset(cols);
   // The LP is posed in y_j = θ_j / σ_j with σ_j the start's θ_j (floored), and each row divided by its size

@@ -6,8 +6,8 @@
 
 namespace pathpace::detail {
 
-bool solve_tridiagonal(std::vector<double>& l, std::vector<double>& d, std::vector<double>& u, std::vector<double>& r,
-                       std::vector<double>& u2) {
+bool solve_tridiagonal(const std::vector<double>& l, std::vector<double>& d, std::vector<double>& u,
+                       std::vector<double>& r, std::vector<double>& u2) {
   const std::size_t n = d.size();
   u2.assign(n, 0.0);
   if (n == 0) return true;

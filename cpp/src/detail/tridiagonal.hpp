@@ -10,7 +10,7 @@ namespace pathpace::detail {
 /// u2). The bases of the chain LP are not diagonally dominant, so Thomas' recurrence without pivoting could
 /// divide by a small pivot. Returns false if a pivot is zero (a singular matrix) or the solution is not
 /// finite. Overwrites d (with the reciprocals of the pivots), u and u2 (l is only read); on success r holds x.
-bool solve_tridiagonal(std::vector<double>& l, std::vector<double>& d, std::vector<double>& u, std::vector<double>& r,
-                       std::vector<double>& u2);
+bool solve_tridiagonal(const std::vector<double>& l, std::vector<double>& d, std::vector<double>& u,
+                       std::vector<double>& r, std::vector<double>& u2);
 
 }  // namespace pathpace::detail
