@@ -850,6 +850,24 @@ PATHPACE_LANE_INLINE void sincos_lanes(const V& x, V& s, V& c) {
 // path_torque_coefficients_batch without mimic joints, W = sizeof(V) / 8 samples per sweep. q, dq, ddq
 // are column-major (samples, bodies) with leading dimension `count`; a last group of fewer than W
 // samples fills its spare lanes with its last sample and stores only its own.
+// A constraint's row pair of eq. (15) at out's index `at` (see TorqueOutput): (a, b, τ_U - c) and (-a, -b, c - τ_L),
+// with limit_or_inf's bounds (no limit: +inf - c and c + inf, an inactive row).
+inline void store_row_pair(const detail::TorqueOutput& out, Eigen::Index at, double up, double lo, double a, double b,
+                           double c) {
+  out.a[at] = a;
+  out.a[at + 1] = -a;
+  out.b[at] = b;
+  out.b[at + 1] = -b;
+  out.c[at] = up - c;
+  out.c[at + 1] = c - lo;
+}
+
+// Joint j's (τ_U, τ_L) for store_row_pair: an infinite limit as +inf and -inf.
+inline std::pair<double, double> limit_or_inf(const detail::TorqueOutput& out, size_t j) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {std::isfinite(out.upper[j]) ? out.upper[j] : inf, std::isfinite(out.lower[j]) ? out.lower[j] : -inf};
+}
+
 template <typename V>
 PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity,
                                             RobotWorkspace& ws, Eigen::Index count, const double* q, const double* dq,
@@ -913,18 +931,8 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
     for (size_t i = 0; i < nb; ++i) {
       const Eigen::Index at = static_cast<Eigen::Index>(i) * out.joint_stride + s * ss;
       if (out.upper) {  // a constraint's row pair, see TorqueOutput
-        const double up = out.upper[i], lo = out.lower[i], inf = std::numeric_limits<double>::infinity();
-        const bool has_up = std::isfinite(up), has_lo = std::isfinite(lo);
-        for (Eigen::Index l = 0; l < valid; ++l) {
-          const Eigen::Index k = at + l * ss;
-          const double al = av[i][l], bl = bv[i][l], cl = cv[i][l];
-          out.a[k] = al;
-          out.a[k + 1] = -al;
-          out.b[k] = bl;
-          out.b[k + 1] = -bl;
-          out.c[k] = has_up ? up - cl : inf;
-          out.c[k + 1] = has_lo ? cl - lo : inf;
-        }
+        const auto [up, lo] = limit_or_inf(out, i);
+        for (Eigen::Index l = 0; l < valid; ++l) store_row_pair(out, at + l * ss, up, lo, av[i][l], bv[i][l], cv[i][l]);
       } else if (valid == W && ss == 1) {
         std::memcpy(out.a + at, &av[i], sizeof(V));
         std::memcpy(out.b + at, &bv[i], sizeof(V));
@@ -1010,33 +1018,31 @@ void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, 
     }
   }
   // One sample at a time, or a robot with mimic joints (the batch maps them onto its bodies' model).
-  Eigen::MatrixXd A(count, n), B(count, n), C(count, n);
+  auto store = [&](Eigen::Index s, const auto& a, const auto& b, const auto& c) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Eigen::Index at = s * out.sample_stride + j * out.joint_stride;
+      if (out.upper) {
+        const auto [up, lo] = limit_or_inf(out, static_cast<size_t>(j));
+        store_row_pair(out, at, up, lo, a(j), b(j), c(j));
+      } else {
+        out.a[at] = a(j);
+        out.b[at] = b(j);
+        out.c[at] = c(j);
+      }
+    }
+  };
   if (robot.mimic_joints().empty()) {
     Eigen::VectorXd as(n), bs(n), cs(n);
     for (Eigen::Index s = 0; s < count; ++s) {
       robot.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), as, bs,
                                      cs);
-      A.row(s) = as.transpose();
-      B.row(s) = bs.transpose();
-      C.row(s) = cs.transpose();
+      store(s, as, bs, cs);
     }
   } else {
+    Eigen::MatrixXd A, B, C;
     robot.path_torque_coefficients_batch(ws, q, dq, ddq, A, B, C);
+    for (Eigen::Index s = 0; s < count; ++s) store(s, A.row(s), B.row(s), C.row(s));
   }
-  const double inf = std::numeric_limits<double>::infinity();
-  for (Eigen::Index s = 0; s < count; ++s)
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const Eigen::Index at = s * out.sample_stride + j * out.joint_stride;
-      out.a[at] = A(s, j);
-      out.b[at] = B(s, j);
-      out.c[at] = C(s, j);
-      if (out.upper) {
-        out.a[at + 1] = -A(s, j);
-        out.b[at + 1] = -B(s, j);
-        out.c[at] = std::isfinite(out.upper[j]) ? out.upper[j] - C(s, j) : inf;
-        out.c[at + 1] = std::isfinite(out.lower[j]) ? C(s, j) - out.lower[j] : inf;
-      }
-    }
 }
 
 void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
