@@ -1,6 +1,8 @@
 #include "pathpace/piecewise_polynomial_path.hpp"
 
 #include <algorithm>
+#include <vector>
+#include <limits>
 
 #include "detail/validate.hpp"
 
@@ -51,32 +53,66 @@ void PiecewisePolynomialPath::evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, 
 
 void PiecewisePolynomialPath::evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q,
                                        Eigen::MatrixXd& dq, Eigen::MatrixXd& ddq) const {
-  // The grid is sorted in the common case: walk the pieces forward and fall back to bisection.
+  // The grid is sorted in the common case: walk the pieces forward and fall back to bisection. Grid
+  // points are taken in runs that share a piece, and each run is evaluated coordinate by coordinate down
+  // the (column-major) outputs: the same Horner steps as the one-point evaluate, but with the piece's
+  // coefficients fixed over a contiguous loop that the compiler vectorises (this is part of every
+  // problem's set-up).
   const Eigen::Index m = s.size(), n = dof_, pieces = breakpoints_.size() - 1;
   q.resize(m, n);
   dq.resize(m, n);
   ddq.resize(m, n);
+  const double lo = s_begin(), hi = s_end();
+  std::vector<double> t(static_cast<size_t>(m));
   Eigen::Index i = 0;
-  for (Eigen::Index r = 0; r < m; ++r) {
-    const double x = std::clamp(s[r], s_begin(), s_end());
+  for (Eigen::Index r = 0; r < m;) {
+    const double x = std::clamp(s[r], lo, hi);
     if (x < breakpoints_[i] || (i + 1 < pieces && x >= breakpoints_[i + 1])) {
       if (i + 1 < pieces && x >= breakpoints_[i + 1] && (i + 2 >= pieces + 1 || x < breakpoints_[i + 2])) ++i;
       else i = piece(x);
     }
+    // The run [r, e): the grid points that stay in piece i.
+    const double b = breakpoints_[i], next = i + 1 < pieces ? breakpoints_[i + 1] : std::numeric_limits<double>::infinity();
+    Eigen::Index e = r;
+    for (; e < m; ++e) {
+      const double y = std::clamp(s[e], lo, hi);
+      if (y < b || y >= next) break;
+      t[static_cast<size_t>(e)] = y - b;
+    }
+    if (e == r) t[static_cast<size_t>(e++)] = x - b;  // cannot happen (i is x's piece); never stall
     const Eigen::MatrixXd& c = coefficients_[static_cast<size_t>(i)];
-    const double t = x - breakpoints_[i];
     const Eigen::Index d = c.rows() - 1;
     for (Eigen::Index j = 0; j < n; ++j) {
-      double p = c(d, j), dp = 0.0, ddp = 0.0;
-      for (Eigen::Index k = d - 1; k >= 0; --k) {
-        ddp = ddp * t + 2.0 * dp;
-        dp = dp * t + p;
-        p = p * t + c(k, j);
+      double* pq = q.col(j).data();
+      double* pdq = dq.col(j).data();
+      double* pddq = ddq.col(j).data();
+      const double* cj = c.col(j).data();
+      if (d == 3) {
+        // Cubic (every CubicSplinePath): the loop below unrolled, the same operations in the same order.
+        const double c0 = cj[0], c1 = cj[1], c2 = cj[2], c3 = cj[3];
+        for (Eigen::Index u = r; u < e; ++u) {
+          const double tu = t[static_cast<size_t>(u)];
+          const double p1 = c3 * tu + c2, dp1 = c3 * tu + p1, p2 = p1 * tu + c1;
+          pddq[u] = (2.0 * c3) * tu + 2.0 * dp1;
+          pdq[u] = dp1 * tu + p2;
+          pq[u] = p2 * tu + c0;
+        }
+        continue;
       }
-      q(r, j) = p;
-      dq(r, j) = dp;
-      ddq(r, j) = ddp;
+      for (Eigen::Index u = r; u < e; ++u) {
+        const double tu = t[static_cast<size_t>(u)];
+        double p = cj[d], dp = 0.0, ddp = 0.0;
+        for (Eigen::Index k = d - 1; k >= 0; --k) {
+          ddp = ddp * tu + 2.0 * dp;
+          dp = dp * tu + p;
+          p = p * tu + cj[k];
+        }
+        pq[u] = p;
+        pdq[u] = dp;
+        pddq[u] = ddp;
+      }
     }
+    r = e;
   }
 }
 

@@ -1,6 +1,8 @@
 #include "pathpace/constraints/acceleration_limits.hpp"
 
 #include <cmath>
+#include <algorithm>
+#include <vector>
 
 #include "detail/validate.hpp"
 
@@ -41,17 +43,33 @@ ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
     rows.labels[static_cast<size_t>(2 * j + 1)] = "acceleration " + joint(j) + " lower";
   }
   const double inf = std::numeric_limits<double>::infinity();
-  for (Eigen::Index k = 0; k < samples.size(); ++k) {
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const double pp = samples.ddq(k, j), p = samples.dq(k, j);
-      // eq. (14): q̈_j = p''_j ṡ² + p'_j s̈; an infinite limit leaves its row inactive (c = +inf).
-      const bool up = std::isfinite(amax_[j]), lo = std::isfinite(amin_[j]);
-      rows.a(k, 2 * j) = up ? pp : 0.0;
-      rows.b(k, 2 * j) = up ? p : 0.0;
-      rows.c(k, 2 * j) = up ? amax_[j] : inf;
-      rows.a(k, 2 * j + 1) = lo ? -pp : 0.0;
-      rows.b(k, 2 * j + 1) = lo ? -p : 0.0;
-      rows.c(k, 2 * j + 1) = lo ? -amin_[j] : inf;
+  // eq. (14): q̈_j = p''_j ṡ² + p'_j s̈; an infinite limit leaves its row inactive (c = +inf, a = b = 0).
+  // Per row a factor (1, -1 or 0) and a constant c, so that the loop over grid points has no branch and
+  // writes each joint's row pair with one paired store (this runs on every problem's set-up).
+  std::vector<double> sign(static_cast<size_t>(2 * n)), limit(static_cast<size_t>(2 * n));
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const bool up = std::isfinite(amax_[j]), lo = std::isfinite(amin_[j]);
+    sign[static_cast<size_t>(2 * j)] = up ? 1.0 : 0.0;
+    sign[static_cast<size_t>(2 * j + 1)] = lo ? -1.0 : 0.0;
+    limit[static_cast<size_t>(2 * j)] = up ? amax_[j] : inf;
+    limit[static_cast<size_t>(2 * j + 1)] = lo ? -amin_[j] : inf;
+  }
+  const Eigen::Index m = samples.size(), r = 2 * n;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double su = sign[static_cast<size_t>(2 * j)], sl = sign[static_cast<size_t>(2 * j + 1)];
+    const double cu = limit[static_cast<size_t>(2 * j)], cl = limit[static_cast<size_t>(2 * j + 1)];
+    const double* pp = samples.ddq.col(j).data();
+    const double* p = samples.dq.col(j).data();
+    double* pa = rows.a.data() + 2 * j;
+    double* pb = rows.b.data() + 2 * j;
+    double* pc = rows.c.data() + 2 * j;
+    for (Eigen::Index k = 0; k < m; ++k) {
+      pa[k * r] = su * pp[k];
+      pa[k * r + 1] = sl * pp[k];
+      pb[k * r] = su * p[k];
+      pb[k * r + 1] = sl * p[k];
+      pc[k * r] = cu;
+      pc[k * r + 1] = cl;
     }
   }
   return rows;

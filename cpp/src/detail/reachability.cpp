@@ -174,6 +174,26 @@ void clip_rows(Polygon2d& poly, View<Line> rows) {
   }
 }
 
+// Appends interval k's polygon to the analysis's storage and sets K_k to its x-range (Polygon2d::x_range
+// with two accumulators per extreme, not one chain of min/max through every vertex: a latency chain on
+// every interval of both analyses).
+void store_polygon(Reachability& o, Eigen::Index k, const Polygon2d& p) {
+  const View<Vertex> vs = p.vertices();
+  const View<Line> es = p.edges();
+  const size_t m = vs.size();
+  o.start[static_cast<size_t>(k)] = o.vertices.size();
+  o.size[static_cast<size_t>(k)] = m;
+  o.vertices.insert(o.vertices.end(), vs.begin(), vs.end());
+  o.edges.insert(o.edges.end(), es.begin(), es.end());
+  double lo[2] = {vs[0].x, vs[0].x}, hi[2] = {vs[0].x, vs[0].x};
+  for (size_t j = 1; j < m; ++j) {
+    lo[j & 1] = std::min(lo[j & 1], vs[j].x);
+    hi[j & 1] = std::max(hi[j & 1], vs[j].x);
+  }
+  o.k_lo[k] = std::min(lo[0], lo[1]);
+  o.k_hi[k] = std::max(hi[0], hi[1]);
+}
+
 void push_unique(std::vector<int>& v, int id) {
   if (id >= 0 && std::find(v.begin(), v.end(), id) == v.end()) v.push_back(id);
 }
@@ -273,11 +293,7 @@ Reachability reachability(const Chain& chain, double theta_begin, double theta_e
       push_unique(out.binding, poly.certificate_edge(1).id);
       return out;
     }
-    out.start[static_cast<size_t>(k)] = out.vertices.size();
-    out.size[static_cast<size_t>(k)] = poly.vertices().size();
-    out.vertices.insert(out.vertices.end(), poly.vertices().begin(), poly.vertices().end());
-    out.edges.insert(out.edges.end(), poly.edges().begin(), poly.edges().end());
-    poly.x_range(out.k_lo[k], out.k_hi[k]);
+    store_polygon(out, k, poly);
     // θ_0 is the given start speed, so an unbounded K_0 (e.g. p'(s_0) = 0 with velocity limits only)
     // bounds nothing that is free; elsewhere it means the speed has no limit there.
     if (k > 0 && out.k_hi[k] >= chain.cap * (1 - 1e-9)) {
@@ -385,11 +401,7 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
         o.k_hi[k] = relaxed.k_hi[k];
         continue;
       }
-      o.start[static_cast<size_t>(k)] = o.vertices.size();
-      o.size[static_cast<size_t>(k)] = p.vertices().size();
-      o.vertices.insert(o.vertices.end(), p.vertices().begin(), p.vertices().end());
-      o.edges.insert(o.edges.end(), p.edges().begin(), p.edges().end());
-      p.x_range(outs[i]->k_lo[k], outs[i]->k_hi[k]);
+      store_polygon(o, k, p);
       if (k > 0 && outs[i]->k_hi[k] >= chain.cap * (1 - 1e-9)) return false;  // K_0: θ_0 is given
     }
   }
