@@ -127,16 +127,18 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
   // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.) Rounding is relative to
   // each vertex, not to the polygon: an edge from ṡ² = 17 to 8e12 does not reach x = 12 (a tolerance of
   // 1e-12 of the polygon's extent said it did, and the slice's top jumped to 17, s̈ 100x its limit).
-  y_lo = std::numeric_limits<double>::infinity();
-  y_hi = -y_lo;
+  // Accumulated in locals, stored once: through the references (which may alias v and e, for all the
+  // compiler knows) every edge stored them.
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (size_t i = 0; i < m; ++i) {
+    const size_t i1 = i + 1 == m ? 0 : i + 1;  // not (i + 1) % m: an integer division per edge of every slice
     const Vertex& p = v[i];
-    const Vertex& q = v[(i + 1) % m];
+    const Vertex& q = v[i1];
     const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x);
     if (x < x0 - 1e-12 * std::abs(x0) || x > x1 + 1e-12 * std::abs(x1)) continue;  // the edge does not reach x
     if (x1 - x0 <= 1e-12 * std::max({std::abs(x0), std::abs(x1), 1e-300})) {
-      y_lo = std::min({y_lo, p.y, q.y});
-      y_hi = std::max({y_hi, p.y, q.y});
+      lo = std::min({lo, p.y, q.y});
+      hi = std::max({hi, p.y, q.y});
       continue;
     }
     // Interpolating between the vertices errs by rounding relative to the vertices, the edge's own line
@@ -144,7 +146,7 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
     // only the start makes unreachable, so an edge may run from ṡ² ~ 1e-2 to 1e13 (limits over many
     // decades), and interpolated at 1e-2 its y was off by 1e13 · 1e-16, s̈ 20x its limit. The smaller
     // error wins; a near-vertical edge (b ~ 0, small p'_j) is still interpolated.
-    const Line& l = e[(i + 1) % m];
+    const Line& l = e[i1];
     double y;
     if (std::abs(l.b) * std::max(std::abs(p.y), std::abs(q.y)) > std::abs(l.c) + std::abs(l.a * x)) {
       y = (l.c - l.a * x) / l.b;
@@ -153,9 +155,11 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
       y = p.y + t * (q.y - p.y);
     }
     y = std::clamp(y, std::min(p.y, q.y), std::max(p.y, q.y));
-    y_lo = std::min(y_lo, y);
-    y_hi = std::max(y_hi, y);
+    lo = std::min(lo, y);
+    hi = std::max(hi, y);
   }
+  y_lo = lo;
+  y_hi = hi;
 }
 
 // The slice of interval k's stored polygon (its own copy, or the relaxed analysis's when they are equal).
