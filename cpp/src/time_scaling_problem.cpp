@@ -721,8 +721,9 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     const double T = out.T;
     res.stats.gap = out.lower > 0.0 ? std::max(0.0, T - out.lower) / out.lower : std::numeric_limits<double>::infinity();
     // The repair (forward_pass) returns a profile that meets every row to rounding; checked, not assumed,
-    // before a message calls it feasible.
-    const double violation = detail::chain_violation(chain, theta);
+    // before a message calls it feasible (in the pass that labels the binding rows).
+    double violation = 0.0;
+    res.binding = detail::binding_labels(chain, sets, theta, &violation);
     const std::string bound =
         violation <= 1e-9 ? "the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
                                 " (relative, certified)"
@@ -757,7 +758,7 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
       res.status = Status::NumericalError;
     }
   }
-  res.binding = detail::binding_labels(chain, sets, theta);
+  if (proven) res.binding = detail::binding_labels(chain, sets, theta);
   theta *= scale.x_unit;  // back to ṡ² (a power of two: exact)
   res.sdot = theta.cwiseMax(0.0).cwiseSqrt();
   res.times.resize(n + 1);

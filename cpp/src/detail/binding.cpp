@@ -8,13 +8,15 @@
 
 namespace pathpace::detail {
 
-BindingLabels binding_labels(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, double tolerance) {
+BindingLabels binding_labels(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, double* violation,
+                             double tolerance) {
   const Eigen::Index n = chain.intervals();
   std::vector<int> out(static_cast<size_t>(n), -1);
   // The row labels, shared by the intervals (plus the names of ids outside them, e.g. the box's sides).
   auto names = std::make_shared<std::vector<std::string>>(sets.labels);
   const int rows = static_cast<int>(sets.labels.size());
   std::vector<std::pair<int, int>> extra;  // (id, index into names)
+  double worst = 0.0;                       // the rows' largest violation (with `violation`)
   for (Eigen::Index k = 0; k < n; ++k) {
     double best = std::numeric_limits<double>::infinity();
     int best_id = 0;
@@ -36,6 +38,7 @@ BindingLabels binding_labels(const Chain& chain, const GridSets& sets, const Eig
     for (const Line& r : chain.rows(k)) {
       const double lhs_k = r.a * theta[k], lhs_k1 = r.b * theta[k + 1];
       consider(r.c - lhs_k - lhs_k1, std::max({std::abs(r.c), std::abs(lhs_k) + std::abs(lhs_k1)}), r.id);
+      if (violation) worst = raise_violation(worst, r, theta[k], theta[k + 1]);
     }
     // A speed bound at either end of the interval (eq. 16); the ends fixed by boundary speeds are not
     // constraints of the path, and a bound of "no limit" is none.
@@ -55,6 +58,7 @@ BindingLabels binding_labels(const Chain& chain, const GridSets& sets, const Eig
     }
     out[static_cast<size_t>(k)] = index;
   }
+  if (violation) *violation = std::max(worst, bound_violation(chain, theta));
   return BindingLabels(std::move(out), std::move(names));
 }
 

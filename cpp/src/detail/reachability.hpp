@@ -6,6 +6,8 @@
 // become rows α θ_k + β θ_{k+1} <= c. Backward controllable intervals K_k (all θ_k from which s_N can be
 // reached) come from one exact 2-D LP per interval; a forward greedy pass inside them yields a feasible θ.
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -70,9 +72,17 @@ void interval_polygon(Polygon2d& poly, double x_lo, double x_hi, double y_lo, do
 /// Largest violation of the positively coupling rows by θ, relative to max(1, |c|, |α θ_k|, |β θ_{k+1}|).
 double coupled_violation(const Chain& chain, const Eigen::VectorXd& theta);
 
-/// Largest violation of any row of the chain or of the bounds x_lo <= θ <= x_hi by θ, each relative to
-/// max(1, |c|, |α θ_k|, |β θ_{k+1}|) (in the solve's units, where 1 is a typical ṡ²).
-double chain_violation(const Chain& chain, const Eigen::VectorXd& theta);
+/// max(worst, row_violation(r, x, y)) for worst >= 0: a row that holds (α x + β y - c <= 0) cannot raise it,
+/// so the scale (and its division) is computed only for a violated row.
+inline double raise_violation(double worst, const Line& r, double x, double y) {
+  const double ax = r.a * x, by = r.b * y, d = ax + by - r.c;
+  if (!(d > 0.0)) return worst;
+  return std::max(worst, d / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(by)}));
+}
+
+/// Largest violation of the bounds x_lo <= θ <= x_hi by θ, relative to max(1, |bound|) (in the solve's units,
+/// where 1 is a typical ṡ²). With the rows' (binding_labels' `violation`): how far θ is from feasible.
+double bound_violation(const Chain& chain, const Eigen::VectorXd& theta);
 
 struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
