@@ -107,7 +107,13 @@ namespace {
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through
 // v[i - 1] and v[i].
 // [x_min, x_max] is the polygon's x-range (its vertices' extremes, as Polygon2d::x_range gives them).
-void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max, double x, double& y_lo, double& y_hi) {
+// The bottom of a convex polygon's slice is on an edge whose line bounds y from below (β < 0) or at the
+// bottom end of a vertical one (β = 0), the top on one with β > 0 or at a vertical one's top end: y_lo is
+// taken from the former only, y_hi from the latter only (at a vertex shared by both kinds, the other kind's
+// value could differ by rounding). top_only (the greedy pass) skips the β < 0 edges, about half, and gives
+// the same y_hi to the bit; y_lo is then unspecified.
+void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max, double x, double& y_lo, double& y_hi,
+           bool top_only) {
   x = std::clamp(x, x_min, x_max);
   // An edge whose ends differ in x by rounding only is vertical: at such x the whole edge is the slice.
   // (Interpolating along it would turn a 1e-17 error in x into an arbitrary y.) Rounding is relative to
@@ -118,13 +124,16 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (size_t i = 0; i < m; ++i) {
     const size_t i1 = i + 1 == m ? 0 : i + 1;  // not (i + 1) % m: an integer division per edge of every slice
+    const Line& l = e[i1];
+    const bool upper = l.b >= 0.0, lower = l.b <= 0.0;
+    if (top_only && !upper) continue;
     const Vertex& p = v[i];
     const Vertex& q = v[i1];
     const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x);
     if (x < x0 - 1e-12 * std::abs(x0) || x > x1 + 1e-12 * std::abs(x1)) continue;  // the edge does not reach x
     if (x1 - x0 <= 1e-12 * std::max({std::abs(x0), std::abs(x1), 1e-300})) {
-      lo = std::min({lo, p.y, q.y});
-      hi = std::max({hi, p.y, q.y});
+      if (lower) lo = std::min({lo, p.y, q.y});
+      if (upper) hi = std::max({hi, p.y, q.y});
       continue;
     }
     // Interpolating between the vertices errs by rounding relative to the vertices, the edge's own line
@@ -132,7 +141,6 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
     // only the start makes unreachable, so an edge may run from ṡ² ~ 1e-2 to 1e13 (limits over many
     // decades), and interpolated at 1e-2 its y was off by 1e13 · 1e-16, s̈ 20x its limit. The smaller
     // error wins; a near-vertical edge (b ~ 0, small p'_j) is still interpolated.
-    const Line& l = e[i1];
     double y;
     if (std::abs(l.b) * std::max(std::abs(p.y), std::abs(q.y)) > std::abs(l.c) + std::abs(l.a * x)) {
       y = (l.c - l.a * x) / l.b;
@@ -141,20 +149,21 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
       y = p.y + t * (q.y - p.y);
     }
     y = std::clamp(y, std::min(p.y, q.y), std::max(p.y, q.y));
-    lo = std::min(lo, y);
-    hi = std::max(hi, y);
+    if (lower) lo = std::min(lo, y);
+    if (upper) hi = std::max(hi, y);
   }
   y_lo = lo;
   y_hi = hi;
 }
 
 // The slice of interval k's stored polygon (its own copy, or the relaxed analysis's when they are equal).
-void slice(const Reachability& reach, Eigen::Index k, double x, double& y_lo, double& y_hi) {
+void slice(const Reachability& reach, Eigen::Index k, double x, double& y_lo, double& y_hi, bool top_only = false) {
   const size_t i = static_cast<size_t>(k);
   const Reachability& src = reach.base && reach.in_base[i] ? *reach.base : reach;
   const size_t o = src.start[i];
   // The stored K_k is the polygon's x-range (every analysis sets it with x_range from the same polygon).
-  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], src.k_lo[k], src.k_hi[k], x, y_lo, y_hi);
+  slice(src.vertices.data() + o, src.edges.data() + o, src.size[i], src.k_lo[k], src.k_hi[k], x, y_lo, y_hi,
+        top_only);
 }
 
 void clip_rows(Polygon2d& poly, View<Line> rows) {
@@ -226,7 +235,7 @@ Eigen::VectorXd guided_pass(const Reachability& reach, double theta_begin, const
       continue;
     }
     double lo, hi;
-    slice(reach, k, theta[k], lo, hi);
+    slice(reach, k, theta[k], lo, hi, caps == nullptr);
     theta[k + 1] = caps ? std::clamp((*caps)[k + 1], lo, hi) : hi;
   }
   return theta;
