@@ -248,13 +248,20 @@ def machine() -> dict:
             "scipy": version("scipy"), "pin": version("pin")}
 
 
-def write_generated_section(section: str, begin: str, end: str, heading: str) -> None:
-    """Put `section` (which starts with `begin` and ends with `end`) into bench/README.md in place of the
-    block between those markers, or, on a first run, append it under `heading` (a markdown heading line)."""
-    path = Path(__file__).resolve().parent / "README.md"
+def write_generated_section(section: str, begin: str, end: str, heading: str, path: Path | None = None) -> None:
+    """Put `section` (which starts with `begin` and ends with `end`) into `path` (bench/README.md) in place of
+    the block between those markers; without them, right under `heading` (a markdown heading line) if the
+    README has that line, else appended under a new one."""
+    path = path or Path(__file__).resolve().parent / "README.md"
     text = path.read_text() if path.exists() else "# Benchmarks\n"
     if begin in text and end in text:
         text = text[:text.index(begin)] + section + text[text.index(end) + len(end):]
     else:
-        text = text.rstrip("\n") + "\n\n" + heading + "\n\n" + section + "\n"
+        lines = text.splitlines(keepends=True)
+        at = next((i for i, line in enumerate(lines) if line.rstrip("\n") == heading), None)
+        if at is None:
+            text = text.rstrip("\n") + "\n\n" + heading + "\n\n" + section + "\n"
+        else:  # the heading is there (its markers were removed by hand): not a second one
+            head = "".join(lines[:at + 1])
+            text = head + ("" if head.endswith("\n") else "\n") + "\n" + section + "\n" + "".join(lines[at + 1:])
     path.write_text(text)

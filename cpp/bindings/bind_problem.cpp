@@ -175,10 +175,10 @@ void warn(const std::string& msg) {
 }
 
 // Every SolverStats field, once: the stats dict and both ways of Result's pickle state go through this.
-// The order is the pickle state's (18 entries; a state of another length is refused by check_state): a
-// new field goes at the end, with the entry count, so that older states are still told apart.
+// The order is the pickle state's (a state of another length is refused by check_state): a new field goes
+// at the end, so that older states are still told apart.
 template <typename Stats, typename F>
-void for_each_stat(Stats& s, F&& f) {
+constexpr void for_each_stat(Stats& s, F&& f) {
   f("slp_iterations", s.slp_iterations);
   f("lp_solves", s.lp_solves);
   f("greatest_element", s.greatest_element);
@@ -198,7 +198,14 @@ void for_each_stat(Stats& s, F&& f) {
   f("inexact_points", s.inexact_points);
   f("newton_steps", s.newton_steps);
 }
-constexpr size_t kStatsStateSize = 18;
+// The pickle state's length, counted from for_each_stat (not written by hand beside it).
+constexpr size_t stats_state_size() {
+  SolverStats s{};
+  size_t n = 0;
+  for_each_stat(s, [&n](const char*, const auto&) { ++n; });
+  return n;
+}
+constexpr size_t kStatsStateSize = stats_state_size();
 
 py::dict stats_dict(const SolverStats& s) {
   py::dict out;

@@ -22,10 +22,11 @@ def kinematic_problem(path, grid, vmin, vmax, amin, amax, **problem_kw):
     return prob
 
 
-def two_joint_problem(N=200, **path_kw):
-    """Three waypoints in the plane under |q̇| <= 1, |q̈| <= 2, on N intervals; path_kw go to the spline."""
+def two_joint_problem(N=200, vmin=(-1, -1), vmax=(1, 1), **path_kw):
+    """Three waypoints in the plane under vmin <= q̇ <= vmax (|q̇| <= 1), |q̈| <= 2, on N intervals; path_kw go
+    to the spline."""
     path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, 0.5], [0.2, 1.5]]), **path_kw)
-    return kinematic_problem(path, N, [-1, -1], [1, 1], [-2, -2], [2, 2])
+    return kinematic_problem(path, N, list(vmin), list(vmax), [-2, -2], [2, 2])
 
 
 def random_walk(lo, hi, rng, K):

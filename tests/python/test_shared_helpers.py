@@ -2,13 +2,17 @@
 state, the constraint-evaluation timing of TimeScalingProblem (set_joint_names re-evaluates rows), and the
 limit curves that pathpace.plot (matplotlib) and pathpace.report (plotly) both draw."""
 
+import os
 import pickle
+import sys
 import types
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import pathpace as pp
+from helpers import two_joint_problem
 from pathpace import plot
 
 # Result's pickle state keeps SolverStats as a tuple of these 18 entries, in this order (the format pickles
@@ -18,19 +22,11 @@ STATS_STATE = ("slp_iterations", "lp_solves", "greatest_element", "gap", "averag
                "windows", "window_points", "time_projection", "projection_lp_solves", "inexact_points", "newton_steps")
 
 
-def two_joint_problem(N=50):
-    path = pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, -0.5], [0.3, 0.8]]))
-    prob = pp.TimeScalingProblem(path, grid=N)
-    prob.add_velocity_limits([-1.0, -1.0], [1.0, 1.0])
-    prob.add_acceleration_limits([-2.0, -2.0], [2.0, 2.0])
-    return prob
-
-
 def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
     """Limits added before the names get the names' labels (their rows are kept: they do not depend on the
     names); their rows' time is still what stats['time_constraints'] sums. It was left at 0 when the rows
     were replaced by untimed ones."""
-    prob = two_joint_problem()
+    prob = two_joint_problem(N=50)
     assert prob.solve().stats["time_constraints"] > 0.0
     prob.set_joint_names(["shoulder", "elbow"])
     labels = [lab for k in (0, 25) for lab in prob.feasible_set(k).labels]
@@ -39,7 +35,7 @@ def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
 
 
 def test_result_stats_are_the_18_fields_and_a_pickle_round_trip_keeps_them():
-    res = two_joint_problem().solve()
+    res = two_joint_problem(N=50).solve()
     assert set(res.stats) == set(STATS_STATE)
     back = pickle.loads(pickle.dumps(res))
     assert back.stats == res.stats and back.duration == res.duration
@@ -48,7 +44,7 @@ def test_result_stats_are_the_18_fields_and_a_pickle_round_trip_keeps_them():
 def test_result_reads_a_stats_state_in_the_existing_18_entry_layout():
     """A state written in the layout pickles have had so far (each value distinct, of its field's type) is
     read into the fields of that name; a state of another length is refused, named."""
-    res = two_joint_problem().solve()
+    res = two_joint_problem(N=50).solve()
     state = list(res.__getstate__())
     assert state[8] == tuple(res.stats[name] for name in STATS_STATE)
     values = []
@@ -80,9 +76,7 @@ def test_matplotlib_and_plotly_draw_the_same_velocity_curves():
     matplotlib.use("Agg")
     from pathpace import report
 
-    prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.array([[0.0, 0.0], [1.0, -0.5], [0.3, 0.8]])), grid=50)
-    prob.add_velocity_limits([-1.0, -np.inf], [1.0, np.inf])  # the second joint has no limit: no curve
-    prob.add_acceleration_limits([-2.0, -2.0], [2.0, 2.0])
+    prob = two_joint_problem(50, vmin=(-1.0, -np.inf), vmax=(1.0, np.inf))  # joint b unlimited: no curve
     res = prob.solve()
     d = plot.velocities_data(res, [-1.0, -np.inf], [1.0, np.inf], ["a", "b"])
     expected = plot.limit_ratios(d["qd"], d["vmin"], d["vmax"], d["joint_names"])
@@ -101,3 +95,36 @@ def test_matplotlib_and_plotly_draw_the_same_velocity_curves():
     assert [t.name for t in traces] == ["a"]
     np.testing.assert_array_equal(np.asarray(traces[0].y), expected[0][1])
     np.testing.assert_array_equal(np.asarray(traces[0].x), d["t"])
+
+
+def test_a_generated_bench_section_replaces_its_block_and_never_repeats_its_heading(tmp_path):
+    """bench/common.write_generated_section (the sweep's and the contact bench's tables in bench/README.md):
+    between its markers it replaces the block and keeps the rest; without the markers it goes right under
+    its heading when the README has that line (it used to append the heading a second time), else under a
+    new heading at the end."""
+    environ = dict(os.environ)  # common pins BLAS threads in os.environ on import
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+    try:
+        import common
+    finally:
+        sys.path.pop(0)
+        os.environ.clear()
+        os.environ.update(environ)
+    begin, end, heading = "<!-- BEGIN x -->", "<!-- END x -->", "## Table x"
+    readme = tmp_path / "README.md"
+
+    def write(text, section):
+        readme.write_text(text)
+        common.write_generated_section(section, begin, end, heading, path=readme)
+        return readme.read_text()
+
+    new = f"{begin}\nnew table\n{end}"
+    assert write(f"# B\n\n{heading}\n\n{begin}\nold\n{end}\n\nReading it: kept.\n", new) == \
+        f"# B\n\n{heading}\n\n{new}\n\nReading it: kept.\n"
+    # The markers removed by hand: under the existing heading, once, with what follows it kept.
+    out = write(f"# B\n\n{heading}\n\nReading it: kept.\n\n## Next\n", new)
+    assert out.count(heading) == 1 and out.index(heading) < out.index(new) < out.index("Reading it") < out.index("## Next")
+    # A heading that only starts like ours is not ours; no heading at all: appended under a new one.
+    for text in (f"# B\n\n{heading} (old)\n", "# B\n"):
+        out = write(text, new)
+        assert out.endswith(f"\n\n{heading}\n\n{new}\n") and out.startswith(text.rstrip("\n"))

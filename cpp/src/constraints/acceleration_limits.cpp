@@ -38,6 +38,8 @@ ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
                  std::to_string(samples.dof()) + " coordinates");
   ConstraintRows rows;
   rows.allocate(samples.size(), 2 * n);  // every entry is written below
+  // From finite samples and limits checked on construction: a = ±p'' or 0, b = ±p' or 0, c a limit or +inf.
+  rows.valid_by_construction = true;
   for (Eigen::Index j = 0; j < n; ++j) {
     rows.labels[static_cast<size_t>(2 * j)] = "acceleration " + joint(j) + " upper";
     rows.labels[static_cast<size_t>(2 * j + 1)] = "acceleration " + joint(j) + " lower";

@@ -35,6 +35,9 @@ ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
   const Eigen::Index m = samples.size();
   rows.allocate(m, n);
   rows.b.setZero();
+  // From finite samples and limits checked on construction: a = 0 or 1, b = 0, c = (v / p')², which can
+  // only overflow to +inf (an inactive row).
+  rows.valid_by_construction = true;
   for (Eigen::Index j = 0; j < n; ++j) rows.labels[static_cast<size_t>(j)] = "velocity " + joint(j);
   const double inf = std::numeric_limits<double>::infinity();
   // Branch-free (selects, one division per entry), so that the compiler vectorises the joint's column:

@@ -29,6 +29,11 @@ struct ConstraintRows {
   /// Grid points where the rows are only an inner approximation of the constraint (a projection whose
   /// LP failed or ran out of budget, sec. IV.C); empty when they are exact.
   std::vector<Eigen::Index> inexact_points;
+  /// True when no entry can be bad by construction (a and b finite, c a number or +inf), as in the
+  /// library's velocity and acceleration limits, built from finite samples and validated limits: the
+  /// problem then skips its scan of the entries (~1.5 % of a solve at N = 1000). A constraint of your own
+  /// leaves it false, and its rows are checked.
+  bool valid_by_construction = false;
   int lp_solves = 0;     ///< LPs spent computing the rows (projections)
   double seconds = 0.0;  ///< time spent computing them (set by TimeScalingProblem::add_constraint)
 
