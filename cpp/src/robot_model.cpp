@@ -54,6 +54,13 @@ Eigen::VectorXd as_vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
+// u if the axis is the coordinate axis e_u exactly, else -1.
+inline int coordinate_axis(const Eigen::Vector3d& axis) {
+  for (int u = 0; u < 3; ++u)
+    if (axis[u] == 1.0 && axis[(u + 1) % 3] == 0.0 && axis[(u + 2) % 3] == 0.0) return u;
+  return -1;
+}
+
 struct Builder {
   const RobotModelOptions& options;
   std::vector<RobotModel::Body>& bodies;
@@ -70,6 +77,7 @@ struct Builder {
     b.parent = parent;
     b.type = type;
     b.axis = axis.normalized();
+    b.axis_index = coordinate_axis(b.axis);  // once per model: every sweep branches on it
     b.E_tree = tree.linear().transpose();
     b.r_tree = tree.translation();
     b.inertia.setZero();
@@ -368,27 +376,37 @@ void RobotModel::check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char*
 
 namespace {
 
-// u if the axis is the coordinate axis e_u exactly, else -1.
-inline int coordinate_axis(const Eigen::Vector3d& axis) {
-  for (int u = 0; u < 3; ++u)
-    if (axis[u] == 1.0 && axis[(u + 1) % 3] == 0.0 && axis[(u + 2) % 3] == 0.0) return u;
-  return -1;
-}
-
 // The coordinate axis a revolute joint turns about (most URDF joints), else -1. (The test abc_sweep makes:
 // an axis with x = 1 after normalisation but a 1e-9 component left is not e_x for either.)
 int unit_axis(const RobotModel::Body& b) {
-  return b.type == RobotModel::JointType::Revolute ? coordinate_axis(b.axis) : -1;
+  return b.type == RobotModel::JointType::Revolute ? b.axis_index : -1;
 }
 
+// Every helper of the fused sweep is forced inline, so that it is compiled with the instruction set of
+// the lane-width variant that calls it (path_torque_lanes below: a function of target("avx2,fma") gets
+// AVX2 code for its whole body).
+#if defined(__GNUC__)
+#define PATHPACE_LANE_INLINE inline __attribute__((always_inline))
+#else
+#define PATHPACE_LANE_INLINE inline
+#endif
+
+template <typename T>
+PATHPACE_LANE_INLINE void splat(T& y, double x) {  // every lane x (not 0 + x, which would turn -0 into +0)
+  for (size_t l = 0; l < sizeof(T) / sizeof(double); ++l) y[l] = x;
+}
+PATHPACE_LANE_INLINE void splat(double& y, double x) { y = x; }
+
 // E = E_J E_tree for a rotation by q about coordinate axis `unit`, given cos q and sin q: E_J mixes two
-// rows of E_tree only: e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2.
-void unit_axis_rotation(const RobotModel::Body& b, int unit, double cq, double sq, double* E) {
-  const double* T = b.E_tree.data();
+// rows of E_tree only: e_i1 -> c e_i1 + s e_i2, e_i2 -> -s e_i1 + c e_i2. T is double (one sample) or a
+// vector of lanes (path_torque_lanes: one sample per lane).
+template <typename T>
+PATHPACE_LANE_INLINE void unit_axis_rotation(const RobotModel::Body& b, int unit, const T& cq, const T& sq, T* E) {
+  const double* Et = b.E_tree.data();
   const int i1 = (unit + 1) % 3, i2 = (unit + 2) % 3;
   for (int col = 0; col < 3; ++col) {
-    const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
-    E[3 * col + unit] = T[3 * col + unit];
+    const double t1 = Et[3 * col + i1], t2 = Et[3 * col + i2];
+    splat(E[3 * col + unit], Et[3 * col + unit]);
     E[3 * col + i1] = cq * t1 + sq * t2;
     E[3 * col + i2] = cq * t2 - sq * t1;
   }
@@ -413,7 +431,7 @@ void joint_transform(const RobotModel::Body& b, double q, double* E, double* r) 
     rotation.noalias() = Eigen::AngleAxisd(-q, b.axis).toRotationMatrix() * b.E_tree;
     return;
   }
-  unit_axis_rotation(b, unit, std::cos(q), std::sin(q), E);
+  unit_axis_rotation<double>(b, unit, std::cos(q), std::sin(q), E);
 }
 
 // Joint transforms and motion subspaces, shared by every pass at one q.
@@ -535,15 +553,6 @@ Eigen::MatrixXd RobotModel::mass_matrix(const Eigen::VectorXd& q) const {
 
 namespace {
 
-// Every helper of the fused sweep is forced inline, so that it is compiled with the instruction set of
-// the lane-width variant that calls it (path_torque_lanes below: a function of target("avx2,fma") gets
-// AVX2 code for its whole body).
-#if defined(__GNUC__)
-#define PATHPACE_LANE_INLINE inline __attribute__((always_inline))
-#else
-#define PATHPACE_LANE_INLINE inline
-#endif
-
 // The fused sweep of path_torque_coefficients, written once for a scalar T (double: one sample) or a
 // GCC vector of W doubles (W samples, one per SIMD lane). Plain arrays, E column-major as Eigen stores
 // it: the compiler unrolls every 3x3 kernel completely. Aligned to the size of T: outside AVX code (this
@@ -601,12 +610,6 @@ template <typename T>
 PATHPACE_LANE_INLINE void dot_axis(const double* ax, const T* x, T& y) {  // y = ax · x
   y = ax[0] * x[0] + ax[1] * x[1] + ax[2] * x[2];
 }
-template <typename T>
-PATHPACE_LANE_INLINE void splat(T& y, double x) {  // every lane x (not 0 + x, which would turn -0 into +0)
-  for (size_t l = 0; l < sizeof(T) / sizeof(double); ++l) y[l] = x;
-}
-PATHPACE_LANE_INLINE void splat(double& y, double x) { y = x; }
-
 // abc_sweep's joint terms for the axis e_U (URDF joints mostly have one): vJ = q̇ e_U, and x × vJ =
 // q̇ (x[U+2], -x[U+1]) at (U+1, U+2) mod 3, without the products with the axis' zeros. U a constant,
 // so that every array stays in registers.
@@ -711,7 +714,7 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
     const T qd = dq[i], qdd = ddq[i];
     const double ax[3] = {bd.axis[0], bd.axis[1], bd.axis[2]};
     const bool revolute = bd.type == RobotModel::JointType::Revolute;
-    const int u = coordinate_axis(bd.axis);
+    const int u = bd.axis_index;
     if (u == 0) {
       joint_motion_on_axis<0>(revolute, qd, qdd, B.aw, B.al, v);
     } else if (u == 1) {
@@ -761,7 +764,7 @@ PATHPACE_LANE_INLINE void abc_sweep(const std::vector<RobotModel::Body>& bodies,
     const RobotModel::Body& bd = bodies[i];
     AbcBody<T>& B = S[i];
     const double* ax = bd.axis.data();
-    const int u = coordinate_axis(bd.axis);
+    const int u = bd.axis_index;
     if (u == 0) {
       project_on_axis<0>(bd.type == RobotModel::JointType::Revolute, B, a[i], b[i], c[i]);
     } else if (u == 1) {
@@ -906,17 +909,9 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
       load(q, j, qv);
       AbcBody<V>& B = S[i];
       if (unit[i] >= 0) {
-        // unit_axis_rotation in every lane
         V sq, cq;
         sincos_lanes(qv, sq, cq);
-        const double* T = bd.E_tree.data();
-        const int u = unit[i], i1 = (u + 1) % 3, i2 = (u + 2) % 3;
-        for (int col = 0; col < 3; ++col) {
-          const double t1 = T[3 * col + i1], t2 = T[3 * col + i2];
-          splat(B.E[3 * col + u], T[3 * col + u]);
-          B.E[3 * col + i1] = cq * t1 + sq * t2;
-          B.E[3 * col + i2] = cq * t2 - sq * t1;
-        }
+        unit_axis_rotation<V>(bd, unit[i], cq, sq, B.E);
       } else {
         for (Eigen::Index l = 0; l < W; ++l) {
           double E[9], r[3];
@@ -1085,10 +1080,11 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
 void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
                                                 const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                                 Eigen::MatrixXd& c) const {
-  const Eigen::Index n = nq(), count = q.rows();
-  if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
-    detail::fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
   if (mimic_) {
+    // Checked here before the products below (path_torque_coefficients_into checks the other case).
+    const Eigen::Index n = nq(), count = q.rows();
+    if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
+      detail::fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
     const MimicMap& mm = *mimic_;
     const Eigen::MatrixXd qb = (q * mm.E.transpose()).rowwise() + mm.o.transpose();
     const Eigen::MatrixXd dqb = dq * mm.E.transpose(), ddqb = ddq * mm.E.transpose();
@@ -1100,7 +1096,7 @@ void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen:
     return;
   }
   // As many samples per sweep as the CPU has SIMD lanes (8 with AVX-512, 4 with AVX2, 2 with SSE2).
-  detail::path_torque_coefficients_lanes(*this, ws, q, dq, ddq, a, b, c, detail::torque_lanes_supported());
+  detail::path_torque_coefficients_lanes(*this, ws, q, dq, ddq, a, b, c);
 }
 
 int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const {

@@ -143,6 +143,7 @@ class RobotModel {
     int parent = -1;            // body index, -1 for the world
     JointType type = JointType::Revolute;
     Eigen::Vector3d axis;       // joint axis in the joint (= body) frame
+    int axis_index = -1;        // u if axis is the coordinate axis e_u exactly (most URDF joints), else -1
     Eigen::Matrix3d E_tree;     // Featherstone: parent coordinates -> joint frame, rotation
     Eigen::Vector3d r_tree;     //   and origin of the joint frame in parent coordinates
     Eigen::Matrix<double, 6, 6> inertia;  // spatial inertia in body coordinates (angular first)
