@@ -276,23 +276,26 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
   std::vector<double> edge(phases.size() + 1);
   edge[0] = a;
   edge[phases.size()] = b;
-  std::vector<double> grid(samples_.s.data(), samples_.s.data() + samples_.s.size());
+  // The grid with the switches inserted: a copy of the problem's, made at the first insertion only.
+  std::vector<double> grid;
   bool inserted = false;
   for (size_t i = 1; i < phases.size(); ++i) {
     const double sw = phases[i].s_begin;
-    const auto it = std::lower_bound(grid.begin(), grid.end(), sw);
-    size_t k = static_cast<size_t>(it - grid.begin());
-    if (k > 0 && (k == grid.size() || sw - grid[k - 1] < grid[k] - sw)) --k;
-    if (std::abs(grid[k] - sw) <= 1e-9 * length) {
-      edge[i] = grid[k];
+    const double* g = inserted ? grid.data() : samples_.s.data();
+    const size_t size = inserted ? grid.size() : static_cast<size_t>(samples_.s.size());
+    size_t k = static_cast<size_t>(std::lower_bound(g, g + size, sw) - g);
+    if (k > 0 && (k == size || sw - g[k - 1] < g[k] - sw)) --k;
+    if (std::abs(g[k] - sw) <= 1e-9 * length) {
+      edge[i] = g[k];
       continue;
     }
     for (size_t c = 0; c < constraints_.size(); ++c)
       if (std::dynamic_pointer_cast<const LinearConstraint>(constraints_[c]))
         detail::fail(name(i, "s_begin") + " = " + detail::fmt(sw) + " is not a grid point (nearest: grid[" +
-                     std::to_string(k) + "] = " + detail::fmt(grid[k]) + ") and the problem has a constraint given per grid "
+                     std::to_string(k) + "] = " + detail::fmt(g[k]) + ") and the problem has a constraint given per grid "
                      "point ('" + constraints_[c]->name() + "') that cannot be evaluated on a new grid: add the contact "
                      "phases first, or use a grid with a point at every switch");
+    if (!inserted) grid.assign(g, g + size);
     grid.insert(std::upper_bound(grid.begin(), grid.end(), sw), sw);
     edge[i] = sw;
     inserted = true;

@@ -72,7 +72,13 @@ void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::V
 
 void Trajectory::evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::MatrixXd& q, Eigen::MatrixXd& qd,
                           Eigen::MatrixXd& qdd) const {
-  Eigen::VectorXd s, sd, sdd;
+  Eigen::VectorXd s;
+  evaluate(t, s, q, qd, qdd);
+}
+
+void Trajectory::evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q,
+                          Eigen::MatrixXd& qd, Eigen::MatrixXd& qdd) const {
+  Eigen::VectorXd sd, sdd;
   evaluate_s(t, s, sd, sdd);
   Eigen::MatrixXd dq, ddq;
   path_->evaluate(s, q, dq, ddq);
@@ -115,11 +121,16 @@ Eigen::MatrixXd Trajectory::torques(const Eigen::Ref<const Eigen::VectorXd>& t, 
 }
 
 Eigen::VectorXi Trajectory::contact_phase(const Eigen::Ref<const Eigen::VectorXd>& t) const {
-  Eigen::VectorXi out = Eigen::VectorXi::Constant(t.size(), -1);
-  if (contact_phases_.empty()) return out;
+  if (contact_phases_.empty()) return Eigen::VectorXi::Constant(t.size(), -1);
   Eigen::VectorXd s, sd, sdd;
   evaluate_s(t, s, sd, sdd);
-  for (Eigen::Index i = 0; i < t.size(); ++i) {
+  return phase_of_s(s);
+}
+
+Eigen::VectorXi Trajectory::phase_of_s(const Eigen::VectorXd& s) const {
+  Eigen::VectorXi out = Eigen::VectorXi::Constant(s.size(), -1);
+  if (contact_phases_.empty()) return out;
+  for (Eigen::Index i = 0; i < s.size(); ++i) {
     // The last phase that holds s: the later one at a switch (both hold there).
     for (size_t p = contact_phases_.size(); p-- > 0;)
       if (contact_phases_[p]->active_at(s[i])) {
@@ -136,14 +147,15 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
                                                       Eigen::VectorXi* phase_out) const {
   if (!contacts_ && contact_phases_.empty())
     throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
+  Eigen::VectorXd s;
   Eigen::MatrixXd q, qd, qdd;
-  evaluate(t, q, qd, qdd);
+  evaluate(t, s, q, qd, qdd);
   if (contact_phases_.empty()) {
     if (phase_out) *phase_out = Eigen::VectorXi::Constant(t.size(), -1);
     return contacts_->force_distribution(q, qd, qdd);
   }
   // One force-distribution batch per phase, each with that phase's contacts.
-  Eigen::VectorXi phase = contact_phase(t);
+  Eigen::VectorXi phase = phase_of_s(s);
   std::vector<ContactForces> out(static_cast<size_t>(t.size()));
   for (size_t p = 0; p < contact_phases_.size(); ++p) {
     std::vector<Eigen::Index> idx;

@@ -19,18 +19,6 @@
 
 namespace pathpace {
 
-namespace detail {
-namespace {
-
-// s is a phase's first point, active_begin (to 1e-12 relative, as active_at): where its no-impact row
-// ṡ² <= 0 holds (evaluate writes it, check_point imposes it).
-bool at_active_begin(const ContactOptions& options, double s) {
-  return std::abs(s - options.active_begin) <= 1e-12 * std::max(1.0, std::abs(s));
-}
-
-}  // namespace
-}  // namespace detail
-
 ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, std::vector<Contact> contacts,
                                      const ContactOptions& options, Eigen::VectorXd tau_min, Eigen::VectorXd tau_max)
     : robot_(std::move(robot)), contacts_(std::move(contacts)), options_(options) {
@@ -188,6 +176,11 @@ void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd
 bool ContactConstraint::active_at(double s) const {
   const double tol = 1e-12 * std::max(1.0, std::abs(s));
   return s >= options_.active_begin - tol && s <= options_.active_end + tol;
+}
+
+// Where the no-impact row holds: evaluate writes it, check_point imposes it.
+bool ContactConstraint::at_active_begin(double s) const {
+  return std::abs(s - options_.active_begin) <= 1e-12 * std::max(1.0, std::abs(s));
 }
 
 void ContactConstraint::point_velocities(const PathSamples& samples, Eigen::MatrixXd& normal, Eigen::MatrixXd& speed) const {
@@ -390,7 +383,7 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     // ṡ² <= 0 at the switch (a·x + b·u <= c with a = 1, b = 0, c = 0): the no-impact rule.
     out.labels[static_cast<size_t>(r - 1)] = prefix + options_.rest_at_begin;
     for (Eigen::Index p = 0; p < samples.size(); ++p)
-      if (detail::at_active_begin(options_, samples.s[p])) {
+      if (at_active_begin(samples.s[p])) {
         out.a(p, r - 1) = 1.0;
         out.c(p, r - 1) = 0.0;
       }
@@ -510,7 +503,7 @@ ContactConstraint::PointCheck ContactConstraint::check_point(const PathSamples& 
   lp.col_hi[0] = lp.col_hi[1] = std::numeric_limits<double>::infinity();
   lp.col_lo[1] = -std::numeric_limits<double>::infinity();
   // The no-impact row of a phase (ṡ² <= 0 at its first point) is part of this constraint.
-  if (!options_.rest_at_begin.empty() && detail::at_active_begin(options_, samples.s[k])) lp.col_hi[0] = 0.0;
+  if (!options_.rest_at_begin.empty() && at_active_begin(samples.s[k])) lp.col_hi[0] = 0.0;
   detail::PolytopeProjector solver;
   PointCheck out;
   out.feasible = solver.feasible(lp);
