@@ -55,7 +55,10 @@ def shrink_to_feasible(s, theta, A, B, C):
         c = np.where(finite, C[ks], 1.0)
         assert np.all(c > 0)
         f = max(f, float(np.max(np.where(finite, lhs / c, 0.0))))
-    return theta / f
+    shrunk = theta / f
+    # Its own promise, checked (a comparison with an infeasible θ would test nothing).
+    assert max_violation(s, np.sqrt(np.maximum(shrunk, 0.0)), A, B, C) <= 1e-9
+    return shrunk
 
 
 def cvxpy_optimum(s, A, B, C, theta_begin=0.0, theta_end=0.0):
@@ -158,6 +161,16 @@ def pinocchio_model(urdf, locked=()):
     if not locked:
         return full
     return pin.buildReducedModel(full, [full.getJointId(n) for n in locked], pin.neutral(full))
+
+
+def arm_rows(path, grid, vmin, vmax, amin, amax, model=None, scale=None):
+    """kinematic_rows of `path` on `grid` and, with a pinocchio `model`, its torque_rows at `scale` x effort
+    beside them: the rows of an arm problem, as A, B, C of shape (N+1, r)."""
+    A, B, C = kinematic_rows(path.dq(grid), path.ddq(grid), vmin, vmax, amin, amax)
+    if model is None:
+        return A, B, C
+    At, Bt, Ct = torque_rows(model, path, grid, scale)
+    return np.hstack([A, At]), np.hstack([B, Bt]), np.hstack([C, Ct])
 
 
 def torque_rows(model, path, grid, scale):

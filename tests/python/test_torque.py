@@ -7,7 +7,7 @@ import pytest
 
 import pathpace as pp
 from helpers import kinematic_problem
-from oracles import cvxpy_optimum, kinematic_rows, max_violation, pinocchio_model, torque_rows
+from oracles import arm_rows, cvxpy_optimum, max_violation, pinocchio_model
 from pathpace.robots import example_robot_urdf
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -78,9 +78,9 @@ def test_panda_torque_limited_optimum_matches_pinocchio_and_cvxpy_oracle():
     prob.add_torque_limits(robot, scale=0.65)
     res = prob.solve()
     assert res.ok, res.message
-    At, Bt, Ct = torque_rows(pinocchio_model(urdf, fingers), path, prob.grid, 0.65)  # independent of our dynamics
-    Av, Bv, Cv = kinematic_rows(path.dq(prob.grid), path.ddq(prob.grid), -vmax, vmax, np.full(7, -np.inf), np.full(7, np.inf))
-    A, B, C = np.hstack([Av, At]), np.hstack([Bv, Bt]), np.hstack([Cv, Ct])
+    # The torque rows from pinocchio: independent of our dynamics.
+    A, B, C = arm_rows(path, prob.grid, -vmax, vmax, np.full(7, -np.inf), np.full(7, np.inf),
+                       pinocchio_model(urdf, fingers), 0.65)
     assert max_violation(res.s, res.sdot, A, B, C) <= 1e-9
     ref, _ = cvxpy_optimum(prob.grid, A, B, C)
     assert res.duration == pytest.approx(ref, rel=1e-6)
