@@ -83,6 +83,12 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     p_.resize(n + 2);
     q_.resize(n + 2);
   }
+  // Local copies of the storage pointers: through the members, every store below reloaded them.
+  double* const P = p_.data();
+  double* const Q = q_.data();
+  int* const up = up_.data();
+  int* const low = low_.data();
+  int* const steep = steep_.data();
   for (std::size_t i = 0; i < n + 2; ++i) {
     const Line& l = line_at(static_cast<int>(i));
     if (l.b == 0.0) {
@@ -106,14 +112,14 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
       // Nearly vertical (an edge of a contact polygon between two LP optima whose x differ by rounding):
       // as an envelope line its slope -a/b ~ 1e14 and intercept c/b ~ 1e16 ruin the breakpoints, and
       // its edge was seen to be dropped. It is clipped exactly once the polygon stands (few such lines).
-      steep_[n_steep++] = static_cast<int>(i);
+      steep[n_steep++] = static_cast<int>(i);
       continue;
     }
     const double inv = 1.0 / l.b;
-    p_[i] = l.c * inv;
-    q_[i] = -l.a * inv;
-    if (l.b > 0.0) up_[n_up++] = static_cast<int>(i);
-    else low_[n_low++] = static_cast<int>(i);
+    P[i] = l.c * inv;
+    Q[i] = -l.a * inv;
+    if (l.b > 0.0) up[n_up++] = static_cast<int>(i);
+    else low[n_low++] = static_cast<int>(i);
   }
   if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
   // One envelope over [x_lo, x_hi]: the minimum of the upper bounds (sign = 1) or the maximum of the
@@ -121,12 +127,12 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   auto envelope = [&](const int* ids, std::size_t m, double sign, Piece* out, std::size_t& pieces) {
     pieces = 0;
     int cur = ids[0];
-    double best_v = sign * (p_[cur] + q_[cur] * x_lo);
+    double best_v = sign * (P[cur] + Q[cur] * x_lo);
     for (std::size_t t = 1; t < m; ++t) {
       const int i = ids[t];
-      const double v = sign * (p_[i] + q_[i] * x_lo);
+      const double v = sign * (P[i] + Q[i] * x_lo);
       // Ties: the one that stays extreme longer (smaller slope for the minimum, larger for the maximum).
-      if (v < best_v || (v == best_v && sign * q_[i] < sign * q_[cur])) {
+      if (v < best_v || (v == best_v && sign * Q[i] < sign * Q[cur])) {
         cur = i;
         best_v = v;
       }
@@ -139,9 +145,9 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
       double best_num = x_hi, best_den = 1.0;
       for (std::size_t t = 0; t < m; ++t) {
         const int j = ids[t];
-        double den = q_[cur] - q_[j];
+        double den = Q[cur] - Q[j];
         if (!(sign * den > 0.0)) continue;  // j never overtakes cur to the right
-        double num = p_[j] - p_[cur];
+        double num = P[j] - P[cur];
         if (den < 0.0) {
           num = -num;
           den = -den;
@@ -151,7 +157,7 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
           den = 1.0;
         }
         const double lhs = num * best_den, rhs = best_num * den;
-        if (lhs < rhs || (lhs == rhs && next >= 0 && sign * q_[j] < sign * q_[next])) {
+        if (lhs < rhs || (lhs == rhs && next >= 0 && sign * Q[j] < sign * Q[next])) {
           next = j;
           best_num = num;
           best_den = den;
@@ -175,7 +181,7 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   auto value = [&](const Piece* pcs, std::size_t count, double x, std::size_t& hint) {
     while (hint + 1 < count && pcs[hint].x_end < x) ++hint;
     const int i = pcs[hint].line;
-    return p_[i] + q_[i] * x;
+    return P[i] + Q[i] * x;
   };
   // The breakpoints, merged in increasing x.
   std::size_t iu = 0, il = 0, hu = 0, hl = 0;
@@ -255,7 +261,7 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   cur_ = nxt;
   m_ = cnt;
   for (std::size_t t = 0; t < n_steep; ++t) {
-    clip(line_at(steep_[t]));
+    clip(line_at(steep[t]));
     if (empty_) return false;  // left to clipping line by line, which gives the certificate
   }
   return true;
