@@ -121,36 +121,52 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
   // 1e-12 of the polygon's extent said it did, and the slice's top jumped to 17, s̈ 100x its limit).
   // Accumulated in locals, stored once: through the references (which may alias v and e, for all the
   // compiler knows) every edge stored them.
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (size_t i = 0; i < m; ++i) {
-    const size_t i1 = i + 1 == m ? 0 : i + 1;  // not (i + 1) % m: an integer division per edge of every slice
-    const Line& l = e[i1];
-    const bool upper = l.b >= 0.0, lower = l.b <= 0.0;
-    if (top_only && !upper) continue;
-    const Vertex& p = v[i];
-    const Vertex& q = v[i1];
-    const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x);
-    if (x < x0 - 1e-12 * std::abs(x0) || x > x1 + 1e-12 * std::abs(x1)) continue;  // the edge does not reach x
-    if (x1 - x0 <= 1e-12 * std::max({std::abs(x0), std::abs(x1), 1e-300})) {
-      if (lower) lo = std::min({lo, p.y, q.y});
-      if (upper) hi = std::max({hi, p.y, q.y});
-      continue;
+  const double inf = std::numeric_limits<double>::infinity();
+  // by_kind false: every edge for both ends (the rule before the kinds were kept apart), for an end that no
+  // edge of its kind reaches, should a degenerate polygon (a sliver left by clipping) have none; a convex
+  // polygon always has one, and then this is never run. Per end, so that top_only's y_hi is still the full
+  // slice's.
+  auto pass = [&](bool by_kind, double& lo, double& hi) {
+    lo = inf;
+    hi = -inf;
+    for (size_t i = 0; i < m; ++i) {
+      const size_t i1 = i + 1 == m ? 0 : i + 1;  // not (i + 1) % m: an integer division per edge of every slice
+      const Line& l = e[i1];
+      const bool upper = !by_kind || l.b >= 0.0, lower = !by_kind || l.b <= 0.0;
+      if (top_only && !upper) continue;
+      const Vertex& p = v[i];
+      const Vertex& q = v[i1];
+      const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x);
+      if (x < x0 - 1e-12 * std::abs(x0) || x > x1 + 1e-12 * std::abs(x1)) continue;  // the edge does not reach x
+      if (x1 - x0 <= 1e-12 * std::max({std::abs(x0), std::abs(x1), 1e-300})) {
+        if (lower) lo = std::min({lo, p.y, q.y});
+        if (upper) hi = std::max({hi, p.y, q.y});
+        continue;
+      }
+      // Interpolating between the vertices errs by rounding relative to the vertices, the edge's own line
+      // (y = (c - a x) / b) by rounding relative to its terms at x: the backward pass keeps speeds that
+      // only the start makes unreachable, so an edge may run from ṡ² ~ 1e-2 to 1e13 (limits over many
+      // decades), and interpolated at 1e-2 its y was off by 1e13 · 1e-16, s̈ 20x its limit. The smaller
+      // error wins; a near-vertical edge (b ~ 0, small p'_j) is still interpolated.
+      double y;
+      if (std::abs(l.b) * std::max(std::abs(p.y), std::abs(q.y)) > std::abs(l.c) + std::abs(l.a * x)) {
+        y = (l.c - l.a * x) / l.b;
+      } else {
+        const double t = std::clamp((x - p.x) / (q.x - p.x), 0.0, 1.0);
+        y = p.y + t * (q.y - p.y);
+      }
+      y = std::clamp(y, std::min(p.y, q.y), std::max(p.y, q.y));
+      if (lower) lo = std::min(lo, y);
+      if (upper) hi = std::max(hi, y);
     }
-    // Interpolating between the vertices errs by rounding relative to the vertices, the edge's own line
-    // (y = (c - a x) / b) by rounding relative to its terms at x: the backward pass keeps speeds that
-    // only the start makes unreachable, so an edge may run from ṡ² ~ 1e-2 to 1e13 (limits over many
-    // decades), and interpolated at 1e-2 its y was off by 1e13 · 1e-16, s̈ 20x its limit. The smaller
-    // error wins; a near-vertical edge (b ~ 0, small p'_j) is still interpolated.
-    double y;
-    if (std::abs(l.b) * std::max(std::abs(p.y), std::abs(q.y)) > std::abs(l.c) + std::abs(l.a * x)) {
-      y = (l.c - l.a * x) / l.b;
-    } else {
-      const double t = std::clamp((x - p.x) / (q.x - p.x), 0.0, 1.0);
-      y = p.y + t * (q.y - p.y);
-    }
-    y = std::clamp(y, std::min(p.y, q.y), std::max(p.y, q.y));
-    if (lower) lo = std::min(lo, y);
-    if (upper) hi = std::max(hi, y);
+  };
+  double lo, hi;
+  pass(true, lo, hi);
+  if (hi == -inf || (!top_only && lo == inf)) {
+    double lo_all, hi_all;
+    pass(false, lo_all, hi_all);
+    if (hi == -inf) hi = hi_all;
+    if (lo == inf) lo = lo_all;
   }
   y_lo = lo;
   y_hi = hi;
