@@ -76,7 +76,8 @@ class ChainSimplex {
   bool match();
   void coefs(std::size_t i0, std::size_t i1);
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
-  void fill(bool transpose, std::size_t i0, std::size_t i1);
+  void root(std::size_t bl, std::size_t& r0, std::size_t& r1) const;
+  bool solve_block(bool transpose, std::size_t bl, std::size_t br, double* x) const;
   bool duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr);
   bool step(std::size_t p, std::size_t& cl, std::size_t& cr);
 
@@ -90,8 +91,9 @@ class ChainSimplex {
   std::vector<Option> opt_;               // start_basis: the options of every point, point i's from opt_begin_[i]
   std::vector<std::size_t> opt_begin_;
   std::vector<int> bounds_, match_, old_match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
-  std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
-  std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
+  std::vector<double> own_, left_, right_, inv_;  // per column: its constraint's coefficient on it, on column i-1,
+                                                 // i+1; 1 / own_
+  std::vector<double> l_, lambda_, dir_;
   std::vector<double> viol_;  // start_basis: each row's row_violation at y_
   Eigen::VectorXd y_;
   int pivots_ = 0;
