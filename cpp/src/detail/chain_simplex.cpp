@@ -95,7 +95,6 @@ double ChainSimplex::coef(std::size_t owner, std::size_t i) const {
 bool ChainSimplex::start_basis() {
   bounds_.assign(n_, 0);
   std::fill(in_basis_.begin(), in_basis_.end(), 0);
-  srows_.clear();
   // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
   opt_.clear();
   opt_begin_.assign(n_, 0);
@@ -153,49 +152,81 @@ bool ChainSimplex::start_basis() {
       bounds_[i] = x.code;
     } else {
       in_basis_[static_cast<std::size_t>(x.code)] = 1;
-      srows_.push_back(x.code);
     }
     at = x.prev;
   }
-  std::sort(srows_.begin(), srows_.end());
   return true;
 }
 
 // Earliest deadline first: column j takes its bound if that is in S, else an S-row that must serve it (of
-// interval j - 1, or of interval j with no coefficient on column j + 1), else one of interval j. The S-rows are
-// walked in order (srows_ is sorted, rows_ by interval): O(n).
+// interval j - 1, or of interval j with no coefficient on column j + 1), else one of interval j. O(n).
 bool ChainSimplex::match() {
   match_.assign(n_, kHi);
-  used_.assign(srows_.size(), 0);
-  std::size_t q = 0;  // first S-row of interval >= j - 1
-  for (std::size_t i = 0; i < n_; ++i) {
-    const Eigen::Index j = col(i);
-    for (; q < srows_.size() && rows_[static_cast<std::size_t>(srows_[q])].k < j - 1; ++q)
-      if (!used_[q]) return false;  // a row of an earlier interval that no column took: singular
+  std::size_t cl = n_, cr = 0;
+  return edf(0, n_, match_, cl, cr);
+}
+
+// The matching from column i0 on, columns before it keeping theirs (mt[i0 - 1] is the one input from them).
+// Column j's choice depends only on the S-rows of intervals j - 1 and j, its bound, and which row column j - 1
+// took (the only column before j that can take a row of interval j - 1). So after a pivot that changed S in
+// the columns [i0, i_stop] only, the walk can stop at the first column i >= i_stop whose choice is the one mt
+// holds: every later column sees what it saw before. [cl, cr] is widened to the columns whose entry changed.
+// False if S cannot be matched (singular).
+bool ChainSimplex::edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt, std::size_t& cl,
+                       std::size_t& cr) const {
+  const std::size_t m = row_begin_.size() - 1;  // intervals
+  for (std::size_t i = i0; i < n_; ++i) {
+    const auto j = static_cast<std::size_t>(col(i));
+    const int prev = i > 0 ? mt[i - 1] : kHi;
+    // Interval j - 1's rows are [t0, t1), interval j's [t1, t2).
+    const std::size_t t0 = row_begin_[j > 0 ? j - 1 : 0], t1 = row_begin_[std::min(j, m)],
+                      t2 = row_begin_[std::min(j + 1, m)];
     int best = -1, best_rank = 3;
-    for (std::size_t t = q; t < srows_.size(); ++t) {
-      const Row& r = rows_[static_cast<std::size_t>(srows_[t])];
-      if (r.k > j) break;
-      if (used_[t]) continue;
-      const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
+    for (std::size_t t = t0; t < t2; ++t) {
+      if (!in_basis_[t] || static_cast<int>(t) == prev) continue;
+      const Row& r = rows_[t];
+      const bool of_left = t < t1;
+      const double on_j = of_left ? r.line->b : r.line->a;
       if (on_j == 0.0) continue;
-      const int rank = r.k == j - 1 ? 0 : (r.line->b == 0.0 || !free_col(j + 1)) ? 1 : 2;
+      const int rank = of_left ? 0 : (r.line->b == 0.0 || !free_col(static_cast<Eigen::Index>(j) + 1)) ? 1 : 2;
       if (rank < best_rank) {
         best = static_cast<int>(t);
         best_rank = rank;
       }
     }
+    int c = best;
     if (bounds_[i] != 0) {
       if (best_rank < 2) return false;  // two constraints that can only act on θ_j: singular
-      match_[i] = bounds_[i];
-      continue;
+      c = bounds_[i];
+    } else if (best < 0) {
+      return false;
     }
-    if (best < 0) return false;
-    match_[i] = srows_[static_cast<std::size_t>(best)];
-    used_[static_cast<std::size_t>(best)] = 1;
+    // Every S-row of interval j - 1 is taken by now (by column j - 1 or j; no later column can take it).
+    for (std::size_t t = t0; t < t1; ++t)
+      if (in_basis_[t] && static_cast<int>(t) != prev && static_cast<int>(t) != c) return false;
+    if (mt[i] != c) {
+      mt[i] = c;
+      cl = std::min(cl, i);
+      cr = std::max(cr, i);
+    } else if (i >= i_stop && i + 1 < n_) {
+      return true;
+    }
   }
-  for (; q < srows_.size(); ++q)
-    if (!used_[q]) return false;
+  // The last column's interval: its S-rows can serve only that column.
+  const auto j = static_cast<std::size_t>(col(n_ - 1));
+  for (std::size_t t = row_begin_[std::min(j, m)]; t < row_begin_[std::min(j + 1, m)]; ++t)
+    if (in_basis_[t] && static_cast<int>(t) != mt[n_ - 1]) return false;
+  return true;
+}
+
+bool ChainSimplex::fresh_matching() const {
+  std::vector<int> full(n_, kHi);
+  std::size_t cl = n_, cr = 0;
+  if (!edf(0, n_, full, cl, cr) || full != match_) return false;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (own_[i] != coef(i, i) || left_[i] != (i > 0 ? coef(i, i - 1) : 0.0) ||
+        right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0))
+      return false;
   return true;
 }
 
@@ -357,31 +388,29 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   }
   if (!std::isfinite(t_best)) return false;  // no constraint blocks: an unbounded ray
   for (std::size_t i = dl; i <= dr; ++i) y_[col(i)] += t_best * d[i];
-  // S := S - {p} + {enter}.
+  // S := S - {p} + {enter}; the matching changes only from the first column these act on (see edf).
+  const auto span = [&](int code, std::size_t i) {
+    if (code < 0) return std::make_pair(i, i);
+    const Eigen::Index k = rows_[static_cast<std::size_t>(code)].k;  // acts on columns k and k + 1
+    return std::make_pair(local(std::max(k, first_)), local(std::min(k + 1, last_)));
+  };
+  const auto out = span(match_[p], p), in = span(enter, enter_col);
   if (match_[p] >= 0) {
     in_basis_[static_cast<std::size_t>(match_[p])] = 0;
-    srows_.erase(std::lower_bound(srows_.begin(), srows_.end(), match_[p]));
   } else {
     bounds_[p] = 0;
   }
   if (enter >= 0) {
     in_basis_[static_cast<std::size_t>(enter)] = 1;
-    srows_.insert(std::upper_bound(srows_.begin(), srows_.end(), enter), enter);
   } else {
     if (bounds_[enter_col] != 0) return false;
     bounds_[enter_col] = enter;
     // The entering bound is exact: no drift from the step's rounding.
     y_[col(enter_col)] = enter == kHi ? hi_[col(enter_col)] : lo_[col(enter_col)];
   }
-  old_match_ = match_;
-  if (!match()) return false;
   cl = n_;
   cr = 0;
-  for (std::size_t i = 0; i < n_; ++i)
-    if (match_[i] != old_match_[i]) {
-      cl = std::min(cl, i);
-      cr = std::max(cr, i);
-    }
+  if (!edf(std::min(out.first, in.first), std::max(out.second, in.second), match_, cl, cr)) return false;
   if (cl > cr) {
     cl = cr = p;
   } else {
