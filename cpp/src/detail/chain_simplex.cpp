@@ -97,24 +97,27 @@ bool ChainSimplex::start_basis() {
   std::fill(in_basis_.begin(), in_basis_.end(), 0);
   // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
   opt_.clear();
-  opt_begin_.assign(n_, 0);
+  opt_begin_.resize(n_);  // every entry written below
   // Each row's relative slack at y_ (reachability's row_violation, negated), once: a row is an option of both
   // its points.
   viol_.resize(rows_.size());
   for (std::size_t t = 0; t < rows_.size(); ++t) viol_[t] = row_violation(*rows_[t].line, y_[rows_[t].k], y_[rows_[t].k + 1]);
-  std::size_t r0 = 0;  // first row of interval j - 1
+  const std::size_t m = row_begin_.size() - 1;  // intervals
+  opt_.reserve(4 * n_);  // a point has ~2 options; the window's ChainSimplex is new
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
-    while (r0 < rows_.size() && rows_[r0].k < j - 1) ++r0;
+    // Interval j - 1's rows are [t0, t1), interval j's [t1, t2).
+    const auto uj = static_cast<std::size_t>(j);
+    const std::size_t t0 = row_begin_[uj > 0 ? uj - 1 : 0], t1 = row_begin_[std::min(uj, m)],
+                      t2 = row_begin_[std::min(uj + 1, m)];
     const double scale = std::max(std::abs(hi_[j]), 1e-300);
     const double hi_gap = std::max(hi_[j] - y_[j], 0.0) / scale, lo_gap = std::max(y_[j] - lo_[j], 0.0) / scale;
     const std::size_t o0 = opt_.size();
     opt_begin_[i] = o0;
     if (hi_gap <= 1e-9) opt_.push_back({kHi, hi_gap, 0.0, -1});
     else if (lo_gap <= 1e-9) opt_.push_back({kLo, lo_gap, 0.0, -1});
-    for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j; ++t) {
-      const Row& r = rows_[t];
-      const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
+    for (std::size_t t = t0; t < t2; ++t) {
+      const double on_j = t < t1 ? rows_[t].line->b : rows_[t].line->a;
       if (on_j == 0.0) continue;
       const double v = viol_[t];
       if (v < -1e-9) continue;  // not tight: a relative slack of more than 1e-9
@@ -357,29 +360,42 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
     if (!std::isfinite(d[i])) return false;
     dmax = std::max(dmax, std::abs(d[i]));
   }
-  double t_best = std::numeric_limits<double>::infinity();
+  const double inf = std::numeric_limits<double>::infinity();
+  double t_best = inf;
   int enter = -3;
   std::size_t enter_col = 0;
+  double t_cut = inf;  // t_best * (1 - 1e-12): a constraint enters only if its step is below that
   auto consider = [&](double t, int code, std::size_t i) {
     // Ties (degenerate steps) go to the smallest index: rows first, in order, then bounds by column.
-    if (t < t_best * (1 - 1e-12)) {
+    if (t < t_cut) {
       t_best = t;
+      t_cut = t * (1 - 1e-12);
       enter = code;
       enter_col = i;
     }
   };
   // The rows that act on the columns where d is nonzero: intervals col(dl) - 1 .. col(dr) (the others have
-  // a·d = 0 and cannot block).
+  // a·d = 0 and cannot block), interval by interval (its two columns' d and y loaded once for its ~6 rows).
   const Eigen::Index jl = col(dl), jr = col(dr);
   auto dget = [&](Eigen::Index j) { return j >= jl && j <= jr ? d[local(j)] : 0.0; };
   const Eigen::Index k0 = std::max<Eigen::Index>(jl - 1, 0);
   const Eigen::Index k1 = std::min<Eigen::Index>(jr, static_cast<Eigen::Index>(row_begin_.size()) - 2);
-  for (std::size_t t = row_begin_[static_cast<std::size_t>(k0)]; t < row_begin_[static_cast<std::size_t>(k1) + 1]; ++t) {
-    if (in_basis_[t]) continue;
-    const Row& r = rows_[t];
-    const double ad = r.line->a * dget(r.k) + r.line->b * dget(r.k + 1);
-    if (ad <= 1e-12 * (std::abs(r.line->a) + std::abs(r.line->b)) * dmax) continue;
-    consider(std::max(slack(r), 0.0) / ad, static_cast<int>(t), 0);
+  for (Eigen::Index k = k0; k <= k1; ++k) {
+    const double dk = dget(k), dk1 = dget(k + 1), yk = y_[k], yk1 = y_[k + 1];
+    const std::size_t t1 = row_begin_[static_cast<std::size_t>(k) + 1];
+    for (std::size_t t = row_begin_[static_cast<std::size_t>(k)]; t < t1; ++t) {
+      if (in_basis_[t]) continue;
+      const Line& r = *rows_[t].line;
+      const double ad = r.a * dk + r.b * dk1;
+      if (ad <= 1e-12 * (std::abs(r.a) + std::abs(r.b)) * dmax) continue;
+      const double slack = std::max(r.c - r.a * yk - r.b * yk1, 0.0);
+      // Most rows cannot beat t_cut: those are told without the division (the dearest part of the loop).
+      // slack > ad t_cut (1 + 1e-14), rounding included, means slack / ad >= t_cut after rounding too (while
+      // ad t_cut is a normal number; t_cut = 0 admits nothing, slack >= 0); the division decides the others.
+      const double cut = ad * t_cut * (1 + 1e-14);
+      if (t_cut == 0.0 || (cut > 1e-290 && slack > cut)) continue;
+      consider(slack / ad, static_cast<int>(t), 0);
+    }
   }
   for (std::size_t i = dl; i <= dr; ++i) {
     const Eigen::Index j = col(i);

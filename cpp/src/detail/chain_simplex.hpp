@@ -74,7 +74,6 @@ class ChainSimplex {
   std::size_t local(Eigen::Index j) const { return static_cast<std::size_t>(j - first_); }
   bool free_col(Eigen::Index j) const { return j >= first_ && j <= last_; }
   double coef(std::size_t owner, std::size_t i) const;
-  double slack(const Row& r) const { return r.line->c - r.line->a * y_[r.k] - r.line->b * y_[r.k + 1]; }
   bool start_basis();
   bool match();
   bool edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt, std::size_t& cl, std::size_t& cr) const;
