@@ -222,15 +222,16 @@ bool ChainSimplex::edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt,
   return true;
 }
 
-bool ChainSimplex::fresh_matching() const {
+bool ChainSimplex::fresh_state(const Eigen::VectorXd& g) const {
   std::vector<int> full(n_, kHi);
   std::size_t cl = n_, cr = 0;
   if (!edf(0, n_, full, cl, cr) || full != match_) return false;
   for (std::size_t i = 0; i < n_; ++i)
     if (own_[i] != coef(i, i) || left_[i] != (i > 0 ? coef(i, i - 1) : 0.0) ||
-        right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0))
+        right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0) || inv_[i] != 1.0 / own_[i])
       return false;
-  return true;
+  ChainSimplex fresh = *this;
+  return fresh.duals(g, 0, n_ - 1) && fresh.lambda_ == lambda_;
 }
 
 // B's row i (the constraint matched to column i: its coefficients on columns i-1, i, i+1) for i in [i0, i1].
@@ -258,7 +259,7 @@ void ChainSimplex::block(std::size_t i, std::size_t& bl, std::size_t& br) const 
 // far as the block goes) or with the constraint of column r1 - 1, which acts on (r1 - 1, r1) too (r0 = r1 - 1: a
 // 2x2 system). Every constraint left of the root acts on (i, i + 1) (r1 is the first that does not) and every
 // one right of it on (i - 1, i) (a pair left uncovered would split the block). So B x = b is solved from the
-// root outward and Bᵀ x = b from both ends inward, one substitution per column: no elimination, no fill, and
+// root outward and Bᵀ x = b from both ends inward (see duals), one substitution per column: no elimination, no fill, and
 // the reciprocals of the diagonal (inv_, set with the coefficients) keep every division off the chains.
 void ChainSimplex::root(std::size_t bl, std::size_t& r0, std::size_t& r1) const {
   r1 = bl;
@@ -281,52 +282,63 @@ static bool solve2(double a, double b, double c, double d, double e, double f, d
   return true;
 }
 
-// B x = b (transpose = false) or Bᵀ x = b on the block [bl, br]: x[bl..br] holds b on entry, the solution on
-// return; false if the root is singular or the solution not finite.
-bool ChainSimplex::solve_block(bool transpose, std::size_t bl, std::size_t br, double* x) const {
+// B x = b on the block [bl, br]: x[bl..br] holds b on entry, the solution on return; false if the root is
+// singular or the solution not finite.
+bool ChainSimplex::solve_block(std::size_t bl, std::size_t br, double* x) const {
   std::size_t r0, r1;
   root(bl, r0, r1);
-  if (!transpose) {
-    if (r0 == r1) {
-      x[r1] *= inv_[r1];
-    } else if (!solve2(own_[r0], right_[r0], left_[r1], own_[r1], x[r0], x[r1], x[r0], x[r1])) {
-      return false;
-    }
-    for (std::size_t i = r0; i-- > bl;) x[i] = (x[i] - right_[i] * x[i + 1]) * inv_[i];
-    for (std::size_t i = r1 + 1; i <= br; ++i) x[i] = (x[i] - left_[i] * x[i - 1]) * inv_[i];
-  } else {
-    // Column i < r0 is acted on by its own constraint and by that of column i - 1 only (right_[bl - 1] is 0).
-    if (bl < r0) x[bl] *= inv_[bl];
-    for (std::size_t i = bl + 1; i < r0; ++i) x[i] = (x[i] - right_[i - 1] * x[i - 1]) * inv_[i];
-    if (r1 < br) x[br] *= inv_[br];
-    for (std::size_t i = br; i-- > r1 + 1;) x[i] = (x[i] - left_[i + 1] * x[i + 1]) * inv_[i];
-    // The root's columns, with the known multipliers on either side moved to the right-hand side.
-    double e = x[r0];
-    if (r0 > bl) e -= right_[r0 - 1] * x[r0 - 1];
-    if (r0 == r1) {
-      if (r1 < br) e -= left_[r1 + 1] * x[r1 + 1];
-      x[r1] = e * inv_[r1];
-    } else {
-      double f = x[r1];
-      if (r1 < br) f -= left_[r1 + 1] * x[r1 + 1];
-      if (!solve2(own_[r0], left_[r1], right_[r0], own_[r1], e, f, x[r0], x[r1])) return false;
-    }
+  if (r0 == r1) {
+    x[r1] *= inv_[r1];
+  } else if (!solve2(own_[r0], right_[r0], left_[r1], own_[r1], x[r0], x[r1], x[r0], x[r1])) {
+    return false;
   }
+  for (std::size_t i = r0; i-- > bl;) x[i] = (x[i] - right_[i] * x[i + 1]) * inv_[i];
+  for (std::size_t i = r1 + 1; i <= br; ++i) x[i] = (x[i] - left_[i] * x[i - 1]) * inv_[i];
   for (std::size_t i = bl; i <= br; ++i)
     if (!std::isfinite(x[i])) return false;
   return true;
 }
 
-// λ on the blocks that hold columns cl - 1 .. cr + 1 (the equations that the last pivot changed): Bᵀλ = -g there.
+// λ after a pivot that changed B's rows cl..cr (all of them on the first call): Bᵀλ = -g on the blocks that hold
+// columns c0 = cl - 1 .. c1 = cr + 1 (the equations that changed). In a block with root [r0, r1], λ_i left of
+// the root is a forward substitution from the block's start (it depends on columns bl..i only) and right of it
+// a backward one from the block's end: so λ_i for i < min(c0, r0) and i > max(c1, r1) is what it was, to the
+// bit (the same recurrence on unchanged coefficients, from an unchanged block end: a block's ends and root can
+// move only inside [c0, c1] or into it). Only [min(c0, r0), max(c1, r1)] is solved again.
 bool ChainSimplex::duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr) {
+  const std::size_t c0 = cl > 0 ? cl - 1 : 0, c1 = std::min(cr + 1, n_ - 1);
   std::size_t bl, br, tmp;
-  block(cl > 0 ? cl - 1 : 0, bl, tmp);
-  block(std::min(cr + 1, n_ - 1), tmp, br);
-  for (std::size_t i = bl; i <= br; ++i) lambda_[i] = -g[col(i)];
+  block(c0, bl, tmp);
+  block(c1, tmp, br);
+  double* x = lambda_.data();
   for (std::size_t b0 = bl; b0 <= br;) {
     std::size_t b1 = b0;
     while (b1 < br && (right_[b1] != 0.0 || left_[b1 + 1] != 0.0)) ++b1;
-    if (!solve_block(true, b0, b1, lambda_.data())) return false;
+    std::size_t r0, r1;
+    root(b0, r0, r1);
+    const std::size_t s0 = std::max(b0, std::min(c0, r0)), s1 = std::min(b1, std::max(c1, r1));
+    for (std::size_t i = s0; i <= s1; ++i) x[i] = -g[col(i)];
+    // Column i < r0 is acted on by its own constraint and by that of column i - 1 only (right_[b0 - 1] is 0);
+    // column i > r1 by its own and that of column i + 1 only.
+    std::size_t i = s0;
+    if (i == b0 && i < r0) x[i++] *= inv_[b0];
+    for (; i < r0; ++i) x[i] = (x[i] - right_[i - 1] * x[i - 1]) * inv_[i];
+    i = s1;
+    if (i == b1 && i > r1) x[i--] *= inv_[b1];
+    for (; i > r1; --i) x[i] = (x[i] - left_[i + 1] * x[i + 1]) * inv_[i];
+    // The root's columns, with the known multipliers on either side moved to the right-hand side.
+    double e = x[r0];
+    if (r0 > b0) e -= right_[r0 - 1] * x[r0 - 1];
+    if (r0 == r1) {
+      if (r1 < b1) e -= left_[r1 + 1] * x[r1 + 1];
+      x[r1] = e * inv_[r1];
+    } else {
+      double f = x[r1];
+      if (r1 < b1) f -= left_[r1 + 1] * x[r1 + 1];
+      if (!solve2(own_[r0], left_[r1], right_[r0], own_[r1], e, f, x[r0], x[r1])) return false;
+    }
+    for (i = s0; i <= s1; ++i)
+      if (!std::isfinite(x[i])) return false;
     b0 = b1 + 1;
   }
   return true;
@@ -353,7 +365,7 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   } else {
     std::fill(d + bl, d + br + 1, 0.0);
     d[p] = -1.0;
-    if (!solve_block(false, bl, br, d)) return false;
+    if (!solve_block(bl, br, d)) return false;
   }
   double dmax = 0.0;
   for (std::size_t i = dl; i <= dr; ++i) {

@@ -51,9 +51,9 @@ class ChainSimplex {
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
   const Eigen::VectorXd& vertex() const { return y_; }
   int pivots() const { return pivots_; }
-  /// For tests, after a finite gap(): whether the matching and B's coefficients that the pivots kept up
-  /// incrementally are those computed from scratch for the final basis.
-  bool fresh_matching() const;
+  /// For tests, after a finite gap(g): whether the matching, B's coefficients and the multipliers that the
+  /// pivots kept up incrementally are, to the bit, those computed from scratch for the final basis.
+  bool fresh_state(const Eigen::VectorXd& g) const;
 
  private:
   struct Row {
@@ -80,7 +80,7 @@ class ChainSimplex {
   void coefs(std::size_t i0, std::size_t i1);
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
   void root(std::size_t bl, std::size_t& r0, std::size_t& r1) const;
-  bool solve_block(bool transpose, std::size_t bl, std::size_t br, double* x) const;
+  bool solve_block(std::size_t bl, std::size_t br, double* x) const;
   bool duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr);
   bool step(std::size_t p, std::size_t& cl, std::size_t& cr);
 
