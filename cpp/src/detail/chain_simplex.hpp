@@ -9,9 +9,10 @@
 // active constraints (rows, or a bound of a column), one per free column, nonsingular. Every row touches two
 // neighbouring columns, so S can be matched to the columns (each constraint to a column it acts on), and in
 // that order both B (constraints x columns) and its transpose are tridiagonal: the multipliers (Bᵀλ = -g) and
-// an edge direction (B d = -e_p) cost one banded solve each. The matching is found earliest-deadline-first
-// (a row of interval k can serve column k or k+1 only: an interval scheduling problem, where EDF finds a
-// perfect matching whenever one exists). The greedy profile is a vertex (each free θ_j is at a bound or the
+// an edge direction (B d = -e_p) cost one substitution each (a block of B is a chain with one root, see
+// solve_block), and after a pivot only what it changed is computed again. The matching is found
+// earliest-deadline-first (a row of interval k can serve column k or k+1 only: an interval scheduling problem,
+// where EDF finds a perfect matching whenever one exists). The greedy profile is a vertex (each free θ_j is at a bound or the
 // top of a slice, where a row of interval j-1 or j is tight), so the simplex starts there; at the usual
 // degenerate vertex (several rows tight at a point) a few pivots of length ~0 reach a dual feasible basis.
 // Bland's rule (smallest index leaves, smallest index enters) rules out cycling; a pivot cap, a singular
