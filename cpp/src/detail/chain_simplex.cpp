@@ -231,7 +231,17 @@ bool ChainSimplex::fresh_state(const Eigen::VectorXd& g) const {
         right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0) || inv_[i] != 1.0 / own_[i])
       return false;
   ChainSimplex fresh = *this;
-  return fresh.duals(g, 0, n_ - 1) && fresh.lambda_ == lambda_;
+  if (!fresh.duals(g, 0, n_ - 1) || fresh.lambda_ != lambda_) return false;
+  // And λ solves Bᵀλ = -g (to rounding), by B's entries from coef(): a check of the substitutions themselves.
+  for (std::size_t i = 0; i < n_; ++i) {
+    double sum = g[col(i)], scale = std::abs(g[col(i)]);
+    for (std::size_t o = i > 0 ? i - 1 : 0; o <= std::min(i + 1, n_ - 1); ++o) {
+      sum += coef(o, i) * lambda_[o];
+      scale += std::abs(coef(o, i) * lambda_[o]);
+    }
+    if (!(std::abs(sum) <= 1e-12 * scale)) return false;
+  }
+  return true;
 }
 
 // B's row i (the constraint matched to column i: its coefficients on columns i-1, i, i+1) for i in [i0, i1].

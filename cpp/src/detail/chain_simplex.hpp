@@ -53,7 +53,8 @@ class ChainSimplex {
   const Eigen::VectorXd& vertex() const { return y_; }
   int pivots() const { return pivots_; }
   /// For tests, after a finite gap(g): whether the matching, B's coefficients and the multipliers that the
-  /// pivots kept up incrementally are, to the bit, those computed from scratch for the final basis.
+  /// pivots kept up incrementally are, to the bit, those computed from scratch for the final basis, and the
+  /// multipliers solve Bᵀλ = -g (to 1e-12 of the terms' magnitude).
   bool fresh_state(const Eigen::VectorXd& g) const;
 
  private:
