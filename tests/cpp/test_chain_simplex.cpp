@@ -125,7 +125,7 @@ void expect_certified(const Chain& ch, const Eigen::VectorXd& lo, const Eigen::V
 // analysis (a vertex), the chain simplex reaches GLPK's optimum of the window LP for a random decreasing
 // objective and for ∇T, and its bound on g·θ - min g·y is valid (not below the true gap) and tight (1e-9); so
 // is the bound for a second objective from the first's optimal basis (warm start). The matching the pivots
-// and the multipliers kept up incrementally are the ones computed from scratch.
+// kept up incrementally is the one computed from scratch.
 TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> G(-1.0, -0.05);
@@ -151,9 +151,8 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
     ++solved;
     pivots += cs.pivots();
     expect_certified(ch, lo, hi, cs, theta, g, gap, trial);
-    // The pivots keep the matching (walked only from the columns the pivot's two constraints act on) and the
-    // multipliers (solved again only between the changed columns and their block's root) up incrementally:
-    // they are, to the bit, the ones computed from scratch.
+    // The pivots keep the matching up incrementally (walked again only from the columns the pivot's two
+    // constraints act on): it is the one matched from scratch, and the multipliers solve Bᵀλ = -g.
     EXPECT_TRUE(cs.fresh_state(g)) << "trial " << trial;
     // A second objective from the vertex's basis (warm, as the Frank-Wolfe iterations of slp.cpp use it).
     const Eigen::VectorXd v = cs.vertex();

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "detail/tridiagonal.hpp"
 
 namespace pathpace::detail {
 
@@ -29,7 +30,6 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
     own_.resize(n_);
     left_.resize(n_);
     right_.resize(n_);
-    inv_.resize(n_);
     dir_.resize(n_);
     coefs(0, n_ - 1);
   }
@@ -228,11 +228,9 @@ bool ChainSimplex::fresh_state(const Eigen::VectorXd& g) const {
   if (!edf(0, n_, full, cl, cr) || full != match_) return false;
   for (std::size_t i = 0; i < n_; ++i)
     if (own_[i] != coef(i, i) || left_[i] != (i > 0 ? coef(i, i - 1) : 0.0) ||
-        right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0) || inv_[i] != 1.0 / own_[i])
+        right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0))
       return false;
-  ChainSimplex fresh = *this;
-  if (!fresh.duals(g, 0, n_ - 1) || fresh.lambda_ != lambda_) return false;
-  // And λ solves Bᵀλ = -g (to rounding), by B's entries from coef(): a check of the substitutions themselves.
+  // λ solves Bᵀλ = -g (to rounding), by B's entries from coef().
   for (std::size_t i = 0; i < n_; ++i) {
     double sum = g[col(i)], scale = std::abs(g[col(i)]);
     for (std::size_t o = i > 0 ? i - 1 : 0; o <= std::min(i + 1, n_ - 1); ++o) {
@@ -250,7 +248,6 @@ void ChainSimplex::coefs(std::size_t i0, std::size_t i1) {
     own_[i] = coef(i, i);
     left_[i] = i > 0 ? coef(i, i - 1) : 0.0;
     right_[i] = i + 1 < n_ ? coef(i, i + 1) : 0.0;
-    inv_[i] = 1.0 / own_[i];  // own_ is never 0: match() takes a row for a column only if it acts on it
   }
 }
 
@@ -262,128 +259,48 @@ void ChainSimplex::block(std::size_t i, std::size_t& bl, std::size_t& br) const 
   while (br + 1 < n_ && (right_[br] != 0.0 || left_[br + 1] != 0.0)) ++br;
 }
 
-// Each row of B has at most two nonzeros: a bound acts on its own column, and a row matched to column i acts on
-// i and on ONE neighbour (i - 1 if it is a row of interval j - 1, i + 1 if of interval j). So a block of L
-// columns (connected through L - 1 neighbour pairs) with its L constraints has exactly one "root": the first
-// constraint that does not act on its right neighbour (r1), alone (r0 = r1: it acts on its own column only, as
-// far as the block goes) or with the constraint of column r1 - 1, which acts on (r1 - 1, r1) too (r0 = r1 - 1: a
-// 2x2 system). Every constraint left of the root acts on (i, i + 1) (r1 is the first that does not) and every
-// one right of it on (i - 1, i) (a pair left uncovered would split the block). So B x = b is solved from the
-// root outward and Bᵀ x = b from both ends inward (see duals), one substitution per column: no elimination, no
-// fill, and the reciprocals of the diagonal (inv_, set with the coefficients) keep every division off the chains.
-// (A general tridiagonal solve with partial pivoting, factoring B and Bᵀ separately, was a third of the
-// simplex's time.)
-void ChainSimplex::root(std::size_t bl, std::size_t& r0, std::size_t& r1) const {
-  r1 = bl;
-  while (right_[r1] != 0.0) ++r1;  // stops at the block's end at the latest (its right_ is 0)
-  r0 = left_[r1] != 0.0 ? r1 - 1 : r1;  // left_[bl] is 0 (the block starts there): r1 > bl then
-}
-
-// The 2x2 root [a b; c d] [u; v] = [e; f], partial pivoting; false if singular.
-static bool solve2(double a, double b, double c, double d, double e, double f, double& u, double& v) {
-  if (std::abs(a) < std::abs(c)) {
-    std::swap(a, c);
-    std::swap(b, d);
-    std::swap(e, f);
+// Tridiagonal factors of B's rows [i0, i1] (transpose = false: constraint i's coefficients on columns i-1, i,
+// i+1) or of Bᵀ's, into l_, d_, u_ (from index 0).
+void ChainSimplex::fill(bool transpose, std::size_t i0, std::size_t i1) {
+  const std::size_t len = i1 - i0 + 1;
+  l_.assign(len, 0.0);
+  d_.assign(len, 0.0);
+  u_.assign(len, 0.0);
+  for (std::size_t i = i0; i <= i1; ++i) {
+    const std::size_t t = i - i0;
+    d_[t] = own_[i];
+    if (i > i0) l_[t] = transpose ? right_[i - 1] : left_[i];
+    if (i < i1) u_[t] = transpose ? left_[i + 1] : right_[i];
   }
-  if (a == 0.0) return false;
-  const double m = c / a, piv = d - m * b;
-  if (piv == 0.0) return false;
-  v = (f - m * e) / piv;
-  u = (e - b * v) / a;
-  return true;
 }
 
-// B x = b on the block [bl, br]: x[bl..br] holds b on entry, the solution on return; false if the root is
-// singular or the solution not finite.
-bool ChainSimplex::solve_block(std::size_t bl, std::size_t br, double* x) const {
-  std::size_t r0, r1;
-  root(bl, r0, r1);
-  if (r0 == r1) {
-    x[r1] *= inv_[r1];
-  } else if (!solve2(own_[r0], right_[r0], left_[r1], own_[r1], x[r0], x[r1], x[r0], x[r1])) {
-    return false;
-  }
-  for (std::size_t i = r0; i-- > bl;) x[i] = (x[i] - right_[i] * x[i + 1]) * inv_[i];
-  for (std::size_t i = r1 + 1; i <= br; ++i) x[i] = (x[i] - left_[i] * x[i - 1]) * inv_[i];
-  for (std::size_t i = bl; i <= br; ++i)
-    if (!std::isfinite(x[i])) return false;
-  return true;
-}
-
-// λ after a pivot that changed B's rows cl..cr (all of them on the first call): Bᵀλ = -g on the blocks that hold
-// columns c0 = cl - 1 .. c1 = cr + 1 (the equations that changed). In a block with root [r0, r1], λ_i left of
-// the root is a forward substitution from the block's start (it depends on columns bl..i only) and right of it
-// a backward one from the block's end: so λ_i for i < min(c0, r0) and i > max(c1, r1) is what it was, to the
-// bit (the same recurrence on unchanged coefficients, from an unchanged block end: a block's ends and root can
-// move only inside [c0, c1] or into it). Only [min(c0, r0), max(c1, r1)] is solved again.
+// λ on the blocks that hold columns cl - 1 .. cr + 1 (the equations that the last pivot changed): Bᵀλ = -g there.
 bool ChainSimplex::duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr) {
-  const std::size_t c0 = cl > 0 ? cl - 1 : 0, c1 = std::min(cr + 1, n_ - 1);
   std::size_t bl, br, tmp;
-  block(c0, bl, tmp);
-  block(c1, tmp, br);
-  double* x = lambda_.data();
-  for (std::size_t b0 = bl; b0 <= br;) {
-    std::size_t b1 = b0;
-    while (b1 < br && (right_[b1] != 0.0 || left_[b1 + 1] != 0.0)) ++b1;
-    std::size_t r0, r1;
-    root(b0, r0, r1);
-    const std::size_t s0 = std::max(b0, std::min(c0, r0)), s1 = std::min(b1, std::max(c1, r1));
-    for (std::size_t i = s0; i <= s1; ++i) x[i] = -g[col(i)];
-    // Column i < r0 is acted on by its own constraint and by that of column i - 1 only (right_[b0 - 1] is 0);
-    // column i > r1 by its own and that of column i + 1 only.
-    std::size_t i = s0;
-    if (i == b0 && i < r0) x[i++] *= inv_[b0];
-    for (; i < r0; ++i) x[i] = (x[i] - right_[i - 1] * x[i - 1]) * inv_[i];
-    i = s1;
-    if (i == b1 && i > r1) x[i--] *= inv_[b1];
-    for (; i > r1; --i) x[i] = (x[i] - left_[i + 1] * x[i + 1]) * inv_[i];
-    // The root's columns, with the known multipliers on either side moved to the right-hand side.
-    double e = x[r0];
-    if (r0 > b0) e -= right_[r0 - 1] * x[r0 - 1];
-    if (r0 == r1) {
-      if (r1 < b1) e -= left_[r1 + 1] * x[r1 + 1];
-      x[r1] = e * inv_[r1];
-    } else {
-      double f = x[r1];
-      if (r1 < b1) f -= left_[r1 + 1] * x[r1 + 1];
-      if (!solve2(own_[r0], left_[r1], right_[r0], own_[r1], e, f, x[r0], x[r1])) return false;
-    }
-    for (i = s0; i <= s1; ++i)
-      if (!std::isfinite(x[i])) return false;
-    b0 = b1 + 1;
-  }
+  block(cl > 0 ? cl - 1 : 0, bl, tmp);
+  block(std::min(cr + 1, n_ - 1), tmp, br);
+  fill(true, bl, br);
+  rhs_.resize(br - bl + 1);
+  for (std::size_t i = bl; i <= br; ++i) rhs_[i - bl] = -g[col(i)];
+  if (!solve_tridiagonal(l_, d_, u_, rhs_, u2_)) return false;
+  std::copy(rhs_.begin(), rhs_.end(), lambda_.begin() + static_cast<long>(bl));
   return true;
 }
 
 // Constraint p (matched to column p) leaves along d with B d = -e_p (nonzero on p's block only); the first
 // constraint to block enters. On return [cl, cr] holds the columns whose matching changed.
 bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
-  std::size_t bl, br, r0, r1;
+  std::size_t bl, br;
   block(p, bl, br);
-  root(bl, r0, r1);
-  // d is 0 between the root and p when p is not in the root (the root's right-hand side is 0, and so is every
-  // substitution's up to p): nonzero on [dl, dr] only, from p outward, or the whole block.
-  std::size_t dl = bl, dr = br;
-  double* d = dir_.data();
-  if (p < r0) {
-    dr = p;
-    d[p] = -inv_[p];
-    for (std::size_t i = p; i-- > bl;) d[i] = (0.0 - right_[i] * d[i + 1]) * inv_[i];
-  } else if (p > r1) {
-    dl = p;
-    d[p] = -inv_[p];
-    for (std::size_t i = p + 1; i <= br; ++i) d[i] = (0.0 - left_[i] * d[i - 1]) * inv_[i];
-  } else {
-    std::fill(d + bl, d + br + 1, 0.0);
-    d[p] = -1.0;
-    if (!solve_block(bl, br, d)) return false;
-  }
+  fill(false, bl, br);
+  rhs_.assign(br - bl + 1, 0.0);
+  rhs_[p - bl] = -1.0;
+  if (!solve_tridiagonal(l_, d_, u_, rhs_, u2_)) return false;
+  // d on p's block only (dir_ outside it is never read: no assign over the window).
+  const double* d = dir_.data();
+  std::copy(rhs_.begin(), rhs_.end(), dir_.begin() + static_cast<long>(bl));
   double dmax = 0.0;
-  for (std::size_t i = dl; i <= dr; ++i) {
-    if (!std::isfinite(d[i])) return false;
-    dmax = std::max(dmax, std::abs(d[i]));
-  }
+  for (double v : rhs_) dmax = std::max(dmax, std::abs(v));
   const double inf = std::numeric_limits<double>::infinity();
   double t_best = inf;
   int enter = -3;
@@ -398,9 +315,9 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
       enter_col = i;
     }
   };
-  // The rows that act on the columns where d is nonzero: intervals col(dl) - 1 .. col(dr) (the others have
-  // a·d = 0 and cannot block), interval by interval (its two columns' d and y loaded once for its ~6 rows).
-  const Eigen::Index jl = col(dl), jr = col(dr);
+  // The rows that act on the block's columns: intervals col(bl) - 1 .. col(br), interval by interval (its two
+  // columns' d and y loaded once for its ~6 rows).
+  const Eigen::Index jl = col(bl), jr = col(br);
   auto dget = [&](Eigen::Index j) { return j >= jl && j <= jr ? d[local(j)] : 0.0; };
   const Eigen::Index k0 = std::max<Eigen::Index>(jl - 1, 0);
   const Eigen::Index k1 = std::min<Eigen::Index>(jr, static_cast<Eigen::Index>(row_begin_.size()) - 2);
@@ -421,13 +338,13 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
       consider(slack / ad, static_cast<int>(t), 0);
     }
   }
-  for (std::size_t i = dl; i <= dr; ++i) {
+  for (std::size_t i = bl; i <= br; ++i) {
     const Eigen::Index j = col(i);
     if (d[i] > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / d[i], kHi, i);
     if (d[i] < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -d[i], kLo, i);
   }
   if (!std::isfinite(t_best)) return false;  // no constraint blocks: an unbounded ray
-  for (std::size_t i = dl; i <= dr; ++i) y_[col(i)] += t_best * d[i];
+  for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * d[i];
   // S := S - {p} + {enter}; the matching changes only from the first column these act on (see edf).
   const auto span = [&](int code, std::size_t i) {
     if (code < 0) return std::make_pair(i, i);

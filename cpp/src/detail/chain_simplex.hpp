@@ -9,10 +9,9 @@
 // active constraints (rows, or a bound of a column), one per free column, nonsingular. Every row touches two
 // neighbouring columns, so S can be matched to the columns (each constraint to a column it acts on), and in
 // that order both B (constraints x columns) and its transpose are tridiagonal: the multipliers (Bᵀλ = -g) and
-// an edge direction (B d = -e_p) cost one substitution each (a block of B is a chain with one root, see
-// solve_block), and after a pivot only what it changed is computed again. The matching is found
-// earliest-deadline-first (a row of interval k can serve column k or k+1 only: an interval scheduling problem,
-// where EDF finds a perfect matching whenever one exists). The greedy profile is a vertex (each free θ_j is at a bound or the
+// an edge direction (B d = -e_p) cost one banded solve each. The matching is found earliest-deadline-first
+// (a row of interval k can serve column k or k+1 only: an interval scheduling problem, where EDF finds a
+// perfect matching whenever one exists). The greedy profile is a vertex (each free θ_j is at a bound or the
 // top of a slice, where a row of interval j-1 or j is tight), so the simplex starts there; at the usual
 // degenerate vertex (several rows tight at a point) a few pivots of length ~0 reach a dual feasible basis.
 // Bland's rule (smallest index leaves, smallest index enters) rules out cycling; a pivot cap, a singular
@@ -52,9 +51,9 @@ class ChainSimplex {
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
   const Eigen::VectorXd& vertex() const { return y_; }
   int pivots() const { return pivots_; }
-  /// For tests, after a finite gap(g): whether the matching, B's coefficients and the multipliers that the
-  /// pivots kept up incrementally are, to the bit, those computed from scratch for the final basis, and the
-  /// multipliers solve Bᵀλ = -g (to 1e-12 of the terms' magnitude).
+  /// For tests, after a finite gap(g): whether the matching and B's coefficients that the pivots kept up
+  /// incrementally are those computed from scratch for the final basis, and the multipliers solve Bᵀλ = -g
+  /// (to 1e-12 of the terms' magnitude).
   bool fresh_state(const Eigen::VectorXd& g) const;
 
  private:
@@ -81,8 +80,7 @@ class ChainSimplex {
   bool edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt, std::size_t& cl, std::size_t& cr) const;
   void coefs(std::size_t i0, std::size_t i1);
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
-  void root(std::size_t bl, std::size_t& r0, std::size_t& r1) const;
-  bool solve_block(std::size_t bl, std::size_t br, double* x) const;
+  void fill(bool transpose, std::size_t i0, std::size_t i1);
   bool duals(const Eigen::VectorXd& g, std::size_t cl, std::size_t cr);
   bool step(std::size_t p, std::size_t& cl, std::size_t& cr);
 
@@ -95,9 +93,8 @@ class ChainSimplex {
   std::vector<Option> opt_;               // start_basis: the options of every point, point i's from opt_begin_[i]
   std::vector<std::size_t> opt_begin_;
   std::vector<int> bounds_, match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
-  std::vector<double> own_, left_, right_, inv_;  // per column: its constraint's coefficient on it, on column i-1,
-                                                 // i+1; 1 / own_
-  std::vector<double> l_, lambda_, dir_;
+  std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
+  std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
   std::vector<double> viol_;  // start_basis: each row's row_violation at y_
   Eigen::VectorXd y_;
   int pivots_ = 0;
