@@ -29,7 +29,7 @@ bool solve_tridiagonal(const std::vector<double>& l, std::vector<double>& d, std
       const double inv = 1.0 / D[j];
       const double f = L[j + 1] * inv;
       D[j] = inv;
-      D[j + 1] -= f * U[j];
+      if (U[j] != 0.0) D[j + 1] -= f * U[j];  // (likewise: u_j is 0 on the other half of a chain basis's rows)
       R[j + 1] -= f * R[j];
     } else {
       // Swap rows j and j+1: row j+1 is (l_{j+1}, d_{j+1}, u_{j+1}) in columns j, j+1, j+2.
