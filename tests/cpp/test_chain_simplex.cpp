@@ -124,7 +124,8 @@ void expect_certified(const Chain& ch, const Eigen::VectorXd& lo, const Eigen::V
 // 200 seeded random chains (30-150 intervals, 2-4 joints): from the greedy profile of the reachability
 // analysis (a vertex), the chain simplex reaches GLPK's optimum of the window LP for a random decreasing
 // objective and for ∇T, and its bound on g·θ - min g·y is valid (not below the true gap) and tight (1e-9); so
-// is the bound for a second objective from the first's optimal basis (warm start).
+// is the bound for a second objective from the first's optimal basis (warm start). The matching the pivots
+// kept up incrementally is the one computed from scratch.
 TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> G(-1.0, -0.05);
@@ -150,6 +151,9 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
     ++solved;
     pivots += cs.pivots();
     expect_certified(ch, lo, hi, cs, theta, g, gap, trial);
+    // The pivots keep the matching up incrementally (walked again only from the columns the pivot's two
+    // constraints act on): it is the one matched from scratch, and the multipliers solve Bᵀλ = -g.
+    EXPECT_TRUE(cs.fresh_state(g)) << "trial " << trial;
     // A second objective from the vertex's basis (warm, as the Frank-Wolfe iterations of slp.cpp use it).
     const Eigen::VectorXd v = cs.vertex();
     Eigen::VectorXd g2(m + 1);
@@ -157,6 +161,7 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
     const double gap2 = cs.gap(v, g2, 1000, true);
     if (!std::isfinite(gap2)) continue;
     ++warm;
+    EXPECT_TRUE(cs.fresh_state(g2)) << "trial " << trial;
     const double opt2 = glpk_optimum(ch, lo, hi, v, g2), gv = g2.dot(v), scale2 = std::abs(gv) + 1.0;
     EXPECT_GE(gap2, gv - opt2 - 1e-10 * scale2) << "trial " << trial << ": the warm bound is not valid";
     EXPECT_LE(gap2, gv - opt2 + 1e-9 * scale2) << "trial " << trial << ": the warm bound is loose";
@@ -197,6 +202,7 @@ TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
     if (!std::isfinite(gap)) continue;
     ++solved;
     expect_certified(ch, lo, hi, cs, it, g, gap, trial);
+    EXPECT_TRUE(cs.fresh_state(g)) << "trial " << trial;
   }
   EXPECT_GE(trials, 190);
   // Most iterates are off the vertex (on the others the first objective was already optimal at θ_g).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "detail/tridiagonal.hpp"
 
@@ -29,6 +30,7 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
     own_.resize(n_);
     left_.resize(n_);
     right_.resize(n_);
+    dir_.resize(n_);
     coefs(0, n_ - 1);
   }
   has_basis_ = false;  // until this call ends at an optimal basis
@@ -93,27 +95,29 @@ double ChainSimplex::coef(std::size_t owner, std::size_t i) const {
 bool ChainSimplex::start_basis() {
   bounds_.assign(n_, 0);
   std::fill(in_basis_.begin(), in_basis_.end(), 0);
-  srows_.clear();
   // The options of point i are opt_[opt_begin_[i] .. opt_begin_[i + 1]) (one buffer for the window).
   opt_.clear();
-  opt_begin_.assign(n_, 0);
+  opt_begin_.resize(n_);  // every entry written below
   // Each row's relative slack at y_ (reachability's row_violation, negated), once: a row is an option of both
   // its points.
   viol_.resize(rows_.size());
   for (std::size_t t = 0; t < rows_.size(); ++t) viol_[t] = row_violation(*rows_[t].line, y_[rows_[t].k], y_[rows_[t].k + 1]);
-  std::size_t r0 = 0;  // first row of interval j - 1
+  const std::size_t m = row_begin_.size() - 1;  // intervals
+  opt_.reserve(4 * n_);  // a point has ~2 options; the window's ChainSimplex is new
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
-    while (r0 < rows_.size() && rows_[r0].k < j - 1) ++r0;
+    // Interval j - 1's rows are [t0, t1), interval j's [t1, t2).
+    const auto uj = static_cast<std::size_t>(j);
+    const std::size_t t0 = row_begin_[uj > 0 ? uj - 1 : 0], t1 = row_begin_[std::min(uj, m)],
+                      t2 = row_begin_[std::min(uj + 1, m)];
     const double scale = std::max(std::abs(hi_[j]), 1e-300);
     const double hi_gap = std::max(hi_[j] - y_[j], 0.0) / scale, lo_gap = std::max(y_[j] - lo_[j], 0.0) / scale;
     const std::size_t o0 = opt_.size();
     opt_begin_[i] = o0;
     if (hi_gap <= 1e-9) opt_.push_back({kHi, hi_gap, 0.0, -1});
     else if (lo_gap <= 1e-9) opt_.push_back({kLo, lo_gap, 0.0, -1});
-    for (std::size_t t = r0; t < rows_.size() && rows_[t].k <= j; ++t) {
-      const Row& r = rows_[t];
-      const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
+    for (std::size_t t = t0; t < t2; ++t) {
+      const double on_j = t < t1 ? rows_[t].line->b : rows_[t].line->a;
       if (on_j == 0.0) continue;
       const double v = viol_[t];
       if (v < -1e-9) continue;  // not tight: a relative slack of more than 1e-9
@@ -151,49 +155,90 @@ bool ChainSimplex::start_basis() {
       bounds_[i] = x.code;
     } else {
       in_basis_[static_cast<std::size_t>(x.code)] = 1;
-      srows_.push_back(x.code);
     }
     at = x.prev;
   }
-  std::sort(srows_.begin(), srows_.end());
   return true;
 }
 
 // Earliest deadline first: column j takes its bound if that is in S, else an S-row that must serve it (of
-// interval j - 1, or of interval j with no coefficient on column j + 1), else one of interval j. The S-rows are
-// walked in order (srows_ is sorted, rows_ by interval): O(n).
+// interval j - 1, or of interval j with no coefficient on column j + 1), else one of interval j. O(n).
 bool ChainSimplex::match() {
   match_.assign(n_, kHi);
-  used_.assign(srows_.size(), 0);
-  std::size_t q = 0;  // first S-row of interval >= j - 1
-  for (std::size_t i = 0; i < n_; ++i) {
-    const Eigen::Index j = col(i);
-    for (; q < srows_.size() && rows_[static_cast<std::size_t>(srows_[q])].k < j - 1; ++q)
-      if (!used_[q]) return false;  // a row of an earlier interval that no column took: singular
+  std::size_t cl = n_, cr = 0;
+  return edf(0, n_, match_, cl, cr);
+}
+
+// The matching from column i0 on, columns before it keeping theirs (mt[i0 - 1] is the one input from them).
+// Column j's choice depends only on the S-rows of intervals j - 1 and j, its bound, and which row column j - 1
+// took (the only column before j that can take a row of interval j - 1). So after a pivot that changed S in
+// the columns [i0, i_stop] only, the walk can stop at the first column i >= i_stop whose choice is the one mt
+// holds: every later column sees what it saw before. [cl, cr] is widened to the columns whose entry changed.
+// False if S cannot be matched (singular).
+bool ChainSimplex::edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt, std::size_t& cl,
+                       std::size_t& cr) const {
+  const std::size_t m = row_begin_.size() - 1;  // intervals
+  for (std::size_t i = i0; i < n_; ++i) {
+    const auto j = static_cast<std::size_t>(col(i));
+    const int prev = i > 0 ? mt[i - 1] : kHi;
+    // Interval j - 1's rows are [t0, t1), interval j's [t1, t2).
+    const std::size_t t0 = row_begin_[j > 0 ? j - 1 : 0], t1 = row_begin_[std::min(j, m)],
+                      t2 = row_begin_[std::min(j + 1, m)];
     int best = -1, best_rank = 3;
-    for (std::size_t t = q; t < srows_.size(); ++t) {
-      const Row& r = rows_[static_cast<std::size_t>(srows_[t])];
-      if (r.k > j) break;
-      if (used_[t]) continue;
-      const double on_j = r.k == j - 1 ? r.line->b : r.line->a;
+    for (std::size_t t = t0; t < t2; ++t) {
+      if (!in_basis_[t] || static_cast<int>(t) == prev) continue;
+      const Row& r = rows_[t];
+      const bool of_left = t < t1;
+      const double on_j = of_left ? r.line->b : r.line->a;
       if (on_j == 0.0) continue;
-      const int rank = r.k == j - 1 ? 0 : (r.line->b == 0.0 || !free_col(j + 1)) ? 1 : 2;
+      const int rank = of_left ? 0 : (r.line->b == 0.0 || !free_col(static_cast<Eigen::Index>(j) + 1)) ? 1 : 2;
       if (rank < best_rank) {
         best = static_cast<int>(t);
         best_rank = rank;
       }
     }
+    int c = best;
     if (bounds_[i] != 0) {
       if (best_rank < 2) return false;  // two constraints that can only act on θ_j: singular
-      match_[i] = bounds_[i];
-      continue;
+      c = bounds_[i];
+    } else if (best < 0) {
+      return false;
     }
-    if (best < 0) return false;
-    match_[i] = srows_[static_cast<std::size_t>(best)];
-    used_[static_cast<std::size_t>(best)] = 1;
+    // Every S-row of interval j - 1 is taken by now (by column j - 1 or j; no later column can take it).
+    for (std::size_t t = t0; t < t1; ++t)
+      if (in_basis_[t] && static_cast<int>(t) != prev && static_cast<int>(t) != c) return false;
+    if (mt[i] != c) {
+      mt[i] = c;
+      cl = std::min(cl, i);
+      cr = std::max(cr, i);
+    } else if (i >= i_stop && i + 1 < n_) {
+      return true;
+    }
   }
-  for (; q < srows_.size(); ++q)
-    if (!used_[q]) return false;
+  // The last column's interval: its S-rows can serve only that column.
+  const auto j = static_cast<std::size_t>(col(n_ - 1));
+  for (std::size_t t = row_begin_[std::min(j, m)]; t < row_begin_[std::min(j + 1, m)]; ++t)
+    if (in_basis_[t] && static_cast<int>(t) != mt[n_ - 1]) return false;
+  return true;
+}
+
+bool ChainSimplex::fresh_state(const Eigen::VectorXd& g) const {
+  std::vector<int> full(n_, kHi);
+  std::size_t cl = n_, cr = 0;
+  if (!edf(0, n_, full, cl, cr) || full != match_) return false;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (own_[i] != coef(i, i) || left_[i] != (i > 0 ? coef(i, i - 1) : 0.0) ||
+        right_[i] != (i + 1 < n_ ? coef(i, i + 1) : 0.0))
+      return false;
+  // λ solves Bᵀλ = -g (to rounding), by B's entries from coef().
+  for (std::size_t i = 0; i < n_; ++i) {
+    double sum = g[col(i)], scale = std::abs(g[col(i)]);
+    for (std::size_t o = i > 0 ? i - 1 : 0; o <= std::min(i + 1, n_ - 1); ++o) {
+      sum += coef(o, i) * lambda_[o];
+      scale += std::abs(coef(o, i) * lambda_[o]);
+    }
+    if (!(std::abs(sum) <= 1e-12 * scale)) return false;
+  }
   return true;
 }
 
@@ -251,64 +296,78 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   rhs_.assign(br - bl + 1, 0.0);
   rhs_[p - bl] = -1.0;
   if (!solve_tridiagonal(l_, d_, u_, rhs_, u2_)) return false;
-  dir_.assign(n_, 0.0);
+  // d on p's block only (dir_ outside it is never read: no assign over the window).
+  const double* d = dir_.data();
   std::copy(rhs_.begin(), rhs_.end(), dir_.begin() + static_cast<long>(bl));
   double dmax = 0.0;
   for (double v : rhs_) dmax = std::max(dmax, std::abs(v));
-  double t_best = std::numeric_limits<double>::infinity();
+  const double inf = std::numeric_limits<double>::infinity();
+  double t_best = inf;
   int enter = -3;
   std::size_t enter_col = 0;
+  double t_cut = inf;  // t_best * (1 - 1e-12): a constraint enters only if its step is below that
   auto consider = [&](double t, int code, std::size_t i) {
     // Ties (degenerate steps) go to the smallest index: rows first, in order, then bounds by column.
-    if (t < t_best * (1 - 1e-12)) {
+    if (t < t_cut) {
       t_best = t;
+      t_cut = t * (1 - 1e-12);
       enter = code;
       enter_col = i;
     }
   };
-  // The rows that act on the block's columns: intervals col(bl) - 1 .. col(br).
-  const Eigen::Index k0 = std::max<Eigen::Index>(col(bl) - 1, 0);
-  const Eigen::Index k1 = std::min<Eigen::Index>(col(br), static_cast<Eigen::Index>(row_begin_.size()) - 2);
-  for (std::size_t t = row_begin_[static_cast<std::size_t>(k0)]; t < row_begin_[static_cast<std::size_t>(k1) + 1]; ++t) {
-    if (in_basis_[t]) continue;
-    const Row& r = rows_[t];
-    const double dk = free_col(r.k) ? dir_[local(r.k)] : 0.0, dk1 = free_col(r.k + 1) ? dir_[local(r.k + 1)] : 0.0;
-    const double ad = r.line->a * dk + r.line->b * dk1;
-    if (ad <= 1e-12 * (std::abs(r.line->a) + std::abs(r.line->b)) * dmax) continue;
-    consider(std::max(slack(r), 0.0) / ad, static_cast<int>(t), 0);
+  // The rows that act on the block's columns: intervals col(bl) - 1 .. col(br), interval by interval (its two
+  // columns' d and y loaded once for its ~6 rows).
+  const Eigen::Index jl = col(bl), jr = col(br);
+  auto dget = [&](Eigen::Index j) { return j >= jl && j <= jr ? d[local(j)] : 0.0; };
+  const Eigen::Index k0 = std::max<Eigen::Index>(jl - 1, 0);
+  const Eigen::Index k1 = std::min<Eigen::Index>(jr, static_cast<Eigen::Index>(row_begin_.size()) - 2);
+  for (Eigen::Index k = k0; k <= k1; ++k) {
+    const double dk = dget(k), dk1 = dget(k + 1), yk = y_[k], yk1 = y_[k + 1];
+    const std::size_t t1 = row_begin_[static_cast<std::size_t>(k) + 1];
+    for (std::size_t t = row_begin_[static_cast<std::size_t>(k)]; t < t1; ++t) {
+      if (in_basis_[t]) continue;
+      const Line& r = *rows_[t].line;
+      const double ad = r.a * dk + r.b * dk1;
+      if (ad <= 1e-12 * (std::abs(r.a) + std::abs(r.b)) * dmax) continue;
+      const double slack = std::max(r.c - r.a * yk - r.b * yk1, 0.0);
+      // Most rows cannot beat t_cut: those are told without the division (the dearest part of the loop).
+      // slack > ad t_cut (1 + 1e-14), rounding included, means slack / ad >= t_cut after rounding too (while
+      // ad t_cut is a normal number; t_cut = 0 admits nothing, slack >= 0); the division decides the others.
+      const double cut = ad * t_cut * (1 + 1e-14);
+      if (t_cut == 0.0 || (cut > 1e-290 && slack > cut)) continue;
+      consider(slack / ad, static_cast<int>(t), 0);
+    }
   }
   for (std::size_t i = bl; i <= br; ++i) {
     const Eigen::Index j = col(i);
-    if (dir_[i] > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / dir_[i], kHi, i);
-    if (dir_[i] < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -dir_[i], kLo, i);
+    if (d[i] > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / d[i], kHi, i);
+    if (d[i] < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -d[i], kLo, i);
   }
   if (!std::isfinite(t_best)) return false;  // no constraint blocks: an unbounded ray
-  for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * dir_[i];
-  // S := S - {p} + {enter}.
+  for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * d[i];
+  // S := S - {p} + {enter}; the matching changes only from the first column these act on (see edf).
+  const auto span = [&](int code, std::size_t i) {
+    if (code < 0) return std::make_pair(i, i);
+    const Eigen::Index k = rows_[static_cast<std::size_t>(code)].k;  // acts on columns k and k + 1
+    return std::make_pair(local(std::max(k, first_)), local(std::min(k + 1, last_)));
+  };
+  const auto out = span(match_[p], p), in = span(enter, enter_col);
   if (match_[p] >= 0) {
     in_basis_[static_cast<std::size_t>(match_[p])] = 0;
-    srows_.erase(std::lower_bound(srows_.begin(), srows_.end(), match_[p]));
   } else {
     bounds_[p] = 0;
   }
   if (enter >= 0) {
     in_basis_[static_cast<std::size_t>(enter)] = 1;
-    srows_.insert(std::upper_bound(srows_.begin(), srows_.end(), enter), enter);
   } else {
     if (bounds_[enter_col] != 0) return false;
     bounds_[enter_col] = enter;
     // The entering bound is exact: no drift from the step's rounding.
     y_[col(enter_col)] = enter == kHi ? hi_[col(enter_col)] : lo_[col(enter_col)];
   }
-  old_match_ = match_;
-  if (!match()) return false;
   cl = n_;
   cr = 0;
-  for (std::size_t i = 0; i < n_; ++i)
-    if (match_[i] != old_match_[i]) {
-      cl = std::min(cl, i);
-      cr = std::max(cr, i);
-    }
+  if (!edf(std::min(out.first, in.first), std::max(out.second, in.second), match_, cl, cr)) return false;
   if (cl > cr) {
     cl = cr = p;
   } else {

@@ -51,6 +51,10 @@ class ChainSimplex {
   /// The vertex the simplex ended at (after gap(): the LP's optimum if the bound is finite).
   const Eigen::VectorXd& vertex() const { return y_; }
   int pivots() const { return pivots_; }
+  /// For tests, after a finite gap(g): whether the matching and B's coefficients that the pivots kept up
+  /// incrementally are those computed from scratch for the final basis, and the multipliers solve Bᵀλ = -g
+  /// (to 1e-12 of the terms' magnitude).
+  bool fresh_state(const Eigen::VectorXd& g) const;
 
  private:
   struct Row {
@@ -71,9 +75,9 @@ class ChainSimplex {
   std::size_t local(Eigen::Index j) const { return static_cast<std::size_t>(j - first_); }
   bool free_col(Eigen::Index j) const { return j >= first_ && j <= last_; }
   double coef(std::size_t owner, std::size_t i) const;
-  double slack(const Row& r) const { return r.line->c - r.line->a * y_[r.k] - r.line->b * y_[r.k + 1]; }
   bool start_basis();
   bool match();
+  bool edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt, std::size_t& cl, std::size_t& cr) const;
   void coefs(std::size_t i0, std::size_t i1);
   void block(std::size_t i, std::size_t& bl, std::size_t& br) const;
   void fill(bool transpose, std::size_t i0, std::size_t i1);
@@ -85,11 +89,10 @@ class ChainSimplex {
   std::size_t n_;
   std::vector<Row> rows_;                 // the window's rows, by interval
   std::vector<std::size_t> row_begin_;    // interval k's rows: [row_begin_[k], row_begin_[k + 1])
-  std::vector<char> in_basis_, used_;     // per row; used_: per S-row, during match()
-  std::vector<int> srows_;                // the rows in S, sorted
+  std::vector<char> in_basis_;           // per row: in S
   std::vector<Option> opt_;               // start_basis: the options of every point, point i's from opt_begin_[i]
   std::vector<std::size_t> opt_begin_;
-  std::vector<int> bounds_, match_, old_match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
+  std::vector<int> bounds_, match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
   std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
   std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
   std::vector<double> viol_;  // start_basis: each row's row_violation at y_

@@ -18,12 +18,18 @@ bool solve_tridiagonal(const std::vector<double>& l, std::vector<double>& d, std
   double *D = d.data(), *U = u.data(), *R = r.data(), *U2 = u2.data();
   for (std::size_t j = 0; j + 1 < n; ++j) {
     // Eliminate l_{j+1} (the entry below d_j).
-    if (std::abs(D[j]) >= std::abs(L[j + 1])) {
+    if (L[j + 1] == 0.0) {
+      // Nothing to eliminate (about half the rows of a chain simplex basis: a constraint acts on its column and
+      // one neighbour only). The general step would subtract 0 · l_{j+1} / d_j terms: the same values (up to
+      // the sign of a zero), but with the division on the dependency chain into d_{j+1}.
+      if (D[j] == 0.0) return false;
+      D[j] = 1.0 / D[j];
+    } else if (std::abs(D[j]) >= std::abs(L[j + 1])) {
       if (D[j] == 0.0) return false;
       const double inv = 1.0 / D[j];
       const double f = L[j + 1] * inv;
       D[j] = inv;
-      D[j + 1] -= f * U[j];
+      if (U[j] != 0.0) D[j + 1] -= f * U[j];  // (likewise: u_j is 0 on the other half of a chain basis's rows)
       R[j + 1] -= f * R[j];
     } else {
       // Swap rows j and j+1: row j+1 is (l_{j+1}, d_{j+1}, u_{j+1}) in columns j, j+1, j+2.
