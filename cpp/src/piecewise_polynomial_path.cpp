@@ -71,15 +71,15 @@ void PiecewisePolynomialPath::evaluate(const Eigen::Ref<const Eigen::VectorXd>& 
       if (i + 1 < pieces && x >= breakpoints_[i + 1] && (i + 2 >= pieces + 1 || x < breakpoints_[i + 2])) ++i;
       else i = piece(x);
     }
-    // The run [r, e): the grid points that stay in piece i.
+    // The run [r, e): the grid points that stay in piece i (x, the first, lies in [b, next) by the choice of i).
     const double b = breakpoints_[i], next = i + 1 < pieces ? breakpoints_[i + 1] : std::numeric_limits<double>::infinity();
-    Eigen::Index e = r;
+    t[static_cast<size_t>(r)] = x - b;
+    Eigen::Index e = r + 1;
     for (; e < m; ++e) {
       const double y = std::clamp(s[e], lo, hi);
       if (y < b || y >= next) break;
       t[static_cast<size_t>(e)] = y - b;
     }
-    if (e == r) t[static_cast<size_t>(e++)] = x - b;  // cannot happen (i is x's piece); never stall
     const Eigen::MatrixXd& c = coefficients_[static_cast<size_t>(i)];
     const Eigen::Index d = c.rows() - 1;
     for (Eigen::Index j = 0; j < n; ++j) {

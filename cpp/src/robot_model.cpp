@@ -983,12 +983,17 @@ int torque_lanes_supported() {
 #endif
 }
 
+void check_sample_shapes(Eigen::Index n, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq) {
+  const Eigen::Index count = q.rows();
+  if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
+    fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
+}
+
 void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
                                    const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, const TorqueOutput& out,
                                    int lanes) {
   const Eigen::Index n = robot.nq(), count = q.rows();
-  if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
-    fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
+  check_sample_shapes(n, q, dq, ddq);
   if (lanes == 0) lanes = torque_lanes_supported();
   if (lanes < 1 || lanes > torque_lanes_supported() || (lanes & (lanes - 1)) != 0)
     fail("lanes = " + std::to_string(lanes) + " must be a power of 2 <= " + std::to_string(torque_lanes_supported()));
@@ -1081,10 +1086,7 @@ void RobotModel::path_torque_coefficients_batch(RobotWorkspace& ws, const Eigen:
                                                 const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                                 Eigen::MatrixXd& c) const {
   if (mimic_) {
-    // Checked here before the products below (path_torque_coefficients_into checks the other case).
-    const Eigen::Index n = nq(), count = q.rows();
-    if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
-      detail::fail("q, dq, ddq must all have shape (samples, " + std::to_string(n) + ")");
+    detail::check_sample_shapes(nq(), q, dq, ddq);  // before the products below (else _into checks them)
     const MimicMap& mm = *mimic_;
     const Eigen::MatrixXd qb = (q * mm.E.transpose()).rowwise() + mm.o.transpose();
     const Eigen::MatrixXd dqb = dq * mm.E.transpose(), ddqb = ddq * mm.E.transpose();

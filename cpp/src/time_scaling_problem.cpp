@@ -756,8 +756,9 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
                       " (relative)";
       res.status = Status::NumericalError;
     }
+  } else {
+    res.binding = detail::binding_labels(chain, sets, theta);
   }
-  if (proven) res.binding = detail::binding_labels(chain, sets, theta);
   theta *= scale.x_unit;  // back to ṡ² (a power of two: exact)
   res.sdot = theta.cwiseMax(0.0).cwiseSqrt();
   res.times.resize(n + 1);

@@ -73,11 +73,11 @@ void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::V
 void Trajectory::evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::MatrixXd& q, Eigen::MatrixXd& qd,
                           Eigen::MatrixXd& qdd) const {
   Eigen::VectorXd s;
-  evaluate(t, s, q, qd, qdd);
+  evaluate_with_s(t, s, q, qd, qdd);
 }
 
-void Trajectory::evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q,
-                          Eigen::MatrixXd& qd, Eigen::MatrixXd& qdd) const {
+void Trajectory::evaluate_with_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q,
+                                 Eigen::MatrixXd& qd, Eigen::MatrixXd& qdd) const {
   Eigen::VectorXd sd, sdd;
   evaluate_s(t, s, sd, sdd);
   Eigen::MatrixXd dq, ddq;
@@ -149,7 +149,7 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
     throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
   Eigen::VectorXd s;
   Eigen::MatrixXd q, qd, qdd;
-  evaluate(t, s, q, qd, qdd);
+  evaluate_with_s(t, s, q, qd, qdd);
   if (contact_phases_.empty()) {
     if (phase_out) *phase_out = Eigen::VectorXi::Constant(t.size(), -1);
     return contacts_->force_distribution(q, qd, qdd);

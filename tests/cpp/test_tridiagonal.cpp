@@ -10,23 +10,27 @@
 
 using pathpace::detail::solve_tridiagonal;
 
-// 300 seeded random systems of size 1-40 whose diagonal is often zero or tiny next to the off-diagonals (the
-// chain LP's bases are like that: a row matched to a column by its small coefficient): the solution matches a
-// dense partial-pivoting LU of the same matrix to 1e-10 relative, and its residual is at rounding level.
+// 400 seeded random systems of size 1-40 whose diagonal is often zero or tiny next to the off-diagonals (the
+// chain LP's bases are like that: a row matched to a column by its small coefficient), and where a row with a
+// regular diagonal has one of its off-diagonal entries zero half the time (a chain basis's rows act on one
+// neighbour only: the steps that skip the elimination): the solution matches a dense partial-pivoting LU of the same matrix to 1e-10 relative,
+// and its residual is at rounding level.
 TEST(Tridiagonal, MatchesDenseLuWithPivoting) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
-  int compared = 0;
-  for (int trial = 0; trial < 300; ++trial) {
+  int compared = 0, sparse_rows = 0;
+  for (int trial = 0; trial < 400; ++trial) {
     const int n = 1 + trial % 40;
     std::vector<double> l(n), d(n), u(n), r(n), u2;
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
     Eigen::VectorXd b(n);
     for (int j = 0; j < n; ++j) {
-      l[j] = j > 0 ? U(rng) : 0.0;
-      u[j] = j + 1 < n ? U(rng) : 0.0;
       const int kind = static_cast<int>(rng() % 3);
       d[j] = kind == 0 ? 0.0 : kind == 1 ? 1e-9 * U(rng) : U(rng);
+      // A zero off-diagonal entry only beside a diagonal that can stand alone (else most draws are singular).
+      const bool sparse = kind == 2 && rng() % 2 == 0;
+      l[j] = j > 0 && !(sparse && rng() % 2 == 0) ? U(rng) : 0.0;
+      u[j] = j + 1 < n && !(sparse && l[j] != 0.0) ? U(rng) : 0.0;
       r[j] = b[j] = U(rng);
       A(j, j) = d[j];
       if (j > 0) A(j, j - 1) = l[j];
@@ -39,12 +43,14 @@ TEST(Tridiagonal, MatchesDenseLuWithPivoting) {
     if (cond > 1e8) continue;  // too ill-conditioned to compare at 1e-10
     ASSERT_TRUE(ok) << "trial " << trial;
     ++compared;
+    for (int j = 0; j + 1 < n; ++j) sparse_rows += A(j + 1, j) == 0.0 || A(j, j + 1) == 0.0;  // (u is overwritten)
     const Eigen::VectorXd x = lu.solve(b);
     const Eigen::VectorXd ours = Eigen::Map<const Eigen::VectorXd>(r.data(), n);
     EXPECT_LE((ours - x).norm(), 1e-10 * std::max(1.0, x.norm())) << "trial " << trial;
     EXPECT_LE((A * ours - b).norm(), 1e-12 * cond * std::max(1.0, b.norm())) << "trial " << trial;
   }
-  EXPECT_GT(compared, 250);  // the skips (singular or ill-conditioned draws) are few
+  EXPECT_GT(compared, 250);      // the skips (singular or ill-conditioned draws) are a minority
+  EXPECT_GT(sparse_rows, 500);   // the steps with nothing to eliminate are exercised (681 rows)
 }
 
 TEST(Tridiagonal, SingularIsReported) {

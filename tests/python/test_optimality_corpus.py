@@ -61,18 +61,19 @@ def solved_case(i):
     waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (int(rng.integers(5, 9)), len(v)))
     path = pp.CubicSplinePath(waypoints, knots="uniform", boundary="not-a-knot")
     prob = kinematic_problem(path, N, -v, v, -2 * v, 2 * v)
-    grid = prob.grid
     scale = None
+    res = None if with_torque else prob.solve()
     if with_torque:
         # 0.6 x effort where the arm can hold the path against gravity at that, else the next that it can.
         for scale in (0.6, 0.8, 1.0, 1.5):
-            trial = kinematic_problem(path, N, -v, v, -2 * v, 2 * v)
-            trial.add_torque_limits(ours, scale=scale)
-            if trial.solve().ok:
+            prob = kinematic_problem(path, N, -v, v, -2 * v, 2 * v)
+            prob.add_torque_limits(ours, scale=scale)
+            res = prob.solve()
+            if res.ok:
                 break
-        prob = trial
+    grid = prob.grid
     A, B, C = arm_rows(path, grid, -v, v, -2 * v, 2 * v, theirs if with_torque else None, scale)
-    return dict(measured(prob.solve(), grid, A, B, C), N=N, ref=cvxpy_optimum(grid, A, B, C)[0])
+    return dict(measured(res, grid, A, B, C), N=N, ref=cvxpy_optimum(grid, A, B, C)[0])
 
 
 @pytest.mark.parametrize("i", range(CASES))

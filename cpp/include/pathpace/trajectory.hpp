@@ -82,8 +82,8 @@ class Trajectory {
  private:
   Eigen::Index interval(double t) const;
   // evaluate() that also hands back s(t), and contact_phase() from s: contact_forces needs both of one t.
-  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q, Eigen::MatrixXd& qd,
-                Eigen::MatrixXd& qdd) const;
+  void evaluate_with_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q,
+                       Eigen::MatrixXd& qd, Eigen::MatrixXd& qdd) const;
   Eigen::VectorXi phase_of_s(const Eigen::VectorXd& s) const;
   std::shared_ptr<const Path> path_;
   std::shared_ptr<const RobotModel> robot_;

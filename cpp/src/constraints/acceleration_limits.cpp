@@ -1,8 +1,7 @@
 #include "pathpace/constraints/acceleration_limits.hpp"
 
 #include <cmath>
-#include <algorithm>
-#include <vector>
+#include <limits>
 
 #include "detail/validate.hpp"
 
@@ -48,18 +47,10 @@ ConstraintRows AccelerationLimits::evaluate(const PathSamples& samples) const {
   // eq. (14): q̈_j = p''_j ṡ² + p'_j s̈; an infinite limit leaves its row inactive (c = +inf, a = b = 0).
   // Per row a factor (1, -1 or 0) and a constant c, so that the loop over grid points has no branch and
   // writes each joint's row pair with one paired store (this runs on every problem's set-up).
-  std::vector<double> sign(static_cast<size_t>(2 * n)), limit(static_cast<size_t>(2 * n));
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const bool up = std::isfinite(amax_[j]), lo = std::isfinite(amin_[j]);
-    sign[static_cast<size_t>(2 * j)] = up ? 1.0 : 0.0;
-    sign[static_cast<size_t>(2 * j + 1)] = lo ? -1.0 : 0.0;
-    limit[static_cast<size_t>(2 * j)] = up ? amax_[j] : inf;
-    limit[static_cast<size_t>(2 * j + 1)] = lo ? -amin_[j] : inf;
-  }
   const Eigen::Index m = samples.size(), r = 2 * n;
   for (Eigen::Index j = 0; j < n; ++j) {
-    const double su = sign[static_cast<size_t>(2 * j)], sl = sign[static_cast<size_t>(2 * j + 1)];
-    const double cu = limit[static_cast<size_t>(2 * j)], cl = limit[static_cast<size_t>(2 * j + 1)];
+    const bool up = std::isfinite(amax_[j]), lo = std::isfinite(amin_[j]);
+    const double su = up ? 1.0 : 0.0, sl = lo ? -1.0 : 0.0, cu = up ? amax_[j] : inf, cl = lo ? -amin_[j] : inf;
     const double* pp = samples.ddq.col(j).data();
     const double* p = samples.dq.col(j).data();
     double* pa = rows.a.data() + 2 * j;

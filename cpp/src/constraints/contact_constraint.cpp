@@ -173,14 +173,18 @@ void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd
   }
 }
 
+namespace {
+// The tolerance of a phase's ends: 1e-12 relative to s.
+double end_tolerance(double s) { return 1e-12 * std::max(1.0, std::abs(s)); }
+}  // namespace
+
 bool ContactConstraint::active_at(double s) const {
-  const double tol = 1e-12 * std::max(1.0, std::abs(s));
+  const double tol = end_tolerance(s);
   return s >= options_.active_begin - tol && s <= options_.active_end + tol;
 }
 
-// Where the no-impact row holds: evaluate writes it, check_point imposes it.
 bool ContactConstraint::at_active_begin(double s) const {
-  return std::abs(s - options_.active_begin) <= 1e-12 * std::max(1.0, std::abs(s));
+  return std::abs(s - options_.active_begin) <= end_tolerance(s);
 }
 
 void ContactConstraint::point_velocities(const PathSamples& samples, Eigen::MatrixXd& normal, Eigen::MatrixXd& speed) const {

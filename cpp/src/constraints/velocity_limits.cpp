@@ -51,7 +51,7 @@ ConstraintRows VelocityLimits::evaluate(const PathSamples& samples) const {
       const double v = d[k] > 0.0 ? hi : lo;
       const double r = v / d[k];
       // p'_j = 0: the joint does not move here, no bound (eq. 16 skips it); an infinite limit: none either.
-      const bool active = d[k] != 0.0 && std::abs(v) != inf;
+      const bool active = d[k] != 0.0 && std::isfinite(v);
       pa[k * n + j] = active ? 1.0 : 0.0;
       pc[k * n + j] = active ? r * r : inf;
     }

@@ -32,7 +32,6 @@ double ChainSimplex::gap(const Eigen::VectorXd& theta, const Eigen::VectorXd& g,
     own_.resize(n_);
     left_.resize(n_);
     right_.resize(n_);
-    dir_.resize(n_);
     coefs(0, n_ - 1);
   }
   has_basis_ = false;  // until this call ends at an optimal basis
@@ -104,14 +103,11 @@ bool ChainSimplex::start_basis() {
   // its points.
   viol_.resize(rows_.size());
   for (std::size_t t = 0; t < rows_.size(); ++t) viol_[t] = row_violation(*rows_[t].line, y_[rows_[t].k], y_[rows_[t].k + 1]);
-  const std::size_t m = row_begin_.size() - 1;  // intervals
   opt_.reserve(4 * n_);  // a point has ~2 options; the window's ChainSimplex is new
   for (std::size_t i = 0; i < n_; ++i) {
     const Eigen::Index j = col(i);
-    // Interval j - 1's rows are [t0, t1), interval j's [t1, t2).
-    const auto uj = static_cast<std::size_t>(j);
-    const std::size_t t0 = row_begin_[uj > 0 ? uj - 1 : 0], t1 = row_begin_[std::min(uj, m)],
-                      t2 = row_begin_[std::min(uj + 1, m)];
+    std::size_t t0, t1, t2;
+    point_rows(j, t0, t1, t2);
     const double scale = std::max(std::abs(hi_[j]), 1e-300);
     const double hi_gap = std::max(hi_[j] - y_[j], 0.0) / scale, lo_gap = std::max(y_[j] - lo_[j], 0.0) / scale;
     const std::size_t o0 = opt_.size();
@@ -179,13 +175,11 @@ bool ChainSimplex::match() {
 // False if S cannot be matched (singular).
 bool ChainSimplex::edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt, std::size_t& cl,
                        std::size_t& cr) const {
-  const std::size_t m = row_begin_.size() - 1;  // intervals
   for (std::size_t i = i0; i < n_; ++i) {
-    const auto j = static_cast<std::size_t>(col(i));
+    const Eigen::Index j = col(i);
     const int prev = i > 0 ? mt[i - 1] : kHi;
-    // Interval j - 1's rows are [t0, t1), interval j's [t1, t2).
-    const std::size_t t0 = row_begin_[j > 0 ? j - 1 : 0], t1 = row_begin_[std::min(j, m)],
-                      t2 = row_begin_[std::min(j + 1, m)];
+    std::size_t t0, t1, t2;
+    point_rows(j, t0, t1, t2);
     int best = -1, best_rank = 3;
     for (std::size_t t = t0; t < t2; ++t) {
       if (!in_basis_[t] || static_cast<int>(t) == prev) continue;
@@ -193,7 +187,7 @@ bool ChainSimplex::edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt,
       const bool of_left = t < t1;
       const double on_j = of_left ? r.line->b : r.line->a;
       if (on_j == 0.0) continue;
-      const int rank = of_left ? 0 : (r.line->b == 0.0 || !free_col(static_cast<Eigen::Index>(j) + 1)) ? 1 : 2;
+      const int rank = of_left ? 0 : (r.line->b == 0.0 || !free_col(j + 1)) ? 1 : 2;
       if (rank < best_rank) {
         best = static_cast<int>(t);
         best_rank = rank;
@@ -218,8 +212,9 @@ bool ChainSimplex::edf(std::size_t i0, std::size_t i_stop, std::vector<int>& mt,
     }
   }
   // The last column's interval: its S-rows can serve only that column.
-  const auto j = static_cast<std::size_t>(col(n_ - 1));
-  for (std::size_t t = row_begin_[std::min(j, m)]; t < row_begin_[std::min(j + 1, m)]; ++t)
+  std::size_t t0, t1, t2;
+  point_rows(col(n_ - 1), t0, t1, t2);
+  for (std::size_t t = t1; t < t2; ++t)
     if (in_basis_[t] && static_cast<int>(t) != mt[n_ - 1]) return false;
   return true;
 }
@@ -298,9 +293,8 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   rhs_.assign(br - bl + 1, 0.0);
   rhs_[p - bl] = -1.0;
   if (!solve_tridiagonal(l_, d_, u_, rhs_, u2_)) return false;
-  // d on p's block only (dir_ outside it is never read: no assign over the window).
-  const double* d = dir_.data();
-  std::copy(rhs_.begin(), rhs_.end(), dir_.begin() + static_cast<long>(bl));
+  // d on p's block only: d_i = rhs_[i - bl] for i in [bl, br] (nothing below changes rhs_).
+  const double* d = rhs_.data();
   double dmax = 0.0;
   for (double v : rhs_) dmax = std::max(dmax, std::abs(v));
   const double inf = std::numeric_limits<double>::infinity();
@@ -320,7 +314,7 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   // The rows that act on the block's columns: intervals col(bl) - 1 .. col(br), interval by interval (its two
   // columns' d and y loaded once for its ~6 rows).
   const Eigen::Index jl = col(bl), jr = col(br);
-  auto dget = [&](Eigen::Index j) { return j >= jl && j <= jr ? d[local(j)] : 0.0; };
+  auto dget = [&](Eigen::Index j) { return j >= jl && j <= jr ? d[local(j) - bl] : 0.0; };
   const Eigen::Index k0 = std::max<Eigen::Index>(jl - 1, 0);
   const Eigen::Index k1 = std::min<Eigen::Index>(jr, static_cast<Eigen::Index>(row_begin_.size()) - 2);
   for (Eigen::Index k = k0; k <= k1; ++k) {
@@ -342,11 +336,12 @@ bool ChainSimplex::step(std::size_t p, std::size_t& cl, std::size_t& cr) {
   }
   for (std::size_t i = bl; i <= br; ++i) {
     const Eigen::Index j = col(i);
-    if (d[i] > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / d[i], kHi, i);
-    if (d[i] < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -d[i], kLo, i);
+    const double di = d[i - bl];
+    if (di > 1e-12 * dmax && match_[i] != kHi) consider(std::max(hi_[j] - y_[j], 0.0) / di, kHi, i);
+    if (di < -1e-12 * dmax && match_[i] != kLo) consider(std::max(y_[j] - lo_[j], 0.0) / -di, kLo, i);
   }
   if (!std::isfinite(t_best)) return false;  // no constraint blocks: an unbounded ray
-  for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * d[i];
+  for (std::size_t i = bl; i <= br; ++i) y_[col(i)] += t_best * d[i - bl];
   // S := S - {p} + {enter}; the matching changes only from the first column these act on (see edf).
   const auto span = [&](int code, std::size_t i) {
     if (code < 0) return std::make_pair(i, i);

@@ -22,6 +22,7 @@
 //     g·θ - min_{y in the window's set} g·y <= Σ_free j (d_j θ_j - min_{lo_j <= y_j <= hi_j} d_j y_j) + Σ_r λ_r (c_r - a_r·θ)
 // at the start θ, valid for any λ >= 0. Returns that bound on the start's Frank-Wolfe gap (+inf if given up).
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -74,6 +75,13 @@ class ChainSimplex {
   Eigen::Index col(std::size_t i) const { return first_ + static_cast<Eigen::Index>(i); }
   std::size_t local(Eigen::Index j) const { return static_cast<std::size_t>(j - first_); }
   bool free_col(Eigen::Index j) const { return j >= first_ && j <= last_; }
+  // Point j's rows: interval j - 1's are [t0, t1), interval j's [t1, t2) (empty beyond the window's intervals).
+  void point_rows(Eigen::Index j, std::size_t& t0, std::size_t& t1, std::size_t& t2) const {
+    const std::size_t m = row_begin_.size() - 1, u = static_cast<std::size_t>(j);
+    t0 = row_begin_[u > 0 ? u - 1 : 0];
+    t1 = row_begin_[std::min(u, m)];
+    t2 = row_begin_[std::min(u + 1, m)];
+  }
   double coef(std::size_t owner, std::size_t i) const;
   bool start_basis();
   bool match();
@@ -94,7 +102,7 @@ class ChainSimplex {
   std::vector<std::size_t> opt_begin_;
   std::vector<int> bounds_, match_;  // bounds_[i]: kHi / kLo if column i's bound is in S, else 0
   std::vector<double> own_, left_, right_;  // per column: its constraint's coefficient on it, on column i-1, i+1
-  std::vector<double> l_, d_, u_, u2_, rhs_, lambda_, dir_;
+  std::vector<double> l_, d_, u_, u2_, rhs_, lambda_;
   std::vector<double> viol_;  // start_basis: each row's row_violation at y_
   Eigen::VectorXd y_;
   int pivots_ = 0;

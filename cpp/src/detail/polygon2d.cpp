@@ -174,8 +174,7 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     return false;  // cannot happen (slopes strictly monotone); be safe
   };
   std::size_t n_upper = 0, n_lower = 0;
-  if (!envelope(up_.data(), n_up, 1.0, upper_.data(), n_upper) ||
-      !envelope(low_.data(), n_low, -1.0, lower_.data(), n_lower))
+  if (!envelope(up, n_up, 1.0, upper_.data(), n_upper) || !envelope(low, n_low, -1.0, lower_.data(), n_lower))
     return false;
   // g(x) = U(x) - L(x) is concave: evaluate it at every breakpoint to find where it is >= 0.
   auto value = [&](const Piece* pcs, std::size_t count, double x, std::size_t& hint) {
@@ -404,12 +403,16 @@ void Polygon2d::erase(std::size_t j) {
 }
 
 void Polygon2d::x_range(double& lo, double& hi) const {
+  // Two accumulators per extreme, not one chain of min/max through every vertex (a latency chain on every
+  // interval of the reachability analyses). min and max are exact: the same extremes.
   const Vertex* v = vertices_[cur_].data();
-  lo = hi = v[0].x;
+  double l[2] = {v[0].x, v[0].x}, h[2] = {v[0].x, v[0].x};
   for (std::size_t j = 1; j < m_; ++j) {
-    lo = std::min(lo, v[j].x);
-    hi = std::max(hi, v[j].x);
+    l[j & 1] = std::min(l[j & 1], v[j].x);
+    h[j & 1] = std::max(h[j & 1], v[j].x);
   }
+  lo = std::min(l[0], l[1]);
+  hi = std::max(h[0], h[1]);
 }
 
 }  // namespace pathpace::detail

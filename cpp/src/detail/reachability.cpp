@@ -200,24 +200,15 @@ void reserve_polygons(Reachability& o, Eigen::Index n, size_t per) {
   o.edges.reserve(static_cast<size_t>(n) * per);
 }
 
-// Appends interval k's polygon to the analysis's storage and sets K_k to its x-range (Polygon2d::x_range
-// with two accumulators per extreme, not one chain of min/max through every vertex: a latency chain on
-// every interval of both analyses).
+// Appends interval k's polygon to the analysis's storage and sets K_k to its x-range.
 void store_polygon(Reachability& o, Eigen::Index k, const Polygon2d& p) {
   const View<Vertex> vs = p.vertices();
   const View<Line> es = p.edges();
-  const size_t m = vs.size();
   o.start[static_cast<size_t>(k)] = o.vertices.size();
-  o.size[static_cast<size_t>(k)] = m;
+  o.size[static_cast<size_t>(k)] = vs.size();
   o.vertices.insert(o.vertices.end(), vs.begin(), vs.end());
   o.edges.insert(o.edges.end(), es.begin(), es.end());
-  double lo[2] = {vs[0].x, vs[0].x}, hi[2] = {vs[0].x, vs[0].x};
-  for (size_t j = 1; j < m; ++j) {
-    lo[j & 1] = std::min(lo[j & 1], vs[j].x);
-    hi[j & 1] = std::max(hi[j & 1], vs[j].x);
-  }
-  o.k_lo[k] = std::min(lo[0], lo[1]);
-  o.k_hi[k] = std::max(hi[0], hi[1]);
+  p.x_range(o.k_lo[k], o.k_hi[k]);
 }
 
 void push_unique(std::vector<int>& v, int id) {

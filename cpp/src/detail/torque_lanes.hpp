@@ -24,6 +24,9 @@ struct TorqueOutput {
   const double* lower = nullptr;
 };
 
+/// Throws InvalidInput unless q, dq and ddq all have shape (samples, n).
+void check_sample_shapes(Eigen::Index n, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq);
+
 /// path_torque_coefficients_batch into caller-laid-out arrays (TorqueLimits writes its rows directly),
 /// with `lanes` samples per sweep: 0 = the widest the CPU runs, 1 = one sample at a time, else a power of
 /// 2 up to torque_lanes_supported() (InvalidInput beyond). A robot with mimic joints takes the widest.

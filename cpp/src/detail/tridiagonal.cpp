@@ -24,8 +24,7 @@ bool solve_tridiagonal(const std::vector<double>& l, std::vector<double>& d, std
       // the sign of a zero), but with the division on the dependency chain into d_{j+1}.
       if (D[j] == 0.0) return false;
       D[j] = 1.0 / D[j];
-    } else if (std::abs(D[j]) >= std::abs(L[j + 1])) {
-      if (D[j] == 0.0) return false;
+    } else if (std::abs(D[j]) >= std::abs(L[j + 1])) {  // |d_j| >= |l_{j+1}| > 0 (NaN: the swap below)
       const double inv = 1.0 / D[j];
       const double f = L[j + 1] * inv;
       D[j] = inv;

@@ -87,9 +87,6 @@ class ContactConstraint : public Constraint {
 
   /// True if s lies in [active_begin, active_end] (to 1e-12 relative): the rows hold there.
   bool active_at(double s) const;
-  /// True if s is active_begin (to 1e-12 relative, as active_at): a phase's first point, where its no-impact
-  /// row ṡ² <= 0 holds (options().rest_at_begin).
-  bool at_active_begin(double s) const;
 
   /// Velocities of the contact points per unit of s along the path, at every sample: normal(k, i) =
   /// n_i · c_i'(s_k) (c_i' = J_i p'(s_k), the world normal; relative to other_link for a robot–robot
@@ -130,6 +127,9 @@ class ContactConstraint : public Constraint {
   const ContactOptions& options() const { return options_; }
 
  private:
+  // True if s is active_begin (to active_at's tolerance): a phase's first point, where its no-impact row
+  // ṡ² <= 0 holds (options().rest_at_begin; evaluate writes it, check_point imposes it).
+  bool at_active_begin(double s) const;
   std::shared_ptr<const RobotModel> robot_;
   std::vector<Contact> contacts_;
   // Fills J (3·m x nq: the stacked J_i) and the cone generators in world coordinates (3 x m·k) at q.
