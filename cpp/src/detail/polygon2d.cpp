@@ -402,17 +402,4 @@ void Polygon2d::erase(std::size_t j) {
   --m_;
 }
 
-void Polygon2d::x_range(double& lo, double& hi) const {
-  // Two accumulators per extreme, not one chain of min/max through every vertex (a latency chain on every
-  // interval of the reachability analyses). min and max are exact: the same extremes.
-  const Vertex* v = vertices_[cur_].data();
-  double l[2] = {v[0].x, v[0].x}, h[2] = {v[0].x, v[0].x};
-  for (std::size_t j = 1; j < m_; ++j) {
-    l[j & 1] = std::min(l[j & 1], v[j].x);
-    h[j & 1] = std::max(h[j & 1], v[j].x);
-  }
-  lo = std::min(l[0], l[1]);
-  hi = std::max(h[0], h[1]);
-}
-
 }  // namespace pathpace::detail

@@ -124,9 +124,19 @@ class Polygon2d {
   /// vertices()[j] is the end of edges()[j] (= edges()[j] ∩ edges()[j+1]), counter-clockwise.
   View<Vertex> vertices() const { return {vertices_[cur_].data(), m_}; }
 
-  /// The polygon's extent in x: the smallest and largest x of its vertices (kept by build() and reset(),
-  /// which compute every vertex anyway; one pass over the vertices after a clip()).
-  void x_range(double& lo, double& hi) const;
+  /// The polygon's extent in x: the smallest and largest x of its vertices (one pass over them).
+  void x_range(double& lo, double& hi) const {
+    // Inline (once per interval of each reachability analysis). Two accumulators per extreme, not one chain of
+    // min/max through every vertex (a latency chain); min and max are exact: the same extremes.
+    const Vertex* v = vertices_[cur_].data();
+    double l[2] = {v[0].x, v[0].x}, h[2] = {v[0].x, v[0].x};
+    for (std::size_t j = 1; j < m_; ++j) {
+      l[j & 1] = std::min(l[j & 1], v[j].x);
+      h[j & 1] = std::max(h[j & 1], v[j].x);
+    }
+    lo = std::min(l[0], l[1]);
+    hi = std::max(h[0], h[1]);
+  }
 
   /// After empty(): the line that emptied the polygon and the two edges meeting at the vertex that
   /// violated it least. Those three half-planes alone are infeasible (a 2-D Helly certificate).
