@@ -46,19 +46,28 @@ Chain random_chain(std::mt19937& rng, int m, int joints) {
   return ch;
 }
 
-// The window LP's column bounds: the chain's, with both ends fixed at theta's values (as slp_window fixes them).
-void window_bounds(const Chain& ch, const Eigen::VectorXd& theta, Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
-  const Eigen::Index m = ch.intervals();
-  lo = ch.x_lo;
-  hi = ch.x_hi;
-  lo[0] = hi[0] = theta[0];
-  lo[m] = hi[m] = theta[m];
-}
+// A window of the sizes the corpus's windows have (30-150 intervals, 2-4 joints), its reachability analysis
+// from rest to rest (the greedy profile reach.theta is a vertex of the window's LP) and the LP's column bounds:
+// the chain's, with both ends fixed at the greedy profile's values (as slp_window fixes them). The caller
+// asserts that the analysis is feasible.
+struct GreedyWindow {
+  Chain ch;
+  Reachability reach;
+  Eigen::VectorXd lo, hi;
+  int m() const { return static_cast<int>(ch.intervals()); }
+};
 
-// A window of the sizes the corpus's windows have: 30-150 intervals, 2-4 joints.
-Chain random_window(std::mt19937& rng) {
+GreedyWindow greedy_window(std::mt19937& rng) {
   const int m = 30 + static_cast<int>(rng() % 121), joints = 2 + static_cast<int>(rng() % 3);
-  return random_chain(rng, m, joints);
+  GreedyWindow w{random_chain(rng, m, joints), {}, {}, {}};
+  w.reach = reachability(w.ch, 0.0, 0.0);
+  w.lo = w.ch.x_lo;
+  w.hi = w.ch.x_hi;
+  if (w.reach.outcome == Reachability::Outcome::Feasible) {
+    w.lo[0] = w.hi[0] = w.reach.theta[0];
+    w.lo[m] = w.hi[m] = w.reach.theta[m];
+  }
+  return w;
 }
 
 // min g·y over the chain's rows and lo <= y <= hi with y_0, y_m fixed at theta's values, by GLPK.
@@ -131,19 +140,17 @@ TEST(ChainSimplex, MatchesGlpkFromTheGreedyVertex) {
   std::uniform_real_distribution<double> G(-1.0, -0.05);
   int solved = 0, trials = 0, pivots = 0, warm = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const Chain ch = random_window(rng);
-    const int m = static_cast<int>(ch.intervals());
-    const Reachability reach = reachability(ch, 0.0, 0.0);
-    ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
-    const Eigen::VectorXd& theta = reach.theta;
+    const GreedyWindow w = greedy_window(rng);
+    ASSERT_EQ(w.reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
+    const Chain& ch = w.ch;
+    const Eigen::VectorXd &theta = w.reach.theta, &lo = w.lo, &hi = w.hi;
+    const int m = w.m();
     Eigen::VectorXd g(m + 1);
     if (trial % 2 == 0) {
       for (int j = 0; j <= m; ++j) g[j] = G(rng);
     } else {
       g = grad_T(ch, theta);
     }
-    Eigen::VectorXd lo, hi;
-    window_bounds(ch, theta, lo, hi);
     ++trials;
     ChainSimplex cs(ch, 0, m, lo, hi, 1, m - 1);
     const double gap = cs.gap(theta, g, 1000);
@@ -182,13 +189,11 @@ TEST(ChainSimplex, WarmFromTheLastVertexBoundsTheGapAtAnIterateShortOfIt) {
   std::uniform_real_distribution<double> A(0.05, 0.95), G(-1.0, -0.05);
   int trials = 0, solved = 0, moved = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const Chain ch = random_window(rng);
-    const int m = static_cast<int>(ch.intervals());
-    const Reachability reach = reachability(ch, 0.0, 0.0);
-    ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
-    const Eigen::VectorXd& theta = reach.theta;
-    Eigen::VectorXd lo, hi;
-    window_bounds(ch, theta, lo, hi);
+    const GreedyWindow w = greedy_window(rng);
+    ASSERT_EQ(w.reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
+    const Chain& ch = w.ch;
+    const Eigen::VectorXd &theta = w.reach.theta, &lo = w.lo, &hi = w.hi;
+    const int m = w.m();
     ChainSimplex cs(ch, 0, m, lo, hi, 1, m - 1);
     Eigen::VectorXd g0(m + 1);
     for (int j = 0; j <= m; ++j) g0[j] = G(rng);
@@ -218,11 +223,11 @@ TEST(ForwardPass, ReusingTheGreedyProfileChangesNothing) {
   std::uniform_real_distribution<double> F(0.8, 1.2);
   int reused = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const Chain ch = random_window(rng);
-    const int m = static_cast<int>(ch.intervals());
-    Reachability reach = reachability(ch, 0.0, 0.0);
+    GreedyWindow w = greedy_window(rng);
+    Reachability& reach = w.reach;
     ASSERT_EQ(reach.outcome, Reachability::Outcome::Feasible) << "trial " << trial;
     ASSERT_TRUE(reach.theta_is_greedy);
+    const int m = w.m();
     // The greedy profile itself on a stretch, above it (no cap) and below it (a cap that binds) elsewhere.
     Eigen::VectorXd caps = reach.theta;
     for (int k = 0; k <= m; ++k)
