@@ -93,9 +93,7 @@ class Arm:
 
 
 def waypoints(arm, seed):
-    rng = np.random.default_rng(seed)
-    k = int(rng.integers(5, 9))
-    return arm.lo + (arm.hi - arm.lo) * rng.uniform(0.1, 0.9, (k, len(arm.v)))
+    return helpers.random_waypoints(arm.lo, arm.hi, np.random.default_rng(seed))
 
 
 def make(arm, wp, N, scale, **solve_options):

@@ -29,6 +29,12 @@ def two_joint_problem(N=200, vmin=(-1, -1), vmax=(1, 1), **path_kw):
     return kinematic_problem(path, N, list(vmin), list(vmax), [-2, -2], [2, 2])
 
 
+def random_waypoints(lo, hi, rng):
+    """5-8 waypoints (their number drawn first) uniform in 10-90 % of each joint's range [lo, hi]: the paths of
+    bench/sweep.py's corpus (which imports it from here) and of test_optimality_corpus.py."""
+    return lo + (hi - lo) * rng.uniform(0.1, 0.9, (int(rng.integers(5, 9)), len(lo)))
+
+
 def random_walk(lo, hi, rng, K):
     """K waypoints of a random walk inside 10-90 % of each joint's range [lo, hi] (the position limits): from
     the middle, steps of 0.2 rad (normal, per joint) reflected at the bounds. The long paths of

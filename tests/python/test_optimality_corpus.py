@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pathpace as pp
-from helpers import kinematic_problem, random_walk
+from helpers import kinematic_problem, random_walk, random_waypoints
 from oracles import (arm_rows, cvxpy_optimum, duration, frank_wolfe_gap, max_violation, pinocchio_model,
                      shrink_to_feasible)
 from pathpace.robots import example_robot_urdf
@@ -58,8 +58,7 @@ def solved_case(i):
     ours, theirs = arm(name)
     lo, hi = ours.position_limits
     v = ours.velocity_limits
-    waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (int(rng.integers(5, 9)), len(v)))
-    path = pp.CubicSplinePath(waypoints, knots="uniform", boundary="not-a-knot")
+    path = pp.CubicSplinePath(random_waypoints(lo, hi, rng), knots="uniform", boundary="not-a-knot")
     prob = kinematic_problem(path, N, -v, v, -2 * v, 2 * v)
     scale = None
     res = None if with_torque else prob.solve()
@@ -113,9 +112,8 @@ def test_window_with_an_interior_optimum():
     ours, theirs = arm("xarm7")
     lo, hi = ours.position_limits
     v = ours.velocity_limits
-    rng = np.random.default_rng(3)
-    waypoints = lo + (hi - lo) * rng.uniform(0.1, 0.9, (int(rng.integers(5, 9)), len(v)))
-    path = pp.CubicSplinePath(waypoints, knots="uniform", boundary="not-a-knot", s_begin=0.0, s_end=1.0)
+    path = pp.CubicSplinePath(random_waypoints(lo, hi, np.random.default_rng(3)), knots="uniform",
+                              boundary="not-a-knot", s_begin=0.0, s_end=1.0)
     grid = np.linspace(0.0, 1.0, 1001)
     prob = kinematic_problem(path, grid, -v, v, -2 * v, 2 * v)
     prob.add_torque_limits(ours, scale=0.6)
