@@ -49,7 +49,7 @@ import pathpace as pp  # noqa: E402
 from pathpace.robots import example_robot_urdf  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
-import helpers  # noqa: E402  (the random walk, shared with test_optimality_corpus.py)
+import helpers  # noqa: E402  (the corpus's waypoints and the random walk, shared with test_optimality_corpus.py)
 
 logging.disable(logging.CRITICAL)  # toppra logs at INFO/DEBUG
 

@@ -850,9 +850,6 @@ PATHPACE_LANE_INLINE void sincos_lanes(const V& x, V& s, V& c) {
   c = cos_sign * (cp * even + sp * odd);
 }
 
-// path_torque_coefficients_batch without mimic joints, W = sizeof(V) / 8 samples per sweep. q, dq, ddq
-// are column-major (samples, bodies) with leading dimension `count`; a last group of fewer than W
-// samples fills its spare lanes with its last sample and stores only its own.
 // A constraint's row pair of eq. (15) at out's index `at` (see TorqueOutput): (a, b, τ_U - c) and (-a, -b, c - τ_L),
 // with limit_or_inf's bounds (no limit: +inf - c and c + inf, an inactive row).
 inline void store_row_pair(const detail::TorqueOutput& out, Eigen::Index at, double up, double lo, double a, double b,
@@ -871,6 +868,9 @@ inline std::pair<double, double> limit_or_inf(const detail::TorqueOutput& out, s
   return {std::isfinite(out.upper[j]) ? out.upper[j] : inf, std::isfinite(out.lower[j]) ? out.lower[j] : -inf};
 }
 
+// path_torque_coefficients_batch without mimic joints, W = sizeof(V) / 8 samples per sweep. q, dq, ddq
+// are column-major (samples, bodies) with leading dimension `count`; a last group of fewer than W
+// samples fills its spare lanes with its last sample and stores only its own.
 template <typename V>
 PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>& bodies, const Eigen::Vector3d& gravity,
                                             RobotWorkspace& ws, Eigen::Index count, const double* q, const double* dq,
@@ -885,6 +885,7 @@ PATHPACE_LANE_INLINE void path_torque_lanes(const std::vector<RobotModel::Body>&
   std::vector<int> unit(nb);
   for (size_t i = 0; i < nb; ++i) {
     unit[i] = unit_axis(bodies[i]);
+    if (unit[i] < 0) continue;
     const double* col = q + static_cast<Eigen::Index>(i) * count;
     bool in_range = true;
     for (Eigen::Index s = 0; s < count; ++s) in_range &= std::abs(col[s]) <= 1e5;  // false for NaN
@@ -1032,10 +1033,14 @@ void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, 
     }
   };
   if (robot.mimic_joints().empty()) {
-    Eigen::VectorXd as(n), bs(n), cs(n);
+    // The samples' rows copied into vectors held across the loop (a row of a column-major matrix is not
+    // contiguous: passed as it is, each would be copied into a new vector per sample).
+    Eigen::VectorXd as(n), bs(n), cs(n), qs(n), dqs(n), ddqs(n);
     for (Eigen::Index s = 0; s < count; ++s) {
-      robot.path_torque_coefficients(ws, q.row(s).transpose(), dq.row(s).transpose(), ddq.row(s).transpose(), as, bs,
-                                     cs);
+      qs = q.row(s).transpose();
+      dqs = dq.row(s).transpose();
+      ddqs = ddq.row(s).transpose();
+      robot.path_torque_coefficients(ws, qs, dqs, ddqs, as, bs, cs);
       store(s, as, bs, cs);
     }
   } else {
@@ -1048,13 +1053,11 @@ void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, 
 void path_torque_coefficients_lanes(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
                                     const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a,
                                     Eigen::MatrixXd& b, Eigen::MatrixXd& c, int lanes) {
-  const Eigen::Index count = q.rows();
-  if (q.cols() == robot.nq()) {  // else path_torque_coefficients_into says what is wrong
-    a.resize(count, robot.nq());
-    b.resize(count, robot.nq());
-    c.resize(count, robot.nq());
-  }
-  path_torque_coefficients_into(robot, ws, q, dq, ddq, TorqueOutput{a.data(), b.data(), c.data(), 1, count}, lanes);
+  check_sample_shapes(robot.nq(), q, dq, ddq);
+  a.resize(q.rows(), robot.nq());
+  b.resize(q.rows(), robot.nq());
+  c.resize(q.rows(), robot.nq());
+  path_torque_coefficients_into(robot, ws, q, dq, ddq, TorqueOutput{a.data(), b.data(), c.data(), 1, q.rows()}, lanes);
 }
 
 }  // namespace detail

@@ -128,8 +128,7 @@ Eigen::VectorXi Trajectory::contact_phase(const Eigen::Ref<const Eigen::VectorXd
 }
 
 Eigen::VectorXi Trajectory::phase_of_s(const Eigen::VectorXd& s) const {
-  Eigen::VectorXi out = Eigen::VectorXi::Constant(s.size(), -1);
-  if (contact_phases_.empty()) return out;
+  Eigen::VectorXi out = Eigen::VectorXi::Constant(s.size(), -1);  // callers have phases (front() below)
   for (Eigen::Index i = 0; i < s.size(); ++i) {
     // The last phase that holds s: the later one at a switch (both hold there).
     for (size_t p = contact_phases_.size(); p-- > 0;)

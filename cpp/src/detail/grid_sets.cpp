@@ -93,8 +93,7 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
       if (m > 1e-100 && m < 1e100) {
         assign_line(l, a, b, c, id);
       } else {
-        const Line n = power_of_two_normalised({a, b, c, id});
-        assign_line(l, n.a, n.b, n.c, n.id);
+        l = power_of_two_normalised({a, b, c, id});  // rare: no store-forwarding concern
       }
     }
     offset += static_cast<int>(r);

@@ -274,7 +274,7 @@ bool Polygon2d::independent(const Line& l1, const Line& l2) {
 
 bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {
   if (!independent(l1, l2)) return false;
-  const double det = l1.a * l2.b - l2.a * l1.b;
+  const double det = l1.a * l2.b - l2.a * l1.b;  // independent()'s (the compiler computes it once)
   const double inv = 1.0 / det;  // one division for both coordinates (within an ulp of dividing twice)
   v.x = (l1.c * l2.b - l2.c * l1.b) * inv;
   v.y = (l1.a * l2.c - l2.a * l1.c) * inv;

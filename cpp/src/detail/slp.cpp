@@ -290,7 +290,6 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
   }
 
   std::vector<double> cost(static_cast<size_t>(cols)), x;
-  double T = out.T;
   double rho = options.initial_trust_region * theta_max;
   bool global = true;  // next LP without trust region (Frank-Wolfe)
 
@@ -391,7 +390,7 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       return out;
     }
     double predicted = -g.dot(d);
-    if (!global && (predicted <= rel_target * T || rho <= 1e-13 * theta_max)) {
+    if (!global && (predicted <= rel_target * out.T || rho <= 1e-13 * theta_max)) {
       // The trust-region step promises nothing more: check optimality over the whole window.
       st = solve_lp(std::numeric_limits<double>::infinity());
       if (st != SlpOutcome::Status::Converged) {
@@ -407,8 +406,8 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
       double g_theta = 0.0;
       for (Eigen::Index j = first; j <= last; ++j) g_theta += g[j] * theta[j];
       out.gap = std::max({g_theta - lp.lagrangian_bound(cost), predicted, 0.0});
-      out.lower = std::max(out.lower, T - out.gap);
-      if (out.gap <= rel_target * T) {
+      out.lower = std::max(out.lower, out.T - out.gap);
+      if (out.gap <= rel_target * out.T) {
         out.status = SlpOutcome::Status::Converged;
         return out;
       }
@@ -418,16 +417,15 @@ WindowResult slp_window(const Chain& chain, Eigen::Index a, Eigen::Index b, cons
     Eigen::VectorXd next = theta + alpha * d;
     for (Eigen::Index j = 0; j <= m; ++j) next[j] = std::clamp(next[j], lo[j], hi[j]);
     const double T_next = duration(ds, next);
-    if (T_next < T) {
+    if (T_next < out.T) {
       theta = next;
-      T = T_next;
       out.theta = theta;
-      out.T = T;
+      out.T = T_next;
       // The bound of an earlier check still holds: if the step has brought T within the target of it, the
       // new iterate is certified without another LP (a small Frank-Wolfe step realises nearly all of the
       // decrease the LP predicted, so this is the common end).
-      out.gap = T - out.lower;
-      if (out.gap <= rel_target * T) {
+      out.gap = out.T - out.lower;
+      if (out.gap <= rel_target * out.T) {
         out.status = SlpOutcome::Status::Converged;
         ++out.iterations;
         return out;
@@ -450,7 +448,7 @@ struct Window {
   Eigen::Index a, b;
   bool solved = false;
   WindowResult result;
-  double t_upper = 0.0;  // T(upper) on the window, set when it is solved
+  double t_upper = 0.0;  // T(upper) on the window (set with the cover, again when it is widened or merged)
 };
 
 // Sorts by start and merges windows that overlap or touch (a shared point would need one value from two
@@ -539,7 +537,6 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
       if (w.solved) continue;
       w.result = slp_window(chain, w.a, w.b, upper, full.theta, w.a == 0, w.b == n, rel_target, options, deadline, lp,
                             use_barrier);
-      if (out.widenings > 0) w.t_upper = window_upper(w);  // widened or merged since the first cover
       out.newton_steps += w.result.newton_steps;
       w.solved = true;
       out.iterations += w.result.iterations;
@@ -566,7 +563,7 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
     // by its largest relative excess meets those rows with room, and its repair follows it.
     if (out.T - T_z > 0.1 * options.tolerance * T_z) {
       const double eps = shrink_to_rows(chain, z);
-      if (eps > 0.0 && eps < 1e-6) {
+      if (!std::isnan(eps) && eps < 1e-6) {
         const Eigen::VectorXd shrunk = z * (1.0 - eps);
         Eigen::VectorXd alt = forward_pass(full, theta_begin, &shrunk);
         const double T_alt = duration(chain.ds, alt);
@@ -592,6 +589,8 @@ SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eige
     if (!widened) break;
     ++out.widenings;
     merge(ws);
+    for (Window& w : ws)
+      if (!w.solved) w.t_upper = window_upper(w);  // widened or merged: its part of T(upper) anew
   }
   out.windows = static_cast<int>(ws.size());
   for (const Window& w : ws) out.window_points += w.b - w.a + 1;
