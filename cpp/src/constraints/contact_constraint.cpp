@@ -10,8 +10,6 @@
 #include <Eigen/SVD>
 
 #include "detail/gather_rows.hpp"
-#include "detail/glpk_guard.hpp"
-#include "detail/glpk_util.hpp"
 #include "detail/projection.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/errors.hpp"
@@ -238,7 +236,8 @@ double ContactConstraint::max_drift(const PathSamples& samples, int* which) cons
   return worst;
 }
 
-void ContactConstraint::lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp) const {
+void ContactConstraint::lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp,
+                                     bool every_point_row) const {
   const int n = robot_->nq(), m = static_cast<int>(use.size()), k = options_.cone_edges;
   const double inf = std::numeric_limits<double>::infinity();
   // Rows: n torque rows, a per-point minimum per contact, a per-link minimum per link, `extra` more.
@@ -250,7 +249,7 @@ void ContactConstraint::lp_structure(const std::vector<int>& use, int extra, det
     link_of[static_cast<size_t>(i)] = static_cast<int>(it - links.begin());
     if (it == links.end()) links.push_back(l);
   }
-  const int point_rows = options_.min_normal_force > 0.0 ? m : 0;
+  const int point_rows = options_.min_normal_force > 0.0 || every_point_row ? m : 0;
   const int link_rows = options_.min_link_normal_force > 0.0 ? static_cast<int>(links.size()) : 0;
   const int cols = 2 + m * k, rows = n + point_rows + link_rows + extra;
   lp.A.setZero(rows, cols);
@@ -516,6 +515,30 @@ ContactConstraint::PointCheck ContactConstraint::check_point(const PathSamples& 
   return out;
 }
 
+namespace {
+
+// The force-distribution LP (ContactForces' margin) from a projection polytope of lp_structure's layout
+// at x = u = 0: columns x, u, then the cone weights λ; the first `torque_rows` rows are the torque rows,
+// the rest minimum normal force rows Σ λ >= f_min (per point, per link). With λ = μ + δ 1 and μ >= 0,
+// δ <= cap, maximising δ makes δ the smallest of every λ_ie and of every minimum row's excess: a minimum
+// row becomes Σ λ - δ >= f_min (coefficient of δ: its weights' count minus one), a torque row keeps
+// Σ λ (its coefficients' sum times δ). Columns: μ, then δ.
+void margin_lp(const detail::PolytopeLp& polytope, int torque_rows, double cap, detail::PolytopeLp& lp) {
+  const Eigen::Index rows = polytope.A.rows(), w = polytope.A.cols() - 2;
+  lp.A.resize(rows, w + 1);
+  lp.A.leftCols(w) = polytope.A.rightCols(w);
+  lp.A.col(w) = polytope.A.rightCols(w).rowwise().sum();
+  lp.A.col(w).tail(rows - torque_rows).array() -= 1.0;
+  lp.row_lo = polytope.row_lo;
+  lp.row_hi = polytope.row_hi;
+  lp.col_lo = Eigen::VectorXd::Zero(w + 1);
+  lp.col_hi = Eigen::VectorXd::Constant(w + 1, std::numeric_limits<double>::infinity());
+  lp.col_lo[w] = -std::numeric_limits<double>::infinity();
+  lp.col_hi[w] = cap;
+}
+
+}  // namespace
+
 std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
                                                                  const Eigen::MatrixXd& qdd) const {
   const int n = robot_->nq(), m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
@@ -530,83 +553,50 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
   }
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   std::vector<ContactForces> out(static_cast<size_t>(q.rows()));
-  // Columns: μ_ie >= 0 (λ_ie = μ_ie + δ), then δ <= cap (free below). Rows: the n torque rows
-  //   τ_L - τ_id <= -Σ_i J_iᵀ G_i (μ_i + δ 1) <= τ_U - τ_id
-  // and per contact n·f_i - f_min >= δ, i.e. Σ_e μ_ie + (k - 1) δ >= f_min. Maximise δ.
-  const int cols = m * k + 1, rows = n + m;
+  // The projection's polytope (lp_structure, lp_point: the same torque rows, cones and minimum normal
+  // force rows, per point and per link) at x = u = 0 with c = τ_id, as the margin LP of margin_lp.
+  std::vector<int> all(static_cast<size_t>(m));
+  for (int i = 0; i < m; ++i) all[static_cast<size_t>(i)] = i;
+  detail::PolytopeLp polytope, lp;
+  lp_structure(all, 0, polytope, true);
   RobotWorkspace ws(*robot_);
   std::vector<Eigen::Isometry3d> T;
-  Eigen::MatrixXd J, A(rows, cols);
+  Eigen::MatrixXd J;
   Eigen::Matrix3Xd gen;
-  Eigen::VectorXd tau(n);
-  std::vector<int> ia, ja;
-  std::vector<double> ar;
-  glp_term_out(GLP_OFF);
-  detail::GlpkHookState state;
-  glp_prob* lp = nullptr;
-  glp_error_hook(detail::pathpace_glpk_error_hook, &state);
-  if (setjmp(state.env)) {
-    glp_error_hook(nullptr, nullptr);
-    glp_free_env();
-    throw Error("force distribution: the LP solver failed (GLPK error)");
-  }
-  lp = glp_create_prob();
-  glp_set_obj_dir(lp, GLP_MAX);
-  glp_add_rows(lp, rows);
-  glp_add_cols(lp, cols);
-  for (int j = 0; j < m * k; ++j) detail::glpk_set_bounds(lp, false, j + 1, 0.0, inf);
-  detail::glpk_set_bounds(lp, false, cols, -inf, options_.cap);
-  glp_set_obj_coef(lp, cols, 1.0);
-  for (int i = 0; i < m; ++i) detail::glpk_set_bounds(lp, true, n + i + 1, options_.min_normal_force, inf);
-  glp_smcp parm;
-  glp_init_smcp(&parm);
-  parm.msg_lev = GLP_MSG_OFF;
-  parm.it_lim = 100 * (rows + cols) + 1000;
-  bool first = true;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd tau(n), z;
+  Eigen::VectorXd objective = Eigen::VectorXd::Zero(m * k + 1);
+  objective[m * k] = 1.0;  // maximise δ
+  detail::PolytopeProjector solver;  // one GLPK problem, warm-started from sample to sample
   for (Eigen::Index s = 0; s < q.rows(); ++s) {
     const Eigen::VectorXd qs = q.row(s).transpose();
     robot_->inverse_dynamics(ws, qs, qd.row(s).transpose(), qdd.row(s).transpose(), true, tau);
-    contact_jacobians(qs, T, J, gen);
-    A.setZero();
-    for (int i = 0; i < m; ++i) {
-      A.block(0, i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
-      A.col(cols - 1).head(n) += A.block(0, i * k, n, k).rowwise().sum();
-      A.block(n + i, i * k, 1, k).setOnes();
-      A(n + i, cols - 1) = k - 1;
-    }
-    detail::glpk_load_dense(lp, A, ia, ja, ar);
-    for (int j = 0; j < n; ++j) detail::glpk_set_bounds(lp, true, j + 1, tau_min_[j] - tau[j], tau_max_[j] - tau[j]);
-    if (first) glp_adv_basis(lp, 0);
-    first = false;
-    const int st = detail::glpk_solve_robust(lp, parm);
-    if (st < 0) {
-      glp_delete_prob(lp);
-      glp_error_hook(nullptr, nullptr);
-      throw Error("force distribution: the LP solver did not finish at sample " + std::to_string(s));
-    }
+    lp_point(all, qs, zero, zero, tau, polytope);
+    margin_lp(polytope, n, options_.cap, lp);
+    const int st = solver.maximize(lp, objective, z);
+    if (st == -2) throw Error("force distribution: the LP solver failed (GLPK error) at sample " + std::to_string(s));
+    if (st < 0) throw Error("force distribution: the LP solver did not finish at sample " + std::to_string(s));
     ContactForces& f = out[static_cast<size_t>(s)];
     f.forces.resize(m, 3);
-    if (st != GLP_OPT) {
+    if (st == 0) {
       f.feasible = false;
       f.margin = -inf;
       f.forces.setConstant(nan);
       f.torques = Eigen::VectorXd::Constant(n, nan);
       continue;
     }
-    const double delta = glp_get_col_prim(lp, cols);
+    contact_jacobians(qs, T, J, gen);
+    const double delta = z[m * k];
     f.feasible = true;
     f.margin = delta;
     f.torques = tau;
     for (int i = 0; i < m; ++i) {
-      Eigen::VectorXd lambda(k);
-      for (int e = 0; e < k; ++e) lambda[e] = glp_get_col_prim(lp, i * k + e + 1) + delta;
+      const Eigen::VectorXd lambda = z.segment(i * k, k).array() + delta;
       const Eigen::Vector3d fi = gen.middleCols(i * k, k) * lambda;
       f.forces.row(i) = fi.transpose();
       f.torques.noalias() -= J.middleRows(3 * i, 3).transpose() * fi;
     }
   }
-  glp_delete_prob(lp);
-  glp_error_hook(nullptr, nullptr);
   return out;
 }
 

@@ -2,12 +2,14 @@
 // A thin RAII owner of a GLPK problem for the SLP (never installed: no GLPK type leaves cpp/src).
 //
 // GLPK aborts the whole process on misuse (glp_error). Inputs are validated before they get here, and
-// every call that can reach glp_error runs under an error hook that longjmps back, so a GLPK failure
-// becomes a status, not an abort.
+// every GLPK call runs in guarded() (glpk_guard.hpp), so a GLPK failure becomes a status, not an abort.
+// The class keeps its own copy of the problem (matrix, bounds, objective) and applies the changes in
+// solve(), in one guarded call: so that a GLPK error elsewhere in the thread, which frees this problem
+// too, costs only the basis (the next solve() rebuilds the problem from the copy, from the slack basis).
 
 #include <vector>
 
-struct glp_prob;
+#include "detail/glpk_guard.hpp"
 
 namespace pathpace::detail {
 
@@ -47,6 +49,7 @@ class GlpkLp {
   /// objective keeps the basis valid). `tol_bnd` is GLPK's primal feasibility tolerance; `time_limit_ms`
   /// (< 0: none) ends it with Outcome::TimeLimit.
   Outcome solve(double tol_bnd, int time_limit_ms = -1);
+  /// The last successful solve's column values.
   void column_values(std::vector<double>& x) const;
   /// A lower bound on the LP's optimum that does not trust the solver's optimality tolerances: with the
   /// row multipliers λ = max(0, -dual) of the last solve, min over the column bounds of
@@ -56,11 +59,25 @@ class GlpkLp {
   int simplex_iterations() const { return iterations_; }
 
  private:
-  glp_prob* lp_ = nullptr;
+  bool rebuild();           // the GLPK problem from the copy (after load(), or after a GLPK error freed it)
+  void prepare_changes();   // the pending changes as plain arrays for solve()'s guarded call
+  GlpkProblem lp_;
   int cols_ = 0;
+  bool loaded_ = false;
   bool basis_ready_ = false;
-  std::vector<int> ia_, ja_;
-  std::vector<double> ar_, row_ub_;
+  // The copy: 1-based triplets in row order (row r's entries from row_begin_[r]), row upper bounds
+  // (+inf: free), column bounds, objective.
+  std::vector<int> ia_, ja_, row_begin_;
+  std::vector<double> ar_, row_ub_, col_lo_, col_hi_, obj_;
+  // Changes since the last solve: rows [glpk_rows_, rows) not yet in GLPK (appended basic), rows whose
+  // bound changed, whether the column bounds / objective changed, a basis to install.
+  int glpk_rows_ = 0;
+  std::vector<int> dirty_rows_;
+  bool cols_dirty_ = false, obj_dirty_ = false, basis_pending_ = false;
+  std::vector<Stat> basis_rows_, basis_cols_;
+  // Scratch and results of solve() (plain arrays for the guarded call).
+  std::vector<int> col_type_, row_code_, col_code_;
+  std::vector<double> x_, row_dual_, activity_;
   int iterations_ = 0;
 };
 

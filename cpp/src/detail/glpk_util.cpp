@@ -10,8 +10,7 @@ void glpk_set_bounds(glp_prob* lp, bool row, int i, double lo, double hi) {
   (row ? glp_set_row_bnds : glp_set_col_bnds)(lp, i, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
 }
 
-void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja,
-                     std::vector<double>& ar) {
+void dense_triplets(const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja, std::vector<double>& ar) {
   ia.assign(1, 0);  // GLPK's arrays are 1-based
   ja.assign(1, 0);
   ar.assign(1, 0.0);
@@ -22,6 +21,9 @@ void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& i
         ja.push_back(static_cast<int>(j) + 1);
         ar.push_back(A(i, j));
       }
+}
+
+void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vector<int>& ja, const std::vector<double>& ar) {
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // GLPK steps shared by the polytope projection and the force-distribution LP (never installed).
-// Callers install the error hook of glpk_guard.hpp around these calls.
+// The glpk_ functions call GLPK: run them inside guarded() (glpk_guard.hpp).
 
 #include <vector>
 
@@ -13,9 +13,11 @@ namespace pathpace::detail {
 /// an equality.
 void glpk_set_bounds(glp_prob* lp, bool row, int i, double lo, double hi);
 
-/// Loads the nonzeros of a dense matrix (ia, ja, ar: scratch, reused across calls).
-void glpk_load_dense(glp_prob* lp, const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja,
-                     std::vector<double>& ar);
+/// The nonzeros of a dense matrix as GLPK's 1-based triplets (entry 0 unused), for glp_load_matrix
+/// (called before the guarded call: it fills containers).
+void dense_triplets(const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja, std::vector<double>& ar);
+/// glp_load_matrix of such triplets.
+void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vector<int>& ja, const std::vector<double>& ar);
 
 /// The simplex from the current basis (a warm start); if it stalls or fails, again from the slack basis;
 /// if that still does not end optimal, in exact rational arithmetic, which also confirms an

@@ -1,6 +1,5 @@
 #include "detail/projection.hpp"
 
-#include "detail/glpk_guard.hpp"
 #include "detail/glpk_util.hpp"
 
 #include <algorithm>
@@ -61,41 +60,41 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
   return p.project(in, relative_tolerance, max_lps);
 }
 
-PolytopeProjector::~PolytopeProjector() { release(); }
+PolytopeProjector::~PolytopeProjector() = default;
 
-void PolytopeProjector::release() {
-  if (lp_) glp_delete_prob(lp_);
-  lp_ = nullptr;
-  rows_ = cols_ = -1;
-}
-
-// Loads the problem (same shape: the previous basis is kept as the warm start). Returns whether it was
-// warm. Must run under the GLPK error hook.
-bool PolytopeProjector::load(const PolytopeLp& in) {
+int PolytopeProjector::load(const PolytopeLp& in) {
   const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
-  const bool warm = lp_ && rows == rows_ && cols == cols_;
+  // A problem freed by a GLPK error (get() == nullptr) is created again, cold.
+  const bool warm = lp_.get() != nullptr && rows == rows_ && cols == cols_;
   if (!warm) {
-    release();
-    lp_ = glp_create_prob();
-    glp_set_obj_dir(lp_, GLP_MAX);
-    glp_add_rows(lp_, rows);
-    glp_add_cols(lp_, cols);
-    rows_ = rows;
-    cols_ = cols;
+    rows_ = cols_ = -1;
+    if (!lp_.create()) return -1;
   }
-  for (int i = 0; i < rows; ++i) glpk_set_bounds(lp_, true, i + 1, in.row_lo[i], in.row_hi[i]);
-  for (int j = 0; j < cols; ++j) glpk_set_bounds(lp_, false, j + 1, in.col_lo[j], in.col_hi[j]);
-  glpk_load_dense(lp_, in.A, ia_, ja_, ar_);
-  // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
-  if (!warm) glp_adv_basis(lp_, 0);
-  return warm;
+  dense_triplets(in.A, ia_, ja_, ar_);
+  glp_prob* lp = lp_.get();
+  const bool ok = guarded([&] {
+    if (!warm) {
+      glp_set_obj_dir(lp, GLP_MAX);
+      if (rows > 0) glp_add_rows(lp, rows);
+      if (cols > 0) glp_add_cols(lp, cols);
+    }
+    for (int i = 0; i < rows; ++i) glpk_set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
+    for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
+    glpk_load_triplets(lp, ia_, ja_, ar_);
+    // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
+    if (!warm) glp_adv_basis(lp, 0);
+  });
+  if (!ok) return -1;
+  rows_ = rows;
+  cols_ = cols;
+  return warm ? 1 : 0;
 }
 
 namespace {
 
 glp_smcp simplex_parameters(int rows, int cols) {
   glp_smcp parm;
-  glp_init_smcp(&parm);
+  guarded([&] { glp_init_smcp(&parm); });  // fills the struct only, but every GLPK call is guarded
   parm.msg_lev = GLP_MSG_OFF;
   // No scaling, no presolve: GLPK's automatic scaling was seen to make the primal simplex declare small,
   // plainly feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
@@ -114,50 +113,64 @@ glp_smcp simplex_parameters(int rows, int cols) {
 }  // namespace
 
 int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
-  glp_term_out(GLP_OFF);
-  GlpkHookState state;
-  glp_error_hook(pathpace_glpk_error_hook, &state);
-  if (setjmp(state.env)) {
-    glp_error_hook(nullptr, nullptr);
-    glp_free_env();
-    lp_ = nullptr;
-    rows_ = cols_ = -1;
-    return -1;
-  }
-  load(in);
-  if (fix) {
-    glpk_set_bounds(lp_, false, 1, fix[0], fix[0]);
-    glpk_set_bounds(lp_, false, 2, fix[1], fix[1]);
-  }
-  glp_set_obj_coef(lp_, 1, 0.0);
-  glp_set_obj_coef(lp_, 2, 0.0);
+  if (load(in) < 0) return -1;
+  glp_prob* lp = lp_.get();
   const glp_smcp parm = simplex_parameters(rows_, cols_);
-  const int st = glpk_solve_robust(lp_, parm);
-  if (fix) {  // the next projection reloads the bounds anyway; restore them for a warm feasible() too
-    glpk_set_bounds(lp_, false, 1, in.col_lo[0], in.col_hi[0]);
-    glpk_set_bounds(lp_, false, 2, in.col_lo[1], in.col_hi[1]);
-  }
-  glp_error_hook(nullptr, nullptr);
+  int st = -1;
+  const bool ok = guarded([&] {
+    if (fix) {
+      glpk_set_bounds(lp, false, 1, fix[0], fix[0]);
+      glpk_set_bounds(lp, false, 2, fix[1], fix[1]);
+    }
+    glp_set_obj_coef(lp, 1, 0.0);
+    glp_set_obj_coef(lp, 2, 0.0);
+    st = glpk_solve_robust(lp, parm);
+    if (fix) {  // the next projection reloads the bounds anyway; restore them for a warm feasible() too
+      glpk_set_bounds(lp, false, 1, in.col_lo[0], in.col_hi[0]);
+      glpk_set_bounds(lp, false, 2, in.col_lo[1], in.col_hi[1]);
+    }
+  });
+  if (!ok) return -1;
   return st == GLP_OPT ? 1 : st == GLP_NOFEAS ? 0 : -1;
+}
+
+int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z) {
+  if (load(in) < 0) return -2;
+  glp_prob* lp = lp_.get();
+  const int cols = cols_;
+  const glp_smcp parm = simplex_parameters(rows_, cols_);
+  z_.resize(static_cast<size_t>(cols));
+  double* zp = z_.data();
+  const double* cp = c.data();
+  int st = -1;
+  const bool ok = guarded([&] {
+    for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, cp[j]);
+    st = glpk_solve_robust(lp, parm);
+    if (st == GLP_OPT)
+      for (int j = 0; j < cols; ++j) zp[j] = glp_get_col_prim(lp, j + 1);
+    for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, 0.0);  // project() sets only x's and u's
+  });
+  if (!ok) return -2;
+  if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
+  z = Eigen::Map<const Eigen::VectorXd>(z_.data(), cols);
+  return 1;
 }
 
 Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps) {
   Projection out;
-  glp_term_out(GLP_OFF);
-  GlpkHookState state;
-  glp_error_hook(pathpace_glpk_error_hook, &state);
-  if (setjmp(state.env)) {  // GLPK misuse: the environment is gone, and with it our problem
-    glp_error_hook(nullptr, nullptr);
-    glp_free_env();
-    lp_ = nullptr;
-    rows_ = cols_ = -1;
+  // A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
+  auto glpk_error = [&out]() {
     out.outcome = Projection::Outcome::Failed;
+    out.complete = false;
     out.note = "GLPK error";
     return out;
-  }
-  const bool warm = load(in);
-  glp_prob* lp = lp_;
-  const glp_smcp parm = simplex_parameters(rows_, cols_);
+  };
+  const int loaded = load(in);
+  if (loaded < 0) return glpk_error();
+  const bool warm = loaded == 1;
+  glp_prob* lp = lp_.get();
+  const int rows = rows_, cols = cols_;
+  const glp_smcp parm = simplex_parameters(rows, cols);
 
   // eq. (19): max v·(x, u) over the polytope; 1 optimal, 0 infeasible (confirmed exactly), -1 failed.
   // The LP's columns 1 and 2 are x / sx and u / su: scaled only when the shadow lies far beyond the
@@ -181,9 +194,8 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   current_.clear();
   glp_smcp dual = parm;
   dual.meth = GLP_DUALP;
-  auto extremize = [&](double vx, double vu, Vertex& p) -> int {
-    glp_set_obj_coef(lp, 1, vx * sx);
-    glp_set_obj_coef(lp, 2, vu * su);
+  stat_.resize(static_cast<size_t>(rows + cols));
+  auto extremize = [&](double vx, double vu, Vertex& p) -> int {  // also -2: a GLPK error
     ++out.lp_solves;
     const double angle = std::atan2(vu, vx);
     const Basis* from = nullptr;
@@ -195,35 +207,46 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         if (d < best) best = d, from = &b;
       }
     }
-    auto restore = [&](const Basis& b) {
-      for (int i = 0; i < rows_; ++i) glp_set_row_stat(lp, i + 1, b.stat[static_cast<size_t>(i)]);
-      for (int j = 0; j < cols_; ++j) glp_set_col_stat(lp, j + 1, b.stat[static_cast<size_t>(rows_ + j)]);
-    };
-    const glp_smcp* method = &parm;
     if (from) {
       // A basic column that is empty in this grid point's matrix (a coefficient rounded to zero) makes
       // the basis singular, which GLPK's factorization was seen to meet with an assertion, not a status.
-      for (int j = 0; j < cols_ && from; ++j)
-        if (from->stat[static_cast<size_t>(rows_ + j)] == GLP_BS && !nonempty_col[static_cast<size_t>(j)]) from = nullptr;
+      for (int j = 0; j < cols && from; ++j)
+        if (from->stat[static_cast<size_t>(rows + j)] == GLP_BS && !nonempty_col[static_cast<size_t>(j)]) from = nullptr;
     }
-    if (from) {
-      restore(*from);
-      // Dual feasible (to the simplex's tolerance): the dual simplex. Otherwise (a degenerate vertex whose
-      // reduced costs changed sign) back to the basis of the LP just before (primal feasible within a grid
-      // point) and the primal simplex: from the restored basis it was seen to take 300-400 pivots.
-      if (glp_warm_up(lp) == 0 && glp_get_dual_stat(lp) == GLP_FEAS) method = &dual;
-      else restore(current_.empty() ? previous_.back() : current_.back());
-    }
-    const int st = glpk_solve_robust(lp, *method, false);
+    const signed char* start = from ? from->stat.data() : nullptr;
+    const signed char* fallback = from ? (current_.empty() ? previous_.back() : current_.back()).stat.data() : nullptr;
+    const bool record = cols >= kRestoreColumns;  // no basis is restored below this size: none is recorded
+    signed char* stat = stat_.data();
+    int st = -1;
+    double px = 0.0, pu = 0.0;
+    const bool ok = guarded([&] {
+      glp_set_obj_coef(lp, 1, vx * sx);
+      glp_set_obj_coef(lp, 2, vu * su);
+      auto restore = [&](const signed char* b) {
+        for (int i = 0; i < rows; ++i) glp_set_row_stat(lp, i + 1, b[i]);
+        for (int j = 0; j < cols; ++j) glp_set_col_stat(lp, j + 1, b[rows + j]);
+      };
+      const glp_smcp* method = &parm;
+      if (start) {
+        restore(start);
+        // Dual feasible (to the simplex's tolerance): the dual simplex. Otherwise (a degenerate vertex whose
+        // reduced costs changed sign) back to the basis of the LP just before (primal feasible within a grid
+        // point) and the primal simplex: from the restored basis it was seen to take 300-400 pivots.
+        if (glp_warm_up(lp) == 0 && glp_get_dual_stat(lp) == GLP_FEAS) method = &dual;
+        else restore(fallback);
+      }
+      st = glpk_solve_robust(lp, *method, false);
+      if (st != GLP_OPT) return;
+      px = glp_get_col_prim(lp, 1);
+      pu = glp_get_col_prim(lp, 2);
+      if (!record) return;
+      for (int i = 0; i < rows; ++i) stat[i] = static_cast<signed char>(glp_get_row_stat(lp, i + 1));
+      for (int j = 0; j < cols; ++j) stat[rows + j] = static_cast<signed char>(glp_get_col_stat(lp, j + 1));
+    });
+    if (!ok) return -2;
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
-    p = {sx * glp_get_col_prim(lp, 1), su * glp_get_col_prim(lp, 2)};
-    if (cols_ < kRestoreColumns) return 1;  // no basis is restored at this size: none is recorded
-    Basis b;
-    b.angle = angle;
-    b.stat.resize(static_cast<size_t>(rows_ + cols_));
-    for (int i = 0; i < rows_; ++i) b.stat[static_cast<size_t>(i)] = static_cast<signed char>(glp_get_row_stat(lp, i + 1));
-    for (int j = 0; j < cols_; ++j) b.stat[static_cast<size_t>(rows_ + j)] = static_cast<signed char>(glp_get_col_stat(lp, j + 1));
-    current_.push_back(std::move(b));
+    p = {sx * px, su * pu};
+    if (record) current_.push_back({angle, stat_});
     return 1;
   };
 
@@ -241,34 +264,42 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
     const int r = extremize(std::cos(ang), std::sin(ang), p);
+    if (r == -2) return glpk_error();
     if (r == 0 && i == 0 && (capped(xhi) || capped(ulo) || capped(uhi))) {
       // Infeasible with the stand-in bounds: is it without them? A polytope whose shadow lies only beyond
       // them (a grid point where b ~ 1e-8, so that s̈ ~ 1e10 would be needed) is not empty, and calling it
       // empty contradicts solve()'s re-check on the full polytope. One feasibility LP without them; if
       // feasible, the bounds grow past its point (x, u) and the projection starts again.
-      glp_set_obj_coef(lp, 1, 0.0);
-      glp_set_obj_coef(lp, 2, 0.0);
-      glpk_set_bounds(lp, false, 1, xlo, capped(xhi) ? INFINITY : xhi);
-      glpk_set_bounds(lp, false, 2, capped(ulo) ? -INFINITY : ulo, capped(uhi) ? INFINITY : uhi);
+      const double x_hi = capped(xhi) ? INFINITY : xhi, u_lo = capped(ulo) ? -INFINITY : ulo,
+                   u_hi = capped(uhi) ? INFINITY : uhi;
       ++out.lp_solves;
-      // With GLPK's scaling, for this LP only: with b ~ 1e-8 against forces ~ 1e2 the unscaled simplex
-      // was seen to call such a polytope infeasible from both bases (exact arithmetic gets it right too,
-      // but costs ~30 ms per truly empty point). An infeasible answer is the projection's claim, which
-      // solve() re-checks in exact arithmetic before it reports it.
-      glp_scale_prob(lp, GLP_SF_AUTO);
-      glp_std_basis(lp);
-      const int st = glpk_solve_robust(lp, parm, false);
-      glp_unscale_prob(lp);
+      int st = -1;
+      double fx = 0.0, fu = 0.0;
+      const bool ok = guarded([&] {
+        glp_set_obj_coef(lp, 1, 0.0);
+        glp_set_obj_coef(lp, 2, 0.0);
+        glpk_set_bounds(lp, false, 1, xlo, x_hi);
+        glpk_set_bounds(lp, false, 2, u_lo, u_hi);
+        // With GLPK's scaling, for this LP only: with b ~ 1e-8 against forces ~ 1e2 the unscaled simplex
+        // was seen to call such a polytope infeasible from both bases (exact arithmetic gets it right too,
+        // but costs ~30 ms per truly empty point). An infeasible answer is the projection's claim, which
+        // solve() re-checks in exact arithmetic before it reports it.
+        glp_scale_prob(lp, GLP_SF_AUTO);
+        glp_std_basis(lp);
+        st = glpk_solve_robust(lp, parm, false);
+        glp_unscale_prob(lp);
+        if (st != GLP_OPT) return;
+        fx = std::abs(glp_get_col_prim(lp, 1));
+        fu = std::abs(glp_get_col_prim(lp, 2));
+      });
+      if (!ok) return glpk_error();
       if (st != GLP_OPT) {
-        glp_error_hook(nullptr, nullptr);
         out.outcome = st == GLP_NOFEAS ? Projection::Outcome::Empty : Projection::Outcome::Failed;
         if (st != GLP_NOFEAS) out.note = "the LP solver did not finish (feasibility without the stand-in bounds)";
         return out;
       }
-      const double fx = std::abs(glp_get_col_prim(lp, 1)), fu = std::abs(glp_get_col_prim(lp, 2));
       const double grown = std::pow(10.0, std::ceil(std::log10(std::max(fx, fu))) + 2.0);
       if (!(grown <= kLargestStandIn) || !(grown > stand_in)) {
-        glp_error_hook(nullptr, nullptr);
         out.outcome = Projection::Outcome::Failed;
         out.note = "the shadow lies beyond (x, u) = 1e15 (no polygon represents it)";
         return out;
@@ -294,10 +325,14 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
             ia_.push_back(static_cast<int>(r) + 1);
             ar_.push_back(in.A(r, j) * sc);
           }
-        glp_set_mat_col(lp, j + 1, static_cast<int>(ar_.size()) - 1, ia_.data(), ar_.data());
+        if (!guarded([&] { glp_set_mat_col(lp, j + 1, static_cast<int>(ar_.size()) - 1, ia_.data(), ar_.data()); }))
+          return glpk_error();
       }
-      glpk_set_bounds(lp, false, 1, xlo / sx, xhi / sx);
-      glpk_set_bounds(lp, false, 2, ulo / su, uhi / su);
+      const bool bounds_set = guarded([&] {
+        glpk_set_bounds(lp, false, 1, xlo / sx, xhi / sx);
+        glpk_set_bounds(lp, false, 2, ulo / su, uhi / su);
+      });
+      if (!bounds_set) return glpk_error();
       i = -1;  // again, from the feasible basis just found
       continue;
     }
@@ -307,7 +342,6 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         out.note = "the LP solver did not finish (initial direction " + std::to_string(i) + ")";
         break;
       }
-      glp_error_hook(nullptr, nullptr);
       out.outcome = r == 0 ? Projection::Outcome::Empty : Projection::Outcome::Failed;
       if (r < 0) out.note = "the LP solver did not finish (initial direction " + std::to_string(i) + ")";
       return out;
@@ -348,30 +382,30 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   // The constraint that holds the shadow at an edge: at the certifying LP's optimum, the inequality row or
   // column bound with the largest dual (a row's dual per unit of its normalised row), with its side.
   Eigen::VectorXd row_norm = in.A.rowwise().norm();
-  auto binding = [&]() {
-    int code = kBindingUnknown;
-    double best = 0.0;
-    const int nr = static_cast<int>(in.A.rows()), nc = static_cast<int>(in.A.cols());
-    for (int i = 0; i < nr; ++i) {
-      const int st = glp_get_row_stat(lp, i + 1);
-      // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
-      if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
-      const double w = std::abs(glp_get_row_dual(lp, i + 1)) * row_norm[i];
-      if (w > best) {
-        best = w;
-        code = 2 * i + (st == GLP_NU ? 1 : 0);
+  const double* norm = row_norm.data();
+  auto binding = [&](int& code) {  // false: a GLPK error
+    code = kBindingUnknown;
+    return guarded([&] {
+      double best = 0.0;
+      for (int i = 0; i < rows; ++i) {
+        const int st = glp_get_row_stat(lp, i + 1);
+        // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
+        if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
+        const double w = std::abs(glp_get_row_dual(lp, i + 1)) * norm[i];
+        if (w > best) {
+          best = w;
+          code = 2 * i + (st == GLP_NU ? 1 : 0);
+        }
       }
-    }
-    for (int j = 0; j < nc; ++j) {
-      const int st = glp_get_col_stat(lp, j + 1);
-      if (st == GLP_BS) continue;
-      const double w = std::abs(glp_get_col_dual(lp, j + 1));
-      if (w > best) {
-        best = w;
-        code = -(j + 1);
+      for (int j = 0; j < cols; ++j) {
+        if (glp_get_col_stat(lp, j + 1) == GLP_BS) continue;
+        const double w = std::abs(glp_get_col_dual(lp, j + 1));
+        if (w > best) {
+          best = w;
+          code = -(j + 1);
+        }
       }
-    }
-    return code;
+    });
   };
   std::vector<int> hull;
   struct Pending {
@@ -421,6 +455,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       }
       Vertex q;
       const int r = extremize(d.nx, d.nu, q);
+      if (r == -2) return glpk_error();
       if (r != 1) {
         // The polytope was non-empty three LPs ago: an 'infeasible' here is a solver failure too.
         out.complete = false;
@@ -428,7 +463,9 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         break;
       }
       if (d.nx * q.x + d.nu * q.y <= d.offset + tol) {
-        certified[{d.from, d.to}] = binding();  // nothing of the shadow beyond this edge
+        int code = kBindingUnknown;
+        if (!binding(code)) return glpk_error();
+        certified[{d.from, d.to}] = code;  // nothing of the shadow beyond this edge
       } else {
         points.push_back(q);  // strictly outside the hull by more than the tolerance
         grew = true;
@@ -441,7 +478,6 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       tol = tolerance(hull);
     }
   }
-  glp_error_hook(nullptr, nullptr);
   if (grown_bounds && out.complete) {
     out.complete = false;
     out.note = "the shadow lies only beyond the stand-in bounds (ill-conditioned LPs there)";

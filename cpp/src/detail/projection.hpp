@@ -16,9 +16,8 @@
 
 #include <Eigen/Core>
 
+#include "detail/glpk_guard.hpp"
 #include "detail/polygon2d.hpp"
-
-struct glp_prob;  // GLPK stays in the .cpp
 
 namespace pathpace::detail {
 
@@ -77,13 +76,21 @@ class PolytopeProjector {
   /// solver fail (-1)? With `fix` the point (x, u) = (fix[0], fix[1]) is imposed.
   int feasible(const PolytopeLp& lp, const double* fix = nullptr);
 
+  /// One LP: maximise c·z over the polytope (c one per column). 1: optimal, z its point; 0: empty
+  /// (confirmed in exact arithmetic); -1: the solver failed; -2: a GLPK error (see glpk_guard.hpp).
+  /// Unbounded is a failure. Warm-started like project() (the same problem, from the last basis).
+  int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z);
+
  private:
-  bool load(const PolytopeLp& lp);
-  void release();
-  ::glp_prob* lp_ = nullptr;
+  // Loads the problem (same shape: the previous basis is kept as the warm start). -1: a GLPK error;
+  // else 1 if warm, 0 if cold.
+  int load(const PolytopeLp& lp);
+  GlpkProblem lp_;
   int rows_ = -1, cols_ = -1;
   std::vector<int> ia_, ja_;  // matrix-loading scratch
   std::vector<double> ar_;
+  std::vector<signed char> stat_;  // an LP's final basis, before it is kept
+  std::vector<double> z_;          // an LP's point
   struct Basis {  // an LP's final basis: its direction, then GLPK's row and column statuses
     double angle = 0.0;
     std::vector<signed char> stat;

@@ -142,8 +142,9 @@ class ContactConstraint : public Constraint {
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr) const;
   // The projection LP's fixed part for the contacts `use`: bounds, minimum-normal-force rows; `extra`
-  // more rows (zero, free) after them.
-  void lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp) const;
+  // more rows (zero, free) after them. every_point_row: a per-point row even where min_normal_force is 0
+  // (the force distribution's margin counts each point's normal force).
+  void lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp, bool every_point_row = false) const;
   void lp_point(const std::vector<int>& use, const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
