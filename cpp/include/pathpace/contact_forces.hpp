@@ -10,11 +10,14 @@ namespace pathpace {
 
 /// The contact forces at one state (q, q̇, q̈), chosen as the most robust distribution: the one that
 /// maximises the margin
-///   δ = min( min_ie λ_ie , min_i (n_i·f_i - min_normal_force) )   [N]
-/// over the cone weights λ (f_i = Σ_e λ_ie g_ie, n_i·g_ie = 1), subject to the torque limits (equalities
-/// for unactuated joints). δ >= 0 means the motion is realisable with the constraint's friction cones,
-/// margins and minimum normal force; δ < 0 means it needs forces that do not exist (pulling, or outside
-/// a cone) — by δ newtons of cone weight.
+///   δ = min( min_ie λ_ie , min_i (n_i·f_i - min_normal_force) , min_l (Σ_{i on l} n_i·f_i - min_link_normal_force) )
+/// in N, over the cone weights λ (f_i = Σ_e λ_ie g_ie, n_i·g_ie = 1), subject to the torque limits (after
+/// torque_scale and torque_margin; equalities for unactuated joints). The per-link term (l over the links
+/// that carry contacts) counts only when min_link_normal_force > 0. The rows are those of the projection
+/// (the same polytope at this state), so δ >= 0 means the motion is realisable with every margin the
+/// solve used: friction cones of μ (1 - friction_margin), both minimum normal forces, the torque limits;
+/// δ < 0 means it needs forces that do not exist (pulling, outside a cone, below a minimum) — by δ
+/// newtons.
 struct ContactForces {
   /// False when no forces at all, of any sign, meet the torque limits and the unactuated equalities.
   bool feasible = false;

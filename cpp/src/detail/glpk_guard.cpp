@@ -67,7 +67,7 @@ bool GlpkProblem::create() noexcept {
 }
 
 void GlpkProblem::reset() noexcept {
-  if (glp_prob* p = get()) guarded([p] { glp_delete_prob(p); });
+  if (glp_prob* p = get()) (void)guarded([p] { glp_delete_prob(p); });  // an error frees it anyway
   lp_ = nullptr;
 }
 

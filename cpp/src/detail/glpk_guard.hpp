@@ -27,11 +27,11 @@ namespace pathpace::detail {
 /// Runs f(data) under GLPK's error hook, with GLPK's terminal output swallowed (glp_error turns it on
 /// before it prints). Returns false if GLPK raised an error: the environment has then been freed and
 /// glpk_epoch() has grown. A call from inside f runs directly, under the outer call's guard.
-bool glpk_guarded(void (*f)(void*), void* data) noexcept;
+[[nodiscard]] bool glpk_guarded(void (*f)(void*), void* data) noexcept;
 
 /// guarded([&] { ...GLPK calls on plain data... }): see rule 1 above.
 template <typename F>
-bool guarded(F&& f) noexcept {
+[[nodiscard]] bool guarded(F&& f) noexcept {
   using Fn = std::remove_reference_t<F>;
   return glpk_guarded([](void* p) { (*static_cast<Fn*>(p))(); }, const_cast<void*>(static_cast<const void*>(&f)));
 }

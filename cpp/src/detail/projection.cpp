@@ -92,9 +92,9 @@ int PolytopeProjector::load(const PolytopeLp& in) {
 
 namespace {
 
-glp_smcp simplex_parameters(int rows, int cols) {
-  glp_smcp parm;
-  guarded([&] { glp_init_smcp(&parm); });  // fills the struct only, but every GLPK call is guarded
+// False after a GLPK error (parm is then not set).
+bool simplex_parameters(int rows, int cols, glp_smcp& parm) {
+  if (!guarded([&] { glp_init_smcp(&parm); })) return false;  // it only fills the struct, but it is GLPK
   parm.msg_lev = GLP_MSG_OFF;
   // No scaling, no presolve: GLPK's automatic scaling was seen to make the primal simplex declare small,
   // plainly feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
@@ -107,15 +107,15 @@ glp_smcp simplex_parameters(int rows, int cols) {
   // vertices of short edges; these small dense LPs solve as reliably at 1e-10.
   parm.tol_bnd = 1e-10;
   parm.tol_dj = 1e-10;
-  return parm;
+  return true;
 }
 
 }  // namespace
 
 int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
-  if (load(in) < 0) return -1;
+  glp_smcp parm;
+  if (!simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) || load(in) < 0) return -1;
   glp_prob* lp = lp_.get();
-  const glp_smcp parm = simplex_parameters(rows_, cols_);
   int st = -1;
   const bool ok = guarded([&] {
     if (fix) {
@@ -135,10 +135,10 @@ int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
 }
 
 int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z) {
-  if (load(in) < 0) return -2;
+  glp_smcp parm;
+  if (!simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) || load(in) < 0) return -2;
   glp_prob* lp = lp_.get();
   const int cols = cols_;
-  const glp_smcp parm = simplex_parameters(rows_, cols_);
   z_.resize(static_cast<size_t>(cols));
   double* zp = z_.data();
   const double* cp = c.data();
@@ -165,12 +165,14 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     out.note = "GLPK error";
     return out;
   };
+  // The parameters first: a GLPK error there frees the problem before load() looks at it.
+  glp_smcp parm;
+  if (!simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm)) return glpk_error();
   const int loaded = load(in);
   if (loaded < 0) return glpk_error();
   const bool warm = loaded == 1;
   glp_prob* lp = lp_.get();
   const int rows = rows_, cols = cols_;
-  const glp_smcp parm = simplex_parameters(rows, cols);
 
   // eq. (19): max v·(x, u) over the polytope; 1 optimal, 0 infeasible (confirmed exactly), -1 failed.
   // The LP's columns 1 and 2 are x / sx and u / su: scaled only when the shadow lies far beyond the

@@ -1,0 +1,303 @@
+// The one GLPK guard (detail/glpk_guard.hpp): a GLPK error injected at every guarded call of the
+// projection, the feasibility and maximisation LPs and the contact force distribution becomes a status
+// or an exception, and the GLPK problems that were alive at the time (which GLPK frees with its
+// environment) are rebuilt, not used after being freed. Run under ASan by scripts/sanitize.sh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "detail/glpk_guard.hpp"
+#include "detail/glpk_lp.hpp"
+#include "detail/projection.hpp"
+#include "pathpace/pathpace.hpp"
+
+using namespace pathpace;
+using detail::GlpkLp;
+using detail::Projection;
+using detail::PolytopeLp;
+using detail::PolytopeProjector;
+
+namespace {
+
+double support(const Projection& p, double dx, double du) {
+  double best = -INFINITY;
+  for (const detail::Vertex& v : p.vertices) best = std::max(best, dx * v.x + du * v.y);
+  return best;
+}
+
+// |x| + |u| + |y| <= 1: its shadow is the diamond |x| + |u| <= 1.
+PolytopeLp octahedron() {
+  PolytopeLp lp;
+  lp.A.resize(8, 3);
+  int r = 0;
+  for (int sx : {-1, 1})
+    for (int su : {-1, 1})
+      for (int sy : {-1, 1}) lp.A.row(r++) << sx, su, sy;
+  lp.row_lo = Eigen::VectorXd::Constant(8, -INFINITY);
+  lp.row_hi = Eigen::VectorXd::Ones(8);
+  lp.col_lo = Eigen::VectorXd::Constant(3, -INFINITY);
+  lp.col_hi = Eigen::VectorXd::Constant(3, INFINITY);
+  return lp;
+}
+
+// y = 1e-8 u, 100 <= y <= 200, 0 <= x <= 1: the shadow [0, 1] x [1e10, 2e10] lies beyond the stand-in
+// bounds, so the projection takes its other branch (a feasibility LP, grown bounds, rescaled columns).
+PolytopeLp beyond_stand_in() {
+  PolytopeLp lp;
+  lp.A.resize(2, 3);
+  lp.A.row(0) << 0, 1e-8, -1;
+  lp.A.row(1) << 1, 0, 0;
+  lp.row_lo = Eigen::Vector2d(0, -INFINITY);
+  lp.row_hi = Eigen::Vector2d(0, 1);
+  lp.col_lo = Eigen::Vector3d(0, -1e6, 100);
+  lp.col_hi = Eigen::Vector3d(1e6, 1e6, 200);
+  lp.stand_in = 1e6;
+  return lp;
+}
+
+double diamond(double dx, double du) { return std::max(std::abs(dx), std::abs(du)); }
+double rectangle(double dx, double du) { return std::max(0.0, dx) + std::max(1e10 * du, 2e10 * du); }
+
+// A bystander LP with every kind of change GlpkLp copies: min -x0 - 2 x1 over x0 + x1 <= 1 (then
+// tightened to 0.8), x1 <= 0.5 (appended after the first solve), 0 <= x0 <= 0.7, 0 <= x1 <= 2.
+// Optimum: x = (0.3, 0.5), -1.3.
+struct Bystander {
+  GlpkLp lp;
+  Bystander() {
+    lp.reset(2);
+    lp.add_row_upper({0, 1}, {1.0, 1.0}, 1.0);
+    EXPECT_TRUE(lp.load());
+    lp.set_col_bounds(0, 0.0, 0.7);
+    lp.set_col_bounds(1, 0.0, 2.0);
+    lp.set_objective({-1.0, -2.0});
+    EXPECT_EQ(lp.solve(1e-10), GlpkLp::Outcome::Optimal);
+    lp.append_row_upper({1}, {1.0}, 0.5);
+    lp.set_row_upper(0, 0.8);
+    check();
+  }
+  void check() {
+    ASSERT_EQ(lp.solve(1e-10), GlpkLp::Outcome::Optimal);
+    std::vector<double> x;
+    lp.column_values(x);
+    ASSERT_EQ(x.size(), 2u);
+    EXPECT_NEAR(x[0], 0.3, 1e-12);
+    EXPECT_NEAR(x[1], 0.5, 1e-12);
+    EXPECT_NEAR(lp.lagrangian_bound({-1.0, -2.0}), -1.3, 1e-12);
+  }
+};
+
+// Arms the injected error for the guarded call after `k` more; true if it fired during f().
+template <typename F>
+bool fired_at(long k, F&& f) {
+  detail::glpk_test_fail_after(k);
+  f();
+  const bool fired = !detail::glpk_test_failure_pending();
+  detail::glpk_test_fail_after(-1);
+  return fired;
+}
+
+}  // namespace
+
+TEST(GlpkGuard, ErrorHookTurnsAGlpkErrorIntoFalseAndAdvancesTheEpoch) {
+  const unsigned long before = detail::glpk_epoch();
+  int ran = 0;
+  EXPECT_TRUE(detail::guarded([&] { ++ran; }));
+  EXPECT_EQ(detail::glpk_epoch(), before);
+  detail::glpk_test_fail_after(0);
+  EXPECT_FALSE(detail::guarded([&] { ++ran; }));  // the error comes before f runs
+  EXPECT_FALSE(detail::glpk_test_failure_pending());
+  EXPECT_EQ(ran, 1);
+  EXPECT_EQ(detail::glpk_epoch(), before + 1);
+  // A problem created before the error is gone, and is neither used nor deleted again.
+  detail::GlpkProblem p;
+  ASSERT_TRUE(p.create());
+  EXPECT_NE(p.get(), nullptr);
+  detail::glpk_test_fail_after(0);
+  EXPECT_FALSE(detail::guarded([] {}));
+  EXPECT_EQ(p.get(), nullptr);
+  EXPECT_TRUE(p.create());
+  EXPECT_NE(p.get(), nullptr);
+}
+
+TEST(GlpkGuard, AnErrorAtAnyCallOfAProjectionFailsItAndSparesTheOtherProblems) {
+  const struct {
+    PolytopeLp lp;
+    double (*shadow)(double, double);
+  } cases[] = {{octahedron(), diamond}, {beyond_stand_in(), rectangle}};
+  for (const auto& c : cases) {
+    Bystander other;
+    PolytopeProjector warm, p;  // `warm` holds its warm-start problem throughout
+    ASSERT_EQ(warm.project(c.lp).outcome, Projection::Outcome::Polygon);
+    ASSERT_EQ(p.project(c.lp).outcome, Projection::Outcome::Polygon);  // p warm too: the error hits a loaded problem
+    long k = 0;
+    for (;; ++k) {
+      Projection r;
+      const unsigned long epoch = detail::glpk_epoch();
+      if (!fired_at(k, [&] { r = p.project(c.lp); })) break;  // past the projection's last guarded call
+      EXPECT_EQ(r.outcome, Projection::Outcome::Failed) << k;
+      EXPECT_EQ(r.note, "GLPK error") << k;
+      EXPECT_EQ(detail::glpk_epoch(), epoch + 1);
+      other.check();  // rebuilt from its copy
+      for (PolytopeProjector* q : {&p, &warm}) {  // the next projections work, from a cold start
+        const Projection again = q->project(c.lp);
+        ASSERT_EQ(again.outcome, Projection::Outcome::Polygon) << k << " " << again.note;
+        for (int d = 0; d < 16; ++d) {
+          const double dx = std::cos(0.4 * d), du = std::sin(0.4 * d);
+          EXPECT_NEAR(support(again, dx, du), c.shadow(dx, du), again.tolerance + 1e-12) << k << " " << d;
+        }
+      }
+    }
+    EXPECT_GE(k, 10);  // every guarded call of the projection was hit once
+  }
+}
+
+TEST(GlpkGuard, AnErrorInTheFeasibilityAndMaximisationLpsIsAStatus) {
+  const PolytopeLp lp = octahedron();
+  PolytopeProjector p;
+  Bystander other;
+  const Eigen::VectorXd c = Eigen::Vector3d(1.0, 1.0, 1.0);
+  Eigen::VectorXd z;
+  long k = 0;
+  for (;; ++k) {
+    int feasible = 2;
+    if (!fired_at(k, [&] { feasible = p.feasible(lp); })) break;
+    EXPECT_EQ(feasible, -1) << k;
+    other.check();
+    EXPECT_EQ(p.feasible(lp), 1);
+  }
+  EXPECT_GE(k, 3);
+  for (k = 0;; ++k) {
+    int st = 2;
+    if (!fired_at(k, [&] { st = p.maximize(lp, c, z); })) break;
+    EXPECT_EQ(st, -2) << k;
+    other.check();
+    ASSERT_EQ(p.maximize(lp, c, z), 1);
+    EXPECT_NEAR(c.dot(z), 1.0, 1e-12);  // max x + u + y over the octahedron
+  }
+  EXPECT_GE(k, 3);
+}
+
+namespace {
+
+const char* kLifter = R"(<robot name="lifter">
+ <link name="base"/>
+ <link name="platform"><inertial><mass value="3"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial></link>
+ <joint name="slide" type="prismatic"><parent link="base"/><child link="platform"/><axis xyz="1 0 0"/><limit lower="-10" upper="10" velocity="100" effort="1000"/></joint>
+</robot>)";
+
+std::shared_ptr<RobotModel> lifter_with_box() {
+  const RobotModel lifter = RobotModel::from_urdf_string(kLifter);
+  const RobotModel box = RobotModel::free_object("box", 2.0, Eigen::Vector3d(0, 0, 0.05), 0.01 * Eigen::Matrix3d::Identity());
+  return std::make_shared<RobotModel>(RobotModel::combine({lifter, box}));
+}
+
+std::vector<Contact> corners(double mu) {
+  std::vector<Contact> out;
+  for (double x : {-0.1, 0.1})
+    for (double y : {-0.1, 0.1}) {
+      Contact c;
+      c.link = "box";
+      c.other_link = "platform";
+      c.point = Eigen::Vector3d(x, y, 0.0);
+      c.friction = mu;
+      out.push_back(c);
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST(GlpkGuard, AnErrorInTheForceDistributionThrowsAndTheNextOneWorks) {
+  auto model = lifter_with_box();
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  opt.min_normal_force = 1.0;
+  const ContactConstraint c(model, corners(0.5), opt);
+  Eigen::MatrixXd q = Eigen::MatrixXd::Zero(3, 7), qd = q, qdd = q;
+  qdd(1, 0) = qdd(1, 1) = 0.2 * 9.81;
+  qdd(2, 0) = qdd(2, 1) = 2.0 * 9.81;  // friction cannot: a negative margin
+  const std::vector<ContactForces> ref = c.force_distribution(q, qd, qdd);
+  ASSERT_EQ(ref.size(), 3u);
+  Bystander other;
+  PolytopeProjector warm;
+  ASSERT_EQ(warm.project(octahedron()).outcome, Projection::Outcome::Polygon);
+  long threw_count = 0;
+  long k = 0;
+  for (;; ++k) {
+    bool threw = false;
+    std::vector<ContactForces> got;
+    if (!fired_at(k, [&] {
+          try {
+            got = c.force_distribution(q, qd, qdd);
+          } catch (const Error& e) {
+            threw = true;
+            EXPECT_NE(std::string(e.what()).find("GLPK error"), std::string::npos) << e.what();
+          }
+        }))
+      break;
+    // Only an error in the last call (deleting the LP at the end) leaves the result whole.
+    if (!threw) ASSERT_EQ(got.size(), ref.size()) << k;
+    other.check();
+    EXPECT_EQ(warm.project(octahedron()).outcome, Projection::Outcome::Polygon);
+    const std::vector<ContactForces> again = c.force_distribution(q, qd, qdd);
+    for (size_t s = 0; s < ref.size(); ++s) {
+      ASSERT_TRUE(again[s].feasible);
+      EXPECT_NEAR(again[s].margin, ref[s].margin, 1e-9 * (1.0 + std::abs(ref[s].margin))) << k << " " << s;
+      if (!threw) EXPECT_NEAR(got[s].margin, ref[s].margin, 1e-9 * (1.0 + std::abs(ref[s].margin))) << k << " " << s;
+    }
+    threw_count += threw;
+  }
+  EXPECT_EQ(threw_count, k - 1);  // every call but the last
+  EXPECT_GE(k, 6);  // a few guarded calls per sample
+}
+
+namespace {
+
+// The active half-planes (a, b, c) of grid point p, sorted: the polygon, whatever its labels say (which of
+// the four symmetric corners' friction binds depends on the LP's start).
+std::vector<std::array<double, 3>> halfplanes(const ConstraintRows& r, Eigen::Index p) {
+  std::vector<std::array<double, 3>> out;
+  for (Eigen::Index j = 0; j < r.c.cols(); ++j)
+    if (std::isfinite(r.c(p, j))) out.push_back({r.a(p, j) + 0.0, r.b(p, j) + 0.0, r.c(p, j) + 0.0});  // -0 as 0
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST(GlpkGuard, AContactProjectionRecoversFromAnErrorAtAGridPoint) {
+  // ContactConstraint::evaluate retries a failed grid point from a cold start: with one GLPK error
+  // anywhere in it, the polygons are those of a run without.
+  auto model = lifter_with_box();
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  const ContactConstraint c(model, corners(0.5), opt);
+  PathSamples ps;
+  ps.s = Eigen::VectorXd::LinSpaced(4, 0.0, 1.0);
+  ps.q = Eigen::MatrixXd::Zero(4, 7);
+  ps.dq = ps.q;
+  ps.ddq = ps.q;
+  ps.q.col(0) = ps.q.col(1) = ps.s;
+  ps.dq.col(0).setOnes();
+  ps.dq.col(1).setOnes();
+  const ConstraintRows ref = c.evaluate(ps);
+  ASSERT_TRUE(ref.inexact_points.empty());
+  long k = 0;
+  for (;; k += 7) {
+    ConstraintRows r;
+    if (!fired_at(k, [&] { r = c.evaluate(ps); })) break;
+    EXPECT_TRUE(r.inexact_points.empty()) << k;
+    for (Eigen::Index p = 0; p < ps.s.size(); ++p) {
+      const auto got = halfplanes(r, p), want = halfplanes(ref, p);
+      ASSERT_EQ(got.size(), want.size()) << k << " " << p;
+      for (size_t i = 0; i < got.size(); ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_NEAR(got[i][j], want[i][j], 1e-9 * (1.0 + std::abs(want[i][j]))) << k << " " << p;
+    }
+  }
+  EXPECT_GE(k, 50);
+}
