@@ -723,6 +723,7 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     // before a message calls it feasible (in the pass that labels the binding rows).
     double violation = 0.0;
     res.binding = detail::binding_labels(chain, sets, theta, &violation);
+    violation = std::max(violation, detail::grid_violation(chain, sets, theta, nullptr));
     const std::string bound =
         violation <= 1e-9 ? "the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
                                 " (relative, certified)"
@@ -758,6 +759,16 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     }
   } else {
     res.binding = detail::binding_labels(chain, sets, theta);
+    // The greatest element and the bracketed profile are read off the reachability polygons: checked in the
+    // grid points' own terms (eq. 26), not assumed, before they are called optimal.
+    Eigen::Index at = -1;
+    const double violation = detail::grid_violation(chain, sets, theta, &at);
+    if (violation > 1e-9) {
+      res.status = Status::NumericalError;
+      res.message = "the reachability analysis's profile breaks a constraint by " + detail::fmt(violation) +
+                    " (relative) at grid index " + std::to_string(at) + " (s = " + detail::fmt(samples_.s[at]) +
+                    "): rounding on this grid; a coarser or more uniform grid avoids it";
+    }
   }
   theta *= scale.x_unit;  // back to ṡ² (a power of two: exact)
   res.sdot = theta.cwiseMax(0.0).cwiseSqrt();

@@ -363,7 +363,7 @@ bool Polygon2d::clip(const Line& line) {
     // Leaves through `line`: the vertex is edge_j ∩ line, then the line's own edge follows.
     // (Written in place: a Vertex copied out of a temporary stalls on store forwarding, see append_line.)
     Vertex& v = out_v[out++];
-    if (!intersect(edges[j], line, v)) {
+    if (!intersect(edges[j], line, v) || !on_segment(v, verts[jp], verts[j])) {
       const double t = dist[jp] / (dist[jp] - dist[j]);
       v.x = verts[jp].x + t * (verts[j].x - verts[jp].x);
       v.y = verts[jp].y + t * (verts[j].y - verts[jp].y);
@@ -374,11 +374,11 @@ bool Polygon2d::clip(const Line& line) {
     inserted = out;
     out_e[out] = line;
     Vertex& w = out_v[out++];
-    if (!intersect(line, edges[k], w)) {
-      const std::size_t kp = k == 0 ? m - 1 : k - 1;
-      const double t = dist[kp] / (dist[kp] - dist[k]);
-      w.x = verts[kp].x + t * (verts[k].x - verts[kp].x);
-      w.y = verts[kp].y + t * (verts[k].y - verts[kp].y);
+    const std::size_t k_start = k == 0 ? m - 1 : k - 1;
+    if (!intersect(line, edges[k], w) || !on_segment(w, verts[k_start], verts[k])) {
+      const double t = dist[k_start] / (dist[k_start] - dist[k]);
+      w.x = verts[k_start].x + t * (verts[k].x - verts[k_start].x);
+      w.y = verts[k_start].y + t * (verts[k].y - verts[k_start].y);
     }
     // A new vertex on top of an old one (the line passed through a vertex) leaves a zero-length edge.
     maybe_degenerate = on_line || (v.x == w.x && v.y == w.y);
@@ -398,6 +398,18 @@ bool Polygon2d::clip(const Line& line) {
     }
   }
   return true;
+}
+
+bool Polygon2d::on_segment(const Vertex& v, const Vertex& p, const Vertex& q) {
+  // The cut vertex lies on the edge it cuts, or the polygon is no longer convex. A line nearly parallel
+  // to the edge (on a fine grid an interval's rows in (θ_k, θ_{k+1}) all are, eq. 26) meets it, by Cramer's
+  // rule, anywhere along it: a vertex 50 % beyond the box made K_k that much too wide (N = 1e4, a random
+  // grid). The interpolation from the two ends' distances stays between them.
+  auto inside = [](double x, double a, double b) {
+    const double lo = std::min(a, b), hi = std::max(a, b), tol = 1e-12 * (std::abs(lo) + std::abs(hi));
+    return x >= lo - tol && x <= hi + tol;
+  };
+  return inside(v.x, p.x, q.x) && inside(v.y, p.y, q.y);
 }
 
 bool Polygon2d::degenerate(std::size_t j) const {

@@ -102,6 +102,37 @@ double bound_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   return worst;
 }
 
+double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, Eigen::Index* where) {
+  double worst = 0.0;
+  Eigen::Index at = -1;
+  const Eigen::Index n = chain.intervals();
+  for (Eigen::Index k = 0; k <= n; ++k) {
+    const double x = theta[k];
+    double w = 0.0;
+    for (Eigen::Index i : {k - 1, k}) {  // the intervals on either side of point k
+      if (i < 0 || i >= n) continue;
+      const double h = 1.0 / (2.0 * chain.ds[i]), u = (theta[i + 1] - theta[i]) * h;
+      // θ itself resolves s̈ only to ~eps θ / (2Δs): a bound finer than that (a tiny interval of a random
+      // grid) cannot be met by any profile of doubles, so the row's scale includes it (a 1e-9 bound at
+      // 3.5e-6 of it: 16 eps).
+      const double resolution = 3.5e-6 * h * std::max(std::abs(theta[i]), std::abs(theta[i + 1]));
+      for (const Line& r : sets.rows(k)) {
+        const double ax = r.a * x, bu = r.b * u, d = ax + bu - r.c;
+        if (d > 0.0)
+          w = std::max(w, d / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(bu), std::abs(r.b) * resolution}));
+      }
+    }
+    if (x > chain.x_hi[k]) w = std::max(w, (x - chain.x_hi[k]) / std::max(1.0, std::abs(chain.x_hi[k])));
+    if (chain.x_lo[k] > x) w = std::max(w, (chain.x_lo[k] - x) / std::max(1.0, std::abs(chain.x_lo[k])));
+    if (w > worst) {
+      worst = w;
+      at = k;
+    }
+  }
+  if (where) *where = at;
+  return worst;
+}
+
 namespace {
 
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through

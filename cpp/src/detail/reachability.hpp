@@ -84,6 +84,12 @@ inline double raise_violation(double worst, const Line& r, double x, double y) {
 /// where 1 is a typical ṡ²). With the rows' (binding_labels' `violation`): how far θ is from feasible.
 double bound_violation(const Chain& chain, const Eigen::VectorXd& theta);
 
+/// Largest violation of the grid points' own rows a x + b u <= c (eq. 26, both adjacent s̈ at each point) by
+/// θ, relative to max(1, |c|, |a θ_k|, |b u|, and |b| times the s̈ that θ's rounding resolves): the user's terms (a joint's q̈ against its limit), where the
+/// chain's rows, which carry b / (2Δs) in both coefficients, would measure against terms N times larger
+/// and hide an s̈ that breaks its limit on a fine grid. x_lo/x_hi as bound_violation does.
+double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, Eigen::Index* where);
+
 struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
   Outcome outcome = Outcome::Feasible;
