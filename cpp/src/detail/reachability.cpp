@@ -133,6 +133,28 @@ double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::Vec
   return worst;
 }
 
+double exact_feasibility_step(const Chain& chain, const GridSets& sets, Eigen::VectorXd& theta, Eigen::Index* where,
+                              double* T_increase) {
+  *T_increase = 0.0;
+  const double v0 = grid_violation(chain, sets, theta, where);
+  const Eigen::Index n = chain.intervals();
+  // Boundary speeds other than rest are the user's: a scaled profile would not meet them.
+  if (v0 <= 1e-9 || v0 > 1e-6 || theta[0] != 0.0 || theta[n] != 0.0) return v0;
+  double shrink = 4.0 * v0;
+  for (int attempt = 0; attempt < 3; ++attempt, shrink *= 2.0) {
+    const Eigen::VectorXd scaled = theta / (1.0 + shrink);
+    Eigen::Index at = -1;
+    const double v = grid_violation(chain, sets, scaled, &at);
+    if (v <= 1e-9) {
+      *T_increase = std::sqrt(1.0 + shrink) - 1.0;  // T ∝ 1 / sqrt(θ) (eq. 25)
+      theta = scaled;
+      if (where) *where = at;
+      return v;
+    }
+  }
+  return v0;
+}
+
 namespace {
 
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through
