@@ -5,6 +5,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "convert.hpp"
+#include "detail/torque_lanes.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/path.hpp"
@@ -375,6 +376,10 @@ void bind_robot(py::module_& m) {
         const double d = c.max_drift(ps, &which);
         return py::make_tuple(d, which);
       }, "path"_a, "s"_a, "(largest distance a contact point moves along path at s, index of that contact)");
+
+  m.def("_torque_lanes_supported", &detail::torque_lanes_supported,
+        "Samples per sweep of the widest torque-row variant this CPU runs (8, 4, 2 or 1); the environment "
+        "variable PATHPACE_TORQUE_LANES forces a narrower one (tests run each).");
 }
 
 }  // namespace pathpace::python

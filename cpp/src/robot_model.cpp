@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -984,6 +985,18 @@ int torque_lanes_supported() {
 #endif
 }
 
+int default_torque_lanes() {
+  // Read at every call (once per constraint's rows, not per sample), so that a test can switch it.
+  const char* forced = std::getenv("PATHPACE_TORQUE_LANES");
+  if (!forced || !*forced) return torque_lanes_supported();
+  char* end = nullptr;
+  const long lanes = std::strtol(forced, &end, 10);
+  if (*end != '\0' || lanes < 1 || lanes > torque_lanes_supported() || (lanes & (lanes - 1)) != 0)
+    fail(std::string("environment variable PATHPACE_TORQUE_LANES = '") + forced + "' must be a power of 2 <= " +
+         std::to_string(torque_lanes_supported()) + " (the widest this CPU runs), or unset");
+  return static_cast<int>(lanes);
+}
+
 void check_sample_shapes(Eigen::Index n, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq) {
   const Eigen::Index count = q.rows();
   if (q.cols() != n || dq.cols() != n || ddq.cols() != n || dq.rows() != count || ddq.rows() != count)
@@ -995,7 +1008,7 @@ void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, 
                                    int lanes) {
   const Eigen::Index n = robot.nq(), count = q.rows();
   check_sample_shapes(n, q, dq, ddq);
-  if (lanes == 0) lanes = torque_lanes_supported();
+  if (lanes == 0) lanes = default_torque_lanes();
   if (lanes < 1 || lanes > torque_lanes_supported() || (lanes & (lanes - 1)) != 0)
     fail("lanes = " + std::to_string(lanes) + " must be a power of 2 <= " + std::to_string(torque_lanes_supported()));
   const std::vector<RobotModel::Body>& bodies = robot.bodies();

@@ -717,12 +717,15 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     res.stats.window_points = static_cast<int>(out.window_points);
     res.stats.newton_steps = out.newton_steps;
     theta = out.theta;
-    const double T = out.T;
+    double T_increase = 0.0;
+    detail::exact_feasibility_step(chain, sets, theta, nullptr, &T_increase);
+    const double T = out.T * (1.0 + T_increase);
     res.stats.gap = out.lower > 0.0 ? std::max(0.0, T - out.lower) / out.lower : std::numeric_limits<double>::infinity();
     // The repair (forward_pass) returns a profile that meets every row to rounding; checked, not assumed,
     // before a message calls it feasible (in the pass that labels the binding rows).
     double violation = 0.0;
     res.binding = detail::binding_labels(chain, sets, theta, &violation);
+    violation = std::max(violation, detail::grid_violation(chain, sets, theta, nullptr));
     const std::string bound =
         violation <= 1e-9 ? "the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
                                 " (relative, certified)"
@@ -758,6 +761,26 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     }
   } else {
     res.binding = detail::binding_labels(chain, sets, theta);
+    // The greatest element and the bracketed profile are read off the reachability polygons: checked in the
+    // grid points' own terms (eq. 26), not assumed, before they are called optimal.
+    Eigen::Index at = -1;
+    double T_increase = 0.0;
+    const double violation = detail::exact_feasibility_step(chain, sets, theta, &at, &T_increase);
+    // Its cost in T is part of the gap (the greatest element is then within T_increase of the optimum).
+    if (T_increase > 0.0) {
+      res.stats.gap += T_increase;
+      res.stats.greatest_element = false;
+      if (res.stats.gap > options.tolerance) {
+        res.status = Status::IterationLimit;
+        res.message = "the exact-feasibility step cost " + detail::fmt(T_increase) + " of T, beyond the tolerance";
+      }
+    }
+    if (violation > 1e-9) {
+      res.status = Status::NumericalError;
+      res.message = "the reachability analysis's profile breaks a constraint by " + detail::fmt(violation) +
+                    " (relative) at grid index " + std::to_string(at) + " (s = " + detail::fmt(samples_.s[at]) +
+                    "): rounding on this grid; a coarser or more uniform grid avoids it";
+    }
   }
   theta *= scale.x_unit;  // back to ṡ² (a power of two: exact)
   res.sdot = theta.cwiseMax(0.0).cwiseSqrt();

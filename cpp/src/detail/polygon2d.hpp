@@ -146,6 +146,10 @@ class Polygon2d {
  private:
   static bool intersect(const Line& l1, const Line& l2, Vertex& v);
   static bool independent(const Line& l1, const Line& l2);  // intersect() would succeed
+  // build(): the lower chain's vertices run left to right, the upper chain's right to left (convex).
+  static bool chains_monotone(const Vertex* v, std::size_t m, std::size_t n_lower, std::size_t first_upper,
+                              std::size_t n_upper);
+  static bool on_segment(const Vertex& v, const Vertex& p, const Vertex& q);  // within the box of p, q
   bool degenerate(std::size_t j) const;
   void erase(std::size_t j);
 

@@ -102,6 +102,59 @@ double bound_violation(const Chain& chain, const Eigen::VectorXd& theta) {
   return worst;
 }
 
+double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, Eigen::Index* where) {
+  double worst = 0.0;
+  Eigen::Index at = -1;
+  const Eigen::Index n = chain.intervals();
+  for (Eigen::Index k = 0; k <= n; ++k) {
+    const double x = theta[k];
+    double w = 0.0;
+    for (Eigen::Index i : {k - 1, k}) {  // the intervals on either side of point k
+      if (i < 0 || i >= n) continue;
+      const double h = 1.0 / (2.0 * chain.ds[i]), u = (theta[i + 1] - theta[i]) * h;
+      // θ itself resolves s̈ only to ~eps θ / (2Δs): a bound finer than that (a tiny interval of a random
+      // grid) cannot be met by any profile of doubles, so the row's scale includes it (a 1e-9 bound at
+      // 3.5e-6 of it: 16 eps).
+      const double resolution = 3.5e-6 * h * std::max(std::abs(theta[i]), std::abs(theta[i + 1]));
+      for (const Line& r : sets.rows(k)) {
+        const double ax = r.a * x, bu = r.b * u, d = ax + bu - r.c;
+        if (d > 0.0)
+          w = std::max(w, d / std::max({1.0, std::abs(r.c), std::abs(ax), std::abs(bu), std::abs(r.b) * resolution}));
+      }
+    }
+    if (x > chain.x_hi[k]) w = std::max(w, (x - chain.x_hi[k]) / std::max(1.0, std::abs(chain.x_hi[k])));
+    if (chain.x_lo[k] > x) w = std::max(w, (chain.x_lo[k] - x) / std::max(1.0, std::abs(chain.x_lo[k])));
+    if (w > worst) {
+      worst = w;
+      at = k;
+    }
+  }
+  if (where) *where = at;
+  return worst;
+}
+
+double exact_feasibility_step(const Chain& chain, const GridSets& sets, Eigen::VectorXd& theta, Eigen::Index* where,
+                              double* T_increase) {
+  *T_increase = 0.0;
+  const double v0 = grid_violation(chain, sets, theta, where);
+  const Eigen::Index n = chain.intervals();
+  // Boundary speeds other than rest are the user's: a scaled profile would not meet them.
+  if (v0 <= 1e-9 || v0 > 1e-6 || theta[0] != 0.0 || theta[n] != 0.0) return v0;
+  double shrink = 4.0 * v0;
+  for (int attempt = 0; attempt < 3; ++attempt, shrink *= 2.0) {
+    const Eigen::VectorXd scaled = theta / (1.0 + shrink);
+    Eigen::Index at = -1;
+    const double v = grid_violation(chain, sets, scaled, &at);
+    if (v <= 1e-9) {
+      *T_increase = std::sqrt(1.0 + shrink) - 1.0;  // T ∝ 1 / sqrt(θ) (eq. 25)
+      theta = scaled;
+      if (where) *where = at;
+      return v;
+    }
+  }
+  return v0;
+}
+
 namespace {
 
 // Range of y on the polygon's slice at x (x clamped into the polygon's x-range). e[i] is the line through
@@ -126,7 +179,12 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
   // edge of its kind reaches, should a degenerate polygon (a sliver left by clipping) have none; a convex
   // polygon always has one, and then this is never run. Per end, so that top_only's y_hi is still the full
   // slice's.
-  auto pass = [&](bool by_kind, double& lo, double& hi) {
+  // reach: how far outside an edge's x-range x may lie and still be sliced on it. First 0: consecutive edges
+  // share their vertices, so the edges of each kind tile the x-range exactly, and an edge that reaches x
+  // only by a tolerance has its y clamped to its end vertex, which is not on the slice (beside a vertex of
+  // two nearly parallel rows, as every interval has on a fine grid, that vertex's y is above the slice's
+  // top: s̈ broke its limit by 7e-9 relative at N = 5e5). The tolerance only if no edge contains x.
+  auto pass = [&](bool by_kind, double reach, double& lo, double& hi) {
     lo = inf;
     hi = -inf;
     for (size_t i = 0; i < m; ++i) {
@@ -137,7 +195,7 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
       const Vertex& p = v[i];
       const Vertex& q = v[i1];
       const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x);
-      if (x < x0 - 1e-12 * std::abs(x0) || x > x1 + 1e-12 * std::abs(x1)) continue;  // the edge does not reach x
+      if (x < x0 - reach * std::abs(x0) || x > x1 + reach * std::abs(x1)) continue;  // the edge does not reach x
       if (x1 - x0 <= 1e-12 * std::max({std::abs(x0), std::abs(x1), 1e-300})) {
         if (lower) lo = std::min({lo, p.y, q.y});
         if (upper) hi = std::max({hi, p.y, q.y});
@@ -161,12 +219,13 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
     }
   };
   double lo, hi;
-  pass(true, lo, hi);
-  if (hi == -inf || (!top_only && lo == inf)) {
-    double lo_all, hi_all;
-    pass(false, lo_all, hi_all);
-    if (hi == -inf) hi = hi_all;
-    if (lo == inf) lo = lo_all;
+  pass(true, 0.0, lo, hi);
+  for (const auto& [by_kind, reach] : {std::pair{true, 1e-12}, std::pair{false, 1e-12}}) {
+    if (hi != -inf && (top_only || lo != inf)) break;
+    double lo_more, hi_more;
+    pass(by_kind, reach, lo_more, hi_more);
+    if (hi == -inf) hi = hi_more;
+    if (lo == inf) lo = lo_more;
   }
   y_lo = lo;
   y_hi = hi;

@@ -84,6 +84,20 @@ inline double raise_violation(double worst, const Line& r, double x, double y) {
 /// where 1 is a typical ṡ²). With the rows' (binding_labels' `violation`): how far θ is from feasible.
 double bound_violation(const Chain& chain, const Eigen::VectorXd& theta);
 
+/// Largest violation of the grid points' own rows a x + b u <= c (eq. 26, both adjacent s̈ at each point) by
+/// θ, relative to max(1, |c|, |a θ_k|, |b u|, and |b| times the s̈ that θ's rounding resolves): the user's terms (a joint's q̈ against its limit), where the
+/// chain's rows, which carry b / (2Δs) in both coefficients, would measure against terms N times larger
+/// and hide an s̈ that breaks its limit on a fine grid. x_lo/x_hi as bound_violation does.
+double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, Eigen::Index* where);
+
+/// The last exact-feasibility step: where θ (from rest to rest) breaks a grid point's row by more than 1e-9
+/// but by rounding only (<= 1e-6, relative), θ scaled down by 1 / (1 + 4 v), up to three times doubling the
+/// shrink, until it meets every row to 1e-9 (rows with c > 0, as speed and acceleration limits have, hold
+/// with room at a lower speed). Returns grid_violation of the θ it leaves and sets *T_increase to the relative
+/// growth of T (added to the certified gap); θ is unchanged when the step does not help.
+double exact_feasibility_step(const Chain& chain, const GridSets& sets, Eigen::VectorXd& theta, Eigen::Index* where,
+                              double* T_increase);
+
 struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };
   Outcome outcome = Outcome::Feasible;

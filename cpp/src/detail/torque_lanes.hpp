@@ -13,6 +13,11 @@ namespace pathpace::detail {
 /// another compiler-vector target) or 1 (no vector types).
 int torque_lanes_supported();
 
+/// The width a call with lanes = 0 takes: torque_lanes_supported(), unless the environment variable
+/// PATHPACE_TORQUE_LANES forces a narrower one (1, 2, 4 or 8; InvalidInput if the CPU does not run it).
+/// Tests set it to exercise, on one machine, every path another CPU of this kind could pick.
+int default_torque_lanes();
+
 /// Where path_torque_coefficients_into writes sample s, joint j: a[s * sample_stride + j * joint_stride]
 /// (and b, c likewise); each a distinct entry. With `upper` and `lower` (one per joint), the entry and the
 /// next one get TorqueLimits' row pair of eq. (15) instead: (a, -a), (b, -b), (upper - c, c - lower),
@@ -28,7 +33,7 @@ struct TorqueOutput {
 void check_sample_shapes(Eigen::Index n, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq);
 
 /// path_torque_coefficients_batch into caller-laid-out arrays (TorqueLimits writes its rows directly),
-/// with `lanes` samples per sweep: 0 = the widest the CPU runs, 1 = one sample at a time, else a power of
+/// with `lanes` samples per sweep: 0 = default_torque_lanes(), 1 = one sample at a time, else a power of
 /// 2 up to torque_lanes_supported() (InvalidInput beyond). A robot with mimic joints takes the widest.
 void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, const Eigen::MatrixXd& q,
                                    const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq, const TorqueOutput& out,
