@@ -178,3 +178,25 @@ def test_floating_base_without_contacts_cannot_be_timed_and_says_so():
     assert res.status == pp.Status.INFEASIBLE
     assert any(c.startswith("torque floating_") for c in res.binding_constraints)
     np.testing.assert_allclose(robot.gravity_vector, [0, 0, -9.81])
+
+
+def test_a_forced_torque_width_must_be_one_this_cpu_runs(monkeypatch):
+    robot = pp.RobotModel.from_urdf(str(example_robot_urdf("panda_description/urdf/panda.urdf")))
+    rng = np.random.default_rng(3)
+    q, dq, ddq = (rng.uniform(-2, 2, (13, robot.nq)) for _ in range(3))  # 13: a partial group at every width
+    widest = pp._core._torque_lanes_supported()
+    ref = None
+    for lanes in (1, 2, 4, 8):
+        if lanes > widest:
+            continue
+        monkeypatch.setenv("PATHPACE_TORQUE_LANES", str(lanes))
+        abc = np.stack(robot.path_torque_coefficients(q, dq, ddq))
+        ref = abc if ref is None else ref
+        # The lanes' own sin/cos (2 ulp of libm's) and FMA in the wide paths: equal to rounding, not to the bit.
+        np.testing.assert_allclose(abc, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max(), err_msg=f"lanes = {lanes}")
+    path = pp.CubicSplinePath(np.array([np.zeros(robot.nq), np.full(robot.nq, 0.1)]))
+    for bad in (str(2 * widest), "3", "0", "eight"):
+        monkeypatch.setenv("PATHPACE_TORQUE_LANES", bad)
+        prob = pp.TimeScalingProblem(path, grid=13)
+        with pytest.raises(pp.InvalidInputError, match=f"PATHPACE_TORQUE_LANES = '{bad}' must be a power of 2 <= {widest}"):
+            prob.add_torque_limits(robot)

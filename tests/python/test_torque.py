@@ -10,6 +10,9 @@ from helpers import kinematic_problem
 from oracles import arm_rows, cvxpy_optimum, max_violation, pinocchio_model
 from pathpace.robots import example_robot_urdf
 
+# Torque rows take the CPU's widest SIMD path (8 lanes with AVX-512): every width this CPU runs, each test.
+pytestmark = pytest.mark.usefixtures("each_torque_width")
+
 DATA = Path(__file__).resolve().parents[1] / "data"
 SWING_UP_OPTIMUM = 2.206316  # 1-D phase-plane integration of the continuous problem (issue statement)
 
