@@ -227,6 +227,29 @@ SolverStats stats_from_state(const py::tuple& st) {
   return s;
 }
 
+// A problem's settings in its pickle state: {name: value} over ProblemSettings::for_each.
+py::dict settings_state(const ProblemSettings& s) {
+  py::dict out;
+  ProblemSettings::for_each(s, [&](const char* name, const auto& value) { out[name] = value; });
+  return out;
+}
+
+ProblemSettings settings_from_state(py::handle h) {
+  if (!py::isinstance<py::dict>(h)) throw InvalidInput("TimeScalingProblem pickle state: settings must be a dict");
+  const py::dict d = py::reinterpret_borrow<py::dict>(h);
+  ProblemSettings s;
+  size_t n = 0;
+  ProblemSettings::for_each(s, [&](const char* name, auto& value) {
+    if (!d.contains(name)) throw InvalidInput(std::string("TimeScalingProblem pickle state: settings has no '") + name + "'");
+    value = d[name].cast<std::decay_t<decltype(value)>>();
+    ++n;
+  });
+  if (d.size() != n)
+    throw InvalidInput("TimeScalingProblem pickle state: settings has " + std::to_string(d.size()) + " entries, expected " +
+                       std::to_string(n));
+  return s;
+}
+
 }  // namespace
 
 void bind_constraints(py::module_& m) {
@@ -627,27 +650,24 @@ void bind_problem(py::module_& m) {
          "Parameters\n----------\nqd_begin, qd_end : array_like (n,)\n    Joint velocities at the ends.\n"
          "tolerance : float\n    Allowed |q̇ - p' ṡ|∞ relative to |q̇|.\n\n"
          "Raises\n------\nInvalidInputError\n    Naming the joint index where q̇ is not along p'.")
-      // Rebuilt from (path, grid, constraints, boundary speeds): constraint rows are evaluated again.
+      // Rebuilt from (path, grid, constraints, settings): constraint rows are evaluated again. The settings
+      // are a dict of every ProblemSettings field (the list restarted() carries over too).
       .def(py::pickle([](const TimeScalingProblem& p) {
                         std::vector<std::shared_ptr<Constraint>> cs;
                         for (const auto& c : p.constraints()) cs.push_back(std::const_pointer_cast<Constraint>(c));
-                        return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs, p.sdot_begin(),
-                                              p.sdot_end(), p.joint_names(),
-                                              py::make_tuple(p.zero_sddot_begin(), p.zero_sddot_end()));
+                        return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs,
+                                              settings_state(p.settings()));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 7, "TimeScalingProblem");
+                        check_state(t, 4, "TimeScalingProblem");
                         auto p = std::make_shared<TimeScalingProblem>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "grid"));
                         const auto cs = t[2].cast<std::vector<std::shared_ptr<Constraint>>>();
+                        const ProblemSettings settings = settings_from_state(t[3]);
                         {
                           py::gil_scoped_release release;
                           for (const auto& c : cs) p->add_constraint(c);
                         }
-                        p->set_boundary_speeds(t[3].cast<double>(), t[4].cast<double>());
-                        const auto names = t[5].cast<std::vector<std::string>>();
-                        if (!names.empty()) p->set_joint_names(names);
-                        const py::tuple z = t[6].cast<py::tuple>();
-                        p->set_zero_boundary_accelerations(z[0].cast<bool>(), z[1].cast<bool>());
+                        p->set_settings(settings);
                         return p;
                       }))
       .def("set_zero_boundary_accelerations", [](TimeScalingProblem& p, py::handle at_begin, py::handle at_end) {
@@ -699,7 +719,9 @@ void bind_problem(py::module_& m) {
         return p.restarted(a, b);
       }, "s0"_a, "sdot0"_a,
            "The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0): the "
-           "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and end speed. Its result "
+           "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and every setting pickling "
+           "keeps (end speed, sddot = 0 at the end, joint names; sddot = 0 at the start only when s0 = s_begin). A "
+           "LinearConstraint keeps its rows at the kept grid points (s0 must then be a grid point). Its result "
            "starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.")
       .def("solve", [](const TimeScalingProblem& p, py::handle method, py::handle max_iterations,
                        py::handle tolerance, py::handle initial_trust_region, py::handle lp_feasibility_tolerance,
