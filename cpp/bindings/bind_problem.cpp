@@ -1,5 +1,4 @@
 // Constraints, the problem, results and trajectories.
-#include <optional>
 #include <type_traits>
 
 #include <pybind11/eigen.h>
@@ -258,9 +257,9 @@ void bind_constraints(py::module_& m) {
       .def_property_readonly("name", &Constraint::name);
 
   py::class_<VelocityLimits, Constraint, std::shared_ptr<VelocityLimits>>(m, "VelocityLimits")
-      .def(py::init([](py::handle vmin, py::handle vmax, std::optional<std::vector<std::string>> joint_names) {
+      .def(py::init([](py::handle vmin, py::handle vmax, py::handle joint_names) {
              return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"),
-                                                     joint_names.value_or(std::vector<std::string>{}));
+                                                     to_string_list(joint_names, "joint_names", true));
            }),
            "vmin"_a, "vmax"_a, "joint_names"_a = py::none())
       .def_property_readonly("vmin", &VelocityLimits::vmin)
@@ -274,9 +273,9 @@ void bind_constraints(py::module_& m) {
                       }));
 
   py::class_<AccelerationLimits, Constraint, std::shared_ptr<AccelerationLimits>>(m, "AccelerationLimits")
-      .def(py::init([](py::handle amin, py::handle amax, std::optional<std::vector<std::string>> joint_names) {
+      .def(py::init([](py::handle amin, py::handle amax, py::handle joint_names) {
              return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"),
-                                                         joint_names.value_or(std::vector<std::string>{}));
+                                                         to_string_list(joint_names, "joint_names", true));
            }),
            "amin"_a, "amax"_a, "joint_names"_a = py::none())
       .def_property_readonly("amin", &AccelerationLimits::amin)
@@ -678,7 +677,8 @@ void bind_problem(py::module_& m) {
          "sddot = 0 at s_begin and/or s_end (q̈ = p'' ṡ² there: no jump of q̈ from or to a cruise). With sddot "
          "constant per interval (eq. 24) it holds on the whole first/last interval, so the boundary speed there must "
          "be > 0 (set_boundary_speeds); solve() raises InvalidInputError otherwise.")
-      .def("set_joint_names", [](TimeScalingProblem& p, std::vector<std::string> names) {
+      .def("set_joint_names", [](TimeScalingProblem& p, py::handle names_arg) {
+        std::vector<std::string> names = to_string_list(names_arg, "names");
         ProblemUse use(p, ProblemUse::kWrite, "set_joint_names");
         p.set_joint_names(std::move(names));
       }, "names"_a,

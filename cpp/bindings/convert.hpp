@@ -182,6 +182,17 @@ inline std::vector<py::object> to_items(py::handle h, const std::string& name, c
   return out;
 }
 
+/// A list (or tuple) of str; None gives an empty list when allow_none (the C++ default: no names).
+inline std::vector<std::string> to_string_list(py::handle h, const std::string& name, bool allow_none = false) {
+  if (allow_none && h.is_none()) return {};
+  const char* expected = allow_none ? "a list of str or None" : "a list of str";
+  if (py::isinstance<py::array>(h) || py::isinstance<py::dict>(h)) type_error(name, expected, h);
+  std::vector<std::string> out;
+  const std::vector<py::object> items = to_items(h, name, expected);
+  for (size_t i = 0; i < items.size(); ++i) out.push_back(to_string_arg(items[i], name + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
 /// A sequence of pathpace.Contact.
 inline std::vector<Contact> to_contacts(py::handle h, const std::string& name) {
   if (py::isinstance<Contact>(h)) type_error(name, "a list of pathpace.Contact", h);
