@@ -215,7 +215,8 @@ def test_restart_keeps_every_setting_that_pickling_keeps(k):
     assert tail.__getstate__()[3] == expected
     assert tail.joint_names == ["shoulder", "elbow"] and tail.sdot_end == 0.2
     res = tail.solve()
-    assert res.status == pp.Status.OPTIMAL and res.sddot[-1] == 0.0 and (res.sddot[0] == 0.0) == (k == 0)
+    assert res.status == pp.Status.OPTIMAL and abs(res.sddot[-1]) <= 1e-12
+    assert abs(res.sddot[0]) <= 1e-12 if k == 0 else abs(res.sddot[0]) > 1e-3
     # Pickling a restarted problem keeps its settings as well.
     assert pickle.loads(pickle.dumps(tail)).__getstate__()[3] == expected
 
