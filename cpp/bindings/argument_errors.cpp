@@ -225,8 +225,11 @@ std::string describe(PyObject* self, PyObject* const* args, size_t nargsf, PyObj
 // pybind11's own check of a constructor's instance, before any overload is tried.
 constexpr const char* kBadInit = "__init__(self, ...) called with invalid or missing `self` argument";
 
-bool is_dispatch_failure(const std::string& msg) {
-  return msg.find("(): incompatible ") != std::string::npos &&
+// pybind11's message when no overload of `rec` takes the call (and not one raised inside the call, by a
+// function that this file did not patch).
+bool is_dispatch_failure(const py::detail::function_record& rec, const std::string& msg) {
+  const std::string head = std::string(rec.name ? rec.name : "") + "(): incompatible ";
+  return msg.compare(0, head.size(), head) == 0 &&
          msg.find(" arguments. The following argument types are supported") != std::string::npos;
 }
 
@@ -240,7 +243,7 @@ PyObject* named_dispatcher(PyObject* self, PyObject* const* args, size_t nargsf,
   try {
     msg = py::str(value).cast<std::string>();
     const py::detail::function_record* rec = py::detail::function_record_ptr_from_PyObject(self);
-    if (is_dispatch_failure(msg)) {
+    if (is_dispatch_failure(*rec, msg)) {
       msg = describe(self, args, nargsf, kwnames);
     } else if (msg == kBadInit) {
       const std::string cls = function_name(*rec);
