@@ -38,7 +38,8 @@ PRELOAD="$(g++ -print-file-name=libasan.so) $(g++ -print-file-name=libstdc++.so)
 # Tests that drive the bindings (paths, problems, robots, contacts, threads, bad input, fuzz);
 # examples and the pinocchio/cvxpy-heavy comparisons add time, not binding coverage.
 TESTS=(tests/python/test_robustness.py tests/python/test_api.py tests/python/test_paths.py
-       tests/python/test_problem.py tests/python/test_contact.py tests/python/test_contact_phases.py tests/python/fuzz)
+       tests/python/test_problem.py tests/python/test_contact.py tests/python/test_contact_phases.py
+       tests/python/test_argument_errors.py tests/python/fuzz)
 PYTHONPATH="$PWD/$B/python" LD_PRELOAD="$PRELOAD" \
   ASAN_OPTIONS=detect_leaks=0:halt_on_error=1:allocator_may_return_null=1 \
   "$PY" -m pytest -q -p no:cacheprovider "${TESTS[@]}" \

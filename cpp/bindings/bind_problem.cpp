@@ -1,5 +1,4 @@
 // Constraints, the problem, results and trajectories.
-#include <optional>
 #include <type_traits>
 
 #include <pybind11/eigen.h>
@@ -227,6 +226,29 @@ SolverStats stats_from_state(const py::tuple& st) {
   return s;
 }
 
+// A problem's settings in its pickle state: {name: value} over ProblemSettings::for_each.
+py::dict settings_state(const ProblemSettings& s) {
+  py::dict out;
+  ProblemSettings::for_each(s, [&](const char* name, const auto& value) { out[name] = value; });
+  return out;
+}
+
+ProblemSettings settings_from_state(py::handle h) {
+  if (!py::isinstance<py::dict>(h)) throw InvalidInput("TimeScalingProblem pickle state: settings must be a dict");
+  const py::dict d = py::reinterpret_borrow<py::dict>(h);
+  ProblemSettings s;
+  size_t n = 0;
+  ProblemSettings::for_each(s, [&](const char* name, auto& value) {
+    if (!d.contains(name)) throw InvalidInput(std::string("TimeScalingProblem pickle state: settings has no '") + name + "'");
+    value = d[name].cast<std::decay_t<decltype(value)>>();
+    ++n;
+  });
+  if (d.size() != n)
+    throw InvalidInput("TimeScalingProblem pickle state: settings has " + std::to_string(d.size()) + " entries, expected " +
+                       std::to_string(n));
+  return s;
+}
+
 }  // namespace
 
 void bind_constraints(py::module_& m) {
@@ -235,9 +257,9 @@ void bind_constraints(py::module_& m) {
       .def_property_readonly("name", &Constraint::name);
 
   py::class_<VelocityLimits, Constraint, std::shared_ptr<VelocityLimits>>(m, "VelocityLimits")
-      .def(py::init([](py::handle vmin, py::handle vmax, std::optional<std::vector<std::string>> joint_names) {
+      .def(py::init([](py::handle vmin, py::handle vmax, py::handle joint_names) {
              return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"),
-                                                     joint_names.value_or(std::vector<std::string>{}));
+                                                     to_string_list(joint_names, "joint_names", true));
            }),
            "vmin"_a, "vmax"_a, "joint_names"_a = py::none())
       .def_property_readonly("vmin", &VelocityLimits::vmin)
@@ -251,9 +273,9 @@ void bind_constraints(py::module_& m) {
                       }));
 
   py::class_<AccelerationLimits, Constraint, std::shared_ptr<AccelerationLimits>>(m, "AccelerationLimits")
-      .def(py::init([](py::handle amin, py::handle amax, std::optional<std::vector<std::string>> joint_names) {
+      .def(py::init([](py::handle amin, py::handle amax, py::handle joint_names) {
              return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"),
-                                                         joint_names.value_or(std::vector<std::string>{}));
+                                                         to_string_list(joint_names, "joint_names", true));
            }),
            "amin"_a, "amax"_a, "joint_names"_a = py::none())
       .def_property_readonly("amin", &AccelerationLimits::amin)
@@ -627,27 +649,24 @@ void bind_problem(py::module_& m) {
          "Parameters\n----------\nqd_begin, qd_end : array_like (n,)\n    Joint velocities at the ends.\n"
          "tolerance : float\n    Allowed |q̇ - p' ṡ|∞ relative to |q̇|.\n\n"
          "Raises\n------\nInvalidInputError\n    Naming the joint index where q̇ is not along p'.")
-      // Rebuilt from (path, grid, constraints, boundary speeds): constraint rows are evaluated again.
+      // Rebuilt from (path, grid, constraints, settings): constraint rows are evaluated again. The settings
+      // are a dict of every ProblemSettings field (the list restarted() carries over too).
       .def(py::pickle([](const TimeScalingProblem& p) {
                         std::vector<std::shared_ptr<Constraint>> cs;
                         for (const auto& c : p.constraints()) cs.push_back(std::const_pointer_cast<Constraint>(c));
-                        return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs, p.sdot_begin(),
-                                              p.sdot_end(), p.joint_names(),
-                                              py::make_tuple(p.zero_sddot_begin(), p.zero_sddot_end()));
+                        return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs,
+                                              settings_state(p.settings()));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 7, "TimeScalingProblem");
+                        check_state(t, 4, "TimeScalingProblem");
                         auto p = std::make_shared<TimeScalingProblem>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "grid"));
                         const auto cs = t[2].cast<std::vector<std::shared_ptr<Constraint>>>();
+                        const ProblemSettings settings = settings_from_state(t[3]);
                         {
                           py::gil_scoped_release release;
                           for (const auto& c : cs) p->add_constraint(c);
                         }
-                        p->set_boundary_speeds(t[3].cast<double>(), t[4].cast<double>());
-                        const auto names = t[5].cast<std::vector<std::string>>();
-                        if (!names.empty()) p->set_joint_names(names);
-                        const py::tuple z = t[6].cast<py::tuple>();
-                        p->set_zero_boundary_accelerations(z[0].cast<bool>(), z[1].cast<bool>());
+                        p->set_settings(settings);
                         return p;
                       }))
       .def("set_zero_boundary_accelerations", [](TimeScalingProblem& p, py::handle at_begin, py::handle at_end) {
@@ -658,7 +677,8 @@ void bind_problem(py::module_& m) {
          "sddot = 0 at s_begin and/or s_end (q̈ = p'' ṡ² there: no jump of q̈ from or to a cruise). With sddot "
          "constant per interval (eq. 24) it holds on the whole first/last interval, so the boundary speed there must "
          "be > 0 (set_boundary_speeds); solve() raises InvalidInputError otherwise.")
-      .def("set_joint_names", [](TimeScalingProblem& p, std::vector<std::string> names) {
+      .def("set_joint_names", [](TimeScalingProblem& p, py::handle names_arg) {
+        std::vector<std::string> names = to_string_list(names_arg, "names");
         ProblemUse use(p, ProblemUse::kWrite, "set_joint_names");
         p.set_joint_names(std::move(names));
       }, "names"_a,
@@ -699,7 +719,9 @@ void bind_problem(py::module_& m) {
         return p.restarted(a, b);
       }, "s0"_a, "sdot0"_a,
            "The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0): the "
-           "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and end speed. Its result "
+           "path's tail [s0, s_end] on the grid points beyond s0, the same constraints and every setting pickling "
+           "keeps (end speed, sddot = 0 at the end, joint names; sddot = 0 at the start only when s0 = s_begin). A "
+           "LinearConstraint keeps its rows at the kept grid points (s0 must then be a grid point). Its result "
            "starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.")
       .def("solve", [](const TimeScalingProblem& p, py::handle method, py::handle max_iterations,
                        py::handle tolerance, py::handle initial_trust_region, py::handle lp_feasibility_tolerance,

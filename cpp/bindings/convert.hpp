@@ -26,19 +26,64 @@ inline std::string type_name(py::handle h) { return py::str(py::type::handle_of(
   throw py::type_error(name + " must be " + expected + ", got " + (got.is_none() ? std::string("None") : type_name(got)));
 }
 
+/// "name[i]" or "name[i, j, ...]" for the flat index `flat` of an array of shape `shape`.
+inline std::string element_name(const std::string& name, const py::array& a, py::ssize_t flat) {
+  std::vector<py::ssize_t> idx(static_cast<size_t>(a.ndim()));
+  for (py::ssize_t d = a.ndim(); d-- > 0;) {
+    idx[static_cast<size_t>(d)] = flat % a.shape(d);
+    flat /= a.shape(d);
+  }
+  std::string out = name + "[";
+  for (size_t d = 0; d < idx.size(); ++d) out += (d ? ", " : "") + std::to_string(idx[d]);
+  return out + "]";
+}
+
+/// numpy would turn None into NaN, a complex number into its real part, and refuse "a" only as a whole:
+/// an array of objects, strings or complex numbers is checked element by element here, so that the error
+/// names the element ("waypoints[1, 0] must be a number, got None").
+inline void require_real_elements(const py::array& a, const std::string& name) {
+  const char kind = a.dtype().kind();
+  if (kind != 'O' && kind != 'U' && kind != 'S' && kind != 'c') return;
+  py::ssize_t i = 0;
+  for (py::handle item : a.attr("flat")) {
+    const std::string where = element_name(name, a, i++);
+    if (kind == 'c' || PyComplex_Check(item.ptr()))
+      throw InvalidInput(where + " = " + py::repr(item).cast<std::string>() + " must be a real number");
+    if (item.is_none() || py::isinstance<py::str>(item) || py::isinstance<py::bytes>(item) ||
+        !PyObject_HasAttrString(item.ptr(), "__float__"))
+      type_error(where, "a number", item);
+  }
+}
+
 inline py::array_t<double, py::array::c_style | py::array::forcecast> as_float_array(py::handle obj,
                                                                                      const std::string& name) {
   if (obj.is_none()) throw InvalidInput(name + " must be an array, got None");
   if (py::isinstance<py::str>(obj) || py::isinstance<py::bytes>(obj) || py::isinstance<py::dict>(obj))
     throw InvalidInput(name + " must be an array of numbers, got " + type_name(obj));
   // ensure() returns an empty handle (not an exception) when numpy cannot convert the object
-  // (a string, a ragged list, a dict): dereferencing that crashed the interpreter.
+  // (a string, a ragged list, a dict): dereferencing that crashed the interpreter. numpy.asarray raises
+  // instead (a ragged list); `a` then stays the default array of shape (0,), so `converted` says which.
   py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  bool converted = false;
   try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    // A float array passes straight through; anything else is first read as numpy reads it, to see what
+    // its elements are.
+    if (!py::isinstance<py::array_t<double>>(obj)) {
+      py::array raw = py::isinstance<py::array>(obj) ? py::reinterpret_borrow<py::array>(obj)
+                                                     : py::array(py::module_::import("numpy").attr("asarray")(obj));
+      const char kind = raw.dtype().kind();
+      // A list with a str (or complex) element became an array of str (complex): its own elements name the culprit.
+      if (!py::isinstance<py::array>(obj) && (kind == 'U' || kind == 'S' || kind == 'c'))
+        require_real_elements(py::module_::import("numpy").attr("asarray")(obj, py::arg("dtype") = "object"), name);
+      require_real_elements(raw, name);
+      a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
+    } else {
+      a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    }
+    converted = true;
   } catch (const py::error_already_set&) {
   }
-  if (!a) {
+  if (!converted || !a) {
     PyErr_Clear();
     throw InvalidInput(name + " must be an array of numbers (not ragged), got " + type_name(obj));
   }
@@ -134,6 +179,17 @@ inline std::vector<py::object> to_items(py::handle h, const std::string& name, c
     }
     out.push_back(py::reinterpret_steal<py::object>(item));
   }
+  return out;
+}
+
+/// A list (or tuple) of str; None gives an empty list when allow_none (the C++ default: no names).
+inline std::vector<std::string> to_string_list(py::handle h, const std::string& name, bool allow_none = false) {
+  if (allow_none && h.is_none()) return {};
+  const char* expected = allow_none ? "a list of str or None" : "a list of str";
+  if (py::isinstance<py::array>(h) || py::isinstance<py::dict>(h)) type_error(name, expected, h);
+  std::vector<std::string> out;
+  const std::vector<py::object> items = to_items(h, name, expected);
+  for (size_t i = 0; i < items.size(); ++i) out.push_back(to_string_arg(items[i], name + "[" + std::to_string(i) + "]"));
   return out;
 }
 

@@ -18,6 +18,7 @@ void bind_constraints(py::module_& m);  // the Constraint base: before any deriv
 void bind_robot(py::module_& m);
 void bind_problem(py::module_& m);
 void add_docstrings(py::module_& m);  // bind_docs.cpp: after every binding
+void name_argument_errors(py::module_& m);  // argument_errors.cpp: last, over every bound function
 
 namespace {
 
@@ -55,5 +56,6 @@ PYBIND11_MODULE(_core, m) {
   pathpace::python::bind_robot(m);
   pathpace::python::bind_problem(m);
   pathpace::python::add_docstrings(m);
+  pathpace::python::name_argument_errors(m);
   m.attr("malloc_tuned") = pathpace::python::tune_malloc();
 }

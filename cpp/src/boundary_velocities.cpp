@@ -17,12 +17,15 @@ double speed_from_velocity(const std::string& name, const Eigen::VectorXd& qd, c
                            double dp_scale, double tolerance) {
   detail::require_size(name, qd.size(), dp.size(), "one per path coordinate");
   detail::require_finite(name, qd);
-  const double qd_norm = qd.norm(), dp_norm2 = dp.squaredNorm();
+  const double qd_norm = qd.stableNorm(), dp_norm2 = dp.squaredNorm();
   if (qd_norm == 0.0) return 0.0;
   if (!(std::sqrt(dp_norm2) > 1e-9 * dp_scale))
     detail::fail(name + " = " + detail::fmt(qd_norm) + " (norm) must be 0: the path does not move at s = " + detail::fmt(s) +
                  " (p'(s) = 0), so no speed along it gives a joint velocity");
   const double sdot = dp.dot(qd) / dp_norm2;
+  if (!std::isfinite(sdot))
+    detail::fail(name + " = " + detail::fmt(qd_norm) + " (norm) is too large: the speed along the path it gives at s = " +
+                 detail::fmt(s) + " overflows (" + detail::fmt(sdot) + ")");
   // The residual q̇ - p' ṡ is what no speed along the path can give: name its largest entry.
   const Eigen::VectorXd residual = qd - dp * std::max(sdot, 0.0);
   Eigen::Index j = 0;

@@ -15,7 +15,9 @@ PiecewisePolynomialPath::PiecewisePolynomialPath(Eigen::VectorXd breakpoints, st
   detail::require_finite("breakpoints", breakpoints_);
   detail::require_increasing("breakpoints", breakpoints_);
   const Eigen::Index m = breakpoints_.size() - 1;
-  detail::require_size("coefficients", static_cast<Eigen::Index>(coefficients_.size()), m, "one piece per interval");
+  // Both arguments named: either may be the wrong one.
+  detail::require_size("coefficients", static_cast<Eigen::Index>(coefficients_.size()), m,
+                       "one piece per interval of breakpoints, which has " + std::to_string(m + 1) + " entries");
   const Eigen::Index rows = coefficients_[0].rows(), cols = coefficients_[0].cols();
   if (rows < 1 || cols < 1) detail::fail("coefficients[0] is empty, expected shape (degree + 1, n)");
   for (size_t i = 0; i < coefficients_.size(); ++i) {

@@ -62,6 +62,18 @@ inline int coordinate_axis(const Eigen::Vector3d& axis) {
   return -1;
 }
 
+// Gravity in m/s² (the unit of the URDF's lengths per s²): finite, and at most 1e3 m/s² (~100 g, beyond
+// any planet's surface or a test centrifuge's usual range). More is a unit error (9810 is g in mm/s²),
+// and with 1e308 the torques overflowed to inf and NaN.
+void check_gravity(const Eigen::Vector3d& g) {
+  detail::require_finite("gravity", g);
+  constexpr double kMaxGravity = 1e3;
+  if (g.stableNorm() > kMaxGravity)
+    detail::fail("gravity = (" + detail::fmt(g.x()) + ", " + detail::fmt(g.y()) + ", " + detail::fmt(g.z()) +
+                 ") has |gravity| = " + detail::fmt(g.stableNorm()) + " m/s^2, must be <= 1000 m/s^2 (about 100 g; "
+                 "gravity is in m/s^2, e.g. (0, 0, -9.81))");
+}
+
 struct Builder {
   const RobotModelOptions& options;
   std::vector<RobotModel::Body>& bodies;
@@ -314,7 +326,7 @@ RobotModel RobotModel::from_urdf_file(const std::string& path, const RobotModelO
 }
 
 RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModelOptions& options) {
-  detail::require_finite("gravity", options.gravity);
+  check_gravity(options.gravity);
   for (const auto& [name, value] : options.locked_joints)
     if (!std::isfinite(value)) detail::fail("locked_joints['" + name + "'] = " + detail::fmt(value) + " must be finite");
   // urdfdom reports parse errors through console_bridge on stderr; the error is ours to report. It
@@ -1274,7 +1286,7 @@ RobotModel RobotModel::free_object(const std::string& name, double mass, const E
   const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues().minCoeff();
   if (min_eig < -1e-12 * std::max(1.0, inertia.cwiseAbs().maxCoeff()))
     detail::fail("inertia has eigenvalue " + detail::fmt(min_eig) + ": it must be positive semi-definite");
-  detail::require_finite("gravity", gravity);
+  check_gravity(gravity);
   RobotModel m;
   m.name_ = name;
   m.gravity_ = gravity;

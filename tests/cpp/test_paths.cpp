@@ -397,7 +397,7 @@ TEST(PiecewisePolynomialPathValidation, Breakpoints) {
 TEST(PiecewisePolynomialPathValidation, Coefficients) {
   const VectorXd b = vec({0, 1, 2});
   expect_invalid([&] { PiecewisePolynomialPath(b, {MatrixXd::Zero(2, 1)}); },
-                 "coefficients has size 1, expected 2 (one piece per interval)");
+                 "coefficients has size 1, expected 2 (one piece per interval of breakpoints, which has 3 entries)");
   expect_invalid([&] { PiecewisePolynomialPath(b, {MatrixXd::Zero(0, 2), MatrixXd::Zero(0, 2)}); },
                  "coefficients[0] is empty, expected shape (degree + 1, n)");
   expect_invalid([&] { PiecewisePolynomialPath(b, {MatrixXd::Zero(2, 0), MatrixXd::Zero(2, 0)}); },

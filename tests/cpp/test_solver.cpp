@@ -297,3 +297,33 @@ TEST(Solver, UnboundedOnlyWhereThePathMovesFreely) {
   EXPECT_GT(r.infeasibility.grid_index, 0);
   EXPECT_LT(r.infeasibility.grid_index, 10);
 }
+
+TEST(Solver, RestartKeepsEverySettingAndALinearConstraintsRows) {
+  // 0 -> 3 under |q̇| <= 1 and, per grid point, |s̈| <= 0.5 + s / 10 (a LinearConstraint); every setting set.
+  const int N = 30;
+  TimeScalingProblem prob(line1d(3.0), N);
+  prob.add_velocity_limits(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1));
+  const Eigen::VectorXd hi = 0.5 + prob.grid().array() / 10;
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(N + 1, 1), one = Eigen::MatrixXd::Ones(N + 1, 1);
+  prob.add_linear_constraint(zero, one, zero, -hi, hi, "user");
+  prob.set_boundary_speeds(0.0, 0.2);
+  prob.set_zero_boundary_accelerations(false, true);
+  prob.set_joint_names({"x"});
+  const Result r = prob.solve();
+  ASSERT_EQ(r.status, Status::Optimal) << r.message;
+  const int k = 10;
+  const TimeScalingProblem tail = prob.restarted(prob.grid()[k], r.sdot[k]);
+  const ProblemSettings s = tail.settings();
+  EXPECT_EQ(s.sdot_begin, r.sdot[k]);
+  EXPECT_EQ(s.sdot_end, 0.2);
+  EXPECT_FALSE(s.zero_sddot_begin);
+  EXPECT_TRUE(s.zero_sddot_end);
+  EXPECT_EQ(s.joint_names, std::vector<std::string>{"x"});
+  const Result t = tail.solve();
+  ASSERT_EQ(t.status, Status::Optimal) << t.message;
+  EXPECT_NEAR(t.duration, r.duration - r.times[k], 3e-7 * r.duration);  // Bellman: the optimum's tail
+  EXPECT_NEAR(t.sddot[N - k - 1], 0.0, 1e-12);  // s̈ = 0 on the last interval, from θ_N = θ_{N-1}
+  EXPECT_EQ(error_of([&] { prob.restarted(0.34, 0.1); }),
+            "restarted: s0 = 0.34 is not a grid point (nearest: grid[10] = 0.333333333333) and constraint 'user' is given "
+            "per grid point (LinearConstraint): restart at a grid point");
+}

@@ -1,6 +1,7 @@
 """Boundary states, restarts, and answers to "why is it infeasible?" / "what binds where?"."""
 
 import math
+import pickle
 import re
 from pathlib import Path
 
@@ -189,6 +190,69 @@ def test_restart_inside_an_interval_starts_where_the_trajectory_is():
     rest = res.duration - t_r
     assert out.duration <= rest * (1 + 1e-7)
     assert out.duration >= rest - (res.times[4] - res.times[3])
+
+
+def settings_problem():
+    """Every setting away from its default: boundary speeds, s̈ = 0 at both ends, joint names."""
+    prob = two_joint_problem(40)
+    prob.set_boundary_speeds(0.3, 0.2)
+    prob.set_zero_boundary_accelerations(True, True)
+    prob.set_joint_names(["shoulder", "elbow"])
+    return prob
+
+
+@pytest.mark.parametrize("k", [0, 17])
+def test_restart_keeps_every_setting_that_pickling_keeps(k):
+    # The settings are read from the pickle state itself (a dict of every ProblemSettings field), so a
+    # setting added there is checked here too.
+    prob = settings_problem()
+    settings = prob.__getstate__()[3]
+    assert set(settings) == {"sdot_begin", "sdot_end", "zero_sddot_begin", "zero_sddot_end", "joint_names"}
+    tail = prob.restarted(prob.grid[k], 0.25)
+    # The restart's own start: its speed, and s̈ = 0 there only when it starts where the problem starts
+    # (inside the path it continues a running trajectory, whose s̈ is free).
+    expected = dict(settings, sdot_begin=0.25, zero_sddot_begin=settings["zero_sddot_begin"] and k == 0)
+    assert tail.__getstate__()[3] == expected
+    assert tail.joint_names == ["shoulder", "elbow"] and tail.sdot_end == 0.2
+    res = tail.solve()
+    assert res.status == pp.Status.OPTIMAL and abs(res.sddot[-1]) <= 1e-12
+    assert abs(res.sddot[0]) <= 1e-12 if k == 0 else abs(res.sddot[0]) > 1e-3
+    # Pickling a restarted problem keeps its settings as well.
+    assert pickle.loads(pickle.dumps(tail)).__getstate__()[3] == expected
+
+
+def linear_constraint_problem(N=60):
+    """two_joint_problem with, as a LinearConstraint given per grid point, |s̈| <= (1 + s) / 2 and ṡ² <= (2 - s) / 5."""
+    prob = two_joint_problem(N)
+    s = prob.grid
+    one, zero = np.ones(N + 1), np.zeros(N + 1)
+    prob.add_linear_constraint(np.c_[zero, one], np.c_[one, zero], np.c_[zero, zero], np.c_[-(1 + s) / 2, -one * np.inf],
+                               np.c_[(1 + s) / 2, (2 - s) / 5], label="user")
+    return prob
+
+
+def test_restart_at_a_grid_point_keeps_a_linear_constraints_rows():
+    prob = linear_constraint_problem()
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL and {"user[0] upper", "user[1] upper"} <= set(res.binding)
+    k = 23
+    tail = prob.restarted(res.s[k], res.sdot[k])
+    (user,) = [c for c in tail.constraints if c.name == "user"]
+    np.testing.assert_array_equal(user.__getstate__()[4][:, 0], (1 + prob.grid[k:]) / 2)  # hi: the rows of s_k..s_N
+    out = tail.solve()
+    assert out.status == pp.Status.OPTIMAL
+    # Bellman, as for the restart without a LinearConstraint: the tail of the optimum (both certified to 1e-7).
+    assert out.duration == pytest.approx(res.duration - res.times[k], rel=3e-7)
+    np.testing.assert_allclose(out.sdot, res.sdot[k:], rtol=1e-6, atol=1e-9)
+
+
+def test_restart_off_the_grid_with_a_linear_constraint_names_the_restart():
+    prob = linear_constraint_problem()
+    s0 = 0.5 * (prob.grid[10] + prob.grid[11]) + 1e-4
+    with pytest.raises(pp.InvalidInputError,
+                       match=r"^restarted: s0 = 0.1751 is not a grid point \(nearest: grid\[11\] = 0.183333333333\) and "
+                             r"constraint 'user' is given per grid point \(LinearConstraint\): restart at a grid point$"):
+        prob.restarted(s0, 0.1)
 
 
 def test_restart_validates_its_arguments():

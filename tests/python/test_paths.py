@@ -104,7 +104,7 @@ def test_sampled_path_reproduces_samples_and_converges_at_sixth_order():
         (lambda: pp.CubicSplinePath(np.array([[0.0], [1.0]]), s_begin=1.0, s_end=1.0),
          r"s_begin = 1 must be < s_end = 1"),
         (lambda: pp.PiecewisePolynomialPath([0.0, 1.0], np.zeros((2, 2, 1))),
-         r"coefficients has size 2, expected 1 \(one piece per interval\)"),
+         r"coefficients has size 2, expected 1 \(one piece per interval of breakpoints, which has 2 entries\)"),
         (lambda: pp.PiecewisePolynomialPath([0.0, 1.0], np.zeros((2, 1))),
          r"coefficients has shape \(2, 1\), expected \(pieces, degree \+ 1, n\)"),
         (lambda: pp.PiecewisePolynomialPath([1.0, 0.0], np.zeros((1, 2, 1))),

@@ -31,15 +31,19 @@ def run_isolated(code, timeout=120):
 
 # ---- the six crashes ----------------------------------------------------------------------------
 
-@pytest.mark.parametrize("coefficients", ['"abc"', "[[1.0, 2.0], [3.0]]", "{}", "[[[1.0], ['x']]]", "None"])
-def test_crash1_piecewise_polynomial_coefficients_that_are_not_numbers(coefficients):
+@pytest.mark.parametrize("coefficients, message", [
+    ('"abc"', "coefficients must be an array"), ("[[1.0, 2.0], [3.0]]", "coefficients must be an array"),
+    ("{}", "coefficients must be an array"), ("None", "coefficients must be an array"),
+    ("[[[1.0], ['x']]]", "coefficients[0, 1, 0] must be a number, got str"),  # a TypeError naming the element
+])
+def test_crash1_piecewise_polynomial_coefficients_that_are_not_numbers(coefficients, message):
     out = run_isolated(f"""
         try:
             pp.PiecewisePolynomialPath([0.0, 1.0], {coefficients})
-        except pp.InvalidInputError as e:
+        except (pp.InvalidInputError, TypeError) as e:
             print("raised:", e)
     """)
-    assert "raised: coefficients must be an array" in out
+    assert "raised: " + message in out
 
 
 def test_crash2_none_for_an_object_argument_is_a_type_error():

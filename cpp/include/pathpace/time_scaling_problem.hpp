@@ -24,6 +24,24 @@ namespace detail {
 struct IntervalExtra;
 }
 
+/// The settings of a problem beside its path, grid and constraints: what pickling stores and what
+/// restarted() carries over, both read through for_each, so that a setting added here reaches both.
+struct ProblemSettings {
+  double sdot_begin = 0.0, sdot_end = 0.0;             ///< set_boundary_speeds
+  bool zero_sddot_begin = false, zero_sddot_end = false;  ///< set_zero_boundary_accelerations
+  std::vector<std::string> joint_names;                ///< set_joint_names (empty: none set)
+
+  /// f(name, field) for every field, in a fixed order.
+  template <typename Self, typename F>
+  static void for_each(Self& s, F&& f) {
+    f("sdot_begin", s.sdot_begin);
+    f("sdot_end", s.sdot_end);
+    f("zero_sddot_begin", s.zero_sddot_begin);
+    f("zero_sddot_end", s.zero_sddot_end);
+    f("joint_names", s.joint_names);
+  }
+};
+
 /// Minimise T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) (eq. 25, 27) over the speeds at the grid points subject to
 /// every constraint's half-planes at every grid point, on both sides of each grid point (eq. 26:
 /// s̈ of interval k at s_k and of interval k-1 at s_k).
@@ -92,6 +110,9 @@ class TimeScalingProblem {
                                double tolerance = 1e-6);
   double sdot_begin() const { return sdot_begin_; }
   double sdot_end() const { return sdot_end_; }
+  /// Every setting at once (pickling); set_settings applies each through its own setter (and checks).
+  ProblemSettings settings() const;
+  void set_settings(const ProblemSettings& settings);
 
   const std::shared_ptr<const Path>& path() const { return path_; }
   const Eigen::VectorXd& grid() const { return samples_.s; }
@@ -119,9 +140,13 @@ class TimeScalingProblem {
 
   /// The problem that continues a running trajectory from s0 at speed sdot0 (>= 0): the path from s0
   /// to s_end, the grid points beyond s0 (s0 itself becomes the first one; a grid point closer to s0
-  /// than 1e-9 of the interval is dropped), the same constraints, boundary speeds (sdot0, sdot_end).
-  /// Its solution starts at q = p(s0), q̇ = p'(s0)·sdot0: the continuation has no jump in position or
-  /// velocity. Times in its result count from the restart (t = 0 at s0).
+  /// than 1e-9 of the interval is dropped), the same constraints and every setting (ProblemSettings),
+  /// with boundary speeds (sdot0, sdot_end). Its solution starts at q = p(s0), q̇ = p'(s0)·sdot0: the
+  /// continuation has no jump in position or velocity. Times in its result count from the restart (t = 0
+  /// at s0). s̈ = 0 at the start (set_zero_boundary_accelerations) is kept for a restart at s_begin only:
+  /// inside the path the restart continues a running trajectory, whose s̈ there is free.
+  /// A LinearConstraint (rows given per grid point) keeps the rows of the grid points the restart keeps;
+  /// s0 must then be a grid point (InvalidInput naming s0 and the nearest grid point otherwise).
   TimeScalingProblem restarted(double s0, double sdot0) const;
 
   /// "feasible with torque limits x 1.18 or acceleration limits x 1.4" for a relaxation() map.

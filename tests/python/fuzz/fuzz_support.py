@@ -7,6 +7,9 @@ many more examples from a fresh seed each time:
     PATHPACE_FUZZ_EXAMPLES=5000 .venv/bin/python -m pytest -q tests/python/fuzz
     PATHPACE_FUZZ_SEED=123 ...                                                  # a reproducible long run
 
+The long mode draws its seed from the OS unless PATHPACE_FUZZ_SEED gives one; pytest's header says which
+(`pathpace fuzz: ... seed ...`), so that a run's findings can be repeated.
+
 Each example runs in a forked child (run_isolated): a segfault, an abort from a sanitizer or a hang
 ends that child, and the parent reports it as the failure of that example (hypothesis then shrinks
 it), instead of ending the pytest run.
@@ -16,30 +19,34 @@ from __future__ import annotations
 
 import os
 import pickle
+import random
 import shutil
 import signal
 import tempfile
 import traceback
 
 import numpy as np
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, seed, settings
 
 LONG = os.environ.get("PATHPACE_FUZZ", "") == "long"
 EXAMPLES_OVERRIDE = int(os.environ.get("PATHPACE_FUZZ_EXAMPLES", "0"))
-SEED = os.environ.get("PATHPACE_FUZZ_SEED")
+# Every hypothesis test of the run starts from this seed (None: the default run, derandomised).
+SEED = os.environ.get("PATHPACE_FUZZ_SEED") or (str(random.SystemRandom().randrange(2**32))
+                                                if LONG or EXAMPLES_OVERRIDE else None)
 
 
 def fuzz_settings(examples: int):
-    """`examples` in the default run; 20x that in the long mode (or PATHPACE_FUZZ_EXAMPLES)."""
+    """`examples` in the default run; 20x that in the long mode (or PATHPACE_FUZZ_EXAMPLES); from SEED."""
     n = EXAMPLES_OVERRIDE or (20 * examples if LONG else examples)
-    return settings(
+    s = settings(
         max_examples=n,
         deadline=None,
         database=None,
-        derandomize=not (LONG or EXAMPLES_OVERRIDE or SEED),
+        derandomize=SEED is None,
         suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much],
         print_blob=True,
     )
+    return s if SEED is None else (lambda test: seed(int(SEED))(s(test)))
 
 
 class ChildCrashed(AssertionError):

@@ -86,8 +86,18 @@ ENTRY_POINTS = {
     "trajectory_to_dict": (io.trajectory_to_dict, dict(traj=TRAJ, dt=0.1)),
     "save_trajectory_csv": (io.save_trajectory_csv, dict(traj=TRAJ, path=os.devnull, dt=0.1, joint_names=["a"])),
     "load_waypoints_csv": (io.load_waypoints_csv, dict(path=str(DATA / "waypoints_2x1.csv"))),
-    "VelocityLimits": (pp.VelocityLimits, dict(vmin=[-1.0], vmax=[1.0])),
-    "AccelerationLimits": (pp.AccelerationLimits, dict(amin=[-1.0], amax=[1.0])),
+    "VelocityLimits": (pp.VelocityLimits, dict(vmin=[-1.0], vmax=[1.0], joint_names=["a"])),
+    "AccelerationLimits": (pp.AccelerationLimits, dict(amin=[-1.0], amax=[1.0], joint_names=["a"])),
+    # Parameters that pybind11 converts itself (typed, not py::handle): their errors come from argument_errors.cpp.
+    "auto_grid": (pp.auto_grid, dict(path=LINE, tolerance=1e-2, min_intervals=4, max_intervals=1000)),
+    "relaxation": (PROBLEM.relaxation, dict(max_scale=1e3, tolerance=1e-3, guarantee="grid")),
+    "restarted": (PROBLEM.restarted, dict(s0=0.5, sdot0=0.1)),
+    "set_joint_names": (lambda **kw: problem().set_joint_names(**kw), dict(names=["a"])),
+    "set_zero_boundary_accelerations": (lambda **kw: problem().set_zero_boundary_accelerations(**kw),
+                                        dict(at_begin=True, at_end=False)),
+    "set_boundary_velocities": (lambda **kw: problem().set_boundary_velocities(**kw),
+                                dict(qd_begin=[0.0], qd_end=[0.0], tolerance=1e-6)),
+    "Trajectory.__call__": (TRAJ, dict(t=0.1, order=1)),
     "LinearConstraint": (pp.LinearConstraint, dict(A=ROWS, B=ROWS, C=0 * ROWS, lo=-ROWS, hi=ROWS, label="x")),
 }
 
@@ -97,6 +107,9 @@ BAD_VALUES = [
     np.array([]), np.array([[np.nan]]), np.full(3, np.nan), np.array(["a", "b"]), np.zeros((2, 2, 2)), np.ones(1000),
     [1, "a"], (1.0,), [None], np.float32(1.5), np.int64(2), np.array(1.0), [[0.0], [np.inf]], np.arange(5.0)[::-1],
     CONTACT, PENDULUM, LINE, pp.Status.OPTIMAL,
+    # None, str and complex inside arrays; gravity far beyond any planet's (issue 20's fuzz run).
+    [0.0, None], [[0.0], [None]], np.array([1.0, None], dtype=object), [1.0, "a"], [1.0, 1j], (0.0, 0.0, 1e308),
+    [0.0, 0.0, -1e4],
 ]
 
 
@@ -157,10 +170,12 @@ def test_every_bad_value_at_every_argument(entry, arg):
 def random_values(draw):
     """Beyond the table: random floats (any), ints, arrays of random shape with random entries."""
     floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
+    elements = st.one_of(floats, st.none(), st.text(max_size=2), st.complex_numbers(), st.booleans())
     return draw(st.one_of(
         floats, st.integers(), st.sampled_from(BAD_VALUES),
         st.lists(floats, max_size=5),
         st.lists(st.lists(floats, min_size=0, max_size=4), max_size=4),
+        st.lists(elements, max_size=5), st.lists(st.lists(elements, min_size=2, max_size=2), min_size=2, max_size=3),
         st.builds(lambda shape, seed: np.random.default_rng(seed).standard_normal(shape) * 10.0 ** np.random.default_rng(
             seed).integers(-300, 300), st.lists(st.integers(0, 4), max_size=3).map(tuple), st.integers(0, 2**32 - 1)),
     ))
@@ -173,3 +188,42 @@ def test_random_bad_arguments_give_typed_errors_that_name_them(entry, data):
     value = data.draw(random_values())
     kind, out = run_isolated(call_with, entry, arg, value, timeout=60)
     check(entry, arg, value, kind, out)
+
+
+def gravity_outcome(g):
+    """A model under gravity g: refused (InvalidInputError naming gravity), or finite torques on a path and
+    a torque-limited timing whose torques are finite."""
+    try:
+        robot = pp.RobotModel.from_urdf_string(URDF, gravity=g)
+        box = pp.RobotModel.free_object("box", 2.0, inertia=np.eye(3), gravity=g)
+    except pp.InvalidInputError as e:
+        return ("refused", str(e))
+    path = pp.CubicSplinePath([[0.1], [0.6], [0.3]])
+    q, dq, ddq = path.evaluate(np.linspace(0, 1, 21))
+    a, b, c = robot.path_torque_coefficients(q, dq, ddq)
+    box_tau = box.gravity_torques(np.zeros(6))
+    prob = pp.TimeScalingProblem(path, grid=20)
+    prob.add_velocity_limits([-10.0], [10.0])
+    prob.add_torque_limits(robot, tau_min=[-1e7], tau_max=[1e7])
+    res = prob.solve()
+    tau = res.trajectory().torques(np.linspace(0, res.duration, 11)) if res.ok else np.zeros(1)
+    finite = all(np.all(np.isfinite(x)) for x in (a, b, c, box_tau, tau))
+    return ("accepted", finite, res.status.name, stable_norm(g))
+
+
+def stable_norm(g):
+    m = float(np.max(np.abs(g)))
+    return m * float(np.linalg.norm(np.asarray(g) / m)) if 0 < m < np.inf else m
+
+
+@fuzz_settings(50)
+@given(st.lists(st.one_of(st.just(0.0), st.floats(-1e3, 1e3), st.floats(allow_nan=True, allow_infinity=True),
+                          st.integers(-3, 308).map(lambda e: -(10.0**e))), min_size=3, max_size=3))
+def test_random_gravity_is_refused_by_name_or_gives_finite_torques(g):
+    kind, out = run_isolated(gravity_outcome, g)
+    assert kind == "ok", out
+    if out[0] == "refused":
+        assert out[1].startswith("gravity"), out[1]
+        assert not (np.all(np.isfinite(g)) and stable_norm(g) <= 1e3), out[1]
+    else:
+        assert out[1] and out[2] == "OPTIMAL" and out[3] <= 1e3, out
