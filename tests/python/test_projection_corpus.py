@@ -220,3 +220,26 @@ def test_stats_time_the_projection_and_report_an_exhausted_budget(paths):
     dirs = cc.directions()
     for k in range(0, 21, 5):
         cc.assert_nested(cut.feasible_set(k), prob.feasible_set(k), dirs, 1e-9, f"point {k}: inner hull in the exact set")
+
+
+@pytest.mark.parametrize("robot, kind, mname", [("talos", "lean", "fm0.5+fn0.33"), ("romeo", "lean", "fn1.5")])
+def test_hard_corpus_polygons_are_exact_and_torque_limits_bind(robot, kind, mname):
+    """Issue 27's corpus (dense soles, per-point margins, strong lean or squat, torque limits scaled down):
+    every polygon of a coarse grid equals the exact projection over all 60-64 points (pinocchio + HiGHS),
+    the polygons are complex (well over the 4-8 edges of a bare sole), and some edges are torque limits."""
+    case = next(c for c in cc.hard_cases() if c.robot == robot and c.kind == kind)
+    h = cc.load(robot)
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot])
+    assert len(cons) >= 60
+    opts = dict(cone_edges=4, torque_scale=cc.HARD_TORQUE_SCALE[(robot, kind)], **cc.HARD_MARGINS[mname])
+    prob = pp.TimeScalingProblem(path, grid=6)
+    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+    worst, compared, empty = cc.compare(h, prob, cons, opts, dirs=cc.directions(32))
+    assert empty == 0 and compared >= 5
+    assert worst <= 1e-6
+    sets = [prob.feasible_set(k) for k in range(7)]
+    assert max(len(fs.halfplanes) for fs in sets) >= 12
+    assert any("torque" in label for fs in sets for label in fs.labels)
+    res = prob.solve()
+    assert res.ok, res.message
