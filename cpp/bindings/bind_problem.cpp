@@ -197,6 +197,12 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("projection_lp_solves", s.projection_lp_solves);
   f("inexact_points", s.inexact_points);
   f("newton_steps", s.newton_steps);
+  // Appended after the 18 entries of the first pickles (they still load: the rest stays 0).
+  f("projection_lps_initial", s.projection_lps_initial);
+  f("projection_lps_vertex", s.projection_lps_vertex);
+  f("projection_lps_certificate", s.projection_lps_certificate);
+  f("projection_lps_cap_growth", s.projection_lps_cap_growth);
+  f("projection_lps_cold_retry", s.projection_lps_cold_retry);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -220,10 +226,13 @@ py::tuple stats_state(const SolverStats& s) {
 }
 
 SolverStats stats_from_state(const py::tuple& st) {
-  check_state(st, kStatsStateSize, "Result stats");
+  constexpr size_t kFirstStatsStateSize = 18;  // pickles written before the projection's LP causes
+  if (st.size() != kFirstStatsStateSize) check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;
-  for_each_stat(s, [&](const char*, auto& value) { value = st[i++].cast<std::decay_t<decltype(value)>>(); });
+  for_each_stat(s, [&](const char*, auto& value) {
+    if (i < st.size()) value = st[i++].cast<std::decay_t<decltype(value)>>();
+  });
   return s;
 }
 

@@ -211,12 +211,13 @@ def test_stats_time_the_projection_and_report_an_exhausted_budget(paths):
     assert st["projection_lp_solves"] >= 21 * 4
     assert st["inexact_points"] == 0
     assert all(prob.feasible_set(k).exact for k in range(21))
-    # A budget of 5 LPs per point: every polygon is an inner hull, and says so.
+    # A budget of 3 LPs per point (the initial triangle; edges whose endpoint's basis certifies them
+    # need no LP): the polygons that need more are inner hulls, and say so.
     cut = pp.TimeScalingProblem(path, grid=20)
-    cut.add_contacts(h.robot, cons, cone_edges=16, drift_tolerance=1e-4, max_lps=5)
+    cut.add_contacts(h.robot, cons, cone_edges=16, drift_tolerance=1e-4, max_lps=3)
     res_cut = cut.solve()
-    assert res_cut.stats["inexact_points"] == 21
-    assert not any(cut.feasible_set(k).exact for k in range(21))
+    inexact = sum(not cut.feasible_set(k).exact for k in range(21))
+    assert res_cut.stats["inexact_points"] == inexact >= 15
     dirs = cc.directions()
     for k in range(0, 21, 5):
         cc.assert_nested(cut.feasible_set(k), prob.feasible_set(k), dirs, 1e-9, f"point {k}: inner hull in the exact set")
@@ -243,3 +244,7 @@ def test_hard_corpus_polygons_are_exact_and_torque_limits_bind(robot, kind, mnam
     assert any("torque" in label for fs in sets for label in fs.labels)
     res = prob.solve()
     assert res.ok, res.message
+    st = res.stats
+    causes = ("initial", "vertex", "certificate", "cap_growth", "cold_retry")
+    assert sum(st[f"projection_lps_{c}"] for c in causes) == st["projection_lp_solves"]
+    assert st["projection_lps_initial"] == 3 * 7

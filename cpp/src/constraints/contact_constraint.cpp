@@ -374,6 +374,7 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   ConstraintRows out;
   out.resize(samples.size(), r);
   out.lp_solves = sub.lp_solves;
+  out.lp_by_cause = sub.lp_by_cause;
   for (size_t i = 0; i < in.size(); ++i) {
     const Eigen::Index j = static_cast<Eigen::Index>(i);
     out.a.row(in[i]).head(sub.rows()) = sub.a.row(j);
@@ -416,11 +417,14 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
       // Once more from a cold start (a fresh basis), keeping the larger result.
       detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps);
       r.lp_solves += pr.lp_solves + cold.lp_solves;  // both ran, whichever is kept
+      r.lp_by_cause += pr.by_cause;
+      r.lp_by_cause.cold_retry += cold.lp_solves;
       if (cold.outcome != detail::Projection::Outcome::Failed &&
           (pr.outcome == detail::Projection::Outcome::Failed || cold.complete || cold.vertices.size() > pr.vertices.size()))
         pr = std::move(cold);
     } else {
       r.lp_solves += pr.lp_solves;
+      r.lp_by_cause += pr.by_cause;
     }
     auto& out = polys[static_cast<size_t>(p)];
     if (pr.outcome != detail::Projection::Outcome::Polygon) {

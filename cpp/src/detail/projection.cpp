@@ -21,6 +21,19 @@ double cross(const Vertex& o, const Vertex& a, const Vertex& b) {
 
 }  // namespace
 
+// An optimal basis of eq. (19) stays optimal for every direction v in which its reduced costs keep their
+// signs; they are linear in v: d_j(v) = v_x A_j + v_u B_j over the nonbasic variables j (A_j = [j = x] +
+// α_xj, B_j = [j = u] + α_uj, α the tableau rows of x and u, x_B = Σ α x_N). If an edge's outward normal
+// keeps the basis of one of its endpoints dual feasible (GLPK's own optimality test, with a stricter
+// tolerance), that endpoint is an optimum along the normal: the edge's LP, started from that basis,
+// would stop there without a pivot and certify the edge. The test replaces that LP (one LP per vertex
+// instead of one per vertex and one per edge), and the same reduced costs give binding()'s duals.
+struct PolytopeProjector::Ranging {
+  std::vector<int> var;            // GLPK variable: 1..rows (auxiliary), rows + 1.. (structural)
+  std::vector<signed char> stat;   // GLP_NL, GLP_NU, GLP_NF, GLP_NS
+  std::vector<double> A, B;
+};
+
 void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order) {
   std::vector<int> idx(points.size());
   for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
@@ -181,6 +194,35 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   current_.clear();
   glp_smcp dual = parm;
   dual.meth = GLP_DUALP;
+  // The ranging of the last LP's optimal basis (empty when it is not computed: scaled columns).
+  Ranging last_range;
+  std::vector<double> tab_x, tab_u;
+  // From kRangingColumns columns on: below, an LP is a few pivots on a tiny basis and costs about what
+  // the two tableau rows do (and the rod of test_continuous, 6 columns, keeps its LP sequence).
+  constexpr int kRangingColumns = 30;
+  auto range_basis = [&](Ranging& rg) {
+    rg = Ranging();
+    if (!ranging || cols_ < kRangingColumns || sx != 1.0 || su != 1.0 || !glp_bf_exists(lp)) return;
+    const int m = rows_, total = rows_ + cols_;
+    tab_ind_.resize(static_cast<size_t>(total) + 1);
+    tab_val_.resize(static_cast<size_t>(total) + 1);
+    auto tab_row = [&](int col, std::vector<double>& out) {
+      out.assign(static_cast<size_t>(total) + 1, 0.0);
+      if (glp_get_col_stat(lp, col) != GLP_BS) return;
+      const int len = glp_eval_tab_row(lp, m + col, tab_ind_.data(), tab_val_.data());
+      for (int t = 1; t <= len; ++t) out[static_cast<size_t>(tab_ind_[static_cast<size_t>(t)])] = tab_val_[static_cast<size_t>(t)];
+    };
+    tab_row(1, tab_x);
+    tab_row(2, tab_u);
+    for (int k = 1; k <= total; ++k) {
+      const int st = k <= m ? glp_get_row_stat(lp, k) : glp_get_col_stat(lp, k - m);
+      if (st == GLP_BS) continue;
+      rg.var.push_back(k);
+      rg.stat.push_back(static_cast<signed char>(st));
+      rg.A.push_back(tab_x[static_cast<size_t>(k)] + (k == m + 1 ? 1.0 : 0.0));
+      rg.B.push_back(tab_u[static_cast<size_t>(k)] + (k == m + 2 ? 1.0 : 0.0));
+    }
+  };
   auto extremize = [&](double vx, double vu, Vertex& p) -> int {
     glp_set_obj_coef(lp, 1, vx * sx);
     glp_set_obj_coef(lp, 2, vu * su);
@@ -217,6 +259,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const int st = glpk_solve_robust(lp, *method, false);
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {sx * glp_get_col_prim(lp, 1), su * glp_get_col_prim(lp, 2)};
+    range_basis(last_range);
     if (cols_ < kRestoreColumns) return 1;  // no basis is restored at this size: none is recorded
     Basis b;
     b.angle = angle;
@@ -228,6 +271,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   };
 
   std::vector<Vertex> points;  // every support point found
+  std::vector<Ranging> ranges;  // and its LP's ranging
   // The stand-in bounds on x and u (those at least in.stand_in in magnitude): the shadow is that of the
   // polytope without them, which they must not cut. Grown below when they hide all of it.
   double xlo = in.col_lo[0], xhi = in.col_hi[0], ulo = in.col_lo[1], uhi = in.col_hi[1];
@@ -241,6 +285,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
     const int r = extremize(std::cos(ang), std::sin(ang), p);
+    ++out.by_cause.initial;
     if (r == 0 && i == 0 && (capped(xhi) || capped(ulo) || capped(uhi))) {
       // Infeasible with the stand-in bounds: is it without them? A polytope whose shadow lies only beyond
       // them (a grid point where b ~ 1e-8, so that s̈ ~ 1e10 would be needed) is not empty, and calling it
@@ -251,6 +296,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       glpk_set_bounds(lp, false, 1, xlo, capped(xhi) ? INFINITY : xhi);
       glpk_set_bounds(lp, false, 2, capped(ulo) ? -INFINITY : ulo, capped(uhi) ? INFINITY : uhi);
       ++out.lp_solves;
+      ++out.by_cause.cap_growth;
       // With GLPK's scaling, for this LP only: with b ~ 1e-8 against forces ~ 1e2 the unscaled simplex
       // was seen to call such a polytope infeasible from both bases (exact arithmetic gets it right too,
       // but costs ~30 ms per truly empty point). An infeasible answer is the projection's claim, which
@@ -313,6 +359,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       return out;
     }
     points.push_back(p);
+    ranges.push_back(std::move(last_range));
   }
   out.stand_in = stand_in;
   // A shadow found only beyond the stand-in bounds is not called exact: there b·u ~ 1e2 with b ~ 1e-8 (the
@@ -373,6 +420,32 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     }
     return code;
   };
+  // Ranging's certificate (see Ranging): the basis of rg is optimal along (nx, nu), to 1e-11 in every
+  // reduced cost (GLPK stops at tol_dj = 1e-10); `code` is then what binding() would say there.
+  auto range_certifies = [&](const Ranging& rg, double nx, double nu, int& code) {
+    if (rg.var.empty()) return false;
+    constexpr double kEps = 1e-11;
+    for (size_t t = 0; t < rg.var.size(); ++t) {
+      const double d = nx * rg.A[t] + nu * rg.B[t];
+      const int st = rg.stat[t];
+      if ((st == GLP_NL && d > kEps) || (st == GLP_NU && d < -kEps) || (st == GLP_NF && std::abs(d) > kEps)) return false;
+    }
+    code = kBindingUnknown;
+    double best = 0.0;
+    for (size_t t = 0; t < rg.var.size(); ++t) {
+      const int k = rg.var[t];
+      const double d = std::abs(nx * rg.A[t] + nu * rg.B[t]);
+      if (k <= rows_) {
+        const int i = k - 1;
+        if (rg.stat[t] == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
+        if (d * row_norm[i] > best) best = d * row_norm[i], code = 2 * i + (rg.stat[t] == GLP_NU ? 1 : 0);
+      } else if (d > best) {
+        best = d;
+        code = -(k - rows_);
+      }
+    }
+    return true;
+  };
   std::vector<int> hull;
   struct Pending {
     int from, to;
@@ -413,6 +486,13 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (pending.empty()) break;
     bool grew = false;
     for (const Pending& d : pending) {
+      int code = kBindingUnknown;
+      if (range_certifies(ranges[static_cast<size_t>(d.from)], d.nx, d.nu, code) ||
+          range_certifies(ranges[static_cast<size_t>(d.to)], d.nx, d.nu, code)) {
+        ++out.ranged_certificates;
+        certified[{d.from, d.to}] = code;
+        continue;
+      }
       if (out.lp_solves >= max_lps) {
         out.complete = false;
         out.note = "LP budget (" + std::to_string(max_lps) + ") ran out with " + std::to_string(pending.size()) +
@@ -422,15 +502,19 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       Vertex q;
       const int r = extremize(d.nx, d.nu, q);
       if (r != 1) {
+        ++out.by_cause.vertex;
         // The polytope was non-empty three LPs ago: an 'infeasible' here is a solver failure too.
         out.complete = false;
         out.note = "the LP solver did not finish after " + std::to_string(out.lp_solves) + " LPs";
         break;
       }
       if (d.nx * q.x + d.nu * q.y <= d.offset + tol) {
+        ++out.by_cause.certificate;
         certified[{d.from, d.to}] = binding();  // nothing of the shadow beyond this edge
       } else {
+        ++out.by_cause.vertex;
         points.push_back(q);  // strictly outside the hull by more than the tolerance
+        ranges.push_back(std::move(last_range));
         grew = true;
         break;  // the hull changes: recompute it and its uncertified edges
       }
