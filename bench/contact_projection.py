@@ -173,6 +173,7 @@ def transcription(h, path, cons, N, margins, fix_theta=None, cone_edges=None, to
     fm = margins.get("friction_margin", 0.0)
     fmin = margins.get("min_normal_force", 0.0)
     flink = margins.get("min_link_normal_force", 0.0)
+    off = margins.get("cone_offset", 0.0)  # the shifted cone: f - off·n in the cone
     model, P = h.model, h.perm
     data = model.createData()
     eff = h.robot.effort_limits * torque_scale
@@ -190,7 +191,7 @@ def transcription(h, path, cons, N, margins, fix_theta=None, cone_edges=None, to
     if cone_edges is None:
         F = {side: cp.Variable((3, N * m)) for side in ("+", "-")}
         for side in ("+", "-"):
-            cst.append(cp.SOC(cp.multiply(mus, F[side][2, :]), F[side][0:2, :], axis=0))
+            cst.append(cp.SOC(cp.multiply(mus, F[side][2, :] - off), F[side][0:2, :], axis=0))
     else:
         # One μ for all contacts here (the corpus's); local generators (μ' cos φ, μ' sin φ, 1).
         assert len({c.friction for c in cons}) == 1
@@ -198,7 +199,7 @@ def transcription(h, path, cons, N, margins, fix_theta=None, cone_edges=None, to
         phi = 2 * np.pi * np.arange(cone_edges) / cone_edges
         G = np.stack([mu * np.cos(phi), mu * np.sin(phi), np.ones(cone_edges)])
         lam = {side: cp.Variable((cone_edges, N * m), nonneg=True) for side in ("+", "-")}
-        F = {side: G @ lam[side] for side in ("+", "-")}
+        F = {side: G @ lam[side] + np.array([[0.0], [0.0], [off]]) for side in ("+", "-")}
     for side in ("+", "-"):
         if fmin > 0:
             cst.append(F[side][2, :] >= fmin)
@@ -256,7 +257,7 @@ def part_corpus(args):
         cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[case.robot])
         scale = cc.HARD_TORQUE_SCALE[(case.robot, case.kind)]
         for mname, N, k in itertools.product(args.margins, args.grids, args.edges):
-            margins = cc.HARD_MARGINS[mname]
+            margins = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[mname]
 
             def run():
                 prob = pp.TimeScalingProblem(path, grid=N)
@@ -325,7 +326,8 @@ def main():
     ap.add_argument("--notes", type=int, default=10)
     ap.add_argument("--seed27", type=int, default=27, help="corpus: contact_corpus.hard_cases's seed")
     ap.add_argument("--robots", nargs="*", default=None, help="corpus: only these robots")
-    ap.add_argument("--margins", nargs="*", default=list(cc.HARD_MARGINS), help="corpus: HARD_MARGINS names")
+    ap.add_argument("--margins", nargs="*", default=list(cc.HARD_MARGINS),
+                    help="corpus: HARD_MARGINS or SHIFTED_MARGINS names")
     ap.add_argument("--edges", nargs="*", type=int, default=[4, 8], help="corpus: cone edges (16 optional)")
     ap.add_argument("--grids", nargs="*", type=int, default=[100], help="corpus: N (400, 1000 optional)")
     ap.add_argument("--transcription", action="store_true", help="corpus: direct transcription at N = 100")

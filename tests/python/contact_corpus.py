@@ -171,6 +171,11 @@ HARD_MARGINS = {
     "fn1.5": {"min_normal_force": 1.5},
     "fm0.5+fn0.33": {"friction_margin": 0.5, "min_normal_force": 0.33},
 }
+# The paper's own margin (sec. V.D), the shifted cone: exact reduction to the sole corners.
+SHIFTED_MARGINS = {
+    "off1.5": {"cone_offset": 1.5},
+    "fm0.5+off0.33": {"friction_margin": 0.5, "cone_offset": 0.33},
+}
 HARD_GRIDS = {"talos": (6, 5), "romeo": (6, 5), "g1": (8, 4)}  # 30, 30, 32 points per sole
 # The smallest torque_scale of the ladder 1, 0.8, 0.6, 0.5, 0.4, 0.3, 0.25, 0.2, 0.15, 0.1 at which both
 # HARD_MARGINS are OPTIMAL at N = 50 with 4 edges (hard_torque_scale, run once; 4 edges is the smallest
@@ -242,7 +247,7 @@ def hard_torque_scale(h: Humanoid, path, cons, ladder=(1.0, 0.8, 0.6, 0.5, 0.4, 
 # The oracle: the full polytope from pinocchio, support values from HiGHS.
 
 def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0, min_normal_force=0.0,
-                  min_link_normal_force=0.0, torque_scale=1.0):
+                  min_link_normal_force=0.0, torque_scale=1.0, cone_offset=0.0):
     """(A, lo, hi, bounds) of {(x, u, λ): lo <= A (x, u, λ) <= hi} in pathpace's coordinate order."""
     import pinocchio as pin
     model = h.model
@@ -257,20 +262,23 @@ def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0
     pin.forwardKinematics(model, data, qp)
     pin.updateFramePlacements(model, data)
     cols = [a[P, None], b[P, None]]
+    w = np.zeros(n)  # the shifted cones' offsets: f_i = cone_offset n_i + G_i λ_i, a constant J_iᵀ n_i each
     for con in cons:
         fid = model.getFrameId(con.link)
         J6 = pin.computeFrameJacobian(model, data, qp, fid, pin.LOCAL)
         J = data.oMf[fid].rotation @ (J6[:3] - np.cross(np.asarray(con.point), J6[3:].T).T)
         G = generators(con.normal, con.friction * (1.0 - friction_margin), cone_edges)
         cols.append((-J.T @ G)[P])
+        nrm = np.asarray(con.normal, float)
+        w += cone_offset * J.T @ (nrm / np.linalg.norm(nrm))
     A = np.hstack(cols)
     eff = h.robot.effort_limits * torque_scale
-    lo, hi = -eff - c[P], eff - c[P]
+    lo, hi = -eff - c[P] + w[P], eff - c[P] + w[P]
     rows, rlo, rhi = [A], [lo], [hi]
     m, k = len(cons), cone_edges
     if min_normal_force > 0:
         rows.append(np.hstack([np.zeros((m, 2)), np.kron(np.eye(m), np.ones(k))]))
-        rlo.append(np.full(m, min_normal_force))
+        rlo.append(np.full(m, min_normal_force - cone_offset))
         rhi.append(np.full(m, np.inf))
     if min_link_normal_force > 0:
         links = sorted({con.link for con in cons})
@@ -278,7 +286,7 @@ def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0
         for i, con in enumerate(cons):
             L[links.index(con.link), 2 + i * k: 2 + (i + 1) * k] = 1.0
         rows.append(L)
-        rlo.append(np.full(len(links), min_link_normal_force))
+        rlo.append(np.full(len(links), min_link_normal_force) - cone_offset * L[:, 2::k].sum(axis=1))
         rhi.append(np.full(len(links), np.inf))
     bounds = [(0, CAP), (-CAP, CAP)] + [(0, None)] * (m * k)
     return np.vstack(rows), np.concatenate(rlo), np.concatenate(rhi), bounds
@@ -358,7 +366,8 @@ def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, point
         fs = prob.feasible_set(k)
         A, lo, hi, bounds = full_polytope(h, q, dq, ddq, cons, options.get("cone_edges", 8),
                                           options.get("friction_margin", 0.0), options.get("min_normal_force", 0.0),
-                                          options.get("min_link_normal_force", 0.0), options.get("torque_scale", 1.0))
+                                          options.get("min_link_normal_force", 0.0), options.get("torque_scale", 1.0),
+                                          options.get("cone_offset", 0.0))
         ref = exact_support(A, lo, hi, bounds, dirs)
         if ref is None:
             assert fs.empty, f"k = {k}: the exact polytope is empty, pathpace's set is not"
