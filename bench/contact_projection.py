@@ -14,6 +14,9 @@ margin, per-point and per-link minimum normal force.
         Talos, 30 points per sole (60 contacts), N = 100, 8 edges, with margins: projection + solve
     .venv/bin/python bench/contact_projection.py --part transcription [--repeat 3]
         pathpace against a direct transcription (cvxpy + Clarabel, forces as variables, exact cones)
+    .venv/bin/python bench/contact_projection.py --part corpus [--edges 4 8 16] [--grids 100 400 1000] [--transcription]
+        issue 27's corpus (dense soles, per-point margins, strong leans and squats, binding torque limits):
+        LPs and half-planes per point, wall time, T against the direct transcription; median and worst
 
 Timings: median (and worst) of --repeat runs, wall and CPU (thread) time, one thread.
 """
@@ -156,10 +159,12 @@ def part_speed(args):
               f"{res.status.name} {res.duration:.4f} |", flush=True)
 
 
-def transcription(h, path, cons, N, margins, fix_theta=None):
+def transcription(h, path, cons, N, margins, fix_theta=None, cone_edges=None, torque_scale=1.0):
     """Direct transcription: θ_k = ṡ², u_k = s̈ per interval, contact forces at both ends of every
     interval (eq. 26's two sides) as variables in each contact's frame, exact second-order friction
-    cones, the same torque limits and minimum normal forces; T = Σ 2Δs / (√θ_k + √θ_k+1)."""
+    cones, the same torque limits and minimum normal forces; T = Σ 2Δs / (√θ_k + √θ_k+1).
+    With `cone_edges`, the forces are pathpace's pyramids instead (f = Σ_e λ_e g_e, λ >= 0, the same
+    generators): the same model as pathpace's, so the same optimum."""
     import cvxpy as cp
     import pinocchio as pin
     s = np.linspace(0.0, 1.0, N + 1)
@@ -168,9 +173,10 @@ def transcription(h, path, cons, N, margins, fix_theta=None):
     fm = margins.get("friction_margin", 0.0)
     fmin = margins.get("min_normal_force", 0.0)
     flink = margins.get("min_link_normal_force", 0.0)
+    off = margins.get("cone_offset", 0.0)  # the shifted cone: f - off·n in the cone
     model, P = h.model, h.perm
     data = model.createData()
-    eff = h.robot.effort_limits
+    eff = h.robot.effort_limits * torque_scale
     frames = []
     for con in cons:
         nrm = np.asarray(con.normal, float) / np.linalg.norm(con.normal)
@@ -180,11 +186,21 @@ def transcription(h, path, cons, N, margins, fix_theta=None):
         frames.append(np.stack([t1, np.cross(nrm, t1), nrm], axis=1))  # local (t1, t2, n) -> world
     theta, u = cp.Variable(N + 1), cp.Variable(N)
     sq = cp.Variable(N + 1)
-    F = {side: cp.Variable((3, N * m)) for side in ("+", "-")}
     cst = [theta >= 0, theta[0] == 0, theta[N] == 0, theta[1:] == theta[:-1] + 2 * ds * u, sq <= cp.sqrt(theta)]
     mus = np.tile([c.friction * (1 - fm) for c in cons], N)
+    if cone_edges is None:
+        F = {side: cp.Variable((3, N * m)) for side in ("+", "-")}
+        for side in ("+", "-"):
+            cst.append(cp.SOC(cp.multiply(mus, F[side][2, :] - off), F[side][0:2, :], axis=0))
+    else:
+        # One μ for all contacts here (the corpus's); local generators (μ' cos φ, μ' sin φ, 1).
+        assert len({c.friction for c in cons}) == 1
+        mu = cons[0].friction * (1 - fm)
+        phi = 2 * np.pi * np.arange(cone_edges) / cone_edges
+        G = np.stack([mu * np.cos(phi), mu * np.sin(phi), np.ones(cone_edges)])
+        lam = {side: cp.Variable((cone_edges, N * m), nonneg=True) for side in ("+", "-")}
+        F = {side: G @ lam[side] + np.array([[0.0], [0.0], [off]]) for side in ("+", "-")}
     for side in ("+", "-"):
-        cst.append(cp.SOC(cp.multiply(mus, F[side][2, :]), F[side][0:2, :], axis=0))
         if fmin > 0:
             cst.append(F[side][2, :] >= fmin)
     links = sorted({c.link for c in cons})
@@ -223,6 +239,60 @@ def transcription(h, path, cons, N, margins, fix_theta=None):
     return prob.status, prob.value, prob.solver_stats.solve_time
 
 
+def part_corpus(args):
+    """Issue 27's corpus (contact_corpus.hard_cases): every case x margins x edges x N, one run each;
+    per row LPs and half-planes per grid point, wall time of add_contacts + solve; then median and
+    worst over the rows. With --transcription, N = 100 rows are also solved by the direct transcription
+    with the same pyramids (T to compare) and with exact cones (time to compare)."""
+    print(f"issue 27 corpus, seed {args.seed27}, one thread; wall s of add_contacts + solve")
+    print("| robot | path | points | torque scale | margins | edges | N | status | T (s) | LPs/point | "
+          "half-planes/point | torque-bound edges | wall (s) | CPU (s) | T direct, pyramids | rel. diff | direct exact cones (s) | speed-up |")
+    print("|---|---|---:|---:|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rows = []
+    for case in cc.hard_cases(args.seed27):
+        if args.robots and case.robot not in args.robots:
+            continue
+        h = cc.load(case.robot)
+        path = cc.make_hard_path(h, case)
+        cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[case.robot])
+        scale = cc.HARD_TORQUE_SCALE[(case.robot, case.kind)]
+        for mname, N, k in itertools.product(args.margins, args.grids, args.edges):
+            margins = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[mname]
+
+            def run():
+                prob = pp.TimeScalingProblem(path, grid=N)
+                prob.add_contacts(h.robot, cons, cone_edges=k, drift_tolerance=1e-4, torque_scale=scale, **margins)
+                return prob, prob.solve()
+
+            wall, cpu, (prob, res) = timed(run, args.repeat)
+            sets = [prob.feasible_set(i) for i in range(N + 1)]
+            hp = [len(fs.halfplanes) for fs in sets]
+            labels = [l for fs in sets for l in fs.labels]
+            torque = sum("torque" in l for l in labels) / max(len(labels), 1)
+            row = dict(lps=res.stats["projection_lp_solves"] / (N + 1), hp=statistics.mean(hp),
+                       wall=statistics.median(wall), cpu=statistics.median(cpu), T=res.duration)
+            direct = ("", "", "", "")
+            if args.transcription and N == 100:
+                tp = transcription(h, path, cons, N, margins, cone_edges=k, torque_scale=scale)
+                w0 = time.perf_counter()
+                transcription(h, path, cons, N, margins, torque_scale=scale)
+                wt = time.perf_counter() - w0
+                rel = (res.duration - tp[1]) / tp[1]
+                row.update(rel=abs(rel), speedup=wt / row["wall"])
+                direct = (f"{tp[1]:.6f} {tp[0]}", f"{rel:.1e}", f"{wt:.1f}", f"{wt / row['wall']:.0f}x")
+            rows.append(row)
+            print(f"| {case.robot} | {case.kind} | {len(cons)} | {scale} | {mname} | {k} | {N} | {res.status.name} | "
+                  f"{res.duration:.6f} | {row['lps']:.1f} | {row['hp']:.1f} | {torque:.0%} | {row['wall']:.3f} | {row['cpu']:.3f} | "
+                  + " | ".join(direct) + " |", flush=True)
+    print("\nover the rows: median (worst)")
+    for key, name, worst in (("lps", "LPs per point", max), ("hp", "half-planes per point", max),
+                             ("wall", "wall s", max), ("cpu", "CPU s", max), ("rel", "|T - T direct| / T direct", max),
+                             ("speedup", "speed-up over direct, exact cones", min)):
+        xs = [r[key] for r in rows if key in r]
+        if xs:
+            print(f"- {name}: {statistics.median(xs):.3g} ({worst(xs):.3g})")
+
+
 def part_transcription(args):
     print(f"pathpace (8-edge pyramids) vs direct transcription (cvxpy + Clarabel, exact cones), N = {args.grid}, "
           f"median (worst) of {args.repeat}, s")
@@ -248,14 +318,24 @@ def part_transcription(args):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--part", choices=["exact", "solve", "speed", "transcription"], required=True)
+    ap.add_argument("--part", choices=["exact", "solve", "speed", "transcription", "corpus"], required=True)
     ap.add_argument("--configs", type=int, default=16)
     ap.add_argument("--grid", type=int, default=100)
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--seed", type=int, default=2026)
     ap.add_argument("--notes", type=int, default=10)
+    ap.add_argument("--seed27", type=int, default=27, help="corpus: contact_corpus.hard_cases's seed")
+    ap.add_argument("--robots", nargs="*", default=None, help="corpus: only these robots")
+    ap.add_argument("--margins", nargs="*", default=list(cc.HARD_MARGINS),
+                    help="corpus: HARD_MARGINS or SHIFTED_MARGINS names")
+    ap.add_argument("--edges", nargs="*", type=int, default=[4, 8], help="corpus: cone edges (16 optional)")
+    ap.add_argument("--grids", nargs="*", type=int, default=[100], help="corpus: N (400, 1000 optional)")
+    ap.add_argument("--transcription", action="store_true", help="corpus: direct transcription at N = 100")
     args = ap.parse_args()
-    {"exact": part_exact, "solve": part_solve, "speed": part_speed, "transcription": part_transcription}[args.part](args)
+    if args.part == "corpus" and "--repeat" not in sys.argv:
+        args.repeat = 1
+    {"exact": part_exact, "solve": part_solve, "speed": part_speed, "transcription": part_transcription,
+     "corpus": part_corpus}[args.part](args)
 
 
 if __name__ == "__main__":

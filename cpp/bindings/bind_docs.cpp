@@ -456,7 +456,12 @@ friction_margin : float
     μ is used as μ (1 - friction_margin): every force keeps this fraction of its friction in reserve
     (sec. V.D).
 min_normal_force : float
-    N per contact point.
+    N per contact point (n·f >= min_normal_force). Keeps every point in the LPs.
+cone_offset : float
+    N per contact point: the shifted cone (sec. V.D's offset of each friction cone along its normal;
+    Klampt's forceRobustness): f - cone_offset·n lies in the friction cone, so each point pushes at
+    least cone_offset and keeps its friction reserve on top. A flat sole still reduces exactly to its
+    hull corners (docs/method.md), so it is much cheaper than min_normal_force.
 torque_scale, torque_margin : float
     The torque limits are multiplied by torque_scale and shrunk by torque_margin (N·m per side).
 drift_tolerance : float
@@ -487,9 +492,9 @@ Parameters
 robot : RobotModel
 phases : list of (s_begin, s_end, contacts) or (s_begin, s_end, contacts, options)
     options: a dict of this phase's own friction_margin, min_normal_force, min_link_normal_force,
-    cone_edges (the others are the call's).
+    cone_offset, cone_edges (the others are the call's).
 cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin, tau_min, tau_max,
-min_link_normal_force, max_lps :
+min_link_normal_force, max_lps, cone_offset :
     As in ``add_contacts``, for every phase.
 drift_tolerance : float
     m: a warning names a phase's contact that moves more than this on that phase's stretch.

@@ -140,10 +140,11 @@ ContactPhase contact_phase_arg(py::handle h, size_t i, const ContactOptions& bas
       if (key == "friction_margin") o.friction_margin = to_double(value, arg);
       else if (key == "min_normal_force") o.min_normal_force = to_double(value, arg);
       else if (key == "min_link_normal_force") o.min_link_normal_force = to_double(value, arg);
+      else if (key == "cone_offset") o.cone_offset = to_double(value, arg);
       else if (key == "cone_edges") o.cone_edges = to_int32(value, arg);
       else
         throw InvalidInput(name + ".options has key '" + key + "', expected friction_margin, min_normal_force, "
-                           "min_link_normal_force or cone_edges");
+                           "min_link_normal_force, cone_offset or cone_edges");
     }
     ph.options = o;
   }
@@ -196,6 +197,12 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("projection_lp_solves", s.projection_lp_solves);
   f("inexact_points", s.inexact_points);
   f("newton_steps", s.newton_steps);
+  // Appended after the 18 entries of the first pickles (they still load: the rest stays 0).
+  f("projection_lps_initial", s.projection_lps_initial);
+  f("projection_lps_vertex", s.projection_lps_vertex);
+  f("projection_lps_certificate", s.projection_lps_certificate);
+  f("projection_lps_cap_growth", s.projection_lps_cap_growth);
+  f("projection_lps_cold_retry", s.projection_lps_cold_retry);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -219,10 +226,13 @@ py::tuple stats_state(const SolverStats& s) {
 }
 
 SolverStats stats_from_state(const py::tuple& st) {
-  check_state(st, kStatsStateSize, "Result stats");
+  constexpr size_t kFirstStatsStateSize = 18;  // pickles written before the projection's LP causes
+  if (st.size() != kFirstStatsStateSize) check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;
-  for_each_stat(s, [&](const char*, auto& value) { value = st[i++].cast<std::decay_t<decltype(value)>>(); });
+  for_each_stat(s, [&](const char*, auto& value) {
+    if (i < st.size()) value = st[i++].cast<std::decay_t<decltype(value)>>();
+  });
   return s;
 }
 
@@ -581,9 +591,9 @@ void bind_problem(py::module_& m) {
                                     py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                                     py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                                     py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
-                                    py::handle impact_tolerance) {
+                                    py::handle impact_tolerance, py::handle cone_offset) {
         const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
-                                                     torque_margin, min_link_normal_force, max_lps);
+                                                     torque_margin, min_link_normal_force, max_lps, cone_offset);
         auto robot = to_object<RobotModel>(robot_arg, "robot", "RobotModel");
         const std::vector<py::object> items = to_items(phases_arg, "phases", "a list of (s_begin, s_end, contacts)");
         std::vector<ContactPhase> phases;
@@ -609,13 +619,15 @@ void bind_problem(py::module_& m) {
         for (const std::string& msg : moved) warn(msg);
       }, "robot"_a, "phases"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
-         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "impact_tolerance"_a = 1e-6)
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "impact_tolerance"_a = 1e-6,
+         "cone_offset"_a = 0.0)
       .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
                               py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                               py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
-                              py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps) {
+                              py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
+                              py::handle cone_offset) {
         const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
-                                                     torque_margin, min_link_normal_force, max_lps);
+                                                     torque_margin, min_link_normal_force, max_lps, cone_offset);
         auto c = std::make_shared<ContactConstraint>(
             to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
             optional_vector(tau_min, "tau_min"), optional_vector(tau_max, "tau_max"));
@@ -628,7 +640,7 @@ void bind_problem(py::module_& m) {
         add_released(p, std::move(c), "add_contacts");
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
-         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000)
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "cone_offset"_a = 0.0)
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         add_released(p, to_object<Constraint>(c, "constraint", "Constraint"), "add_constraint");
       }, "constraint"_a)

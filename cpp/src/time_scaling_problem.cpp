@@ -569,6 +569,12 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     if (std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i])) {
       res.stats.time_projection += rows_[i].seconds;
       res.stats.projection_lp_solves += rows_[i].lp_solves;
+      const LpCounts& by = rows_[i].lp_by_cause;
+      res.stats.projection_lps_initial += by.initial;
+      res.stats.projection_lps_vertex += by.vertex;
+      res.stats.projection_lps_certificate += by.certificate;
+      res.stats.projection_lps_cap_growth += by.cap_growth;
+      res.stats.projection_lps_cold_retry += by.cold_retry;
     }
   }
   auto t0 = std::chrono::steady_clock::now();

@@ -45,6 +45,21 @@ PolytopeLp octahedron() {
   return lp;
 }
 
+// The octahedron with 30 more columns y_j in [0, 1], each row also + 1e-3 sum_j y_j: the same diamond
+// (y_j = 0 at every support point), but wide enough (33 columns) for the ranging certificates, whose
+// tableau rows are read inside the LPs' guarded calls.
+PolytopeLp wide_octahedron() {
+  PolytopeLp lp = octahedron();
+  const int extra = 30;
+  lp.A.conservativeResize(8, 3 + extra);
+  lp.A.rightCols(extra).setConstant(1e-3);
+  lp.col_lo.conservativeResize(3 + extra);
+  lp.col_hi.conservativeResize(3 + extra);
+  lp.col_lo.tail(extra).setZero();
+  lp.col_hi.tail(extra).setOnes();
+  return lp;
+}
+
 // y = 1e-8 u, 100 <= y <= 200, 0 <= x <= 1: the shadow [0, 1] x [1e10, 2e10] lies beyond the stand-in
 // bounds, so the projection takes its other branch (a feasibility LP, grown bounds, rescaled columns).
 PolytopeLp beyond_stand_in() {
@@ -128,11 +143,14 @@ TEST(GlpkGuard, AnErrorAtAnyCallOfAProjectionFailsItAndSparesTheOtherProblems) {
   const struct {
     PolytopeLp lp;
     double (*shadow)(double, double);
-  } cases[] = {{octahedron(), diamond}, {beyond_stand_in(), rectangle}};
+    long guarded_calls;  // at least: parameters, load, the LPs and the certificates' bindings
+  } cases[] = {{octahedron(), diamond, 10}, {beyond_stand_in(), rectangle, 10}, {wide_octahedron(), diamond, 6}};
   for (const auto& c : cases) {
     Bystander other;
     PolytopeProjector warm, p;  // `warm` holds its warm-start problem throughout
-    ASSERT_EQ(warm.project(c.lp).outcome, Projection::Outcome::Polygon);
+    const Projection first = warm.project(c.lp);
+    ASSERT_EQ(first.outcome, Projection::Outcome::Polygon);
+    if (c.lp.A.cols() >= 30) EXPECT_GT(first.ranged_certificates, 0);  // the ranging path is among the calls hit
     ASSERT_EQ(p.project(c.lp).outcome, Projection::Outcome::Polygon);  // p warm too: the error hits a loaded problem
     long k = 0;
     for (;; ++k) {
@@ -152,7 +170,7 @@ TEST(GlpkGuard, AnErrorAtAnyCallOfAProjectionFailsItAndSparesTheOtherProblems) {
         }
       }
     }
-    EXPECT_GE(k, 10);  // every guarded call of the projection was hit once
+    EXPECT_GE(k, c.guarded_calls);  // every guarded call of the projection was hit once
   }
 }
 

@@ -312,3 +312,57 @@ TEST(Projection, A160GonWithMicrometreEdgesSurvivesPruningIntoTheFeasibleSet) {
     EXPECT_NEAR(got, ref, 2e-9);
   }
 }
+
+TEST(Projection, RangingCertificatesGiveTheSamePolygonsWithAboutOneLpPerEdge) {
+  // The 160-gon and a sequence of random lifted polygons (one projector, warm across them), with edges
+  // certified by their endpoints' bases (ranging) and each by its own LP: the same vertices, and the
+  // ranging needs about one LP per edge where the LPs alone need about two.
+  std::mt19937 gen(27);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  PolytopeProjector with, without;
+  without.ranging = false;
+  for (int k = 0; k < 12; ++k) {
+    std::vector<Vertex> truth;
+    if (k == 0) {
+      truth = rounded_square(40, 3e-5);
+    } else {
+      const int m = 12 + 4 * k;
+      for (int i = 0; i < m; ++i) {
+        const double a = 2 * M_PI * (i + 0.5 + jitter(gen)) / m;
+        truth.push_back({std::cos(a) * (2.0 + k), 0.5 * std::sin(a)});
+      }
+    }
+    // 30 more columns z_j in [0, 1] with rows z_j - 0.01 y <= 1 (always met: the shadow is the polygon's),
+    // so that the LP is large enough for the ranging (30 columns).
+    const PolytopeLp small = lifted_polygon(truth);
+    PolytopeLp lp;
+    const int r0 = static_cast<int>(small.A.rows()), extra = 30;
+    lp.A.setZero(r0 + extra, 3 + extra);
+    lp.A.topLeftCorner(r0, 3) = small.A;
+    lp.row_lo = Eigen::VectorXd::Constant(r0 + extra, -INFINITY);
+    lp.row_hi = Eigen::VectorXd::Ones(r0 + extra);
+    lp.row_lo.head(r0) = small.row_lo;
+    lp.row_hi.head(r0) = small.row_hi;
+    lp.col_lo = Eigen::VectorXd::Zero(3 + extra);
+    lp.col_hi = Eigen::VectorXd::Ones(3 + extra);
+    lp.col_lo.head(3) = small.col_lo;
+    lp.col_hi.head(3) = small.col_hi;
+    for (int j = 0; j < extra; ++j) {
+      lp.A(r0 + j, 3 + j) = 1.0;
+      lp.A(r0 + j, 2) = -0.01;
+    }
+    const Projection a = with.project(lp), b = without.project(lp);
+    ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
+    ASSERT_EQ(a.vertices.size(), b.vertices.size());
+    for (size_t i = 0; i < a.vertices.size(); ++i) {
+      EXPECT_NEAR(a.vertices[i].x, b.vertices[i].x, 1e-12 * (2.0 + k));
+      EXPECT_NEAR(a.vertices[i].y, b.vertices[i].y, 1e-12 * (2.0 + k));
+    }
+    const int edges = static_cast<int>(a.halfplanes.size());
+    EXPECT_GT(a.ranged_certificates, edges / 2);
+    EXPECT_LE(a.lp_solves, edges + 6);
+    EXPECT_GE(b.lp_solves, 2 * edges - 3);
+    EXPECT_EQ(a.lp_solves, a.by_cause.initial + a.by_cause.vertex + a.by_cause.certificate + a.by_cause.cap_growth);
+    EXPECT_EQ(b.ranged_certificates, 0);
+  }
+}

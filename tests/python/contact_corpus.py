@@ -37,6 +37,8 @@ class Humanoid:
     arm: list[str]       # joint-name prefixes moved for the hand on the wall
     hand: str
     locked: list[str] = field(default_factory=list)
+    sole_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)  # the sole rectangle's centre in the sole frame
+    torso: list[str] = field(default_factory=list)  # pitch joints bent by a lean (issue 27)
     robot: pp.RobotModel | None = None
     model: object = None  # pinocchio
     perm: np.ndarray | None = None  # pathpace coordinate i is pinocchio coordinate perm[i]
@@ -57,7 +59,17 @@ HUMANOIDS = {
                            "LShoulderPitch": 1.2, "RShoulderPitch": 1.2, "LElbowYaw": -1.0},
                   legs=["LHip", "LKnee", "LAnkle", "RHip", "RKnee", "RAnkle"],
                   arm=["LShoulder", "LElbow", "LWrist"], hand="l_wrist", locked=["LHand", "RHand"]),
+    # Unitree G1 (29 joints): no sole frame; the sole is the plane of the ankle roll link's four contact
+    # spheres (x from -0.05 to 0.12, y within ±0.025-0.03, z = -0.03, radius 5 mm).
+    "g1": dict(urdf="g1_description/urdf/g1_29dof_rev_1_0.urdf", soles=("left_ankle_roll_link", "right_ankle_roll_link"),
+               sole_size=(0.17, 0.05), sole_origin=(0.035, 0.0, -0.035),
+               posture={"left_hip_pitch_joint": -0.25, "left_knee_joint": 0.5, "left_ankle_pitch_joint": -0.25,
+                        "right_hip_pitch_joint": -0.25, "right_knee_joint": 0.5, "right_ankle_pitch_joint": -0.25,
+                        "left_elbow_joint": 0.8, "right_elbow_joint": 0.8},
+               legs=["left_hip", "left_knee", "left_ankle", "right_hip", "right_knee", "right_ankle"],
+               arm=["left_shoulder", "left_elbow", "left_wrist"], hand="left_rubber_hand", torso=["waist_pitch_joint"]),
 }
+HUMANOIDS["talos"]["torso"] = ["torso_2_joint"]
 
 _cache: dict[str, Humanoid] = {}
 
@@ -90,7 +102,7 @@ def standing_posture(h: Humanoid) -> np.ndarray:
     q = np.zeros(h.robot.nq)
     for jn, v in h.posture.items():
         q[h.robot.joint_names.index(jn)] = v
-    q[2] -= h.robot.frame_placement(q, h.soles[0])[2, 3]  # soles on the ground, z = 0
+    q[2] -= _point(h, q, h.soles[0], np.array(h.sole_origin))[2]  # soles on the ground, z = 0
     return q
 
 
@@ -102,23 +114,27 @@ def hand_point(h: Humanoid) -> np.ndarray:
     return np.zeros(3)
 
 
-def ik(h: Humanoid, q_ref: np.ndarray, base_y: float = 0.0, base_dz: float = 0.0, hand: bool = False) -> np.ndarray:
-    """Pelvis at lateral offset base_y and height offset base_dz; both soles (three marks each) and, with
-    `hand`, the hand point where they are in q_ref; Gauss-Newton over the leg (and arm) joints."""
+def ik(h: Humanoid, q_ref: np.ndarray, base_y: float = 0.0, base_dz: float = 0.0, hand: bool = False,
+       base_pitch: float = 0.0, start: np.ndarray | None = None) -> np.ndarray:
+    """Pelvis at lateral offset base_y, height offset base_dz and pitched forward by base_pitch (rad);
+    both soles (three marks each) and, with `hand`, the hand point where they are in q_ref; Gauss-Newton
+    over the leg (and arm) joints; from `start` (default q_ref) with steps of at most 0.2 rad."""
     names = h.robot.joint_names
     free = [i for i, n in enumerate(names) if any(n.startswith(p) for p in h.legs + (h.arm if hand else []))]
     marks = [np.array(p) for p in ((0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.05, 0.0))]
     pins = [(f, p) for f in h.soles for p in marks] + ([(h.hand, hand_point(h))] if hand else [])
     targets = np.concatenate([_point(h, q_ref, f, p) for f, p in pins])
-    q = q_ref.copy()
+    q = (q_ref if start is None else start).copy()
     q[1] = q_ref[1] + base_y
     q[2] = q_ref[2] + base_dz
-    for _ in range(60):
+    q[4] = q_ref[4] + base_pitch  # floating_ry
+    for _ in range(60 if start is None else 300):
         r = np.concatenate([_point(h, q, f, p) for f, p in pins]) - targets
         if np.max(np.abs(r)) < 1e-11:
             return q
         J = np.vstack([h.robot.point_jacobian(q, f, p)[:, free] for f, p in pins])
-        q[free] -= np.linalg.lstsq(J, r, rcond=None)[0]
+        step = np.linalg.lstsq(J, r, rcond=None)[0]
+        q[free] -= step if start is None else step * min(1.0, 0.2 / max(np.max(np.abs(step)), 1e-300))
     raise RuntimeError(f"IK did not converge for {h.name} (residual {np.max(np.abs(r)):.2e})")
 
 
@@ -138,8 +154,9 @@ def contacts(h: Humanoid, kind: str, grid: tuple[int, int] = (2, 2), friction: f
     """Points on a regular nx x ny grid over each sole ((2, 2): the corners), plus the hand on a wall
     beside the robot (normal -y in the world: the wall at +y pushes the hand towards the robot)."""
     lx, ly = h.sole_size
-    xs, ys = np.linspace(-lx / 2, lx / 2, grid[0]), np.linspace(-ly / 2, ly / 2, grid[1])
-    out = [pp.Contact(link, point=(x, y, 0.0), normal=(0, 0, 1), friction=friction)
+    ox, oy, oz = h.sole_origin
+    xs, ys = ox + np.linspace(-lx / 2, lx / 2, grid[0]), oy + np.linspace(-ly / 2, ly / 2, grid[1])
+    out = [pp.Contact(link, point=(x, y, oz), normal=(0, 0, 1), friction=friction)
            for link in h.soles for x in xs for y in ys]
     if kind == "wall":
         out.append(pp.Contact(h.hand, point=hand_point(h), normal=(0, -1, 0), friction=0.7))
@@ -147,10 +164,90 @@ def contacts(h: Humanoid, kind: str, grid: tuple[int, int] = (2, 2), friction: f
 
 
 # ---------------------------------------------------------------------------------------------------
+# Issue 27: the cases where the projection's cost lives. Dense sole grids, per-point margins, strong
+# leans and squats, torque limits scaled down until they bind.
+
+HARD_MARGINS = {
+    "fn1.5": {"min_normal_force": 1.5},
+    "fm0.5+fn0.33": {"friction_margin": 0.5, "min_normal_force": 0.33},
+}
+# The paper's own margin (sec. V.D), the shifted cone: exact reduction to the sole corners.
+SHIFTED_MARGINS = {
+    "off1.5": {"cone_offset": 1.5},
+    "fm0.5+off0.33": {"friction_margin": 0.5, "cone_offset": 0.33},
+}
+HARD_GRIDS = {"talos": (6, 5), "romeo": (6, 5), "g1": (8, 4)}  # 30, 30, 32 points per sole
+# The smallest torque_scale of the ladder 1, 0.8, 0.6, 0.5, 0.4, 0.3, 0.25, 0.2, 0.15, 0.1 at which both
+# HARD_MARGINS are OPTIMAL at N = 50 with 4 edges (hard_torque_scale, run once; 4 edges is the smallest
+# cone, so 8 and 16 are feasible too): the limits bind along the motion.
+HARD_TORQUE_SCALE = {("talos", "lean"): 0.3, ("talos", "squat"): 0.3, ("romeo", "lean"): 0.3,
+                     ("romeo", "squat"): 0.4, ("g1", "lean"): 0.5, ("g1", "squat"): 0.5}
+
+
+@dataclass(frozen=True)
+class HardCase:
+    robot: str
+    kind: str         # lean | squat
+    amplitude: float  # m: the lean's sideways sway, the squat's depth
+    tilt: float       # rad: pelvis pitch at mid-path, and as much again in the torso joints
+
+
+def hard_cases(seed: int = 27) -> list[HardCase]:
+    """One seeded draw per robot and kind: a sway of 60-80 % of the half distance between the soles
+    (the centre of mass near the sole's edge; the pelvis 3 % of its height lower at mid-path, so that the
+    legs reach), or a squat of 10-15 % of the pelvis height; both with the
+    pelvis pitched 0.3-0.4 rad forward and the torso as much again (36-46 deg from vertical)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for robot in HUMANOIDS:
+        for kind in ("lean", "squat"):
+            frac, tilt = rng.uniform(0.6, 0.8), rng.uniform(0.3, 0.4)
+            h = load(robot)
+            q0 = standing_posture(h)
+            if kind == "lean":
+                half = 0.5 * abs(h.robot.frame_placement(q0, h.soles[0])[1, 3] - h.robot.frame_placement(q0, h.soles[1])[1, 3])
+                amp = frac * half
+            else:
+                amp = (0.1 + 0.25 * (frac - 0.6)) * q0[2]
+            out.append(HardCase(robot, kind, round(float(amp), 4), round(float(tilt), 3)))
+    return out
+
+
+def make_hard_path(h: Humanoid, case: HardCase, knots: int = 21) -> pp.CubicSplinePath:
+    q0 = standing_posture(h)
+    torso = [h.robot.joint_names.index(j) for j in h.torso]
+    s = np.linspace(0.0, 1.0, knots)
+    wp = [q0]
+    for si in s[1:]:
+        lean = case.tilt * np.sin(np.pi * si)
+        if case.kind == "lean":
+            q = ik(h, q0, base_y=case.amplitude * np.sin(2 * np.pi * si), base_dz=-0.03 * q0[2] * np.sin(np.pi * si),
+                   base_pitch=lean, start=wp[-1])
+        else:
+            q = ik(h, q0, base_dz=-case.amplitude * np.sin(np.pi * si), base_pitch=lean, start=wp[-1])
+        q[torso] = q0[torso] + lean
+        wp.append(q)
+    return pp.CubicSplinePath(np.array(wp), knots=s)
+
+
+def hard_torque_scale(h: Humanoid, path, cons, ladder=(1.0, 0.8, 0.6, 0.5, 0.4, 0.3, 0.25, 0.2, 0.15, 0.1)) -> float:
+    """The smallest scale of the ladder at which every HARD_MARGINS set is OPTIMAL (N = 50, 4 edges)."""
+    best = None
+    for scale in ladder:
+        for margins in HARD_MARGINS.values():
+            prob = pp.TimeScalingProblem(path, grid=50)
+            prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4, torque_scale=scale, **margins)
+            if not prob.solve().ok:
+                return best
+        best = scale
+    return best
+
+
+# ---------------------------------------------------------------------------------------------------
 # The oracle: the full polytope from pinocchio, support values from HiGHS.
 
 def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0, min_normal_force=0.0,
-                  min_link_normal_force=0.0):
+                  min_link_normal_force=0.0, torque_scale=1.0, cone_offset=0.0):
     """(A, lo, hi, bounds) of {(x, u, λ): lo <= A (x, u, λ) <= hi} in pathpace's coordinate order."""
     import pinocchio as pin
     model = h.model
@@ -165,20 +262,23 @@ def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0
     pin.forwardKinematics(model, data, qp)
     pin.updateFramePlacements(model, data)
     cols = [a[P, None], b[P, None]]
+    w = np.zeros(n)  # the shifted cones' offsets: f_i = cone_offset n_i + G_i λ_i, a constant J_iᵀ n_i each
     for con in cons:
         fid = model.getFrameId(con.link)
         J6 = pin.computeFrameJacobian(model, data, qp, fid, pin.LOCAL)
         J = data.oMf[fid].rotation @ (J6[:3] - np.cross(np.asarray(con.point), J6[3:].T).T)
         G = generators(con.normal, con.friction * (1.0 - friction_margin), cone_edges)
         cols.append((-J.T @ G)[P])
+        nrm = np.asarray(con.normal, float)
+        w += cone_offset * J.T @ (nrm / np.linalg.norm(nrm))
     A = np.hstack(cols)
-    eff = h.robot.effort_limits
-    lo, hi = -eff - c[P], eff - c[P]
+    eff = h.robot.effort_limits * torque_scale
+    lo, hi = -eff - c[P] + w[P], eff - c[P] + w[P]
     rows, rlo, rhi = [A], [lo], [hi]
     m, k = len(cons), cone_edges
     if min_normal_force > 0:
         rows.append(np.hstack([np.zeros((m, 2)), np.kron(np.eye(m), np.ones(k))]))
-        rlo.append(np.full(m, min_normal_force))
+        rlo.append(np.full(m, min_normal_force - cone_offset))
         rhi.append(np.full(m, np.inf))
     if min_link_normal_force > 0:
         links = sorted({con.link for con in cons})
@@ -186,7 +286,7 @@ def full_polytope(h: Humanoid, q, dq, ddq, cons, cone_edges, friction_margin=0.0
         for i, con in enumerate(cons):
             L[links.index(con.link), 2 + i * k: 2 + (i + 1) * k] = 1.0
         rows.append(L)
-        rlo.append(np.full(len(links), min_link_normal_force))
+        rlo.append(np.full(len(links), min_link_normal_force) - cone_offset * L[:, 2::k].sum(axis=1))
         rhi.append(np.full(len(links), np.inf))
     bounds = [(0, CAP), (-CAP, CAP)] + [(0, None)] * (m * k)
     return np.vstack(rows), np.concatenate(rlo), np.concatenate(rhi), bounds
@@ -266,7 +366,8 @@ def compare(h: Humanoid, prob: pp.TimeScalingProblem, cons, options: dict, point
         fs = prob.feasible_set(k)
         A, lo, hi, bounds = full_polytope(h, q, dq, ddq, cons, options.get("cone_edges", 8),
                                           options.get("friction_margin", 0.0), options.get("min_normal_force", 0.0),
-                                          options.get("min_link_normal_force", 0.0))
+                                          options.get("min_link_normal_force", 0.0), options.get("torque_scale", 1.0),
+                                          options.get("cone_offset", 0.0))
         ref = exact_support(A, lo, hi, bounds, dirs)
         if ref is None:
             assert fs.empty, f"k = {k}: the exact polytope is empty, pathpace's set is not"

@@ -211,12 +211,101 @@ def test_stats_time_the_projection_and_report_an_exhausted_budget(paths):
     assert st["projection_lp_solves"] >= 21 * 4
     assert st["inexact_points"] == 0
     assert all(prob.feasible_set(k).exact for k in range(21))
-    # A budget of 5 LPs per point: every polygon is an inner hull, and says so.
+    # A budget of 3 LPs per point (the initial triangle; edges whose endpoint's basis certifies them
+    # need no LP): the polygons that need more are inner hulls, and say so.
     cut = pp.TimeScalingProblem(path, grid=20)
-    cut.add_contacts(h.robot, cons, cone_edges=16, drift_tolerance=1e-4, max_lps=5)
+    cut.add_contacts(h.robot, cons, cone_edges=16, drift_tolerance=1e-4, max_lps=3)
     res_cut = cut.solve()
-    assert res_cut.stats["inexact_points"] == 21
-    assert not any(cut.feasible_set(k).exact for k in range(21))
+    inexact = sum(not cut.feasible_set(k).exact for k in range(21))
+    assert res_cut.stats["inexact_points"] == inexact >= 15
     dirs = cc.directions()
     for k in range(0, 21, 5):
         cc.assert_nested(cut.feasible_set(k), prob.feasible_set(k), dirs, 1e-9, f"point {k}: inner hull in the exact set")
+
+
+@pytest.mark.parametrize("robot, kind, mname", [("talos", "lean", "fm0.5+fn0.33"), ("romeo", "lean", "fn1.5")])
+def test_hard_corpus_polygons_are_exact_and_torque_limits_bind(robot, kind, mname):
+    """Issue 27's corpus (dense soles, per-point margins, strong lean or squat, torque limits scaled down):
+    every polygon of a coarse grid equals the exact projection over all 60-64 points (pinocchio + HiGHS),
+    the polygons are complex (well over the 4-8 edges of a bare sole), and some edges are torque limits."""
+    case = next(c for c in cc.hard_cases() if c.robot == robot and c.kind == kind)
+    h = cc.load(robot)
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot])
+    assert len(cons) >= 60
+    opts = dict(cone_edges=4, torque_scale=cc.HARD_TORQUE_SCALE[(robot, kind)], **cc.HARD_MARGINS[mname])
+    prob = pp.TimeScalingProblem(path, grid=6)
+    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+    worst, compared, empty = cc.compare(h, prob, cons, opts, dirs=cc.directions(32))
+    assert empty == 0 and compared >= 5
+    assert worst <= 1e-6
+    sets = [prob.feasible_set(k) for k in range(7)]
+    assert max(len(fs.halfplanes) for fs in sets) >= 12
+    assert any("torque" in label for fs in sets for label in fs.labels)
+    res = prob.solve()
+    assert res.ok, res.message
+    st = res.stats
+    causes = ("initial", "vertex", "certificate", "cap_growth", "cold_retry")
+    assert sum(st[f"projection_lps_{c}"] for c in causes) == st["projection_lp_solves"]
+    assert st["projection_lps_initial"] == 3 * 7
+
+
+@pytest.mark.parametrize("robot, kind, margins", [("talos", "lean", {"cone_offset": 1.5}),
+                                                   ("romeo", "lean", {"friction_margin": 0.5, "cone_offset": 0.33,
+                                                                      "min_link_normal_force": 60.0})])
+def test_shifted_cone_reduces_exactly_to_the_sole_corners(robot, kind, margins):
+    """The shifted cone (f - cone_offset·n in the friction cone, sec. V.D): each sole's 30 points reduce to
+    its 4 corners plus a constant offset wrench, and every polygon equals the exact projection over all
+    60 points (pinocchio + HiGHS, the offsets of every point in its rows) to 1e-9 of its size; a per-link
+    minimum counts the offsets of every point of the link. The margin binds: T above the bare optimum."""
+    case = next(c for c in cc.hard_cases() if c.robot == robot and c.kind == kind)
+    h = cc.load(robot)
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot])
+    opts = dict(cone_edges=4, torque_scale=cc.HARD_TORQUE_SCALE[(robot, kind)], **margins)
+    c = pp.ContactConstraint(h.robot, cons, **opts)
+    lx, ly = h.sole_size
+    corners = [i for i, con in enumerate(cons)
+               if abs(abs(con.point[0]) - lx / 2) < 1e-12 and abs(abs(con.point[1]) - ly / 2) < 1e-12]
+    assert len(corners) == 8 and sorted(c.projected_contacts) == corners
+    prob = pp.TimeScalingProblem(path, grid=6)
+    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+    worst, compared, empty = cc.compare(h, prob, cons, opts, dirs=cc.directions(32))
+    assert empty == 0 and compared >= 5
+    assert worst <= 1e-9
+    bare = pp.TimeScalingProblem(path, grid=6)
+    bare.add_contacts(h.robot, cons, drift_tolerance=1e-4, cone_edges=4, torque_scale=opts["torque_scale"])
+    res, res_bare = prob.solve(), bare.solve()
+    assert res.ok and res_bare.ok
+    assert res.duration > res_bare.duration * (1 + 1e-6)
+    # At the grid points (where the timing is feasible) the forces the constraint reports keep every
+    # point's offset along its normal, with friction to spare: f - cone_offset·n in the reduced cone.
+    fs = res.trajectory().contact_forces(res.times)
+    assert np.all(fs.margin >= -1e-6)
+    off = margins["cone_offset"]
+    normal = fs.forces[..., 2]
+    assert np.all(normal >= off - 1e-6)
+    mu = 0.5 * (1 - margins.get("friction_margin", 0.0))
+    assert np.all(np.hypot(fs.forces[..., 0], fs.forces[..., 1]) <= mu * (normal - off) + 1e-6)
+    # The torques left after the offset forces (tau_id - sum J^T f, offsets included) are within the limits:
+    # the offsets' wrench is counted once, not also in the LP's torque rows a second time.
+    assert np.all(fs.torques >= c.tau_min - 1e-6) and np.all(fs.torques <= c.tau_max + 1e-6)
+
+
+def test_cone_offset_is_validated_named_and_pickled():
+    h = cc.load("talos")
+    cons = cc.contacts(h, "sway")
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(pp.InvalidInputError, match=r"cone_offset = .* must be >= 0 and finite"):
+            pp.ContactConstraint(h.robot, cons, cone_offset=bad)
+    import pickle
+    path = cc.make_path(h, "sway")
+    a, b = (pp.TimeScalingProblem(path, grid=4) for _ in range(2))
+    c = pp.ContactConstraint(h.robot, cons, cone_offset=20.0)
+    a.add_constraint(c)
+    b.add_constraint(pickle.loads(pickle.dumps(c)))
+    bare = pp.TimeScalingProblem(path, grid=4)
+    bare.add_constraint(pp.ContactConstraint(h.robot, cons))
+    for k in range(5):
+        np.testing.assert_array_equal(a.feasible_set(k).vertices, b.feasible_set(k).vertices)
+    assert not np.array_equal(a.feasible_set(2).vertices, bare.feasible_set(2).vertices)

@@ -63,6 +63,13 @@ struct SolverStats {
   double time_projection = 0;     ///< seconds, included in time_constraints
   int projection_lp_solves = 0;   ///< LPs of the projection
   int inexact_points = 0;         ///< grid points whose polygon is only an inner approximation (see FeasibleSet::exact)
+  /// projection_lp_solves by cause (they sum to it): the initial triangle, edge LPs that found a vertex
+  /// (or failed), edge LPs that certified an edge, stand-in bound growth, cold retries of a grid point.
+  int projection_lps_initial = 0;
+  int projection_lps_vertex = 0;
+  int projection_lps_certificate = 0;
+  int projection_lps_cap_growth = 0;
+  int projection_lps_cold_retry = 0;
 };
 
 class Result {

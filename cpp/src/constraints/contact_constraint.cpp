@@ -26,6 +26,8 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     detail::fail("friction_margin = " + detail::fmt(options_.friction_margin) + " must be in [0, 1)");
   if (!(options_.min_normal_force >= 0.0) || !std::isfinite(options_.min_normal_force))
     detail::fail("min_normal_force = " + detail::fmt(options_.min_normal_force) + " must be >= 0 and finite");
+  if (!(options_.cone_offset >= 0.0) || !std::isfinite(options_.cone_offset))
+    detail::fail("cone_offset = " + detail::fmt(options_.cone_offset) + " must be >= 0 and finite");
   if (!(options_.torque_scale > 0.0) || !std::isfinite(options_.torque_scale))
     detail::fail("torque_scale = " + detail::fmt(options_.torque_scale) + " must be > 0 and finite");
   if (!(options_.torque_margin >= 0.0) || !std::isfinite(options_.torque_margin))
@@ -97,6 +99,8 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
   // for a point of one body: the wrench (f, p × f)), and α_j f lies in the same cone; so the hull
   // vertices generate every force the group can. The sum of normal forces is unchanged, so a per-link
   // minimum survives; a per-point minimum does not (it would load interior points), hence no reduction.
+  // The shifted cone (cone_offset) does not change this: its offsets cone_offset·n_i are a constant
+  // wrench, kept over every point in lp_point (docs/method.md).
   std::vector<char> keep(contacts_.size(), 1);
   if (options_.min_normal_force == 0.0) {
     std::map<std::tuple<int, int, double, double, double, double>, std::vector<int>> groups;
@@ -262,14 +266,18 @@ void ContactConstraint::lp_structure(const std::vector<int>& use, int extra, det
   lp.col_hi[1] = options_.cap;
   lp.stand_in = options_.cap;
   // n·f_i = Σ_e λ_ie since n·g_ie = 1 (sec. V.D's minimum normal force, per point and per link).
+  // With the shifted cone, n·f_i = cone_offset + Σ_e λ_ie; a link's sum counts the offset of every one of
+  // its points, those the reduction left out of the LPs too.
   for (int i = 0; i < point_rows; ++i) {
     lp.A.block(n + i, 2 + i * k, 1, k).setOnes();
-    lp.row_lo[n + i] = options_.min_normal_force;
+    lp.row_lo[n + i] = options_.min_normal_force - options_.cone_offset;
   }
   for (int i = 0; i < m && link_rows > 0; ++i) {
     const int r = n + point_rows + link_of[static_cast<size_t>(i)];
+    const std::string& l = links[static_cast<size_t>(link_of[static_cast<size_t>(i)])];
+    const auto on_link = std::count_if(contacts_.begin(), contacts_.end(), [&](const Contact& c) { return c.link == l; });
     lp.A.block(r, 2 + i * k, 1, k).setOnes();
-    lp.row_lo[r] = options_.min_link_normal_force;
+    lp.row_lo[r] = options_.min_link_normal_force - options_.cone_offset * static_cast<double>(on_link);
   }
 }
 
@@ -288,10 +296,34 @@ void ContactConstraint::lp_point(const std::vector<int>& use, const Eigen::Ref<c
     lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
   lp.row_lo.head(n) = tau_min_ - c;
   lp.row_hi.head(n) = tau_max_ - c;
+  if (options_.cone_offset > 0.0) {
+    // The shifted cone: f_i = cone_offset n_i + Σ_e λ_ie g_ie at every contact, reduced or not, so that
+    // τ = a x + b u + c - w - Σ J_iᵀ G_i λ_i with the constant w = cone_offset Σ_i J_iᵀ n_i (eq. 17),
+    // moved into the row bounds like c.
+    const Eigen::VectorXd w = offset_torques(q);
+    lp.row_lo.head(n) += w;
+    lp.row_hi.head(n) += w;
+  }
   // Rounding residue (1e-17 where a joint axis is orthogonal to a force) is not a coefficient: as a
   // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5.
   const double tiny = 1e-13 * lp.A.topRows(n).cwiseAbs().maxCoeff();
   lp.A.topRows(n) = (lp.A.topRows(n).array().abs() < tiny).select(0.0, lp.A.topRows(n));
+}
+
+Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  thread_local std::vector<Eigen::Isometry3d> T;
+  thread_local Eigen::MatrixXd J;
+  thread_local Eigen::Matrix3Xd gen;
+  contact_jacobians(q, T, J, gen);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(robot_->nq());
+  for (size_t i = 0; i < contacts_.size(); ++i) {
+    // The normal in the world: the contact's own, or other_link's turned into the world.
+    const Eigen::Vector3d n = other_body_[i] >= 0 ? Eigen::Vector3d(T[static_cast<size_t>(other_body_[i])].linear() *
+                                                                    other_in_body_[i].linear() * contacts_[i].normal)
+                                                  : contacts_[i].normal;
+    w.noalias() += J.middleRows(3 * static_cast<Eigen::Index>(i), 3).transpose() * n;
+  }
+  return options_.cone_offset * w;
 }
 
 std::vector<std::string> ContactConstraint::binding_names(const std::vector<int>& use) const {
@@ -373,6 +405,7 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
   ConstraintRows out;
   out.resize(samples.size(), r);
   out.lp_solves = sub.lp_solves;
+  out.lp_by_cause = sub.lp_by_cause;
   for (size_t i = 0; i < in.size(); ++i) {
     const Eigen::Index j = static_cast<Eigen::Index>(i);
     out.a.row(in[i]).head(sub.rows()) = sub.a.row(j);
@@ -415,11 +448,14 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
       // Once more from a cold start (a fresh basis), keeping the larger result.
       detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps);
       r.lp_solves += pr.lp_solves + cold.lp_solves;  // both ran, whichever is kept
+      r.lp_by_cause += pr.by_cause;
+      r.lp_by_cause.cold_retry += cold.lp_solves;
       if (cold.outcome != detail::Projection::Outcome::Failed &&
           (pr.outcome == detail::Projection::Outcome::Failed || cold.complete || cold.vertices.size() > pr.vertices.size()))
         pr = std::move(cold);
     } else {
       r.lp_solves += pr.lp_solves;
+      r.lp_by_cause += pr.by_cause;
     }
     auto& out = polys[static_cast<size_t>(p)];
     if (pr.outcome != detail::Projection::Outcome::Polygon) {
@@ -571,6 +607,9 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
   for (Eigen::Index s = 0; s < q.rows(); ++s) {
     const Eigen::VectorXd qs = q.row(s).transpose();
     robot_->inverse_dynamics(ws, qs, qd.row(s).transpose(), qdd.row(s).transpose(), true, tau);
+    // The shifted cone (cone_offset): lp_point moves w = offset_torques(q) into the torque rows' bounds
+    // (τ_id - w is what the cones' generators carry) and lp_structure puts each minimum row at
+    // min - offset, so tau stays τ_id here and the offsets are added to the forces below.
     lp_point(all, qs, zero, zero, tau, polytope);
     margin_lp(polytope, n, options_.cap, lp);
     const int st = solver.maximize(lp, objective, z);
@@ -592,7 +631,9 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
     f.torques = tau;
     for (int i = 0; i < m; ++i) {
       const Eigen::VectorXd lambda = z.segment(i * k, k).array() + delta;
-      const Eigen::Vector3d fi = gen.middleCols(i * k, k) * lambda;
+      Eigen::Vector3d fi = gen.middleCols(i * k, k) * lambda;
+      // The offset along the normal: the generators' mean is n (their tangents cancel over a full turn).
+      if (options_.cone_offset > 0.0) fi += options_.cone_offset * gen.middleCols(i * k, k).rowwise().mean().normalized();
       f.forces.row(i) = fi.transpose();
       f.torques.noalias() -= J.middleRows(3 * i, 3).transpose() * fi;
     }
@@ -616,6 +657,7 @@ std::shared_ptr<const Constraint> ContactConstraint::relaxed(const std::string& 
     for (Contact& c : contacts) c.friction *= scale;
     o.min_normal_force /= scale;
     o.min_link_normal_force /= scale;
+    o.cone_offset /= scale;
   } else {
     return nullptr;
   }

@@ -20,6 +20,19 @@ double cross(const Vertex& o, const Vertex& a, const Vertex& b) {
 
 }  // namespace
 
+// An optimal basis of eq. (19) stays optimal for every direction v in which its reduced costs keep their
+// signs; they are linear in v: d_j(v) = v_x A_j + v_u B_j over the nonbasic variables j (A_j = [j = x] +
+// α_xj, B_j = [j = u] + α_uj, α the tableau rows of x and u, x_B = Σ α x_N). If an edge's outward normal
+// keeps the basis of one of its endpoints dual feasible (GLPK's own optimality test, with a stricter
+// tolerance), that endpoint is an optimum along the normal: the edge's LP, started from that basis,
+// would stop there without a pivot and certify the edge. The test replaces that LP (one LP per vertex
+// instead of one per vertex and one per edge), and the same reduced costs give binding()'s duals.
+struct PolytopeProjector::Ranging {
+  std::vector<int> var;            // GLPK variable: 1..rows (auxiliary), rows + 1.. (structural)
+  std::vector<signed char> stat;   // GLP_NL, GLP_NU, GLP_NF, GLP_NS
+  std::vector<double> A, B;
+};
+
 void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order) {
   std::vector<int> idx(points.size());
   for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
@@ -197,6 +210,30 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   glp_smcp dual = parm;
   dual.meth = GLP_DUALP;
   stat_.resize(static_cast<size_t>(rows + cols));
+  // The ranging of the last LP's optimal basis (empty when it is not computed: scaled columns).
+  Ranging last_range;
+  // From kRangingColumns columns on: below, an LP is a few pivots on a tiny basis and costs about what
+  // the two tableau rows do (and the rod of test_continuous, 6 columns, keeps its LP sequence).
+  constexpr int kRangingColumns = 30;
+  // The tableau rows of x and u (1-based over every variable, GLPK's numbering), read inside the LP's
+  // guarded call into these buffers sized here (glpk_guard.hpp's rule 1); the Ranging is built after it.
+  const int total = rows + cols;
+  tab_ind_.resize(static_cast<size_t>(total) + 1);
+  tab_val_.resize(static_cast<size_t>(total) + 1);
+  tab_x_.resize(static_cast<size_t>(total) + 1);
+  tab_u_.resize(static_cast<size_t>(total) + 1);
+  auto range_basis = [&](Ranging& rg, bool computed) {
+    rg = Ranging();
+    if (!computed) return;
+    for (int k = 1; k <= total; ++k) {
+      const signed char st = stat_[static_cast<size_t>(k - 1)];
+      if (st == GLP_BS) continue;
+      rg.var.push_back(k);
+      rg.stat.push_back(st);
+      rg.A.push_back(tab_x_[static_cast<size_t>(k)] + (k == rows + 1 ? 1.0 : 0.0));
+      rg.B.push_back(tab_u_[static_cast<size_t>(k)] + (k == rows + 2 ? 1.0 : 0.0));
+    }
+  };
   auto extremize = [&](double vx, double vu, Vertex& p) -> int {  // also -2: a GLPK error
     ++out.lp_solves;
     const double angle = std::atan2(vu, vx);
@@ -218,8 +255,13 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const signed char* start = from ? from->stat.data() : nullptr;
     const signed char* fallback = from ? (current_.empty() ? previous_.back() : current_.back()).stat.data() : nullptr;
     const bool record = cols >= kRestoreColumns;  // no basis is restored below this size: none is recorded
+    // Ranging only on unscaled columns (its reduced costs are in the LP's own units).
+    const bool range = ranging && cols >= kRangingColumns && sx == 1.0 && su == 1.0;
     signed char* stat = stat_.data();
+    int* tab_ind = tab_ind_.data();
+    double *tab_val = tab_val_.data(), *tab_x = tab_x_.data(), *tab_u = tab_u_.data();
     int st = -1;
+    bool ranged = false;
     double px = 0.0, pu = 0.0;
     const bool ok = guarded([&] {
       glp_set_obj_coef(lp, 1, vx * sx);
@@ -241,18 +283,31 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       if (st != GLP_OPT) return;
       px = glp_get_col_prim(lp, 1);
       pu = glp_get_col_prim(lp, 2);
-      if (!record) return;
+      if (!record && !range) return;
       for (int i = 0; i < rows; ++i) stat[i] = static_cast<signed char>(glp_get_row_stat(lp, i + 1));
       for (int j = 0; j < cols; ++j) stat[rows + j] = static_cast<signed char>(glp_get_col_stat(lp, j + 1));
+      if (!range || !glp_bf_exists(lp)) return;
+      // The tableau rows of x and u (zero where that column is nonbasic: its reduced cost is then v's own).
+      auto tab_row = [&](int col, double* out) {
+        for (int k = 0; k <= total; ++k) out[k] = 0.0;
+        if (stat[rows + col - 1] != GLP_BS) return;
+        const int len = glp_eval_tab_row(lp, rows + col, tab_ind, tab_val);
+        for (int t = 1; t <= len; ++t) out[tab_ind[t]] = tab_val[t];
+      };
+      tab_row(1, tab_x);
+      tab_row(2, tab_u);
+      ranged = true;
     });
     if (!ok) return -2;
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {sx * px, su * pu};
+    range_basis(last_range, ranged);
     if (record) current_.push_back({angle, stat_});
     return 1;
   };
 
   std::vector<Vertex> points;  // every support point found
+  std::vector<Ranging> ranges;  // and its LP's ranging
   // The stand-in bounds on x and u (those at least in.stand_in in magnitude): the shadow is that of the
   // polytope without them, which they must not cut. Grown below when they hide all of it.
   double xlo = in.col_lo[0], xhi = in.col_hi[0], ulo = in.col_lo[1], uhi = in.col_hi[1];
@@ -266,6 +321,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
     const int r = extremize(std::cos(ang), std::sin(ang), p);
+    ++out.by_cause.initial;
     if (r == -2) return glpk_error();
     if (r == 0 && i == 0 && (capped(xhi) || capped(ulo) || capped(uhi))) {
       // Infeasible with the stand-in bounds: is it without them? A polytope whose shadow lies only beyond
@@ -275,6 +331,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       const double x_hi = capped(xhi) ? INFINITY : xhi, u_lo = capped(ulo) ? -INFINITY : ulo,
                    u_hi = capped(uhi) ? INFINITY : uhi;
       ++out.lp_solves;
+      ++out.by_cause.cap_growth;
       int st = -1;
       double fx = 0.0, fu = 0.0;
       const bool ok = guarded([&] {
@@ -349,6 +406,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       return out;
     }
     points.push_back(p);
+    ranges.push_back(std::move(last_range));
   }
   out.stand_in = stand_in;
   // A shadow found only beyond the stand-in bounds is not called exact: there b·u ~ 1e2 with b ~ 1e-8 (the
@@ -409,6 +467,32 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       }
     });
   };
+  // Ranging's certificate (see Ranging): the basis of rg is optimal along (nx, nu), to 1e-11 in every
+  // reduced cost (GLPK stops at tol_dj = 1e-10); `code` is then what binding() would say there.
+  auto range_certifies = [&](const Ranging& rg, double nx, double nu, int& code) {
+    if (rg.var.empty()) return false;
+    constexpr double kEps = 1e-11;
+    for (size_t t = 0; t < rg.var.size(); ++t) {
+      const double d = nx * rg.A[t] + nu * rg.B[t];
+      const int st = rg.stat[t];
+      if ((st == GLP_NL && d > kEps) || (st == GLP_NU && d < -kEps) || (st == GLP_NF && std::abs(d) > kEps)) return false;
+    }
+    code = kBindingUnknown;
+    double best = 0.0;
+    for (size_t t = 0; t < rg.var.size(); ++t) {
+      const int k = rg.var[t];
+      const double d = std::abs(nx * rg.A[t] + nu * rg.B[t]);
+      if (k <= rows_) {
+        const int i = k - 1;
+        if (rg.stat[t] == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
+        if (d * row_norm[i] > best) best = d * row_norm[i], code = 2 * i + (rg.stat[t] == GLP_NU ? 1 : 0);
+      } else if (d > best) {
+        best = d;
+        code = -(k - rows_);
+      }
+    }
+    return true;
+  };
   std::vector<int> hull;
   struct Pending {
     int from, to;
@@ -449,6 +533,13 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (pending.empty()) break;
     bool grew = false;
     for (const Pending& d : pending) {
+      int code = kBindingUnknown;
+      if (range_certifies(ranges[static_cast<size_t>(d.from)], d.nx, d.nu, code) ||
+          range_certifies(ranges[static_cast<size_t>(d.to)], d.nx, d.nu, code)) {
+        ++out.ranged_certificates;
+        certified[{d.from, d.to}] = code;
+        continue;
+      }
       if (out.lp_solves >= max_lps) {
         out.complete = false;
         out.note = "LP budget (" + std::to_string(max_lps) + ") ran out with " + std::to_string(pending.size()) +
@@ -457,6 +548,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       }
       Vertex q;
       const int r = extremize(d.nx, d.nu, q);
+      if (r != 1) ++out.by_cause.vertex;
       if (r == -2) return glpk_error();
       if (r != 1) {
         // The polytope was non-empty three LPs ago: an 'infeasible' here is a solver failure too.
@@ -465,11 +557,14 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         break;
       }
       if (d.nx * q.x + d.nu * q.y <= d.offset + tol) {
+        ++out.by_cause.certificate;
         int code = kBindingUnknown;
         if (!binding(code)) return glpk_error();
         certified[{d.from, d.to}] = code;  // nothing of the shadow beyond this edge
       } else {
+        ++out.by_cause.vertex;
         points.push_back(q);  // strictly outside the hull by more than the tolerance
+        ranges.push_back(std::move(last_range));
         grew = true;
         break;  // the hull changes: recompute it and its uncertified edges
       }

@@ -18,6 +18,7 @@
 
 #include "detail/glpk_guard.hpp"
 #include "detail/polygon2d.hpp"
+#include "pathpace/constraints/constraint.hpp"
 
 namespace pathpace::detail {
 
@@ -56,6 +57,10 @@ struct Projection {
   /// lies only beyond it (the stand-in bounds grown past it; edges on them are still not limits).
   double stand_in = 0.0;
   int lp_solves = 0;
+  /// lp_solves by cause: the initial triangle, edge LPs that did not certify their edge (a new vertex, or
+  /// a failure), edge LPs that certified it, the feasibility LP without the stand-in bounds.
+  LpCounts by_cause;
+  int ranged_certificates = 0;  ///< edges certified by an endpoint's ranging instead of an LP
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
@@ -96,6 +101,14 @@ class PolytopeProjector {
     std::vector<signed char> stat;
   };
   std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
+  struct Ranging;
+  std::vector<int> tab_ind_;  // glp_eval_tab_row scratch
+  std::vector<double> tab_val_;
+  std::vector<double> tab_x_, tab_u_;  // the tableau rows of x and u, over every variable (1-based)
+ public:
+  /// Certify an edge without its LP when an endpoint's optimal basis is also optimal along the edge's
+  /// normal (see Ranging in the .cpp). On by default; off for tests that compare both.
+  bool ranging = true;
 };
 
 /// One polytope, from a cold start.

@@ -14,6 +14,18 @@
 
 namespace pathpace {
 
+/// LPs of contact projections (sec. IV.C) by cause: the initial directions (a triangle), edge LPs that
+/// found a new vertex (or failed), edge LPs that certified an edge, feasibility LPs that grew the stand-in
+/// bounds, and every LP of a grid point projected once more from a cold start.
+struct LpCounts {
+  int initial = 0, vertex = 0, certificate = 0, cap_growth = 0, cold_retry = 0;
+  LpCounts& operator+=(const LpCounts& o) {
+    initial += o.initial, vertex += o.vertex, certificate += o.certificate, cap_growth += o.cap_growth;
+    cold_retry += o.cold_retry;
+    return *this;
+  }
+};
+
 /// Half-planes of one constraint at every grid point. Row j at grid point k reads
 ///   a(k, j)·x + b(k, j)·u <= c(k, j).
 /// A row with c = +inf is inactive at that grid point (a limit that is absent, or padding when the
@@ -36,6 +48,7 @@ struct ConstraintRows {
   /// (a subclass of VelocityLimits, say) must set it false again.
   bool valid_by_construction = false;
   int lp_solves = 0;     ///< LPs spent computing the rows (projections)
+  LpCounts lp_by_cause;  ///< the same LPs by cause (contact projections)
   double seconds = 0.0;  ///< time spent computing them (set by TimeScalingProblem::add_constraint)
 
   void resize(Eigen::Index points, Eigen::Index rows) {

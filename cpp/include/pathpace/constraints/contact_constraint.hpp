@@ -32,6 +32,12 @@ struct ContactOptions {
   /// N, per link: the normal forces of all of a link's contact points sum to at least this (a foot
   /// pushes at least this hard in total, however it spreads it over its points).
   double min_link_normal_force = 0.0;
+  /// N, per contact point: the shifted cone (the paper's "small offset to each friction cone in the normal
+  /// direction", sec. V.D; Klampt's forceRobustness). Every force f_i is cone_offset·n_i plus a force inside
+  /// the friction cone: each point pushes at least this hard and keeps its friction reserve on top. Unlike
+  /// min_normal_force it keeps the flat-sole reduction exact (the offsets are a constant wrench;
+  /// docs/method.md).
+  double cone_offset = 0.0;
   double torque_scale = 1.0;       ///< multiplies the torque limits (sec. V.D)
   double torque_margin = 0.0;      ///< N·m subtracted from each side (unactuated joints stay at 0)
   /// Stand-in bounds on ṡ² and |s̈| for the projection LPs: polygon edges on them are not limits and are
@@ -145,6 +151,8 @@ class ContactConstraint : public Constraint {
   // more rows (zero, free) after them. every_point_row: a per-point row even where min_normal_force is 0
   // (the force distribution's margin counts each point's normal force).
   void lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp, bool every_point_row = false) const;
+  /// cone_offset Σ_i J_iᵀ n_i over every contact at q: the generalized force of the shifted cones' offsets.
+  Eigen::VectorXd offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   void lp_point(const std::vector<int>& use, const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
