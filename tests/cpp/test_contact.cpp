@@ -6,38 +6,11 @@
 #include <memory>
 
 #include "pathpace/pathpace.hpp"
+#include "test_fixtures.hpp"
 
 using namespace pathpace;
-
-namespace {
-
-const char* kLifter = R"(<robot name="lifter">
- <link name="base"/>
- <link name="platform"><inertial><mass value="3"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial></link>
- <joint name="slide" type="prismatic"><parent link="base"/><child link="platform"/><axis xyz="1 0 0"/><limit lower="-10" upper="10" velocity="100" effort="1000"/></joint>
-</robot>)";
-
-std::shared_ptr<RobotModel> lifter_with_box() {
-  const RobotModel lifter = RobotModel::from_urdf_string(kLifter);
-  const RobotModel box = RobotModel::free_object("box", 2.0, Eigen::Vector3d(0, 0, 0.05), 0.01 * Eigen::Matrix3d::Identity());
-  return std::make_shared<RobotModel>(RobotModel::combine({lifter, box}));
-}
-
-std::vector<Contact> corners(double mu) {
-  std::vector<Contact> out;
-  for (double x : {-0.1, 0.1})
-    for (double y : {-0.1, 0.1}) {
-      Contact c;
-      c.link = "box";
-      c.other_link = "platform";
-      c.point = Eigen::Vector3d(x, y, 0.0);
-      c.friction = mu;
-      out.push_back(c);
-    }
-  return out;
-}
-
-}  // namespace
+using test::corners;
+using test::lifter_with_box;
 
 TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
   auto model = lifter_with_box();

@@ -15,35 +15,21 @@
 #include "detail/glpk_lp.hpp"
 #include "detail/projection.hpp"
 #include "pathpace/pathpace.hpp"
+#include "test_fixtures.hpp"
 
 using namespace pathpace;
 using detail::GlpkLp;
 using detail::Projection;
 using detail::PolytopeLp;
 using detail::PolytopeProjector;
+using test::corners;
+using test::lifter_with_box;
+using test::octahedron;
+using test::support;
 
 namespace {
 
-double support(const Projection& p, double dx, double du) {
-  double best = -INFINITY;
-  for (const detail::Vertex& v : p.vertices) best = std::max(best, dx * v.x + du * v.y);
-  return best;
-}
 
-// |x| + |u| + |y| <= 1: its shadow is the diamond |x| + |u| <= 1.
-PolytopeLp octahedron() {
-  PolytopeLp lp;
-  lp.A.resize(8, 3);
-  int r = 0;
-  for (int sx : {-1, 1})
-    for (int su : {-1, 1})
-      for (int sy : {-1, 1}) lp.A.row(r++) << sx, su, sy;
-  lp.row_lo = Eigen::VectorXd::Constant(8, -INFINITY);
-  lp.row_hi = Eigen::VectorXd::Ones(8);
-  lp.col_lo = Eigen::VectorXd::Constant(3, -INFINITY);
-  lp.col_hi = Eigen::VectorXd::Constant(3, INFINITY);
-  return lp;
-}
 
 // The octahedron with 30 more columns y_j in [0, 1], each row also + 1e-3 sum_j y_j: the same diamond
 // (y_j = 0 at every support point), but wide enough (33 columns) for the ranging certificates, whose
@@ -199,36 +185,6 @@ TEST(GlpkGuard, AnErrorInTheFeasibilityAndMaximisationLpsIsAStatus) {
   }
   EXPECT_GE(k, 3);
 }
-
-namespace {
-
-const char* kLifter = R"(<robot name="lifter">
- <link name="base"/>
- <link name="platform"><inertial><mass value="3"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial></link>
- <joint name="slide" type="prismatic"><parent link="base"/><child link="platform"/><axis xyz="1 0 0"/><limit lower="-10" upper="10" velocity="100" effort="1000"/></joint>
-</robot>)";
-
-std::shared_ptr<RobotModel> lifter_with_box() {
-  const RobotModel lifter = RobotModel::from_urdf_string(kLifter);
-  const RobotModel box = RobotModel::free_object("box", 2.0, Eigen::Vector3d(0, 0, 0.05), 0.01 * Eigen::Matrix3d::Identity());
-  return std::make_shared<RobotModel>(RobotModel::combine({lifter, box}));
-}
-
-std::vector<Contact> corners(double mu) {
-  std::vector<Contact> out;
-  for (double x : {-0.1, 0.1})
-    for (double y : {-0.1, 0.1}) {
-      Contact c;
-      c.link = "box";
-      c.other_link = "platform";
-      c.point = Eigen::Vector3d(x, y, 0.0);
-      c.friction = mu;
-      out.push_back(c);
-    }
-  return out;
-}
-
-}  // namespace
 
 TEST(GlpkGuard, AnErrorInTheForceDistributionThrowsAndTheNextOneWorks) {
   auto model = lifter_with_box();

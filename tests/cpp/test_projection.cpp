@@ -6,33 +6,11 @@
 
 #include "detail/projection.hpp"
 #include "pathpace/pathpace.hpp"
+#include "test_fixtures.hpp"
 
 using namespace pathpace::detail;
-
-namespace {
-
-double support(const Projection& p, double dx, double du) {
-  double best = -INFINITY;
-  for (const Vertex& v : p.vertices) best = std::max(best, dx * v.x + du * v.y);
-  return best;
-}
-
-PolytopeLp octahedron() {
-  // |x| + |u| + |y| <= 1 as its 8 facets; its shadow on (x, u) is the diamond |x| + |u| <= 1.
-  PolytopeLp lp;
-  lp.A.resize(8, 3);
-  int r = 0;
-  for (int sx : {-1, 1})
-    for (int su : {-1, 1})
-      for (int sy : {-1, 1}) lp.A.row(r++) << sx, su, sy;
-  lp.row_lo = Eigen::VectorXd::Constant(8, -INFINITY);
-  lp.row_hi = Eigen::VectorXd::Ones(8);
-  lp.col_lo = Eigen::VectorXd::Constant(3, -INFINITY);
-  lp.col_hi = Eigen::VectorXd::Constant(3, INFINITY);
-  return lp;
-}
-
-}  // namespace
+using pathpace::test::octahedron;
+using pathpace::test::support;
 
 TEST(Projection, OctahedronShadowIsTheDiamond) {
   const Projection p = project_polytope(octahedron());
