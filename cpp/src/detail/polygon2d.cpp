@@ -303,12 +303,9 @@ bool Polygon2d::intersect(const Line& l1, const Line& l2, Vertex& v) {
   // (θ_k, θ_{k+1}) are all nearly θ_{k+1} = θ_k (eq. 26 with Δs -> 0); a slice interpolated between such
   // vertices broke the rows by 1e-8 at N = 5e5. One correction from the residuals leaves the vertex on both
   // lines to rounding of their terms (while cond · eps << 1).
-  // (Only there: lines at an angle of more than ~1e-3 miss by ~1e3 eps at most.)
-  if (std::abs(det) < 1e-3 * (std::abs(l1.a * l2.b) + std::abs(l2.a * l1.b))) {
-    const double r1 = l1.c - (l1.a * v.x + l1.b * v.y), r2 = l2.c - (l2.a * v.x + l2.b * v.y);
-    v.x += (r1 * l2.b - r2 * l1.b) * inv;
-    v.y += (l1.a * r2 - l2.a * r1) * inv;
-  }
+  const double r1 = l1.c - (l1.a * v.x + l1.b * v.y), r2 = l2.c - (l2.a * v.x + l2.b * v.y);
+  v.x += (r1 * l2.b - r2 * l1.b) * inv;
+  v.y += (l1.a * r2 - l2.a * r1) * inv;
   return true;
 }
 
