@@ -35,6 +35,22 @@ inline detail::PolytopeLp octahedron() {
   return lp;
 }
 
+// y = 1e-8 u (row 0), 100 <= y <= 200, 0 <= x <= 1 (row 1: x <= 1): the shadow [0, 1] x [1e10, 2e10] lies
+// beyond the stand-in bounds |u| <= 1e6, so the projection takes its other branch (a feasibility LP, grown
+// bounds, rescaled columns).
+inline detail::PolytopeLp beyond_stand_in() {
+  detail::PolytopeLp lp;
+  lp.A.resize(2, 3);
+  lp.A.row(0) << 0, 1e-8, -1;
+  lp.A.row(1) << 1, 0, 0;
+  lp.row_lo = Eigen::Vector2d(0, -INFINITY);
+  lp.row_hi = Eigen::Vector2d(0, 1);
+  lp.col_lo = Eigen::Vector3d(0, -1e6, 100);
+  lp.col_hi = Eigen::Vector3d(1e6, 1e6, 200);
+  lp.stand_in = 1e6;
+  return lp;
+}
+
 inline const char* kLifter = R"(<robot name="lifter">
  <link name="base"/>
  <link name="platform"><inertial><mass value="3"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial></link>

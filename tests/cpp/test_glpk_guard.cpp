@@ -24,6 +24,7 @@ using detail::PolytopeLp;
 using detail::PolytopeProjector;
 using test::corners;
 using test::lifter_with_box;
+using test::beyond_stand_in;
 using test::octahedron;
 using test::support;
 
@@ -46,20 +47,6 @@ PolytopeLp wide_octahedron() {
   return lp;
 }
 
-// y = 1e-8 u, 100 <= y <= 200, 0 <= x <= 1: the shadow [0, 1] x [1e10, 2e10] lies beyond the stand-in
-// bounds, so the projection takes its other branch (a feasibility LP, grown bounds, rescaled columns).
-PolytopeLp beyond_stand_in() {
-  PolytopeLp lp;
-  lp.A.resize(2, 3);
-  lp.A.row(0) << 0, 1e-8, -1;
-  lp.A.row(1) << 1, 0, 0;
-  lp.row_lo = Eigen::Vector2d(0, -INFINITY);
-  lp.row_hi = Eigen::Vector2d(0, 1);
-  lp.col_lo = Eigen::Vector3d(0, -1e6, 100);
-  lp.col_hi = Eigen::Vector3d(1e6, 1e6, 200);
-  lp.stand_in = 1e6;
-  return lp;
-}
 
 double diamond(double dx, double du) { return std::max(std::abs(dx), std::abs(du)); }
 double rectangle(double dx, double du) { return std::max(0.0, dx) + std::max(1e10 * du, 2e10 * du); }

@@ -9,6 +9,7 @@
 #include "test_fixtures.hpp"
 
 using namespace pathpace::detail;
+using pathpace::test::beyond_stand_in;
 using pathpace::test::octahedron;
 using pathpace::test::support;
 
@@ -66,15 +67,7 @@ TEST(Projection, ShadowBeyondTheStandInBoundsIsFoundNotCalledEmpty) {
   // y = 1e-8 u with 100 <= y <= 200 and 0 <= x <= 1: the shadow is the rectangle [0, 1] x [1e10, 2e10],
   // entirely beyond the stand-in bounds |u| <= 1e6 (a grid point where b ~ 1e-8: Talos swaying with
   // 90 N per sole corner). Those bounds mean "no limit": the projection must not call it empty.
-  PolytopeLp lp;
-  lp.A.resize(2, 3);
-  lp.A.row(0) << 0, 1e-8, -1;  // 1e-8 u - y = 0
-  lp.A.row(1) << 1, 0, 0;      // x <= 1
-  lp.row_lo = Eigen::Vector2d(0, -INFINITY);
-  lp.row_hi = Eigen::Vector2d(0, 1);
-  lp.col_lo = Eigen::Vector3d(0, -1e6, 100);
-  lp.col_hi = Eigen::Vector3d(1e6, 1e6, 200);
-  lp.stand_in = 1e6;
+  PolytopeLp lp = beyond_stand_in();
   PolytopeProjector projector;
   for (int round = 0; round < 2; ++round) {  // cold, then warm from the grown problem's basis
     const Projection p = projector.project(lp);
