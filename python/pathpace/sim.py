@@ -102,6 +102,20 @@ class SimResult:
         return (not self.fell and self.max_slip <= c["slip"] and self.max_lift <= c["lift"]
                 and self.max_tilt <= c["tilt"] and self.max_tracking_error <= c["tracking"])
 
+    @property
+    def criterion_ratios(self) -> dict:
+        """Each criterion's worst value over its threshold (slip, lift, tilt, tracking): <= 1 is within it.
+        A verdict with room has every ratio <= 0.5 (executes) or some ratio >= 2 or a fall (does not)."""
+        c = self.criteria
+        return {"slip": self.max_slip / c["slip"], "lift": self.max_lift / c["lift"],
+                "tilt": self.max_tilt / c["tilt"], "tracking": self.max_tracking_error / c["tracking"]}
+
+    @property
+    def worst_criterion(self) -> tuple[str, float]:
+        """(name, ratio) of the criterion nearest to or furthest past its threshold."""
+        name, ratio = max(self.criterion_ratios.items(), key=lambda kv: kv[1])
+        return name, float(ratio)
+
     def summary(self) -> str:
         verdict = "fell" if self.fell else ("executed" if self.executed else "stood, but off plan")
         return (f"T = {self.duration:.3f} s: {verdict}; slip {1e3 * self.max_slip:.1f} mm, lift {1e3 * self.max_lift:.1f} mm, "
@@ -128,6 +142,53 @@ def resolve_mesh(filename: str, search: Sequence[_FsPath]) -> _FsPath | None:
     return None
 
 
+def _physical_moments(moments: np.ndarray) -> np.ndarray:
+    """The least raise of principal moments (ascending) that makes them those of a physical body: each
+    >= 0 and the two smaller ones summing to at least the largest (raised equally)."""
+    m = np.maximum(np.sort(np.asarray(moments, dtype=float)), 0.0)
+    # 1e-9 past equality: MuJoCo re-diagonalises the full matrix, and A + B = C would fail its check by
+    # rounding.
+    short = m[2] * (1 + 1e-9) - m[0] - m[1]
+    if m[0] + m[1] < m[2]:
+        m[0] += short / 2
+        m[1] += short / 2
+    return m
+
+
+def _balance_inertias(spec, balance: bool) -> dict:
+    """Makes every body's inertia physical (see Simulator's docstring); returns the changes made."""
+    changes = {}
+    for body in spec.bodies:
+        if body.name == "world" or not body.explicitinertial:
+            continue
+        f = np.asarray(body.fullinertia, dtype=float)
+        if np.all(np.isfinite(f)) and np.any(f != 0):  # ixx, iyy, izz, ixy, ixz, iyz about the CoM
+            inertia = np.array([[f[0], f[3], f[4]], [f[3], f[1], f[5]], [f[4], f[5], f[2]]])
+            moments, axes = np.linalg.eigh(inertia)
+        else:  # principal moments in the frame of iquat
+            moments, axes = np.asarray(body.inertia, dtype=float), None
+        order = np.argsort(moments)
+        fixed = _physical_moments(moments)
+        scale = max(float(np.max(np.abs(moments))), 1e-300)
+        if np.all(np.abs(fixed - moments[order]) <= 1e-9 * scale):
+            continue
+        if not balance:
+            _fail(f"urdf: link '{body.name}' has principal moments of inertia "
+                  f"({', '.join(f'{v:.6g}' for v in np.sort(moments))}) kg m^2, which no body has (need each >= 0 "
+                  "and the two smaller summing to the largest); pass balance_inertia=True to raise them")
+        changes[body.name] = (np.sort(moments), fixed)
+        if axes is None:
+            new = np.empty(3)
+            new[order] = fixed
+            body.inertia = new
+        else:
+            m = np.empty(3)
+            m[order] = fixed
+            full = axes @ np.diag(m) @ axes.T
+            body.fullinertia = [full[0, 0], full[1, 1], full[2, 2], full[0, 1], full[0, 2], full[1, 2]]
+    return changes
+
+
 class Simulator:
     """A MuJoCo model of a pathpace `RobotModel` standing on a floor at z = `floor_height`.
 
@@ -144,6 +205,14 @@ class Simulator:
     Geometry: by default the URDF's visual and collision geometry is dropped (faster; the spheres are the
     contact model). visual_meshes=True keeps the visual STL/OBJ meshes for drawing (never colliding),
     resolving package:// against `package_dirs`, the URDF's folder and two above it, and example-robot-data.
+
+    Inertias: MuJoCo only simulates physical ones (principal moments A, B, C >= 0 with A + B >= C). Some
+    URDFs break that (Romeo's shoulder and elbow yaw links: 0.66 + 0.68 < 6.6 g·m²). pathpace plans with the
+    URDF's numbers; with balance_inertia (default) the simulator raises the offending principal moments by
+    the least that makes them physical (the two smaller ones equally, until A + B = C; negative ones to 0
+    first) and records each change in `inertia_adjustments` ({link: (old moments, new moments)}), so the
+    simulated robot differs from the planned one on exactly those links. balance_inertia=False makes such
+    a URDF an InvalidInputError naming the link.
 
     Gains: kp (N·m/rad) defaults to effort / `stiffness_error` (full torque at that error), capped at
     inertia · max_frequency² (rad/s; the joint's own diagonal mass-matrix entry at q0), which explicit
@@ -173,6 +242,7 @@ class Simulator:
         solver_iterations: int = 100,
         visual_meshes: bool = False,
         package_dirs: Sequence[str | _FsPath] = (),
+        balance_inertia: bool = True,
     ) -> None:
         mj = _mujoco()
         self.mujoco = mj
@@ -251,6 +321,7 @@ class Simulator:
         ET.SubElement(ext, "compiler", fusestatic="false", discardvisual="false", balanceinertia="false",
                       inertiafromgeom="false", strippath="false")
         spec = mj.MjSpec.from_string(ET.tostring(root, encoding="unicode"))
+        self.inertia_adjustments = _balance_inertias(spec, balance_inertia)
         for g in spec.geoms:  # the URDF's visuals: drawn, never touching anything, massless
             g.contype, g.conaffinity, g.group, g.density, g.mass = 0, 0, 1, 0.0, 0.0
 
@@ -321,7 +392,14 @@ class Simulator:
         if not torque_limits:  # MuJoCo's URDF import also limits the joint's total actuator force
             for j in spec.joints:
                 j.actfrclimited = mj.mjtLimited.mjLIMITED_FALSE
-        self.model = model = spec.compile()
+        try:
+            self.model = model = spec.compile()
+        except ValueError as e:
+            hint = ""
+            if "mjMINVAL" in str(e):
+                hint = (" (a link that moves must have mass and inertia in MuJoCo: lock its joint with "
+                        "locked_joints, in the model and here)")
+            _fail(f"urdf: MuJoCo cannot compile the robot: {' '.join(str(e).split())}{hint}")
         self.spec = spec
         self.data = mj.MjData(model)
 
