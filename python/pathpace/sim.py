@@ -63,8 +63,10 @@ class SimResult:
     base_height: np.ndarray  #: (m,) z of the root link (m)
     base_height_planned: np.ndarray  #: (m,) z of the root link in the plan (held at the end)
     tilt: np.ndarray  #: (m,) angle between the root link's z axis and the plan's (rad)
-    slip: np.ndarray  #: (m, contacts) horizontal displacement of each contact point (m)
-    lift: np.ndarray  #: (m, contacts) vertical displacement of each contact point (m)
+    #: (m, contacts) horizontal displacement of each contact point (m); with phases, from where the plan puts
+    #: it, and nan while its phase does not hold it
+    slip: np.ndarray
+    lift: np.ndarray  #: (m, contacts) vertical displacement of each contact point (m), the same way
     tracking_error: np.ndarray  #: (m,) largest |q - q_planned| over the actuated joints (rad or m)
     duration: float  #: T of the trajectory (s)
     fell: bool  #: the base dropped by more than fall_height or tilted by more than fall_tilt
@@ -75,11 +77,11 @@ class SimResult:
 
     @property
     def max_slip(self) -> float:
-        return float(np.max(self.slip)) if self.slip.size else 0.0
+        return float(np.nanmax(self.slip)) if np.any(np.isfinite(self.slip)) else 0.0
 
     @property
     def max_lift(self) -> float:
-        return float(np.max(self.lift)) if self.lift.size else 0.0
+        return float(np.nanmax(self.lift)) if np.any(np.isfinite(self.lift)) else 0.0
 
     @property
     def max_tilt(self) -> float:
@@ -435,6 +437,30 @@ class Simulator:
         self._check_kinematics(q0)
 
     # ----------------------------------------------------------------------------------------------
+    def _against_plan(self, traj: _core.Trajectory, t: np.ndarray, d: np.ndarray, phases: Sequence) -> np.ndarray:
+        """Displacements d (times x contacts x 3) minus the plan's own, nan where no phase holds the point."""
+        key = [(c.link, tuple(np.round(np.asarray(c.point, dtype=float), 12))) for c in self.contacts]
+        held = []
+        for i, ph in enumerate(phases):
+            if len(ph) not in (3, 4):
+                _fail(f"phases[{i}]: expected (s_begin, s_end, contacts[, options]), got {len(ph)} items")
+            names = {(c.link, tuple(np.round(np.asarray(c.point, dtype=float), 12))) for c in ph[2]}
+            unknown = names - set(key)
+            if unknown:
+                link, point = sorted(unknown)[0]
+                _fail(f"phases[{i}]: contact on '{link}' at {point} is not one of the simulator's contacts")
+            held.append((float(ph[0]), float(ph[1]), np.array([k in names for k in key])))
+        s = np.asarray(traj.s(t))[0]
+        mask = np.zeros((len(t), len(key)), dtype=bool)
+        for s0, s1, m in held:  # later phases win at a switch
+            mask[(s >= s0) & (s <= s1)] = m
+        q = traj.q(t)
+        planned = np.array([[(self.robot.frame_placement(qi, c.link) @ np.append(c.point, 1.0))[:3]
+                             for c in self.contacts] for qi in q])
+        out = d - (planned - planned[0])
+        out[~mask] = np.nan
+        return out
+
     def set_configuration(self, q: np.ndarray) -> None:
         """MuJoCo state at the pathpace configuration q, at rest."""
         mj, model, data = self.mujoco, self.model, self.data
@@ -538,12 +564,19 @@ class Simulator:
         criteria: dict | None = None,
         torque_noise: float = 0.0,
         seed: int = 0,
+        phases: Sequence | None = None,
     ) -> SimResult:
         """Execute `traj`: start at rest at q(0), hold it for `settle` s (the contacts load up), track the
         trajectory, hold its last point for `hold` s. Stops early if the robot falls (base `fall_height` m
         below plan or tilted by `fall_tilt` rad). `criteria` (defaults: slip 5 mm, lift 5 mm, tilt 0.05 rad,
         tracking 0.1) are the thresholds of `SimResult.executed`. `torque_noise`: std of Gaussian noise
-        (N·m) added to the feed-forward at every step, from a generator seeded with `seed`."""
+        (N·m) added to the feed-forward at every step, from a generator seeded with `seed`.
+
+        phases: the contact phases the timing was planned with (as for add_contact_phases: (s_begin,
+        s_end, contacts[, options]) each). Then a contact point counts (slip, lift) only while a phase at
+        the timing's s(t) holds it (a point of a link and position in that phase's contacts; the later
+        phase at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
+        planned is not a lift."""
         mj, model, data = self.mujoco, self.model, self.data
         dt = model.opt.timestep
         crit = {"slip": 0.005, "lift": 0.005, "tilt": 0.05, "tracking": 0.1}
@@ -617,6 +650,8 @@ class Simulator:
                 saturated += 1
         pos = np.array(rec_pos).reshape(len(rec_pos), len(self.contacts), 3)
         d = pos - p0
+        if phases is not None:
+            d = self._against_plan(traj, np.minimum(np.array(rec_t), T), d, phases)
         return SimResult(
             times=np.array(rec_t), base_height=np.array(rec_z), base_height_planned=np.array(rec_zp),
             tilt=np.array(rec_tilt), slip=np.linalg.norm(d[:, :, :2], axis=2), lift=d[:, :, 2],
@@ -633,7 +668,7 @@ class MarginTrial:
     friction_margin: float
     status: str  #: the solver's status name
     duration: float  #: T (nan if the solver found no timing)
-    executed: bool
+    executed: bool  #: executed with the search's room (see find_executable_margin)
     sim: SimResult | None
 
 
@@ -677,9 +712,16 @@ def find_executable_margin(
     drift_tolerance: float = 1e-4,
     configure: Callable[[_core.TimeScalingProblem], Any] | None = None,
     run_options: dict | None = None,
+    phases: Sequence | None = None,
+    room: float = 0.5,
 ) -> MarginSearch:
     """Bisection on one margin of the contact constraint for the smallest value whose time-optimal timing
-    executes in `sim` (`SimResult.executed`).
+    executes in `sim` with room: no fall and every criterion at most `room` times its threshold
+    (`SimResult.worst_criterion`; room = 1 is `SimResult.executed`). A verdict on its threshold flips
+    with the CPU or the MuJoCo build; 0.5 leaves it room.
+
+    phases: contact phases (as for add_contact_phases) instead of `contacts`: every problem is built with
+    add_contact_phases and each run measures the held points only (`Simulator.run`'s phases).
 
     parameter: "min_normal_force" (N per contact; searched in [lower, upper]) or "friction_margin"
     (fraction of μ, in [lower, upper] within [0, 1)); the other margin stays at the value given.
@@ -696,23 +738,34 @@ def find_executable_margin(
         _fail(f"upper = {upper} must be < 1 for the friction margin")
     if not (tolerance > 0):
         _fail(f"tolerance = {tolerance} must be > 0")
+    if not (0 < room <= 1):
+        _fail(f"room = {room} must be in (0, 1] (the share of each criterion's threshold a run may use)")
+    if phases is not None and contacts is not None:
+        _fail("contacts and phases: give one (phases carry their own contacts)")
     contacts = list(sim.contacts if contacts is None else contacts)
+    run_options = dict(run_options or {})
+    if phases is not None:
+        run_options["phases"] = phases
     trials: list[MarginTrial] = []
 
     def attempt(value: float) -> MarginTrial:
         opts = {"min_normal_force": min_normal_force, "friction_margin": friction_margin}
         opts[parameter] = value
         prob = _core.TimeScalingProblem(path, grid=grid)
-        prob.add_contacts(sim.robot, contacts, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts)
+        if phases is None:
+            prob.add_contacts(sim.robot, contacts, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts)
+        else:
+            prob.add_contact_phases(sim.robot, phases, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts)
         if configure is not None:
             configure(prob)
         res = prob.solve()
         if not res.ok:
             trial = MarginTrial(opts["min_normal_force"], opts["friction_margin"], res.status.name, math.nan, False, None)
         else:
-            out = sim.run(res.trajectory(), **(run_options or {}))
+            out = sim.run(res.trajectory(), **run_options)
+            ok = not out.fell and out.worst_criterion[1] <= room
             trial = MarginTrial(opts["min_normal_force"], opts["friction_margin"], res.status.name, res.duration,
-                                out.executed, out)
+                                ok, out)
         trials.append(trial)
         return trial
 

@@ -211,7 +211,8 @@ class DurationVerdict:
     """What find_executable_margin reads of a simulation: executed, and a summary for its table."""
 
     def __init__(self, duration, executed):
-        self.duration, self.executed = duration, executed
+        self.duration, self.executed, self.fell = duration, executed, False
+        self.worst_criterion = ("stand-in", 0.0 if executed else 2.0)
 
     def summary(self):
         return f"T = {self.duration:.3f} s: {'executes' if self.executed else 'fell'} (stand-in)"
@@ -251,6 +252,63 @@ def test_find_executable_margin_bisects_on_the_minimum_normal_force(sway):
         find_executable_margin(sway["sim"], sway["path"], parameter="mu")
     with pytest.raises(pp.InvalidInputError, match="upper = 1.5 must be < 1 for the friction margin"):
         find_executable_margin(sway["sim"], sway["path"], parameter="friction_margin", upper=1.5)
+
+
+class RatioVerdict(DurationVerdict):
+    """Stands, with its worst criterion at a fixed share of its threshold."""
+
+    def __init__(self, duration, ratio):
+        super().__init__(duration, ratio <= 1.0)
+        self.worst_criterion = ("slip", ratio)
+
+
+class RecordingStandIn(StandInSimulator):
+    def __init__(self, sim, ratio):
+        super().__init__(sim, 0.0)
+        self.ratio, self.options = ratio, []
+
+    def run(self, traj, **options):
+        self.options.append(options)
+        return RatioVerdict(traj.duration, self.ratio)
+
+
+def test_find_executable_margin_wants_room_and_takes_phases(sway):
+    # A run at 0.7 of a threshold is executed, but without room: the default search (room 0.5) finds
+    # no margin, room = 1 accepts the lower bound.
+    stand_in = RecordingStandIn(sway["sim"], 0.7)
+    assert find_executable_margin(stand_in, sway["path"], lower=10.0, upper=20.0, tolerance=10.0).margin is None
+    assert find_executable_margin(stand_in, sway["path"], lower=10.0, upper=20.0, room=1.0).margin == 10.0
+    # Phases: the problems come from add_contact_phases and every run measures against them.
+    contacts = sway["contacts"]
+    left = [c for c in contacts if c.link == "left_sole_link"]
+    phases = [(0.0, 0.5, contacts), (0.5, 1.0, contacts, {"min_normal_force": 5.0})]
+    stand_in.options.clear()
+    out = find_executable_margin(stand_in, sway["path"], phases=phases, lower=10.0, upper=20.0, room=1.0)
+    assert out.margin == 10.0 and out.trials[0].status == "OPTIMAL"
+    assert stand_in.options == [{"phases": phases}]
+    for bad, match in ((dict(room=0.0), r"room = 0.0 must be in \(0, 1\]"), (dict(room=1.5), "room = 1.5"),
+                       (dict(phases=phases, contacts=left), "give one")):
+        with pytest.raises(pp.InvalidInputError, match=match):
+            find_executable_margin(stand_in, sway["path"], **bad)
+
+
+def test_run_with_phases_measures_held_points_against_the_plan(sway):
+    sim, contacts = sway["sim"], sway["contacts"]
+    traj = timing(sway, 50.0, 0.7)
+    plain = sim.run(traj)
+    # The same contacts in every phase: the feet are planned still, so the measure is the same to the
+    # IK's few micrometres.
+    same = sim.run(traj, phases=[(0.0, 0.5, contacts), (0.5, 1.0, contacts)])
+    assert abs(same.max_slip - plain.max_slip) < 1e-4 and abs(same.max_lift - plain.max_lift) < 1e-4
+    # Only the left sole held after s = 0.5: the right sole's points are not measured there.
+    left = [c for c in contacts if c.link == "left_sole_link"]
+    part = sim.run(traj, phases=[(0.0, 0.5, contacts), (0.5, 1.0, left)])
+    s = traj.s(np.minimum(part.times, traj.duration))[0]
+    right = np.array([c.link == "right_sole_link" for c in contacts])
+    assert np.all(np.isnan(part.slip[np.ix_(s > 0.5, right)])) and np.all(np.isfinite(part.slip[:, ~right]))
+    assert np.all(np.isfinite(part.slip[np.ix_(s < 0.5, right)]))
+    with pytest.raises(pp.InvalidInputError, match=r"phases\[0\]: contact on 'left_sole_link'"):
+        sim.run(traj, phases=[(0.0, 1.0, [pp.Contact("left_sole_link", (0.3, 0.0, 0.0), (0, 0, 1), 0.5)])])
 
 
 def test_visual_meshes_resolve_package_paths_and_change_no_dynamics(sway, tmp_path):
