@@ -216,6 +216,10 @@ class Simulator:
     simulated robot differs from the planned one on exactly those links. balance_inertia=False makes such
     a URDF an InvalidInputError naming the link.
 
+    effort_limits (robot.joint_names order; default the URDF's) are the motors' torques: the actuators'
+    force ranges with torque_limits, and the effort of the default gains. A robot with weaker motors than
+    its URDF says (e.g. 0.3 x, timed with torque_scale=0.3) is simulated with 0.3 x robot.effort_limits.
+
     Gains: kp (N·m/rad) defaults to effort / `stiffness_error` (full torque at that error), capped at
     inertia · max_frequency² (rad/s; the joint's own diagonal mass-matrix entry at q0), which explicit
     integration resolves while max_frequency · timestep <= 1; kd defaults to
@@ -245,6 +249,7 @@ class Simulator:
         visual_meshes: bool = False,
         package_dirs: Sequence[str | _FsPath] = (),
         balance_inertia: bool = True,
+        effort_limits: np.ndarray | None = None,
     ) -> None:
         mj = _mujoco()
         self.mujoco = mj
@@ -383,7 +388,12 @@ class Simulator:
 
         # Actuators: force = kp (ctrl - q) - kd q̇ with ctrl = q* + (τ_ff + kd q̇*) / kp, i.e. PD about the plan
         # plus the feed-forward, with the damping term integrated implicitly.
-        effort = np.asarray(robot.effort_limits, dtype=float)
+        effort = np.asarray(robot.effort_limits if effort_limits is None else effort_limits, dtype=float)
+        if effort.shape != (robot.nq,):
+            _fail(f"effort_limits has shape {effort.shape}, expected ({robot.nq},) (robot.joint_names order)")
+        bad = np.flatnonzero(~(effort >= 0))
+        if bad.size:
+            _fail(f"effort_limits[{bad[0]}] = {effort[bad[0]]} must be >= 0 (N·m or N)")
         for i in self.actuated:
             a = spec.add_actuator(name=names[i], target=names[i], trntype=mj.mjtTrn.mjTRN_JOINT)
             a.gaintype = mj.mjtGain.mjGAIN_FIXED

@@ -440,3 +440,20 @@ def test_romeo_sway_executes_with_margins_and_not_without():
     safe = run(20.0, 0.5)
     assert not safe.fell and safe.worst_criterion[1] <= 0.5, (safe.summary(), safe.criterion_ratios)
     assert safe.duration > bare.duration
+
+
+def test_standup_from_a_squat_torque_timing_executes_the_others_do_not(capsys):
+    """examples/humanoid_standup.py (the paper's fig. 6): with motors at 0.3 x the URDF effort, the timing
+    under torque and contact limits stands up with every criterion at most half its threshold; the
+    velocity/acceleration-only timing and the uniform one at the same T pass some criterion at least twice
+    (or fall)."""
+    out = runpy.run_path(str(EXAMPLES / "humanoid_standup.py"))["main"]([])
+    rows = {r["timing"]: r for r in out["rows"]}
+    ours = rows["torque + contacts, margins"]
+    assert not ours["fell"] and ours["worst"][1] <= 0.5, ours["sim"].summary()
+    for name in ("velocity + acceleration only", "uniform, same T"):
+        r = rows[name]
+        assert r["fell"] or r["worst"][1] >= 2.0, (name, r["sim"].summary())
+    assert rows["velocity + acceleration only"]["T"] < ours["T"]
+    assert rows["uniform, same T"]["T"] == pytest.approx(ours["T"], rel=1e-12)
+    assert "executed, with room" in capsys.readouterr().out
