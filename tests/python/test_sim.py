@@ -144,6 +144,12 @@ def test_validation_names_the_argument():
         Simulator(robot, urdf, [link], q, locked_joints=PANDA_LOCKED, floor_height=z)
     with pytest.raises(pp.InvalidInputError, match="kp\\[0\\] must be > 0"):
         Simulator(robot, urdf, locked_joints=PANDA_LOCKED, kp=0.0)
+    with pytest.raises(pp.InvalidInputError, match=r"effort_limits has shape \(2,\), expected \(6,\)"):
+        Simulator(robot, urdf, locked_joints=PANDA_LOCKED, effort_limits=np.ones(2))
+    with pytest.raises(pp.InvalidInputError, match=r"effort_limits\[3\] = nan must be >= 0"):
+        Simulator(robot, urdf, locked_joints=PANDA_LOCKED, effort_limits=[1, 1, 1, np.nan, 1, 1])
+    weak = Simulator(robot, urdf, locked_joints=PANDA_LOCKED, effort_limits=0.5 * robot.effort_limits)
+    assert np.allclose(weak.model.actuator_forcerange[:, 1], 0.5 * robot.effort_limits[weak.actuated], rtol=1e-12)
     sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
     traj = pp.Trajectory(pp.CubicSplinePath(np.zeros((2, robot.nq))), [0.0, 1.0], [1.0, 1.0])
     with pytest.raises(pp.InvalidInputError, match=r"criteria\['slide'\]: unknown; the criteria are \['lift', 'slip'"):
