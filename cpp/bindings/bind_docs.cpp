@@ -370,6 +370,20 @@ has contacts (NaN beyond a phase's own).
 Returns
 -------
 ContactForces)"},
+    {"Trajectory", "contact_wrenches", R"(Per-link wrenches and centres of pressure of ``contact_forces(t)``.
+
+For every link on either side of a contact (first appearance over the contacts and phases): the total
+force (world frame, N), its moment about the link's origin (world axes, N·m), the sum of the normal
+forces into the link (N), and the centre of pressure Σ (n·f_i) p_i / Σ n·f_i (world frame, m; NaN
+where the link does not push, or its contacts have several normals). A link its phase does not hold
+has zero force there; an infeasible sample is NaN.
+
+Returns
+-------
+ContactWrenches)"},
+    {"Trajectory", "centers_of_pressure", R"(``contact_wrenches(t).center_of_pressure``: (samples, links, 3), m.
+
+The links are ``contact_wrenches(t).links``; NaN where a link does not push.)"},
     {"Result", nullptr, R"(What a solve returns. ``bool(result)`` is ``result.ok``.
 
 Attributes

@@ -27,6 +27,21 @@ namespace pathpace::python {
 
 namespace {
 
+// Trajectory.contact_wrenches: the C++ result, with whether t was a scalar (then no sample axis).
+struct WrenchSamples {
+  ContactWrenches w;
+  bool scalar = false;
+  // (samples, 3 L) -> (samples, L, 3), or (L, 3) for a scalar t.
+  py::array_t<double> per_link(const Eigen::MatrixXd& a) const {
+    const auto S = static_cast<py::ssize_t>(a.rows()), L = static_cast<py::ssize_t>(w.links.size());
+    py::array_t<double> out = scalar ? py::array_t<double>({L, py::ssize_t(3)}) : py::array_t<double>({S, L, py::ssize_t(3)});
+    double* d = out.mutable_data();
+    for (py::ssize_t i = 0; i < (scalar ? 1 : S); ++i)
+      for (py::ssize_t c = 0; c < 3 * L; ++c) d[i * 3 * L + c] = a(i, c);
+    return out;
+  }
+};
+
 Guarantee parse_guarantee(const std::string& g) {
   if (g == "grid") return Guarantee::Grid;
   if (g == "continuous") return Guarantee::Continuous;
@@ -342,6 +357,19 @@ void bind_problem(py::module_& m) {
                (f.empty ? " empty" : "") + ">";
       });
 
+  py::class_<WrenchSamples>(m, "ContactWrenches", "Per-link totals of a contact-force distribution (Trajectory.contact_wrenches).")
+      .def_property_readonly("links", [](const WrenchSamples& w) { return w.w.links; }, "links on either side of a contact")
+      .def_property_readonly("force", [](const WrenchSamples& w) { return w.per_link(w.w.force); },
+                             "(samples, links, 3) world-frame force on each link, N")
+      .def_property_readonly("moment", [](const WrenchSamples& w) { return w.per_link(w.w.moment); },
+                             "(samples, links, 3) moment about each link's origin, world axes, N·m")
+      .def_property_readonly("center_of_pressure", [](const WrenchSamples& w) { return w.per_link(w.w.center_of_pressure); },
+                             "(samples, links, 3) world-frame centre of pressure, m (NaN: no push, or several normals)")
+      .def_property_readonly("normal_force", [](const WrenchSamples& w) -> py::object {
+        if (w.scalar) return py::cast(Eigen::VectorXd(w.w.normal_force.row(0).transpose()));
+        return py::cast(w.w.normal_force);
+      }, "(samples, links) sum of the normal forces into each link, N");
+
   py::class_<Trajectory, std::shared_ptr<Trajectory>>(m, "Trajectory", "q(t) = p(s(t)) with s(t) piecewise quadratic (eq. 24).")
       .def(py::init([](py::handle path, py::handle s, py::handle sdot) {
              return std::make_shared<Trajectory>(to_object<Path>(path, "path", "Path"), to_vector(s, "s"),
@@ -378,6 +406,24 @@ void bind_problem(py::module_& m) {
       }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces). With "
                 "contact phases each t uses its phase (the later one at a switch; .phase says which), forces padded "
                 "with NaN to the largest phase.")
+      .def("contact_wrenches", [](const Trajectory& tr, py::handle t) {
+        const Eigen::VectorXd tv = to_vector(t, "t");
+        WrenchSamples out;
+        out.scalar = is_scalar(t);
+        py::gil_scoped_release release;
+        out.w = tr.contact_wrenches(tv);
+        return out;
+      }, "t"_a)
+      .def("centers_of_pressure", [](const Trajectory& tr, py::handle t) {
+        const Eigen::VectorXd tv = to_vector(t, "t");
+        WrenchSamples out;
+        out.scalar = is_scalar(t);
+        {
+          py::gil_scoped_release release;
+          out.w = tr.contact_wrenches(tv);
+        }
+        return out.per_link(out.w.center_of_pressure);
+      }, "t"_a)
       .def("contact_phase", [](const Trajectory& tr, py::handle t) -> py::object {
         const Eigen::VectorXi out = tr.contact_phase(to_vector(t, "t"));
         return is_scalar(t) ? py::object(py::int_(out[0])) : py::cast(out);

@@ -51,6 +51,48 @@ TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
   EXPECT_NEAR(f.torques[0], 5.0 * a, 1e-7);  // platform and box
 }
 
+TEST(Contact, WrenchesAndCentreOfPressureOfTheCarriedBox) {
+  // The box on the platform's four corners, accelerating at a = μ g: the box link takes m (a, 0, g) and
+  // the platform the opposite; the box's centre of pressure is the corners' normal-force-weighted mean.
+  auto model = lifter_with_box();
+  const int N = 20;
+  PathSamples ps;
+  ps.s = Eigen::VectorXd::LinSpaced(N + 1, 0.0, 1.0);
+  ps.q = Eigen::MatrixXd::Zero(N + 1, 7);
+  ps.dq = Eigen::MatrixXd::Zero(N + 1, 7);
+  ps.ddq = Eigen::MatrixXd::Zero(N + 1, 7);
+  ps.q.col(0) = ps.q.col(1) = ps.s;
+  ps.dq.col(0).setOnes();
+  ps.dq.col(1).setOnes();
+  TimeScalingProblem prob(std::make_shared<SampledPath>(ps.s, ps.q, ps.dq, ps.ddq), ps.s);
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  prob.add_constraint(std::make_shared<ContactConstraint>(model, corners(0.5), opt));
+  const Result res = prob.solve();
+  ASSERT_EQ(res.status, Status::Optimal);
+  const Trajectory traj = res.trajectory();
+  Eigen::VectorXd t(2);
+  t << 0.25 * res.duration, 0.75 * res.duration;
+  const ContactWrenches w = traj.contact_wrenches(t);
+  ASSERT_EQ(w.links, (std::vector<std::string>{"box", "platform"}));
+  const std::vector<ContactForces> f = traj.contact_forces(t);
+  const double a = 0.5 * 9.81;
+  for (Eigen::Index i = 0; i < 2; ++i) {
+    const Eigen::Vector3d box = w.force.block<1, 3>(i, 0).transpose(), platform = w.force.block<1, 3>(i, 3).transpose();
+    EXPECT_NEAR(box.x(), (i == 0 ? 2.0 : -2.0) * a, 1e-7);
+    EXPECT_NEAR(box.z(), 2.0 * 9.81, 1e-7);
+    EXPECT_LT((box + platform).norm(), 1e-12);
+    EXPECT_NEAR(w.normal_force(i, 0), box.z(), 1e-12);    // the normal is +z into the box
+    EXPECT_NEAR(w.normal_force(i, 1), box.z(), 1e-12);    // and -z into the platform, which is pushed down
+    Eigen::Vector3d cop = Eigen::Vector3d::Zero();
+    const double x_box = traj.q(t.segment(i, 1))(0, 1);
+    for (int j = 0; j < 4; ++j) cop += f[static_cast<size_t>(i)].forces(j, 2) * (Eigen::Vector3d(x_box, 0, 0) + corners(0.5)[static_cast<size_t>(j)].point);
+    cop /= box.z();
+    EXPECT_LT((w.center_of_pressure.block<1, 3>(i, 0).transpose() - cop).norm(), 1e-12);
+    EXPECT_LT((w.center_of_pressure.block<1, 3>(i, 3).transpose() - cop).norm(), 1e-12);  // the same plane
+  }
+}
+
 TEST(Contact, ForceDistributionReportsMissingForces) {
   // The box at rest on the platform, asked to accelerate at 2 g sideways: friction cannot, and the
   // margin says by how much (negative); with no contact at all the LP has no solution.

@@ -9,6 +9,7 @@
 #include "pathpace/contact.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/contact_forces.hpp"
+#include "pathpace/contact_wrenches.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"

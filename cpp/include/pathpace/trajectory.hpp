@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/contact_forces.hpp"
+#include "pathpace/contact_wrenches.hpp"
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/path.hpp"
 
@@ -68,6 +69,11 @@ class Trajectory {
   /// contact_phase(t), the phase that served each t, from the same evaluation (-1 everywhere without phases).
   std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
                                             Eigen::VectorXi* phase = nullptr) const;
+
+  /// Per-link wrenches and centres of pressure of contact_forces(t) (see ContactWrenches): what a
+  /// controller or a balance check reads (the centre of pressure inside each sole). Throws Error if no
+  /// contact constraint shaped the trajectory.
+  ContactWrenches contact_wrenches(const Eigen::Ref<const Eigen::VectorXd>& t) const;
 
   /// A C² cubic spline in time through the grid (as toppra's ParametrizeSpline): a CubicSplinePath whose
   /// parameter is t in [0, T], through q(t_k) = p(s_k) at every grid time, clamped to q̇ = p'(s) ṡ at
