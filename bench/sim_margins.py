@@ -5,8 +5,16 @@ with three floors (MuJoCo contact time constant 5, 10, 20 ms: stiff to MuJoCo's 
 joint-gain levels (full effort at 0.02 rad and at 0.005 rad of error). For each, the bisection on the
 minimum normal force (friction margin 0.5, [0, 60] N, 1 N tolerance) and its T cost over the zero-
 margin optimum; then the 7 cm sway at time steps 0.25-2 ms. Writes markdown tables to stdout.
+`--room` (default 1: a run within every threshold executes) is find_executable_margin's room.
 
-    .venv/bin/python bench/sim_margins.py [--grid 100]
+`--part experiments` (issue 21): per humanoid experiment (the Talos and Romeo sways, the Talos stand-up
+of examples/humanoid_standup.py, the Talos two steps of examples/humanoid_steps.py with contact phases),
+the smallest minimum normal force (friction margin 0.5) whose timing executes *with room* (every
+criterion at most half its threshold), T at zero margin and at that margin, and the worst criterion
+of the run it found.
+
+    .venv/bin/python bench/sim_margins.py [--grid 100] [--room 1]
+    .venv/bin/python bench/sim_margins.py --part experiments [--grid 100]
 """
 
 from __future__ import annotations
@@ -29,7 +37,11 @@ talos_sway = common.import_example("talos_sway")
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--grid", type=int, default=100)
+    ap.add_argument("--part", choices=["floors", "experiments"], default="floors")
+    ap.add_argument("--room", type=float, default=1.0, help="floors: find_executable_margin's room (default 1)")
     args = ap.parse_args(argv)
+    if args.part == "experiments":
+        return experiments(args)
     robot = talos_sway.load_talos()
     contacts = talos_sway.sole_contacts(4)
     print("| amplitude (cm) | contact time constant (ms) | gains: full effort at (rad) | T, zero margin (s) | "
@@ -44,7 +56,7 @@ def main(argv=None):
                                                    stiffness_error=stiffness_error)
                 t0 = time.perf_counter()
                 out = find_executable_margin(sim, path, contacts, lower=0.0, upper=60.0, tolerance=1.0,
-                                             friction_margin=0.5, grid=args.grid)
+                                             friction_margin=0.5, grid=args.grid, room=args.room)
                 wall = time.perf_counter() - t0
                 if out.margin is None:
                     margin, T, cost = "none in [0, 60]", "-", "-"
@@ -65,11 +77,66 @@ def main(argv=None):
     for dt in (0.00025, 0.0005, 0.001, 0.002):
         sim = humanoid_sim.talos_simulator(robot, path, contacts, timestep=dt)
         out = find_executable_margin(sim, path, contacts, lower=0.0, upper=40.0, tolerance=1.0, friction_margin=0.5,
-                                     grid=args.grid)
+                                     grid=args.grid, room=args.room)
         if out.margin is None:
             print(f"| {1e3 * dt:g} | none in [0, 40] | - | - |", flush=True)
         else:
             print(f"| {1e3 * dt:g} | {out.margin:.2f} | {out.duration:.3f} | +{100 * out.cost:.0f} % |", flush=True)
+
+
+def _romeo():
+    """Romeo's corner sway (tests/python/contact_corpus.py) and its simulator."""
+    import xml.etree.ElementTree as ET
+
+    from pathpace.robots import example_robot_urdf
+    from pathpace.sim import Simulator
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
+    import contact_corpus as cc
+
+    h = cc.load("romeo")
+    urdf = example_robot_urdf(h.urdf)
+    mimic = [j.get("name") for j in ET.parse(urdf).getroot().iter("joint") if j.find("mimic") is not None]
+    path, cons = cc.make_path(h, "sway"), cc.contacts(h, "sway")
+    return path, cons, Simulator(h.robot, urdf, cons, path.q(0.0), locked_joints={n: 0.0 for n in mimic + h.locked})
+
+
+def experiments(args):
+    """Issue 21's table: each experiment's smallest margin with room (see the module docstring)."""
+    standup = common.import_example("humanoid_standup")
+    steps = common.import_example("humanoid_steps")
+    talos = talos_sway.load_talos()
+    rows = []
+    sway = talos_sway.sway_path(talos)
+    feet = talos_sway.sole_contacts(4)
+    rows.append(("Talos sway (7 cm)", sway, dict(contacts=feet), humanoid_sim.talos_simulator(talos, sway, feet), None))
+    path, cons, sim = _romeo()
+    rows.append(("Romeo sway (5 cm)", path, dict(contacts=cons), sim, None))
+    up = standup.standup_path(talos)
+    weak = standup.TORQUE_SCALE * np.asarray(talos.effort_limits)
+    rows.append((f"Talos stand-up (0.25 m squat, motors {standup.TORQUE_SCALE} x)", up, dict(contacts=feet),
+                 humanoid_sim.talos_simulator(talos, up, feet, effort_limits=weak),
+                 {"torque_scale": standup.TORQUE_SCALE}))
+    walk = steps.steps_path(talos, 0.1, 0.03)
+    rows.append(("Talos two steps (contact phases)", walk, dict(phases=steps.phases()),
+                 humanoid_sim.talos_simulator(talos, walk, steps.phases()[0][2]), None))
+    print("| experiment | T at 0 N (s) | 0 N: worst criterion | smallest min normal force with room (N) | "
+          "T (s) | cost | worst criterion there | trials | wall (s) |")
+    print("|---|---:|---|---:|---:|---:|---|---:|---:|")
+    for name, path, where, sim, extra in rows:
+        options = dict(lower=0.0, upper=60.0, tolerance=1.0, friction_margin=0.5, grid=args.grid, room=0.5)
+        t0 = time.perf_counter()
+        out = find_executable_margin(sim, path, **where, **options, contact_options=extra)
+        wall = time.perf_counter() - t0
+        zero = out.trials[0]
+        worst0 = "no timing" if zero.sim is None else "fell" if zero.sim.fell else "{} {:.2f}".format(*zero.sim.worst_criterion)
+        if out.margin is None:
+            print(f"| {name} | {out.zero_margin_duration:.3f} | {worst0} | none in [0, 60] | - | - | - | {len(out.trials)} | {wall:.0f} |", flush=True)
+            continue
+        best = min((t for t in out.trials if t.executed), key=lambda t: t.min_normal_force)
+        print(f"| {name} | {out.zero_margin_duration:.3f} | {worst0} | {out.margin:.1f} | {out.duration:.3f} | "
+              f"+{100 * out.cost:.1f} % | {best.sim.worst_criterion[0]} {best.sim.worst_criterion[1]:.2f} | {len(out.trials)} | {wall:.0f} |",
+              flush=True)
 
 
 if __name__ == "__main__":

@@ -170,6 +170,20 @@ forces : ndarray (samples, contacts, 3)
     World-frame force on each contact's link, N.
 torques : ndarray (samples, nq)
     Joint torques with these forces, N·m.)"},
+    {"ContactWrenches", nullptr, R"(Per-link totals of a contact-force distribution (``Trajectory.contact_wrenches``).
+
+Attributes
+----------
+links : list of str
+    Every link on either side of a contact, in first appearance over the contacts (and phases).
+force : ndarray (samples, links, 3)
+    World-frame total force on each link, N.
+moment : ndarray (samples, links, 3)
+    Its moment about the link's origin, world axes, N·m.
+center_of_pressure : ndarray (samples, links, 3)
+    Σ (n·f_i) p_i / Σ n·f_i, world frame, m; NaN where the link does not push or has several normals.
+normal_force : ndarray (samples, links)
+    Sum of the normal forces into each link, N.)"},
     {"ContactConstraint", nullptr, R"(Torque limits with frictional contact forces (eq. 17-18), projected onto (ṡ², s̈).
 
 Includes the torque limits: do not add TorqueLimits to the same problem.

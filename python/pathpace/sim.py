@@ -724,6 +724,7 @@ def find_executable_margin(
     run_options: dict | None = None,
     phases: Sequence | None = None,
     room: float = 0.5,
+    contact_options: dict | None = None,
 ) -> MarginSearch:
     """Bisection on one margin of the contact constraint for the smallest value whose time-optimal timing
     executes in `sim` with room: no fall and every criterion at most `room` times its threshold
@@ -735,7 +736,8 @@ def find_executable_margin(
 
     parameter: "min_normal_force" (N per contact; searched in [lower, upper]) or "friction_margin"
     (fraction of μ, in [lower, upper] within [0, 1)); the other margin stays at the value given.
-    configure(prob) may add further constraints (velocity, torque limits...) to every problem. The search
+    contact_options: further keyword arguments of add_contacts / add_contact_phases for every problem
+    (e.g. torque_scale for motors weaker than the URDF's effort). configure(prob) may add further constraints (velocity, torque limits...) to every problem. The search
     assumes that executability is monotone in the margin (every trial is kept in `trials` to check).
     An upper bound without any timing (too large a margin: infeasible) is halved towards `lower` until
     the problem is feasible. It stops when the bracket is narrower than `tolerance`.
@@ -750,6 +752,9 @@ def find_executable_margin(
         _fail(f"tolerance = {tolerance} must be > 0")
     if not (0 < room <= 1):
         _fail(f"room = {room} must be in (0, 1] (the share of each criterion's threshold a run may use)")
+    for key in ("min_normal_force", "friction_margin", parameter):
+        if key in (contact_options or {}):
+            _fail(f"contact_options['{key}']: pass it as find_executable_margin's own argument")
     if phases is not None and contacts is not None:
         _fail("contacts and phases: give one (phases carry their own contacts)")
     contacts = list(sim.contacts if contacts is None else contacts)
@@ -761,11 +766,13 @@ def find_executable_margin(
     def attempt(value: float) -> MarginTrial:
         opts = {"min_normal_force": min_normal_force, "friction_margin": friction_margin}
         opts[parameter] = value
+        extra = {k: v for k, v in (contact_options or {}).items() if k not in opts}
         prob = _core.TimeScalingProblem(path, grid=grid)
         if phases is None:
-            prob.add_contacts(sim.robot, contacts, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts)
+            prob.add_contacts(sim.robot, contacts, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts, **extra)
         else:
-            prob.add_contact_phases(sim.robot, phases, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts)
+            prob.add_contact_phases(sim.robot, phases, cone_edges=cone_edges, drift_tolerance=drift_tolerance, **opts,
+                                    **extra)
         if configure is not None:
             configure(prob)
         res = prob.solve()
