@@ -292,7 +292,13 @@ def test_find_executable_margin_wants_room_and_takes_phases(sway):
     out = find_executable_margin(stand_in, sway["path"], phases=phases, lower=10.0, upper=20.0, room=1.0)
     assert out.margin == 10.0 and out.trials[0].status == "OPTIMAL"
     assert stand_in.options == [{"phases": phases}]
+    # contact_options reach every problem: weaker motors, a slower optimum.
+    strong = find_executable_margin(stand_in, sway["path"], lower=10.0, upper=20.0, room=1.0)
+    weak = find_executable_margin(stand_in, sway["path"], lower=10.0, upper=20.0, room=1.0,
+                                  contact_options={"torque_scale": 0.2})
+    assert weak.margin == strong.margin == 10.0 and weak.duration > strong.duration * 1.01
     for bad, match in ((dict(room=0.0), r"room = 0.0 must be in \(0, 1\]"), (dict(room=1.5), "room = 1.5"),
+                       (dict(contact_options={"min_normal_force": 1.0}), r"contact_options\['min_normal_force'\]"),
                        (dict(phases=phases, contacts=left), "give one")):
         with pytest.raises(pp.InvalidInputError, match=match):
             find_executable_margin(stand_in, sway["path"], **bad)
