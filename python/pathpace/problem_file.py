@@ -21,7 +21,9 @@ solver options; relative file names are relative to the problem file. Example (Y
       points: [{link: left_sole_link, point: [0.1, 0.05, 0], normal: [0, 0, 1], friction: 0.5}]
       cone_edges: 8
       friction_margin: 0.0
-      min_normal_force: 0.0
+      min_normal_force: 0.0             # also: torque_scale, torque_margin, min_link_normal_force, cone_offset
+      # or phases: [{s: [0, 1], points: [...]}, {s: [1, 2], points: [...], min_normal_force: 5}]
+      #            (add_contact_phases: each phase's points, and options over these)
     boundary: {sdot: [0, 0]}            # or {qd_begin: [...], qd_end: [...]}
     solver: {tolerance: 1e-6, method: auto, max_iterations: 100}
 
@@ -61,6 +63,8 @@ class ProblemSpec:
     acceleration_limits: tuple[np.ndarray, np.ndarray] | None = None
     torque_limits: pp.TorqueLimits | None = None
     contacts: pp.ContactConstraint | None = None
+    #: (s_begin, s_end, contacts[, options]) per phase when the file gives contacts.phases
+    contact_phases: list | None = None
     name: str = ""
 
     def solve(self) -> pp.Result:
@@ -176,6 +180,68 @@ def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | 
     return -hi, hi
 
 
+_CONTACT_OPTIONS = ("friction_margin", "min_normal_force", "torque_scale", "torque_margin", "min_link_normal_force",
+                    "cone_offset", "drift_tolerance")
+
+
+def _contact_points(r: _Reader, points: Any, key: str) -> list:
+    if not isinstance(points, list) or not points:
+        raise r.fail(key, "expected a non-empty list of contacts")
+    out = []
+    for i, c in enumerate(points):
+        k = f"{key}[{i}]"
+        c = r.mapping(c, k, {"link", "point", "normal", "friction", "other_link"})
+        if "link" not in c:
+            raise r.fail(f"{k}.link", "missing")
+        out.append(_wrap(r, k, pp.Contact, str(c["link"]), point=r.array(c.get("point", [0, 0, 0]), f"{k}.point", 1, 3),
+                         normal=r.array(c.get("normal", [0, 0, 1]), f"{k}.normal", 1, 3),
+                         friction=r.number(c.get("friction", 0.5), f"{k}.friction"), other_link=c.get("other_link")))
+    return out
+
+
+def _contact_options(r: _Reader, cd: dict, key: str) -> dict:
+    opts = {k: r.number(cd[k], f"{key}.{k}") for k in _CONTACT_OPTIONS if k in cd}
+    if "cone_edges" in cd:
+        opts["cone_edges"] = int(r.number(cd["cone_edges"], f"{key}.cone_edges"))
+    return opts
+
+
+def _contacts(r: _Reader, value: Any, robot: pp.RobotModel, prob: pp.TimeScalingProblem, spec: ProblemSpec) -> None:
+    """contacts: {points: [...], options...} (one set for the whole path) or {phases: [{s: [s0, s1],
+    points: [...], options...}, ...], options...} (TimeScalingProblem.add_contact_phases: each phase's
+    options over the shared ones)."""
+    allowed = {"points", "phases", "cone_edges", *_CONTACT_OPTIONS}
+    cd = r.mapping(value, "contacts", allowed)
+    if ("points" in cd) == ("phases" in cd):
+        raise r.fail("contacts", "expected either 'points' (one set of contacts) or 'phases' (contact phases)")
+    opts = _contact_options(r, cd, "contacts")
+    if "points" in cd:
+        if "drift_tolerance" in cd:
+            raise r.fail("contacts.drift_tolerance", "applies to contacts.phases (add_contact_phases) only")
+        spec.contacts = _wrap(r, "contacts", pp.ContactConstraint, robot, _contact_points(r, cd["points"], "contacts.points"),
+                              **{k: v for k, v in opts.items() if k != "drift_tolerance"})
+        _wrap(r, "contacts", prob.add_constraint, spec.contacts)
+        return
+    phases = cd["phases"]
+    if not isinstance(phases, list) or not phases:
+        raise r.fail("contacts.phases", "expected a non-empty list of phases")
+    out = []
+    for i, ph in enumerate(phases):
+        key = f"contacts.phases[{i}]"
+        ph = r.mapping(ph, key, {"s", "points", "cone_edges", *_CONTACT_OPTIONS})
+        if "s" not in ph:
+            raise r.fail(f"{key}.s", "missing: [s_begin, s_end]")
+        span = r.array(ph["s"], f"{key}.s", 1, 2)
+        own = {k: v for k, v in _contact_options(r, ph, key).items() if k not in ("drift_tolerance", "cone_edges")}
+        for k in ("drift_tolerance", "cone_edges"):
+            if k in ph:
+                raise r.fail(f"{key}.{k}", "is one for all phases: give it under 'contacts'")
+        points = _contact_points(r, ph.get("points"), f"{key}.points")
+        out.append((float(span[0]), float(span[1]), points, own) if own else (float(span[0]), float(span[1]), points))
+    _wrap(r, "contacts.phases", prob.add_contact_phases, robot, out, **opts)
+    spec.contact_phases = out
+
+
 def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpec:
     """Reads a problem file (see the module docstring) into a :class:`ProblemSpec`; `grid` overrides the file's."""
     path = Path(file)
@@ -275,27 +341,7 @@ def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpe
     if "contacts" in data:
         if robot is None:
             raise r.fail("contacts", "needs a robot (key 'robot')")
-        cd = r.mapping(data["contacts"], "contacts", {"points", "cone_edges", "friction_margin", "min_normal_force",
-                                                      "torque_scale", "torque_margin"})
-        points = cd.get("points")
-        if not isinstance(points, list) or not points:
-            raise r.fail("contacts.points", "expected a non-empty list of contacts")
-        contacts = []
-        for i, c in enumerate(points):
-            key = f"contacts.points[{i}]"
-            c = r.mapping(c, key, {"link", "point", "normal", "friction", "other_link"})
-            if "link" not in c:
-                raise r.fail(f"{key}.link", "missing")
-            contacts.append(_wrap(r, key, pp.Contact, str(c["link"]), point=r.array(c.get("point", [0, 0, 0]), f"{key}.point", 1, 3),
-                                  normal=r.array(c.get("normal", [0, 0, 1]), f"{key}.normal", 1, 3),
-                                  friction=r.number(c.get("friction", 0.5), f"{key}.friction"),
-                                  other_link=c.get("other_link")))
-        opts = {k: r.number(cd[k], f"contacts.{k}") for k in ("friction_margin", "min_normal_force", "torque_scale",
-                                                              "torque_margin") if k in cd}
-        if "cone_edges" in cd:
-            opts["cone_edges"] = int(r.number(cd["cone_edges"], "contacts.cone_edges"))
-        spec.contacts = _wrap(r, "contacts", pp.ContactConstraint, robot, contacts, **opts)
-        _wrap(r, "contacts", prob.add_constraint, spec.contacts)
+        _contacts(r, data["contacts"], robot, prob, spec)
 
     if "boundary" in data:
         b = r.mapping(data["boundary"], "boundary", {"sdot", "qd_begin", "qd_end"})
