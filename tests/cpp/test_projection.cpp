@@ -292,6 +292,9 @@ TEST(Projection, RangingCertificatesGiveTheSamePolygonsWithAboutOneLpPerEdge) {
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
   PolytopeProjector with, without;
   without.ranging = false;
+  // GLPK's LPs on both sides (the dense simplex's polygons are compared with GLPK's in their own test:
+  // its optima may differ in the last bits, which reorders the hull from its leftmost vertex).
+  with.dense = without.dense = false;
   for (int k = 0; k < 12; ++k) {
     std::vector<Vertex> truth;
     if (k == 0) {

@@ -240,7 +240,9 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   // is then taken over. Only on the LP's own unscaled bounds (not after the stand-in bounds grew).
   const bool use_dense = dense && cols >= kRangingColumns;
   if (use_dense) dense_.load(in);
-  std::vector<DenseSimplex::State> states;  // per support point (empty head: none)
+  // Per support point: its optimal basis (stat), factorised (head, inv) the first time an LP starts from it.
+  std::vector<DenseSimplex::State> states;
+  std::vector<Vertex> support;  // per support point: the (unit) direction of the LP that found it
   DenseSimplex::State last_state;
   bool last_dense = false;  // the last LP was solved by the dense simplex (binding() reads it)
   bool bounds_grown = false;
@@ -250,8 +252,22 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const double angle = std::atan2(vu, vx);
     last_dense = false;
     last_state = DenseSimplex::State();
-    if (dense_ok() && start_point >= 0 && !states[static_cast<size_t>(start_point)].head.empty()) {
-      dense_.restore(states[static_cast<size_t>(start_point)]);
+    // Only from a support point whose direction is within kDenseAngle of this one: farther (a coarse
+    // polygon, projection_tolerance) the primal simplex from it takes many pivots, and GLPK's dual simplex
+    // from the previous grid point's basis in this direction (below) is the better start.
+    constexpr double kDenseAngle = 0.25;
+    DenseSimplex::State* origin = nullptr;
+    if (dense_ok() && start_point >= 0) {
+      const Vertex& w = support[static_cast<size_t>(start_point)];
+      DenseSimplex::State& st = states[static_cast<size_t>(start_point)];
+      if (w.x * vx + w.y * vu >= std::cos(kDenseAngle) && !st.stat.empty()) origin = &st;
+    }
+    if (origin && origin->head.empty()) {  // factorised on first use
+      if (dense_.set_basis(origin->stat.data())) *origin = dense_.state();
+      else origin->stat.clear(), origin = nullptr;
+    }
+    if (origin) {
+      dense_.restore(*origin);
       if (dense_.maximize(vx, vu) == 1) {
         ++out.dense_solves;
         last_dense = true;
@@ -331,15 +347,14 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {sx * px, su * pu};
     range_basis(last_range, ranged);
-    // GLPK's optimal basis, for the dense simplex's next LPs (stat_ is filled when range is).
-    if (dense_ok() && (record || range) && dense_.set_basis(stat_.data())) last_state = dense_.state();
+    // GLPK's optimal basis, for the dense simplex's next LPs (stat_ is filled when range or record is).
+    if (dense_ok() && (record || range)) last_state.stat = stat_;
     if (record) current_.push_back({angle, stat_});
     return 1;
   };
 
   std::vector<Vertex> points;  // every support point found
   std::vector<Ranging> ranges;  // and its LP's ranging
-  std::vector<Vertex> support;  // and the (unit) direction of the LP that found it
   // The stand-in bounds on x and u (those at least in.stand_in in magnitude): the shadow is that of the
   // polytope without them, which they must not cut. Grown below when they hide all of it.
   double xlo = in.col_lo[0], xhi = in.col_hi[0], ulo = in.col_lo[1], uhi = in.col_hi[1];

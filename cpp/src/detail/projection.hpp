@@ -119,7 +119,7 @@ class PolytopeProjector {
   bool ranging = true;
   /// Solve the LPs after a grid point's first with the dense simplex (GLPK the fallback). On by
   /// default; off for tests and benchmarks that compare both.
-  bool dense = false;
+  bool dense = true;
 
  private:
   DenseSimplex dense_;
