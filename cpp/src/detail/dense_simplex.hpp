@@ -11,6 +11,7 @@
 // column k - m; the constraint A z - aux = 0. Statuses are GLPK's (GLP_BS, GLP_NL, GLP_NU, GLP_NF,
 // GLP_NS), so that a basis passes between the two solvers.
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,12 +42,14 @@ class DenseSimplex {
 
   const State& state() const { return s_; }
   void restore(const State& s) { s_ = s; }
+  /// The state, moved out (the simplex has no basis until the next restore or set_basis).
+  State take() { return std::move(s_); }
   double x() const { return s_.value[m_]; }
   double u() const { return s_.value[m_ + 1]; }
   /// The reduced cost of variable k at the last optimum (GLPK's row / column dual).
   double reduced_cost(int k) const { return d_[static_cast<size_t>(k)]; }
-  /// GLPK's tableau rows of x and u (x_B = Σ α x_N), 1-based over every variable, zero where x (u) is
-  /// nonbasic or the variable is basic.
+  /// GLPK's tableau rows of x and u (x_B = Σ α x_N) at the last certified optimum, 1-based over every
+  /// variable, zero where x (u) is nonbasic or the variable is basic.
   void tableau_xu(double* tab_x, double* tab_u) const;
   int pivots = 0;  ///< since load (statistics)
 
@@ -55,12 +58,14 @@ class DenseSimplex {
   void compute_values();
   void column(int k, Eigen::VectorXd& a) const;  // the constraint column of variable k
   bool certify(double vx, double vu);
+  void refined_row(int pos, Eigen::VectorXd& y) const;
   const PolytopeLp* lp_ = nullptr;
   int m_ = 0, n_ = 0;
   Eigen::VectorXd lo_, hi_;  // per variable
   State s_;
   std::vector<double> d_;
   Eigen::VectorXd y_, alpha_, col_, dstruct_;
+  Eigen::VectorXd yx_, yu_;  // B^-T e of x and u at the last certificate (zero where nonbasic)
 };
 
 }  // namespace pathpace::detail

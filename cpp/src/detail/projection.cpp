@@ -271,11 +271,11 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       if (dense_.maximize(vx, vu) == 1) {
         ++out.dense_solves;
         last_dense = true;
-        last_state = dense_.state();
         p = {dense_.x(), dense_.u()};
+        if (ranging) dense_.tableau_xu(tab_x_.data(), tab_u_.data());
+        last_state = dense_.take();  // moved, not copied (B^-1 is rows² doubles): the next LP restores
         std::copy(last_state.stat.begin(), last_state.stat.end(), stat_.begin());
         const bool record = cols >= kRestoreColumns;
-        if (ranging) dense_.tableau_xu(tab_x_.data(), tab_u_.data());
         range_basis(last_range, ranging);
         if (record) current_.push_back({angle, stat_});
         return 1;
@@ -515,7 +515,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   auto binding = [&](int& code) {  // false: a GLPK error
     code = kBindingUnknown;
     if (last_dense) {  // the same rule on the dense simplex's statuses and reduced costs
-      const std::vector<signed char>& st = dense_.state().stat;
+      const std::vector<signed char>& st = last_state.stat;
       double best = 0.0;
       for (int k = 0; k < rows + cols; ++k) {
         if (st[static_cast<size_t>(k)] == GLP_BS) continue;
