@@ -252,9 +252,9 @@ def part_corpus(args):
     worst over the rows. With --transcription, N = 100 rows are also solved by the direct transcription
     with the same pyramids (T to compare) and with exact cones (time to compare)."""
     print(f"issue 27 corpus, seed {args.seed27}, one thread; wall s of add_contacts + solve")
-    print("| robot | path | points | torque scale | margins | edges | N | status | T (s) | LPs/point | "
+    print("| robot | path | points | torque scale | margins | edges | N | ε | status | T (s) | T - T(ε=0) | LPs/point | "
           "half-planes/point | torque-bound edges | wall (s) | CPU (s) | T direct, pyramids | rel. diff | direct exact cones (s) | speed-up |")
-    print("|---|---|---:|---:|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     rows = []
     for case in cc.hard_cases(args.seed27):
         if args.robots and case.robot not in args.robots:
@@ -263,12 +263,14 @@ def part_corpus(args):
         path = cc.make_hard_path(h, case)
         cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[case.robot])
         scale = cc.HARD_TORQUE_SCALE[(case.robot, case.kind)]
-        for mname, N, k in itertools.product(args.margins, args.grids, args.edges):
+        exact_T = {}
+        for mname, N, k, eps in itertools.product(args.margins, args.grids, args.edges, args.tolerance):
             margins = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[mname]
 
             def run():
                 prob = pp.TimeScalingProblem(path, grid=N)
-                prob.add_contacts(h.robot, cons, cone_edges=k, drift_tolerance=1e-4, torque_scale=scale, **margins)
+                prob.add_contacts(h.robot, cons, cone_edges=k, drift_tolerance=1e-4, torque_scale=scale,
+                                  projection_tolerance=eps, **margins)
                 return prob, prob.solve()
 
             wall, cpu, (prob, res) = timed(run, args.repeat)
@@ -288,8 +290,12 @@ def part_corpus(args):
                 row.update(rel=abs(rel), speedup=wt / row["wall"])
                 direct = (f"{tp[1]:.6f} {tp[0]}", f"{rel:.1e}", f"{wt:.1f}", f"{wt / row['wall']:.0f}x")
             rows.append(row)
-            print(f"| {case.robot} | {case.kind} | {len(cons)} | {scale} | {mname} | {k} | {N} | {res.status.name} | "
-                  f"{res.duration:.6f} | {row['lps']:.1f} | {row['hp']:.1f} | {torque:.0%} | {row['wall']:.3f} | {row['cpu']:.3f} | "
+            if eps == 0.0:
+                exact_T[(mname, N, k)] = res.duration
+            ref = exact_T.get((mname, N, k))
+            dT = f"{res.duration - ref:+.2e}" if ref is not None and eps > 0.0 else ""
+            print(f"| {case.robot} | {case.kind} | {len(cons)} | {scale} | {mname} | {k} | {N} | {eps:g} | {res.status.name} | "
+                  f"{res.duration:.9f} | {dT} | {row['lps']:.1f} | {row['hp']:.1f} | {torque:.0%} | {row['wall']:.3f} | {row['cpu']:.3f} | "
                   + " | ".join(direct) + " |", flush=True)
     print("\nover the rows: median (worst)")
     for key, name, worst in (("lps", "LPs per point", max), ("hp", "half-planes per point", max),
@@ -338,6 +344,8 @@ def main():
     ap.add_argument("--edges", nargs="*", type=int, default=[4, 8], help="corpus: cone edges (16 optional)")
     ap.add_argument("--grids", nargs="*", type=int, default=[100], help="corpus: N (400, 1000 optional)")
     ap.add_argument("--transcription", action="store_true", help="corpus: direct transcription at N = 100")
+    ap.add_argument("--tolerance", nargs="+", type=float, default=[0.0], metavar="EPS",
+                    help="corpus: projection_tolerance values (0 = exact, listed first to get T - T(0))")
     args = ap.parse_args()
     if args.part == "corpus" and "--repeat" not in sys.argv:
         args.repeat = 1

@@ -500,7 +500,12 @@ min_link_normal_force : float
     N per link: the sum of the normal forces of the link's points (e.g. a whole sole).
 max_lps : int
     LPs per grid point before the polygon is reported inexact (FeasibleSet.exact,
-    stats['inexact_points']).)"},
+    stats['inexact_points']).
+projection_tolerance : float
+    Relative ε in [0, 1) of a certified approximation of each grid point's polygon (0: exact). The
+    polygon is an inner set whose support function is within ε times its size (its larger extent in
+    sdot^2 or sddot) of the exact one in every direction: the timing stays executable, only slower
+    (T can only grow). Edges kept by ε are labelled "contact forces" in Result.binding.)"},
     {"TimeScalingProblem", "add_contact_phases", R"(Contacts that change along the path: one contact set per phase.
 
 Phase i holds its contacts (a ContactConstraint with torque limits, eq. 17-18) on the grid points of
@@ -522,7 +527,7 @@ phases : list of (s_begin, s_end, contacts) or (s_begin, s_end, contacts, option
     options: a dict of this phase's own friction_margin, min_normal_force, min_link_normal_force,
     cone_offset, cone_edges (the others are the call's).
 cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin, tau_min, tau_max,
-min_link_normal_force, max_lps, cone_offset :
+min_link_normal_force, max_lps, cone_offset, projection_tolerance :
     As in ``add_contacts``, for every phase.
 drift_tolerance : float
     m: a warning names a phase's contact that moves more than this on that phase's stretch.

@@ -637,9 +637,10 @@ void bind_problem(py::module_& m) {
                                     py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                                     py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                                     py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
-                                    py::handle impact_tolerance, py::handle cone_offset) {
+                                    py::handle impact_tolerance, py::handle cone_offset, py::handle projection_tolerance) {
         const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
-                                                     torque_margin, min_link_normal_force, max_lps, cone_offset);
+                                                     torque_margin, min_link_normal_force, max_lps, cone_offset,
+                                                     projection_tolerance);
         auto robot = to_object<RobotModel>(robot_arg, "robot", "RobotModel");
         const std::vector<py::object> items = to_items(phases_arg, "phases", "a list of (s_begin, s_end, contacts)");
         std::vector<ContactPhase> phases;
@@ -666,14 +667,15 @@ void bind_problem(py::module_& m) {
       }, "robot"_a, "phases"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
          "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "impact_tolerance"_a = 1e-6,
-         "cone_offset"_a = 0.0)
+         "cone_offset"_a = 0.0, "projection_tolerance"_a = 0.0)
       .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
                               py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                               py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                               py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
-                              py::handle cone_offset) {
+                              py::handle cone_offset, py::handle projection_tolerance) {
         const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
-                                                     torque_margin, min_link_normal_force, max_lps, cone_offset);
+                                                     torque_margin, min_link_normal_force, max_lps, cone_offset,
+                                                     projection_tolerance);
         auto c = std::make_shared<ContactConstraint>(
             to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
             optional_vector(tau_min, "tau_min"), optional_vector(tau_max, "tau_max"));
@@ -686,7 +688,8 @@ void bind_problem(py::module_& m) {
         add_released(p, std::move(c), "add_contacts");
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
-         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "cone_offset"_a = 0.0)
+         "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "cone_offset"_a = 0.0,
+         "projection_tolerance"_a = 0.0)
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         add_released(p, to_object<Constraint>(c, "constraint", "Constraint"), "add_constraint");
       }, "constraint"_a)

@@ -283,16 +283,18 @@ void bind_robot(py::module_& m) {
   py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
       .def(py::init([](py::handle robot, py::handle contacts, py::handle cone_edges, py::handle friction_margin,
                        py::handle min_normal_force, py::handle torque_scale, py::handle torque_margin, py::handle tau_min,
-                       py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps, py::handle cone_offset) {
+                       py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps, py::handle cone_offset,
+                       py::handle projection_tolerance) {
              const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
-                                                          torque_margin, min_link_normal_force, max_lps, cone_offset);
+                                                          torque_margin, min_link_normal_force, max_lps, cone_offset,
+                                                          projection_tolerance);
              return std::make_shared<ContactConstraint>(to_object<RobotModel>(robot, "robot", "RobotModel"),
                                                         to_contacts(contacts, "contacts"), o,
                                                         optional_vector(tau_min, "tau_min"), optional_vector(tau_max, "tau_max"));
            }),
            "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
            "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "tau_min"_a = py::none(), "tau_max"_a = py::none(),
-           "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "cone_offset"_a = 0.0,
+           "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "cone_offset"_a = 0.0, "projection_tolerance"_a = 0.0,
            "See TimeScalingProblem.add_contacts: points in link frames, normals in the world frame; margins per "
            "point (min_normal_force, cone_offset) and per link (min_link_normal_force).")
       .def_property_readonly("tau_min", &ContactConstraint::tau_min, "after scale and margin (and any merged TorqueLimits)")
@@ -315,11 +317,11 @@ void bind_robot(py::module_& m) {
                                               o.friction_margin, o.min_normal_force, o.cap, c.tau_min(), c.tau_max(),
                                               o.min_link_normal_force, o.max_lps,
                                               py::make_tuple(o.active_begin, o.active_end, o.label, o.rest_at_begin),
-                                              o.cone_offset);
+                                              o.cone_offset, o.projection_tolerance);
                       },
                       [](const py::tuple& t) {
-                        // 11 entries: a state written before cone_offset (then 0).
-                        if (t.size() != 11) check_state(t, 12, "ContactConstraint");
+                        // 11 / 12 entries: a state written before cone_offset / projection_tolerance (then 0).
+                        if (t.size() != 11 && t.size() != 12) check_state(t, 13, "ContactConstraint");
                         ContactOptions o = contact_options(t[2].cast<int>(), t[3].cast<double>(), t[4].cast<double>(), 1.0, 0.0);
                         o.cap = t[5].cast<double>();
                         o.min_link_normal_force = t[8].cast<double>();
@@ -330,7 +332,8 @@ void bind_robot(py::module_& m) {
                         o.active_end = phase[1].cast<double>();
                         o.label = phase[2].cast<std::string>();
                         o.rest_at_begin = phase[3].cast<std::string>();
-                        if (t.size() == 12) o.cone_offset = t[11].cast<double>();
+                        if (t.size() >= 12) o.cone_offset = t[11].cast<double>();
+                        if (t.size() >= 13) o.projection_tolerance = t[12].cast<double>();
                         auto robot = t[0].cast<std::shared_ptr<RobotModel>>();
                         auto contacts = t[1].cast<std::vector<Contact>>();
                         Eigen::VectorXd lo = to_vector(t[6], "tau_min"), hi = to_vector(t[7], "tau_max");

@@ -251,13 +251,15 @@ inline ContactOptions contact_options(int cone_edges, double friction_margin, do
 inline ContactOptions contact_options_arg(py::handle cone_edges, py::handle friction_margin, py::handle min_normal_force,
                                           py::handle torque_scale, py::handle torque_margin,
                                           py::handle min_link_normal_force, py::handle max_lps,
-                                          py::handle cone_offset = py::float_(0.0)) {
+                                          py::handle cone_offset = py::float_(0.0),
+                                          py::handle projection_tolerance = py::float_(0.0)) {
   ContactOptions o = contact_options(to_int32(cone_edges, "cone_edges"), to_double(friction_margin, "friction_margin"),
                                      to_double(min_normal_force, "min_normal_force"), to_double(torque_scale, "torque_scale"),
                                      to_double(torque_margin, "torque_margin"));
   o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
   o.max_lps = to_int32(max_lps, "max_lps");
   o.cone_offset = to_double(cone_offset, "cone_offset");
+  o.projection_tolerance = to_double(projection_tolerance, "projection_tolerance");
   return o;
 }
 

@@ -117,7 +117,8 @@ class ContactConstraint(Constraint):
     def __init__(self, robot: RobotModel, contacts: list[Contact], cone_edges: int = 8, friction_margin: float = 0.0,
                  min_normal_force: float = 0.0, torque_scale: float = 1.0, torque_margin: float = 0.0,
                  tau_min: ArrayLike | None = None, tau_max: ArrayLike | None = None,
-                 min_link_normal_force: float = 0.0, max_lps: int = 2000, cone_offset: float = 0.0) -> None: ...
+                 min_link_normal_force: float = 0.0, max_lps: int = 2000, cone_offset: float = 0.0,
+                 projection_tolerance: float = 0.0) -> None: ...
     @property
     def tau_min(self) -> Array: ...
     @property
@@ -325,6 +326,7 @@ class TimeScalingProblem:
         min_link_normal_force: float = 0.0,
         max_lps: int = 2000,
         cone_offset: float = 0.0,
+        projection_tolerance: float = 0.0,
     ) -> None: ...
     def add_contact_phases(
         self,
@@ -342,6 +344,7 @@ class TimeScalingProblem:
         max_lps: int = 2000,
         impact_tolerance: float = 1e-6,
         cone_offset: float = 0.0,
+        projection_tolerance: float = 0.0,
     ) -> None: ...
     def add_constraint(self, constraint: Constraint) -> None: ...
     def set_boundary_speeds(self, sdot_begin: float = 0.0, sdot_end: float = 0.0) -> None: ...

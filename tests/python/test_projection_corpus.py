@@ -309,3 +309,71 @@ def test_cone_offset_is_validated_named_and_pickled():
     for k in range(5):
         np.testing.assert_array_equal(a.feasible_set(k).vertices, b.feasible_set(k).vertices)
     assert not np.array_equal(a.feasible_set(2).vertices, bare.feasible_set(2).vertices)
+
+
+def _projection_size(fs) -> float:
+    """The projection's size as C++ computes it: the larger extent in x or u over the vertices whose
+    coordinate is not on a stand-in bound."""
+    v = fs.vertices
+    ext = []
+    for j in range(2):
+        c = v[np.abs(v[:, j]) < 0.5 * cc.CAP, j]
+        ext.append(float(np.ptp(c)) if len(c) else 0.0)
+    return max(ext)
+
+
+@pytest.mark.parametrize("eps", [1e-4, 1e-3, 1e-2])
+def test_projection_tolerance_keeps_an_inner_polygon_within_eps_and_T_can_only_grow(eps):
+    """projection_tolerance = ε on a strong Talos lean with a per-point minimum (polygons of ~80 edges):
+    at every grid point the polygon lies inside the exact one and its support function is within ε times
+    its size of the exact one in 720 directions; fewer LPs; T >= the exact T (an inner set is
+    conservative), and the timing is still OPTIMAL."""
+    case = next(c for c in cc.hard_cases() if c.robot == "talos" and c.kind == "lean")
+    h = cc.load("talos")
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["talos"])
+    opts = dict(cone_edges=4, torque_scale=cc.HARD_TORQUE_SCALE[("talos", "lean")], min_normal_force=1.5,
+                drift_tolerance=1e-4)
+    exact, approx = pp.TimeScalingProblem(path, grid=6), pp.TimeScalingProblem(path, grid=6)
+    exact.add_contacts(h.robot, cons, **opts)
+    approx.add_contacts(h.robot, cons, projection_tolerance=eps, **opts)
+    dirs = cc.directions(720)
+    worst = 0.0
+    for k in range(7):
+        fe, fa = exact.feasible_set(k), approx.feasible_set(k)
+        assert fe.empty == fa.empty
+        if fe.empty:
+            continue
+        he, ha = cc.polygon_support(fe, dirs), cc.polygon_support(fa, dirs)
+        ok = cc.same_unbounded_directions(ha, he, f"k = {k}")
+        gap = (he[ok] - ha[ok]) / _projection_size(fe)
+        assert np.all(gap >= -1e-9), f"k = {k}: not inside the exact polygon ({gap.min():.2e})"
+        assert np.all(gap <= eps), f"k = {k}: support gap {gap.max():.2e} > ε = {eps}"
+        worst = max(worst, gap.max())
+    assert worst > 0.0  # the approximation was used
+    re, ra = exact.solve(), approx.solve()
+    assert re.ok and ra.ok, (re.message, ra.message)
+    assert ra.duration >= re.duration * (1 - 1e-12)
+    assert ra.stats["projection_lp_solves"] < re.stats["projection_lp_solves"]
+
+
+def test_projection_tolerance_is_validated_named_and_pickled():
+    h = cc.load("talos")
+    cons = cc.contacts(h, "sway")
+    path = cc.make_path(h, "sway")
+    for bad in (-1e-3, 1.0, float("nan"), float("inf")):
+        with pytest.raises(pp.InvalidInputError, match=r"projection_tolerance = .* must be in \[0, 1\)"):
+            pp.ContactConstraint(h.robot, cons, projection_tolerance=bad)
+        with pytest.raises(pp.InvalidInputError, match=r"projection_tolerance = "):
+            pp.TimeScalingProblem(path, grid=4).add_contacts(h.robot, cons, projection_tolerance=bad)
+    import pickle
+    a, b = (pp.TimeScalingProblem(path, grid=4) for _ in range(2))
+    c = pp.ContactConstraint(h.robot, cons, projection_tolerance=0.05)
+    a.add_constraint(c)
+    b.add_constraint(pickle.loads(pickle.dumps(c)))
+    exact = pp.TimeScalingProblem(path, grid=4)
+    exact.add_constraint(pp.ContactConstraint(h.robot, cons))
+    for k in range(5):
+        np.testing.assert_array_equal(a.feasible_set(k).vertices, b.feasible_set(k).vertices)
+    # The tolerance is what the pickle kept: ε = 0.05 changes a polygon of this path.
+    assert any(not np.array_equal(a.feasible_set(k).vertices, exact.feasible_set(k).vertices) for k in range(5))

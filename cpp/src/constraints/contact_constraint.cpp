@@ -36,6 +36,8 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     detail::fail("min_link_normal_force = " + detail::fmt(options_.min_link_normal_force) + " must be >= 0 and finite");
   if (!(options_.cap > 0.0) || !std::isfinite(options_.cap)) detail::fail("cap = " + detail::fmt(options_.cap) + " must be > 0");
   if (options_.max_lps < 3) detail::fail("max_lps = " + std::to_string(options_.max_lps) + " must be >= 3");
+  if (!(options_.projection_tolerance >= 0.0 && options_.projection_tolerance < 1.0))
+    detail::fail("projection_tolerance = " + detail::fmt(options_.projection_tolerance) + " must be in [0, 1)");
   const int n = robot_->nq();
   if (tau_max.size() == 0) tau_max = robot_->effort_limits();
   if (tau_min.size() == 0) tau_min = -robot_->effort_limits();
@@ -442,11 +444,11 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
   ConstraintRows r;
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     lp_point(projected_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
-    detail::Projection pr = projector.project(lp, 1e-9, options_.max_lps);
+    detail::Projection pr = projector.project(lp, 1e-9, options_.max_lps, options_.projection_tolerance);
     if (pr.outcome == detail::Projection::Outcome::Failed ||
         (pr.outcome == detail::Projection::Outcome::Polygon && !pr.complete)) {
       // Once more from a cold start (a fresh basis), keeping the larger result.
-      detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps);
+      detail::Projection cold = detail::project_polytope(lp, 1e-9, options_.max_lps, options_.projection_tolerance);
       r.lp_solves += pr.lp_solves + cold.lp_solves;  // both ran, whichever is kept
       r.lp_by_cause += pr.by_cause;
       r.lp_by_cause.cold_retry += cold.lp_solves;

@@ -68,9 +68,9 @@ void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order) {
   order = std::move(h);
 }
 
-Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps) {
+Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
   PolytopeProjector p;
-  return p.project(in, relative_tolerance, max_lps);
+  return p.project(in, relative_tolerance, max_lps, approximation);
 }
 
 PolytopeProjector::~PolytopeProjector() = default;
@@ -169,7 +169,7 @@ int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, 
   return 1;
 }
 
-Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps) {
+Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
   Projection out;
   // A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
   auto glpk_error = [&out]() {
@@ -234,9 +234,54 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       rg.B.push_back(tab_u_[static_cast<size_t>(k)] + (k == rows + 2 ? 1.0 : 0.0));
     }
   };
-  auto extremize = [&](double vx, double vu, Vertex& p) -> int {  // also -2: a GLPK error
+  // The dense simplex (dense_simplex.hpp) within the grid point: an LP starts from the optimal basis of
+  // the support point `start` (an edge's endpoint: primal feasible, nearly optimal along the edge's
+  // normal); GLPK solves the first LP of a point and any LP the dense simplex gives up on, and its basis
+  // is then taken over. Only on the LP's own unscaled bounds (not after the stand-in bounds grew).
+  const bool use_dense = dense && cols >= kRangingColumns;
+  if (use_dense) dense_.load(in);
+  // Per support point: its optimal basis (stat), factorised (head, inv) the first time an LP starts from it.
+  std::vector<DenseSimplex::State> states;
+  std::vector<Vertex> support;  // per support point: the (unit) direction of the LP that found it
+  DenseSimplex::State last_state;
+  bool last_dense = false;  // the last LP was solved by the dense simplex (binding() reads it)
+  bool bounds_grown = false;
+  auto dense_ok = [&] { return use_dense && sx == 1.0 && su == 1.0 && !bounds_grown; };
+  auto extremize = [&](double vx, double vu, Vertex& p, int start_point) -> int {  // also -2: a GLPK error
     ++out.lp_solves;
     const double angle = std::atan2(vu, vx);
+    last_dense = false;
+    last_state = DenseSimplex::State();
+    // Only from a support point whose direction is within kDenseAngle of this one: farther (a coarse
+    // polygon, projection_tolerance) the primal simplex from it takes many pivots, and GLPK's dual simplex
+    // from the previous grid point's basis in this direction (below) is the better start.
+    constexpr double kDenseAngle = 0.25;
+    DenseSimplex::State* origin = nullptr;
+    if (dense_ok() && start_point >= 0) {
+      const Vertex& w = support[static_cast<size_t>(start_point)];
+      DenseSimplex::State& st = states[static_cast<size_t>(start_point)];
+      if (w.x * vx + w.y * vu >= std::cos(kDenseAngle) && !st.stat.empty()) origin = &st;
+    }
+    if (origin && origin->head.empty()) {  // factorised on first use
+      if (dense_.set_basis(origin->stat.data())) *origin = dense_.state();
+      else origin->stat.clear(), origin = nullptr;
+    }
+    if (origin) {
+      dense_.restore(*origin);
+      if (dense_.maximize(vx, vu) == 1) {
+        ++out.dense_solves;
+        last_dense = true;
+        p = {dense_.x(), dense_.u()};
+        if (ranging) dense_.tableau_xu(tab_x_.data(), tab_u_.data());
+        last_state = dense_.take();  // moved, not copied (B^-1 is rows² doubles): the next LP restores
+        std::copy(last_state.stat.begin(), last_state.stat.end(), stat_.begin());
+        const bool record = cols >= kRestoreColumns;
+        range_basis(last_range, ranging);
+        if (record) current_.push_back({angle, stat_});
+        return 1;
+      }
+      ++out.dense_fallbacks;
+    }
     const Basis* from = nullptr;
     if (same_shape) {
       double best = kNear;
@@ -302,6 +347,8 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
     p = {sx * px, su * pu};
     range_basis(last_range, ranged);
+    // GLPK's optimal basis, for the dense simplex's next LPs (stat_ is filled when range or record is).
+    if (dense_ok() && (record || range)) last_state.stat = stat_;
     if (record) current_.push_back({angle, stat_});
     return 1;
   };
@@ -320,7 +367,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   for (int i = 0; i < 3; ++i) {
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
-    const int r = extremize(std::cos(ang), std::sin(ang), p);
+    const int r = extremize(std::cos(ang), std::sin(ang), p, static_cast<int>(points.size()) - 1);
     ++out.by_cause.initial;
     if (r == -2) return glpk_error();
     if (r == 0 && i == 0 && (capped(xhi) || capped(ulo) || capped(uhi))) {
@@ -367,6 +414,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
       if (capped(ulo)) ulo = -grown;
       if (capped(uhi)) uhi = grown;
       stand_in = grown;
+      bounds_grown = true;
       // A coordinate found beyond the old bounds is scaled to order one (its column times s, its bounds
       // over s), so that GLPK's unscaled simplex sees values of order one. It does not make these LPs
       // reliable (on Talos its optima still reached the grown bounds along u where HiGHS's did not):
@@ -407,6 +455,8 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     }
     points.push_back(p);
     ranges.push_back(std::move(last_range));
+    support.push_back({std::cos(ang), std::sin(ang)});
+    states.push_back(std::move(last_state));
   }
   out.stand_in = stand_in;
   // A shadow found only beyond the stand-in bounds is not called exact: there b·u ~ 1e2 with b ~ 1e-8 (the
@@ -421,7 +471,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     const double v = along_x ? p.x : p.y, lo = along_x ? xlo : ulo, hi = along_x ? xhi : uhi;
     return !((v >= hi && is_stand_in(hi)) || (v <= lo && is_stand_in(lo)));
   };
-  auto tolerance = [&](const std::vector<int>& hull) {
+  auto size_of = [&](const std::vector<int>& hull) {
     double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY, mag = 0.0;
     for (int i : hull) {
       const Vertex& p = points[static_cast<size_t>(i)];
@@ -433,7 +483,26 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (yhi >= ylo) size = std::max(size, yhi - ylo);
     // A polygon that is (nearly) a point still needs a floor above the LPs' rounding: a thousandth of
     // its distance from the origin, or an absolute 1e-14 at the origin.
-    return std::max(relative_tolerance * std::max(size, 1e-3 * mag), 1e-14);
+    return std::max(size, 1e-3 * mag);
+  };
+  auto tolerance = [&](const std::vector<int>& hull) {
+    return std::max(relative_tolerance * size_of(hull), 1e-14);
+  };
+  // projection_tolerance: every LP optimum p found along v gives the outer half-plane v·z <= v·p of the
+  // shadow. Beyond an edge (a, b) with normal n, those of a and b (v_a before n before v_b, counter-
+  // clockwise) leave the triangle a, apex, b; in every direction d between v_a and v_b the shadow's
+  // support exceeds the hull's by at most d·(apex - a) (or - b) <= the apex's height above the edge.
+  // An edge whose apex lies within `approx` of it is final: the hull stays (an inner set, conservative).
+  double approx = 0.0;
+  auto within_approximation = [&](int from, int to, double nx, double nu, double offset) {
+    if (!(approx > 0.0) || from == to) return false;
+    const Vertex &da = support[static_cast<size_t>(from)], &db = support[static_cast<size_t>(to)];
+    const double det = da.x * db.y - da.y * db.x;
+    if (!(da.x * nu - da.y * nx > 0.0) || !(nx * db.y - nu * db.x > 0.0) || !(det > 0.0)) return false;
+    const Vertex &a = points[static_cast<size_t>(from)], &b = points[static_cast<size_t>(to)];
+    const double ra = da.x * a.x + da.y * a.y, rb = db.x * b.x + db.y * b.y;
+    const double px = (ra * db.y - rb * da.y) / det, pu = (da.x * rb - db.x * ra) / det;
+    return nx * px + nu * pu - offset <= approx;
   };
 
   // Certified directions, keyed by the hull edge (from, to) that produced them; (i, i) is the end
@@ -445,6 +514,17 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   const double* norm = row_norm.data();
   auto binding = [&](int& code) {  // false: a GLPK error
     code = kBindingUnknown;
+    if (last_dense) {  // the same rule on the dense simplex's statuses and reduced costs
+      const std::vector<signed char>& st = last_state.stat;
+      double best = 0.0;
+      for (int k = 0; k < rows + cols; ++k) {
+        if (st[static_cast<size_t>(k)] == GLP_BS) continue;
+        if (k < rows && (st[static_cast<size_t>(k)] == GLP_NS || in.row_lo[k] == in.row_hi[k])) continue;
+        const double w = std::abs(dense_.reduced_cost(k)) * (k < rows ? norm[k] : 1.0);
+        if (w > best) best = w, code = k < rows ? 2 * k + (st[static_cast<size_t>(k)] == GLP_NU ? 1 : 0) : -(k - rows + 1);
+      }
+      return true;
+    }
     return guarded([&] {
       double best = 0.0;
       for (int i = 0; i < rows; ++i) {
@@ -528,6 +608,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   convex_hull(points, hull);
   out.complete = initial_complete;
   double tol = tolerance(hull);
+  approx = approximation * size_of(hull);
   while (out.complete) {
     directions();
     if (pending.empty()) break;
@@ -540,6 +621,11 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         certified[{d.from, d.to}] = code;
         continue;
       }
+      if (within_approximation(d.from, d.to, d.nx, d.nu, d.offset)) {
+        ++out.approximate_edges;
+        certified[{d.from, d.to}] = kBindingUnknown;  // no LP along it: what binds there is not known
+        continue;
+      }
       if (out.lp_solves >= max_lps) {
         out.complete = false;
         out.note = "LP budget (" + std::to_string(max_lps) + ") ran out with " + std::to_string(pending.size()) +
@@ -547,7 +633,10 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         break;
       }
       Vertex q;
-      const int r = extremize(d.nx, d.nu, q);
+      // From the endpoint whose support direction is nearer the edge's normal.
+      const Vertex &sa = support[static_cast<size_t>(d.from)], &sb = support[static_cast<size_t>(d.to)];
+      const int start = sa.x * d.nx + sa.y * d.nu >= sb.x * d.nx + sb.y * d.nu ? d.from : d.to;
+      const int r = extremize(d.nx, d.nu, q, start);
       if (r != 1) ++out.by_cause.vertex;
       if (r == -2) return glpk_error();
       if (r != 1) {
@@ -565,6 +654,8 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
         ++out.by_cause.vertex;
         points.push_back(q);  // strictly outside the hull by more than the tolerance
         ranges.push_back(std::move(last_range));
+        support.push_back({d.nx, d.nu});
+        states.push_back(std::move(last_state));
         grew = true;
         break;  // the hull changes: recompute it and its uncertified edges
       }
@@ -573,6 +664,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
     if (grew) {
       convex_hull(points, hull);
       tol = tolerance(hull);
+      approx = approximation * size_of(hull);
     }
   }
   if (grown_bounds && out.complete) {
@@ -581,7 +673,7 @@ Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tole
   }
 
   // The polygon: the hull's vertices and edges (an inner set, certified when complete).
-  out.tolerance = tol;
+  out.tolerance = std::max(tol, approx);
   for (int i : hull) out.vertices.push_back(points[static_cast<size_t>(i)]);
   const size_t h = out.vertices.size();
   auto push = [&](double nx, double nu, const Vertex& on, int from, int to) {

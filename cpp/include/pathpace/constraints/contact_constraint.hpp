@@ -46,6 +46,11 @@ struct ContactOptions {
   /// LPs allowed per grid point. When they run out, the polygon is the inner hull found so far and the
   /// grid point is reported inexact (FeasibleSet::exact, SolverStats::inexact_points).
   int max_lps = 2000;
+  /// Relative ε of a certified approximation (0: exact). The polygon is an inner set whose support function
+  /// is within ε times its size (its larger extent in ṡ² or s̈) of the exact projection's in every
+  /// direction: the timing stays executable, only slower. An edge is final without its LP when the outer
+  /// bound beyond it (the apex of the support lines at its two ends) lies within that of it.
+  double projection_tolerance = 0.0;
   /// The stretch of s where these contacts hold (one phase of TimeScalingProblem::add_contact_phases): grid
   /// points with s outside [active_begin, active_end] (1e-12 relative) get only inactive rows, and
   /// max_drift looks only inside. Default: the whole path.
