@@ -133,6 +133,11 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("nq", &RobotModel::nq)
       .def_property_readonly("name", &RobotModel::name)
       .def_property_readonly("joint_names", &RobotModel::joint_names)
+      .def_property_readonly("joint_units", [](const RobotModel& r) {
+        std::vector<std::string> out;
+        for (RobotModel::JointType t : r.joint_types()) out.push_back(t == RobotModel::JointType::Prismatic ? "m" : "rad");
+        return out;
+      }, "The unit of each coordinate q[j]: 'rad' (revolute) or 'm' (prismatic; a floating base's x, y, z)")
       .def_property_readonly("link_names", &RobotModel::link_names)
       .def_property_readonly("velocity_limits", &RobotModel::velocity_limits)
       .def_property_readonly("effort_limits", &RobotModel::effort_limits)

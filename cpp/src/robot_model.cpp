@@ -160,6 +160,24 @@ struct Builder {
     if (std::isnan(l.upper)) detail::fail(where + "limit upper = nan must be a number");
   }
 
+  // A locked mimic joint keeps its relation only if its joint is locked too, at a value that gives it:
+  // locking the mimic alone would let its joint move while the mimic stays (the relation silently gone),
+  // and keeping the relation would lock a joint the user did not name. Both are refused, naming the joint.
+  static void check_locked_mimic(const urdf::Joint& joint, double value, const std::map<std::string, double>& locked) {
+    const urdf::JointMimic& m = *joint.mimic;
+    auto held = locked.find(m.joint_name);
+    if (held == locked.end())
+      detail::fail("locked_joints: '" + joint.name + "' = " + detail::fmt(value) + " is a mimic joint of '" +
+                   m.joint_name + "' (q = " + detail::fmt(m.multiplier) + " * q_" + m.joint_name + " + " +
+                   detail::fmt(m.offset) + "), which is not locked: lock '" + m.joint_name +
+                   "' instead (its mimics follow it)");
+    const double implied = m.multiplier * held->second + m.offset;
+    if (std::abs(implied - value) > 1e-9 * std::max(1.0, std::abs(implied)))
+      detail::fail("locked_joints: '" + joint.name + "' = " + detail::fmt(value) + " breaks its mimic relation: '" +
+                   m.joint_name + "' = " + detail::fmt(held->second) + " gives " + detail::fmt(implied) +
+                   "; lock '" + m.joint_name + "' alone (its mimics follow it)");
+  }
+
   // Depth-first over the link tree with an explicit stack, in the order a recursion would take (so the
   // joint order is the URDF's): a recursion overflowed the thread's stack at ~10,000 links in a chain.
   // `placement`: the link frame in the coordinates of body `body` (-1: the world).
@@ -215,6 +233,7 @@ struct Builder {
         if (movable) {
           locked_used[joint->name] = true;
           const double value = locked->second;
+          if (joint->mimic) check_locked_mimic(*joint, value, options.locked_joints);
           if (prismatic) motion.translation() = axis.normalized() * value;
           else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
         }
@@ -310,6 +329,21 @@ void RobotModel::remove_mimic_coordinates(const std::vector<MimicJoint>& mimics)
   v_max_ = as_vector(vel);
   effort_ = as_vector(eff);
   mimic_ = std::move(map);
+}
+
+std::vector<RobotModel::JointType> RobotModel::joint_types() const {
+  std::vector<JointType> out;
+  if (!mimic_) {  // one body per coordinate
+    for (Eigen::Index j = 0; j < nq(); ++j) out.push_back(bodies_[static_cast<size_t>(j)].type);
+    return out;
+  }
+  // With mimic joints the bodies keep the names of their joints (bodies_model); a coordinate is its joint's body.
+  const std::vector<std::string>& body_joint = mimic_->bodies_model->joint_names();
+  for (const std::string& name : joint_names_) {
+    const size_t b = static_cast<size_t>(std::find(body_joint.begin(), body_joint.end(), name) - body_joint.begin());
+    out.push_back(b < bodies_.size() ? bodies_[b].type : JointType::Revolute);
+  }
+  return out;
 }
 
 const std::vector<RobotModel::MimicJoint>& RobotModel::mimic_joints() const {

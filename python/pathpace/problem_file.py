@@ -76,11 +76,17 @@ def read_mapping(file: str | os.PathLike) -> dict[str, Any]:
         raise ProblemFileError(f"{path}: cannot be read ({e.strerror or e})") from None
     try:
         if path.suffix.lower() in (".yaml", ".yml"):
-            import yaml
+            try:
+                import yaml
+            except ImportError:
+                raise ProblemFileError(f"{path}: reading a YAML problem file needs pyyaml: pip install pyyaml "
+                                       "(or pathpace[cli]); a JSON problem file needs nothing") from None
 
             data = yaml.safe_load(text)
         else:
             data = json.loads(text)
+    except ProblemFileError:
+        raise
     except Exception as e:  # noqa: BLE001 - any parser error becomes one line naming the file
         raise ProblemFileError(f"{path}: not valid {'YAML' if path.suffix.lower() in ('.yaml', '.yml') else 'JSON'}: "
                                f"{str(e).splitlines()[0]}") from None
@@ -106,6 +112,10 @@ class _Reader:
         return value
 
     def array(self, value: Any, key: str, ndim: int, size: int | None = None) -> np.ndarray:
+        if ndim == 2 and isinstance(value, (list, tuple)) and value and all(isinstance(v, (list, tuple)) for v in value):
+            for i, row in enumerate(value):  # ragged rows: name the first that differs from row 0
+                if len(row) != len(value[0]):
+                    raise self.fail(f"{key}[{i}]", f"has {len(row)} entries, row 0 has {len(value[0])}")
         try:
             a = np.asarray(value, dtype=float)
         except (TypeError, ValueError):

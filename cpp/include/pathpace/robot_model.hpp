@@ -124,6 +124,9 @@ class RobotModel {
     double multiplier = 1.0, offset = 0.0;
   };
   const std::vector<MimicJoint>& mimic_joints() const;
+  /// The kind of each coordinate q[j] (nq entries): Revolute (rad) or Prismatic (m); a floating base's
+  /// x, y, z are prismatic, its rotations revolute.
+  std::vector<JointType> joint_types() const;
 
   /// Body index of a link (merged links map to the body that carries them) and the link's fixed
   /// placement in that body's frame. Throws InvalidInput for an unknown name.
