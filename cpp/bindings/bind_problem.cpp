@@ -153,12 +153,8 @@ ContactPhase contact_phase_arg(py::handle h, size_t i, const ContactOptions& bas
 }
 
 // drift_tolerance of add_contacts / add_contact_phases, in metres.
-double drift_tolerance_arg(py::handle h) {
-  const double drift_tolerance = to_double(h, "drift_tolerance");
-  if (!(drift_tolerance >= 0.0))
-    throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
-  return drift_tolerance;
-}
+// (its range is checked by check_contact_drift, in C++).
+double drift_tolerance_arg(py::handle h) { return to_double(h, "drift_tolerance"); }
 
 // drift= of add_contacts / add_contact_phases: "auto" (warn up to 10x drift_tolerance, error beyond), "warn", "error".
 DriftPolicy drift_policy_arg(py::handle h) {

@@ -198,7 +198,18 @@ void bind_robot(py::module_& m) {
         }
         return py::make_tuple(A, B, C);
       }, "q"_a, "dq"_a, "ddq"_a, "eq. (12): τ = a ṡ² + b s̈ + c at each row; arrays (m, nq)")
-      .def("__repr__", [](const RobotModel& r) { return "<RobotModel '" + r.name() + "' nq=" + std::to_string(r.nq()) + ">"; });
+      .def_property_readonly("frozen_mimic_joints", &RobotModel::frozen_mimic_joints,
+                             "Mimic joints locked without their joint: frozen at their value while their joint moves "
+                             "(the relation dropped, as in a model reduced on them alone); lock their joint to keep it")
+      .def("__repr__", [](const RobotModel& r) {
+        std::string s = "<RobotModel '" + r.name() + "' nq=" + std::to_string(r.nq());
+        if (!r.frozen_mimic_joints().empty()) {
+          s += " frozen_mimic_joints=[";
+          for (size_t i = 0; i < r.frozen_mimic_joints().size(); ++i) s += (i ? ", '" : "'") + r.frozen_mimic_joints()[i] + "'";
+          s += "]";
+        }
+        return s + ">";
+      });
 
   py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits")
       .def(py::init([](py::handle robot, py::object tau_min, py::object tau_max, py::handle scale, py::handle margin) {

@@ -83,6 +83,7 @@ struct Builder {
   std::vector<double> q_lo, q_hi, v_max, effort;
   std::map<std::string, bool> locked_used;
   std::vector<RobotModel::MimicJoint> mimics;  // in body order; resolved to coordinates after the tree
+  std::vector<std::string> frozen_mimics;       // mimic joints locked without their joint
 
   int add_body(int parent, RobotModel::JointType type, const Eigen::Vector3d& axis, const Eigen::Isometry3d& tree,
                const std::string& name, double lo, double hi, double vel, double eff) {
@@ -160,20 +161,22 @@ struct Builder {
     if (std::isnan(l.upper)) detail::fail(where + "limit upper = nan must be a number");
   }
 
-  // A locked mimic joint keeps its relation only if its joint is locked too, at a value that gives it:
-  // locking the mimic alone would let its joint move while the mimic stays (the relation silently gone),
-  // and keeping the relation would lock a joint the user did not name. Both are refused, naming the joint.
-  static void check_locked_mimic(const urdf::Joint& joint, double value, const std::map<std::string, double>& locked) {
+  // A mimic joint locked together with its joint must agree with the relation (else the two locks
+  // contradict each other: refused, naming both). Locked alone it is frozen where it is while its joint
+  // moves: the relation is dropped for it, which is what a model reduced on that joint alone does
+  // (pinocchio's buildReducedModel, MuJoCo's weld), so such a lock is kept, and recorded
+  // (RobotModel::frozen_mimic_joints) so that it is not silent.
+  void check_locked_mimic(const urdf::Joint& joint, double value) {
     const urdf::JointMimic& m = *joint.mimic;
-    auto held = locked.find(m.joint_name);
-    if (held == locked.end())
-      detail::fail("locked_joints: '" + joint.name + "' = " + detail::fmt(value) + " is a mimic joint of '" +
-                   m.joint_name + "' (q = " + detail::fmt(m.multiplier) + " * q_" + m.joint_name + " + " +
-                   detail::fmt(m.offset) + "), which is not locked: lock '" + m.joint_name +
-                   "' instead (its mimics follow it)");
+    auto held = options.locked_joints.find(m.joint_name);
+    if (held == options.locked_joints.end()) {
+      frozen_mimics.push_back(joint.name);
+      return;
+    }
     const double implied = m.multiplier * held->second + m.offset;
     if (std::abs(implied - value) > 1e-9 * std::max(1.0, std::abs(implied)))
-      detail::fail("locked_joints: '" + joint.name + "' = " + detail::fmt(value) + " breaks its mimic relation: '" +
+      detail::fail("locked_joints: '" + joint.name + "' = " + detail::fmt(value) + " breaks its mimic relation (q = " +
+                   detail::fmt(m.multiplier) + " * q_" + m.joint_name + " + " + detail::fmt(m.offset) + "): '" +
                    m.joint_name + "' = " + detail::fmt(held->second) + " gives " + detail::fmt(implied) +
                    "; lock '" + m.joint_name + "' alone (its mimics follow it)");
   }
@@ -233,7 +236,7 @@ struct Builder {
         if (movable) {
           locked_used[joint->name] = true;
           const double value = locked->second;
-          if (joint->mimic) check_locked_mimic(*joint, value, options.locked_joints);
+          if (joint->mimic) check_locked_mimic(*joint, value);
           if (prismatic) motion.translation() = axis.normalized() * value;
           else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
         }
@@ -407,6 +410,7 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModel
       detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
   b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
   if (!b.mimics.empty()) m.remove_mimic_coordinates(b.mimics);
+  m.frozen_mimics_ = b.frozen_mimics;
   auto source = std::make_shared<Source>();
   source->kind = Source::Kind::Urdf;
   source->urdf = xml;
@@ -1243,6 +1247,7 @@ RobotModel RobotModel::combine(const std::vector<RobotModel>& parts, const std::
   std::vector<double> lo, hi, vel, eff;
   for (size_t i = 0; i < parts.size(); ++i) {
     const RobotModel& p = parts[i];
+    m.frozen_mimics_.insert(m.frozen_mimics_.end(), p.frozen_mimics_.begin(), p.frozen_mimics_.end());
     if ((p.gravity_ - m.gravity_).norm() > 0.0)
       detail::fail("parts[" + std::to_string(i) + "] ('" + p.name_ + "') has gravity (" + detail::fmt(p.gravity_.x()) + ", " +
                    detail::fmt(p.gravity_.y()) + ", " + detail::fmt(p.gravity_.z()) + "), parts[0] has (" +

@@ -22,6 +22,7 @@ solver options; relative file names are relative to the problem file. Example (Y
       cone_edges: 8
       friction_margin: 0.0
       min_normal_force: 0.0
+      drift_tolerance: 1.0e-6           # m a contact point may move along the path; drift: auto | warn | error
     boundary: {sdot: [0, 0]}            # or {qd_begin: [...], qd_end: [...]}
     solver: {tolerance: 1e-6, method: auto, max_iterations: 100}
 
@@ -286,7 +287,7 @@ def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpe
         if robot is None:
             raise r.fail("contacts", "needs a robot (key 'robot')")
         cd = r.mapping(data["contacts"], "contacts", {"points", "cone_edges", "friction_margin", "min_normal_force",
-                                                      "torque_scale", "torque_margin"})
+                                                      "torque_scale", "torque_margin", "drift_tolerance", "drift"})
         points = cd.get("points")
         if not isinstance(points, list) or not points:
             raise r.fail("contacts.points", "expected a non-empty list of contacts")
@@ -304,8 +305,13 @@ def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpe
                                                               "torque_margin") if k in cd}
         if "cone_edges" in cd:
             opts["cone_edges"] = int(r.number(cd["cone_edges"], "contacts.cone_edges"))
-        spec.contacts = _wrap(r, "contacts", pp.ContactConstraint, robot, contacts, **opts)
-        _wrap(r, "contacts", prob.add_constraint, spec.contacts)
+        if "drift_tolerance" in cd:
+            opts["drift_tolerance"] = r.number(cd["drift_tolerance"], "contacts.drift_tolerance")
+        if "drift" in cd:
+            opts["drift"] = cd["drift"]
+        # add_contacts checks that the path keeps the contacts in place (check_contact_drift in C++).
+        _wrap(r, "contacts", prob.add_contacts, robot, contacts, **opts)
+        spec.contacts = [c for c in prob.constraints if isinstance(c, pp.ContactConstraint)][-1]
 
     if "boundary" in data:
         b = r.mapping(data["boundary"], "boundary", {"sdot", "qd_begin", "qd_end"})

@@ -1,5 +1,5 @@
 // Contracts of issue 24 in C++: the contact-drift check (check_contact_drift, TimeScalingProblem::add_contacts),
-// the time limit of a problem proven without SLP, the torque limits a Result carries, a locked mimic joint.
+// the time limit of a problem proven without SLP, the torque limits a Result carries, locked mimic joints.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,10 +46,10 @@ TEST(ContactDrift, NamesTheContactWhereAndHowFar) {
   opt.cone_edges = 4;
   const ContactConstraint c(model, corners(0.5), opt);
   TimeScalingProblem prob(sliding_box_path(0.05), 20);
-  // Every corner slides by 5 cm, farthest at the end (s = 1); the first of equals is reported.
+  // Every corner slides by 5 cm (to rounding, which picks one of the four), farthest at the end (s = 1).
   const auto d = check_contact_drift(c, prob.samples(), 1e-2, DriftPolicy::Warn);
   ASSERT_TRUE(d.has_value());
-  EXPECT_EQ(d->contact, 0);
+  EXPECT_TRUE(d->contact >= 0 && d->contact < 4) << d->contact;
   EXPECT_EQ(d->link, "box");
   EXPECT_NEAR(d->drift, 0.05, 1e-12);
   EXPECT_DOUBLE_EQ(d->s, 1.0);
@@ -57,7 +57,7 @@ TEST(ContactDrift, NamesTheContactWhereAndHowFar) {
   // Auto: up to 10x the tolerance is let through; beyond, an error naming contact, s and drift.
   EXPECT_TRUE(check_contact_drift(c, prob.samples(), 0.006, DriftPolicy::Auto).has_value());
   const std::string msg = error_of([&] { check_contact_drift(c, prob.samples(), 0.004, DriftPolicy::Auto); });
-  EXPECT_NE(msg.find("contact 0 (link 'box') moves by 0.05 m"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("contact " + std::to_string(d->contact) + " (link 'box') moves by 0.05 m"), std::string::npos) << msg;
   EXPECT_NE(msg.find("s = 1"), std::string::npos) << msg;
   EXPECT_NE(error_of([&] { check_contact_drift(c, prob.samples(), 0.04, DriftPolicy::Error); }).find("moves by 0.05"),
             std::string::npos);
@@ -129,7 +129,7 @@ TEST(Solver, TimeLimitReachedBeforeTheSlpIsTheStatus) {
   EXPECT_EQ(r.stats.gap, best.stats.gap);
 }
 
-TEST(RobotModel, LockingOnlyAMimicJointIsRefused) {
+TEST(RobotModel, ALockedMimicIsFrozenAloneOrMustAgreeWithItsJoint) {
   const std::string urdf = R"(<robot name="gripper">
  <link name="base"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
  <link name="a"><inertial><mass value="0.1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
@@ -138,18 +138,30 @@ TEST(RobotModel, LockingOnlyAMimicJointIsRefused) {
  <joint name="finger2" type="prismatic"><parent link="base"/><child link="b"/><axis xyz="0 -1 0"/><limit lower="0" upper="0.04" velocity="0.2" effort="20"/><mimic joint="finger1" multiplier="1" offset="0"/></joint>
 </robot>)";
   RobotModelOptions o;
+  EXPECT_TRUE(RobotModel::from_urdf_string(urdf, o).frozen_mimic_joints().empty());
+  // Alone: frozen (finger1 still moves, the relation dropped for finger2), and said so.
   o.locked_joints = {{"finger2", 0.01}};
+  const RobotModel alone = RobotModel::from_urdf_string(urdf, o);
+  EXPECT_EQ(alone.nq(), 1);
+  EXPECT_EQ(alone.frozen_mimic_joints(), std::vector<std::string>{"finger2"});
+  EXPECT_TRUE(alone.mimic_joints().empty());
+  // Combined models keep the record.
+  EXPECT_EQ(RobotModel::combine({alone, RobotModel::free_object("box", 1.0)}).frozen_mimic_joints(),
+            std::vector<std::string>{"finger2"});
+  // With its joint, against the relation: refused, naming both.
+  o.locked_joints = {{"finger1", 0.02}, {"finger2", 0.01}};
   std::string msg;
   try {
     RobotModel::from_urdf_string(urdf, o);
   } catch (const InvalidInput& e) {
     msg = e.what();
   }
-  EXPECT_NE(msg.find("'finger2' = 0.01 is a mimic joint of 'finger1'"), std::string::npos) << msg;
-  o.locked_joints = {{"finger1", 0.02}, {"finger2", 0.01}};  // against the relation
-  EXPECT_THROW(RobotModel::from_urdf_string(urdf, o), InvalidInput);
-  o.locked_joints = {{"finger1", 0.02}, {"finger2", 0.02}};  // consistent: both locked
-  EXPECT_EQ(RobotModel::from_urdf_string(urdf, o).nq(), 0);
-  o.locked_joints = {{"finger1", 0.02}};  // the leader: its mimic follows
-  EXPECT_EQ(RobotModel::from_urdf_string(urdf, o).nq(), 0);
+  EXPECT_NE(msg.find("'finger2' = 0.01 breaks its mimic relation (q = 1 * q_finger1 + 0): 'finger1' = 0.02 gives 0.02"),
+            std::string::npos) << msg;
+  o.locked_joints = {{"finger1", 0.02}, {"finger2", 0.02}};  // consistent: nothing frozen, nothing moves
+  const RobotModel both = RobotModel::from_urdf_string(urdf, o);
+  EXPECT_EQ(both.nq(), 0);
+  EXPECT_TRUE(both.frozen_mimic_joints().empty());
+  o.locked_joints = {{"finger1", 0.02}};  // the joint: its mimic follows
+  EXPECT_TRUE(RobotModel::from_urdf_string(urdf, o).frozen_mimic_joints().empty());
 }

@@ -307,12 +307,12 @@ def test_urdf_erd_on_the_command_line_and_its_errors(tmp_path):
     one_line_error(run("solve", w, "--urdf", tmp_path / "absent.urdf"), "argument --urdf", "absent.urdf", "does not exist")
 
 
-def test_locking_only_a_mimic_joint_is_an_error_naming_its_joint(tmp_path):
+def test_locked_mimic_against_its_joint_is_an_error_naming_both(tmp_path):
     w = tmp_path / "w.csv"
-    np.savetxt(w, np.zeros((3, 8)), delimiter=",")
+    np.savetxt(w, np.zeros((3, 7)), delimiter=",")
     one_line_error(run("solve", w, "--urdf", "erd:panda_description/urdf/panda.urdf", "--locked-joints",
-                       "panda_finger_joint2"), "'panda_finger_joint2' = 0 is a mimic joint of 'panda_finger_joint1'",
-                   "lock 'panda_finger_joint1' instead")
+                       "panda_finger_joint1=0.01", "panda_finger_joint2=0.03"),
+                   "'panda_finger_joint2' = 0.03 breaks its mimic relation", "'panda_finger_joint1' = 0.01 gives 0.01")
 
 
 def test_ragged_waypoints_name_the_row(tmp_path):
