@@ -311,6 +311,28 @@ def phase_plane_ylim(d: dict[str, Any]) -> tuple[float, tuple[float, float] | No
     return 1.1 * max(top, prof, 1e-9), None
 
 
+def clipped_note(d: dict[str, Any], ymax: float, clipped: tuple[float, float]) -> str:
+    """What the phase plane says when its ṡ range clips the maximum-velocity curve."""
+    finite = d["sdot_max"][np.isfinite(d["sdot_max"])]
+    if len(finite) and finite.min() > ymax:
+        return f"maximum-velocity curve above this range everywhere (min {finite.min():.3g}, peak {clipped[0]:.3g})"
+    return f"maximum-velocity curve clipped (peak {clipped[0]:.3g} at s = {clipped[1]:.3g})"
+
+
+def polygons_view(polys: list[dict[str, Any]]) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """Axis limits that show the bounded polygons and the solution's points when some polygon is unbounded
+    (drawn cut at the solver's stand-in bound, 1e14 and more, which would hide everything else); None
+    when all are bounded."""
+    if all(p["bounded"] for p in polys):
+        return None
+    pts = [np.array([[p["x"], p["u"]]]) for p in polys]
+    pts += [p["vertices"] for p in polys if p["bounded"] and len(p["vertices"])]
+    v = np.vstack(pts)
+    lo, hi = v.min(axis=0), v.max(axis=0)
+    span = np.maximum(hi - lo, 0.5 * np.maximum(np.abs(hi), 1e-3))
+    return (min(0.0, lo[0] - 0.1 * span[0]), hi[0] + 0.5 * span[0]), (lo[1] - 0.5 * span[1], hi[1] + 0.5 * span[1])
+
+
 def phase_plane(problem, result: Result, ax=None, joint_names=None):
     """ṡ(s) coloured by the binding limit, over the maximum-velocity curve (dashed); where that curve is
     infinite (nothing bounds ṡ alone there) the stretch is shaded and labelled."""
@@ -334,8 +356,8 @@ def phase_plane(problem, result: Result, ax=None, joint_names=None):
     ymax, clipped = phase_plane_ylim(d)
     ax.set_ylim(0, ymax)
     if clipped is not None:
-        ax.text(0.99, 0.99, f"maximum-velocity curve clipped (peak {clipped[0]:.3g} at s = {clipped[1]:.3g})",
-                ha="right", va="top", transform=ax.transAxes, fontsize="x-small", color="0.3")
+        ax.text(0.99, 0.99, clipped_note(d, ymax, clipped), ha="right", va="top", transform=ax.transAxes,
+                fontsize="x-small", color="0.3")
     ax.set_xlim(s[0], s[-1])
     ax.set_xlabel("s (path parameter)")
     ax.set_ylabel("ṡ (1/s)")
@@ -347,7 +369,8 @@ def phase_plane(problem, result: Result, ax=None, joint_names=None):
 def polygons(problem, result: Result, s_values=None, ax=None):
     """Feasible (ṡ², s̈) polygons at chosen s with the solution's point in each (the paper's fig. 3)."""
     ax = _axes(ax)
-    for i, p in enumerate(polygons_data(problem, result, s_values)):
+    polys = polygons_data(problem, result, s_values)
+    for i, p in enumerate(polys):
         v = p["vertices"]
         color = f"C{i}"
         if len(v):
@@ -359,6 +382,12 @@ def polygons(problem, result: Result, s_values=None, ax=None):
         ax.plot([p["x"]], [p["u"]], "o", color=color)
     ax.set_xlabel("x = ṡ² (1/s²)")
     ax.set_ylabel("u = s̈ (1/s²)")
+    view = polygons_view(polys)
+    if view is not None:
+        ax.set_xlim(*view[0])
+        ax.set_ylim(*view[1])
+        ax.text(0.99, 0.01, "unbounded polygons extend beyond the view", ha="right", va="bottom",
+                transform=ax.transAxes, fontsize="x-small", color="0.3")
     ax.set_title("feasible (ṡ², s̈) polygons and the solution (dots)", fontsize="medium")
     _legend_outside(ax)
     return ax

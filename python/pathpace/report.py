@@ -58,7 +58,8 @@ def _against_limits(t, ratios, ytitle: str):
                                hovertemplate=f"{name}: %{{y:.3f}}<extra></extra>"))
     for y in (-1, 1):
         f.add_hline(y=y, line={"dash": "dash", "color": "black", "width": 1})
-    f.update_layout(xaxis_title="t (s)", yaxis_title=ytitle, yaxis_range=[-1.15, 1.15])
+    # showlegend: plotly hides the legend of a single trace, and with it the joint's name and peak.
+    f.update_layout(xaxis_title="t (s)", yaxis_title=ytitle, yaxis_range=[-1.15, 1.15], showlegend=True)
     return f
 
 
@@ -73,11 +74,13 @@ def figures(spec, result) -> list[tuple[str, Any]]:
     finite = np.isfinite(d["sdot_max"])
     f.add_trace(go.Scatter(x=_f32(d["s"]), y=_f32(np.where(finite, d["sdot_max"], np.nan)), mode="lines",
                            name="maximum-velocity curve", line={"dash": "dash", "color": "black", "width": 1}))
-    for i, (a, b) in enumerate(_plot._unbounded_spans(d["s"], finite)):
+    spans = _plot._unbounded_spans(d["s"], finite)
+    for a, b in spans:
         half = 0.5 * (d["s"][1] - d["s"][0]) if a == b and len(d["s"]) > 1 else 0.0
-        f.add_vrect(x0=a - half, x1=b + half, fillcolor="#d9d9d9", opacity=0.6, line_width=0, layer="below",
-                    annotation_text="ṡ_max = ∞ (shaded): nothing bounds ṡ alone" if i == 0 else None,
-                    annotation_position="top left")
+        f.add_vrect(x0=a - half, x1=b + half, fillcolor="#d9d9d9", opacity=0.6, line_width=0, layer="below")
+    if spans:  # said in the legend (an annotation per stretch would collide with the others)
+        f.add_trace(go.Scatter(x=[None], y=[None], mode="markers", name="ṡ_max = ∞ (shaded): nothing bounds ṡ alone",
+                               marker={"symbol": "square", "size": 12, "color": "#d9d9d9"}))
     if result.ok:
         for cat, (xs, ys) in _segments(d["s"], d["sdot"], d["category"]).items():
             f.add_trace(go.Scatter(x=xs, y=ys, mode="lines", name=f"bound by: {_plot.CATEGORY_NAMES[cat]}",
@@ -87,7 +90,7 @@ def figures(spec, result) -> list[tuple[str, Any]]:
                                hovertemplate="s=%{x:.4f}<br>ṡ=%{y:.4f}<br>%{text}<extra></extra>"))
     ymax, clipped = _plot.phase_plane_ylim(d)
     if clipped is not None:
-        f.add_annotation(text=f"maximum-velocity curve clipped (peak {clipped[0]:.3g} at s = {clipped[1]:.3g})",
+        f.add_annotation(text=_plot.clipped_note(d, ymax, clipped),
                          xref="paper", yref="paper", x=1, y=1, showarrow=False, xanchor="right", yanchor="top")
     f.update_layout(xaxis_title="s (path parameter)", yaxis_title="ṡ (1/s)", yaxis_range=[0, ymax])
     figs.append(("Phase plane: ṡ(s), coloured by the limit that binds", f))
@@ -95,7 +98,8 @@ def figures(spec, result) -> list[tuple[str, Any]]:
         return figs
 
     f = go.Figure()
-    for i, p in enumerate(_plot.polygons_data(spec, result)):
+    polys = _plot.polygons_data(spec, result)
+    for i, p in enumerate(polys):
         v = p["vertices"]
         color = f"hsl({(i * 110) % 360}, 60%, 45%)"
         if len(v):
@@ -106,6 +110,11 @@ def figures(spec, result) -> list[tuple[str, Any]]:
         f.add_trace(go.Scatter(x=[p["x"]], y=[p["u"]], mode="markers", marker={"color": color, "size": 9},
                                showlegend=False))
     f.update_layout(xaxis_title="x = ṡ² (1/s²)", yaxis_title="u = s̈ (1/s²)")
+    view = _plot.polygons_view(polys)
+    if view is not None:  # unbounded polygons are cut at the solver's stand-in bound: show the rest
+        f.update_layout(xaxis_range=list(view[0]), yaxis_range=list(view[1]))
+        f.add_annotation(text="unbounded polygons extend beyond the view", xref="paper", yref="paper", x=1, y=0,
+                         showarrow=False, xanchor="right", yanchor="bottom")
     figs.append(("Feasible polygons in (ṡ², s̈) and the solution (the paper's fig. 3)", f))
 
     td = _plot.torques_data(result, getattr(spec, "robot", None), samples=_SAMPLES)

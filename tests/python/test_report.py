@@ -331,6 +331,7 @@ def test_report_summary_rounds_and_labels():
     figs = dict(report.figures(prob, res))
     assert figs["Joint velocities against the limits"].layout.yaxis.title.text == "joint velocity / limit"
     assert figs["Joint accelerations against the limits"].layout.yaxis.title.text == "joint acceleration / limit"
+    assert figs["Joint velocities against the limits"].layout.showlegend  # one joint: its name and peak still shown
     # The data in the page is the result's, to float32.
     phase = figs["Phase plane: ṡ(s), coloured by the limit that binds"]
     hover = [tr for tr in phase.data if tr.mode == "markers"][0]
@@ -338,3 +339,35 @@ def test_report_summary_rounds_and_labels():
     vel = figs["Joint velocities against the limits"].data[0]
     np.testing.assert_allclose(np.asarray(vel.y, float), res.trajectory().qd(np.asarray(vel.x, float))[:, 0],
                                rtol=1e-5, atol=1e-6)
+
+
+def test_views_that_would_hide_the_data_are_narrowed_and_say_so():
+    bounded = {"bounded": True, "x": 1.0, "u": 0.5, "vertices": np.array([[0.0, -1.0], [2.0, 0.0], [0.0, 1.0]])}
+    assert plot.polygons_view([bounded]) is None
+    cut = {"bounded": False, "x": 0.2, "u": -3.0, "vertices": np.array([[0.0, -1e14], [1e14, 0.0], [0.0, 1e14]])}
+    (x0, x1), (y0, y1) = plot.polygons_view([bounded, cut])
+    assert x0 <= 0.0 and 2.0 < x1 < 10.0 and y0 < -3.0 and 1.0 < y1 < 10.0  # the bounded one and both points
+    only = plot.polygons_view([cut])
+    assert only[0][0] <= 0.2 <= only[0][1] and only[1][0] <= -3.0 <= only[1][1]
+    d = {"s": np.array([0.0, 0.5, 1.0]), "sdot": np.array([0.0, 1.0, 0.0]), "sdot_max": np.array([5.0, 50.0, 5.0])}
+    ymax, clipped = plot.phase_plane_ylim(d)
+    assert plot.clipped_note(d, ymax, clipped) == "maximum-velocity curve above this range everywhere (min 5, peak 50)"
+    d["sdot_max"] = np.array([2.0, 50.0, 2.0])
+    ymax, clipped = plot.phase_plane_ylim(d)
+    assert plot.clipped_note(d, ymax, clipped) == "maximum-velocity curve clipped (peak 50 at s = 0.5)"
+    pytest.importorskip("plotly")
+    from pathpace import report
+
+    shaded = pp.TimeScalingProblem(pp.PiecewisePolynomialPath([0.0, 1.0], np.array([[[0.0], [3.0]]])), grid=40)
+    shaded.add_acceleration_limits([-1.0], [1.0])
+    phase = report.figures(shaded, shaded.solve())[0][1]
+    assert "ṡ_max = ∞ (shaded): nothing bounds ṡ alone" in [tr.name for tr in phase.data]
+    assert len(phase.layout.shapes) == 1 and phase.layout.shapes[0].x0 == 0.0 and phase.layout.shapes[0].x1 == 1.0
+    # Drawn: the polygons' axes take that view, with the note.
+    plt = _agg()
+    acc = pp.TimeScalingProblem(pp.PiecewisePolynomialPath([0.0, 1.0], np.array([[[0.0], [3.0]]])), grid=40)
+    acc.add_acceleration_limits([-1.0], [1.0])
+    r = acc.solve()
+    ax = plot.polygons(acc, r, s_values=[0.5])
+    assert ax.get_xlim()[1] < 1e3 and "unbounded polygons extend beyond the view" in [t.get_text() for t in ax.texts]
+    plt.close("all")
