@@ -277,6 +277,8 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
+    import plotly  # noqa: F401 - before the solve: a missing plotly is an error found in a second
+
     from .report import write_report
 
     spec, res = _solved(args)
@@ -407,6 +409,11 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The extra of pyproject.toml that brings a package the commands import on demand.
+_EXTRA_OF = {"matplotlib": "plot", "plotly": "plot", "yaml": "cli", "dask": "batch", "distributed": "batch",
+             "mujoco": "sim"}
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     from ._core import Error
     from .problem_file import ProblemFileError
@@ -421,7 +428,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as e:
         fail(f"{e.filename or args.command}: {e.strerror or e}")
     except ImportError as e:
-        fail(f"{args.command}: needs the Python package '{e.name}' (pip install {e.name})")
+        extra = _EXTRA_OF.get((e.name or "").split(".")[0])
+        fail(f"{args.command}: needs the Python package '{e.name}' (pip install {e.name}"
+             + (f", or pathpace[{extra}])" if extra else ")"))
 
 
 if __name__ == "__main__":

@@ -457,7 +457,9 @@ def accelerations(result: Result, amin=None, amax=None, ax=None, joint_names=Non
 def _kinematic(result, kind, lo, hi, ax, joint_names, samples, problem):
     ax = _axes(ax)
     if lo is None or hi is None:
-        lim = problem_limits(problem).get(kind) if problem is not None else None
+        if problem is None:
+            return _nothing(ax, f"joint {kind}", f"no {kind} limits given (pass problem=, or the limits)")
+        lim = problem_limits(problem).get(kind)
         if lim is None:
             return _nothing(ax, f"joint {kind}", f"no {kind} limits in this problem")
         lo, hi = lim

@@ -357,3 +357,14 @@ def test_audit_units_per_joint_kind():
     none = SimpleNamespace(robot=None)
     assert _units(none, 2, "/s²") == ["rad/s² or m/s²"] * 2
     assert _units(none, 1, "", torque=True) == ["N·m or N"]
+
+
+def test_a_missing_optional_package_names_its_extra(problem, tmp_path):
+    for module, extra in (("matplotlib", "plot"), ("plotly", "plot")):
+        command = "plot" if module == "matplotlib" else "report"
+        code = (f"import sys; sys.modules[{module!r}] = None\n"
+                "from pathpace.cli import main\n"
+                f"main([{command!r}, {str(problem)!r}, '--out', {str(tmp_path / ('x.png' if command == 'plot' else 'x.html'))!r}])\n")
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+        assert p.returncode == 2, p.stderr
+        assert f"needs the Python package '{module}' (pip install {module}, or pathpace[{extra}])" in p.stderr, p.stderr

@@ -371,3 +371,28 @@ def test_views_that_would_hide_the_data_are_narrowed_and_say_so():
     ax = plot.polygons(acc, r, s_values=[0.5])
     assert ax.get_xlim()[1] < 1e3 and "unbounded polygons extend beyond the view" in [t.get_text() for t in ax.texts]
     plt.close("all")
+
+
+def test_clipped_curve_and_narrowed_view_are_noted_on_both_backends():
+    """A parabola that reverses at s = 0.544 (p' = 0): the maximum-velocity curve peaks far above the
+    profile, and a 1-joint polygon under acceleration limits alone is unbounded."""
+    plt = _agg()
+    pytest.importorskip("plotly")
+    from pathpace import report
+
+    prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.array([[0.0], [1.0], [0.3]])), grid=200)
+    prob.add_acceleration_limits([-2.0], [2.0])
+    prob.add_velocity_limits([-1.5], [1.5])
+    res = prob.solve()
+    ax = plot.phase_plane(prob, res)
+    assert any(t.get_text().startswith("maximum-velocity curve clipped (peak ") for t in ax.texts)
+    assert ax.get_ylim()[1] == pytest.approx(3.0 * np.max(res.sdot))
+    figs = report.figures(prob, res)
+    assert any(a.text.startswith("maximum-velocity curve clipped") for a in figs[0][1].layout.annotations)
+    acc = pp.TimeScalingProblem(pp.PiecewisePolynomialPath([0.0, 1.0], np.array([[[0.0], [3.0]]])), grid=40)
+    acc.add_acceleration_limits([-1.0], [1.0])
+    poly = dict(report.figures(acc, acc.solve()))["Feasible polygons in (ṡ², s̈) and the solution (the paper's fig. 3)"]
+    assert [a.text for a in poly.layout.annotations] == ["unbounded polygons extend beyond the view"]
+    assert poly.layout.xaxis.range[1] < 1e3
+    assert plot.velocities(res).texts[0].get_text() == "no velocity limits given (pass problem=, or the limits)"
+    plt.close("all")
