@@ -404,11 +404,18 @@ Attributes
 ----------
 status : Status
     OPTIMAL, INFEASIBLE (see infeasible_*), ITERATION_LIMIT (feasible, maybe not optimal),
+    TIME_LIMIT (``time_limit`` reached: feasible, stats['gap'] bounds its distance to the optimum),
     NUMERICAL_ERROR (the LP solver failed) or UNBOUNDED (nothing bounds the speed).
 ok : bool
-    True for OPTIMAL and ITERATION_LIMIT (a feasible timing).
+    True for OPTIMAL, ITERATION_LIMIT and TIME_LIMIT (a feasible timing).
 message : str
-    Why a solve failed, with grid index, s and binding constraint.
+    Why a solve failed, with grid index, s and binding constraint; for a timing whose path moves its
+    contacts (``contact_drift``), which contacts move.
+contact_drift : list of dict
+    Contacts that the path moves although they should hold (drift='warn', or 'auto' within 10x
+    drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message.
+tau_min, tau_max : ndarray (nq,) or None
+    The torque limits the solve held (after scale and margin), None without torque limits.
 duration : float
     T in s (nan without a timing).
 s, sdot, times : ndarray (N+1,)
@@ -493,7 +500,11 @@ cone_offset : float
 torque_scale, torque_margin : float
     The torque limits are multiplied by torque_scale and shrunk by torque_margin (N·m per side).
 drift_tolerance : float
-    m: a warning names the contact that moves more than this along the path.
+    m: how far a contact point may move along the path (it should not: eq. 17-18 hold it in place).
+drift : {'auto', 'warn', 'error'}
+    A contact that moves by more than drift_tolerance: 'warn' times it anyway with a UserWarning, and
+    the result says so (``Result.contact_drift`` and ``message``); 'error' raises InvalidInputError naming
+    the contact, s and the drift; 'auto' (default) warns up to 10 x drift_tolerance and raises beyond.
 tau_min, tau_max : array, optional
     Torque limits (default -/+ URDF effort; 0 on a floating base).
 min_link_normal_force : float
@@ -529,8 +540,8 @@ phases : list of (s_begin, s_end, contacts) or (s_begin, s_end, contacts, option
 cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin, tau_min, tau_max,
 min_link_normal_force, max_lps, cone_offset, projection_tolerance :
     As in ``add_contacts``, for every phase.
-drift_tolerance : float
-    m: a warning names a phase's contact that moves more than this on that phase's stretch.
+drift_tolerance, drift :
+    As in ``add_contacts``, for each phase's contacts on that phase's stretch.
 impact_tolerance : float
     Relative tolerance of the no-impact rule (default 1e-6).)"},
     {"TimeScalingProblem", "add_constraint", R"(Adds any Constraint; its rows are evaluated now, so errors surface here.)"},

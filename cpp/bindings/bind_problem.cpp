@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdio>
 #include <mutex>
 #include <unordered_map>
 
@@ -167,22 +168,43 @@ ContactPhase contact_phase_arg(py::handle h, size_t i, const ContactOptions& bas
 }
 
 // drift_tolerance of add_contacts / add_contact_phases, in metres.
-double drift_tolerance_arg(py::handle h) {
-  const double drift_tolerance = to_double(h, "drift_tolerance");
-  if (!(drift_tolerance >= 0.0))
-    throw InvalidInput("drift_tolerance = " + std::to_string(drift_tolerance) + " must be >= 0 (metres)");
-  return drift_tolerance;
+// (its range is checked by check_contact_drift, in C++).
+double drift_tolerance_arg(py::handle h) { return to_double(h, "drift_tolerance"); }
+
+// drift= of add_contacts / add_contact_phases: "auto" (warn up to 10x drift_tolerance, error beyond), "warn", "error".
+DriftPolicy drift_policy_arg(py::handle h) {
+  const std::string v = py::isinstance<py::str>(h) ? h.cast<std::string>() : std::string();
+  if (v == "auto") return DriftPolicy::Auto;
+  if (v == "warn") return DriftPolicy::Warn;
+  if (v == "error") return DriftPolicy::Error;
+  throw InvalidInput("drift = " + py::repr(h).cast<std::string>() + ", expected 'auto', 'warn' or 'error'");
 }
 
-// The path must keep every contact in place (c(p(s)) = d) where the contacts hold: the warning that names
-// the contact that moves most, if it moves by more than drift_tolerance along `where`; "" otherwise.
-std::string drift_warning(const ContactConstraint& c, const PathSamples& samples, double drift_tolerance,
-                          const std::string& where) {
-  int which = -1;
-  const double drift = c.max_drift(samples, &which);
-  if (!(drift > drift_tolerance) || which < 0) return {};
-  return "contact " + std::to_string(which) + " (link '" + c.contacts()[static_cast<size_t>(which)].link + "') moves by " +
-         std::to_string(drift) + " m along " + where + ": the path does not keep it in place";
+py::dict drift_dict(const ContactDrift& d) {
+  return py::dict("constraint"_a = d.constraint, "contact"_a = d.contact, "link"_a = d.link, "s"_a = d.s,
+                  "drift"_a = d.drift, "tolerance"_a = d.tolerance, "message"_a = d.message());
+}
+py::list drift_list(const std::vector<ContactDrift>& v) {
+  py::list out;
+  for (const ContactDrift& d : v) out.append(py::make_tuple(d.constraint, d.contact, d.link, d.s, d.drift, d.tolerance));
+  return out;
+}
+std::vector<ContactDrift> drift_vector(py::handle h) {
+  std::vector<ContactDrift> out;
+  for (py::handle item : h) {
+    const py::tuple x = item.cast<py::tuple>();
+    check_state(x, 6, "contact drift");
+    out.push_back({x[0].cast<std::string>(), x[1].cast<int>(), x[2].cast<std::string>(), x[3].cast<double>(),
+                   x[4].cast<double>(), x[5].cast<double>()});
+  }
+  return out;
+}
+
+// %.6g: what a __repr__ shows of a number.
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 void warn(const std::string& msg) {
@@ -502,6 +524,14 @@ void bind_problem(py::module_& m) {
                         tr->set_contact_phases(phases_vector(t[5]));
                         return tr;
                       }))
+      .def("__repr__", [](const Trajectory& tr) {
+        std::string s = "<Trajectory duration=" + short_number(tr.duration()) + " s dof=" +
+                        std::to_string(tr.path()->dof()) + " grid_points=" + std::to_string(tr.grid().size());
+        if (tr.robot()) s += " robot='" + tr.robot()->name() + "'";
+        if (!tr.contact_phases().empty()) s += " contact_phases=" + std::to_string(tr.contact_phases().size());
+        else if (tr.contacts()) s += " contacts=" + std::to_string(tr.contacts()->contacts().size());
+        return s + ">";
+      })
       .def("torques", [](const Trajectory& tr, py::handle t, py::handle robot_arg) -> py::object {
         const auto robot = robot_arg.is_none() ? nullptr : to_object<RobotModel>(robot_arg, "robot", "RobotModel");
         const RobotModel* r = robot ? robot.get() : tr.robot().get();
@@ -535,6 +565,19 @@ void bind_problem(py::module_& m) {
       .def_property_readonly("binding", [](const Result& r) { return r.binding.strings(); },
                     "For a timed result: per interval (N entries) the label of the constraint that binds there, "
                     "'' where none does, typically the interval of a switch (to colour a phase-plane plot by the active limit)")
+      .def_property_readonly("contact_drift", [](const Result& r) {
+        py::list out;
+        for (const ContactDrift& d : r.contact_drift) out.append(drift_dict(d));
+        return out;
+      }, "Contacts the path moves although they should hold (add_contacts with drift='warn', or 'auto' within 10x "
+         "drift_tolerance): dicts of constraint, contact, link, s, drift (m), tolerance (m), message; [] if none")
+      .def_property_readonly("tau_min", [](const Result& r) -> py::object {
+        return r.tau_min.size() ? py::cast(r.tau_min) : py::object(py::none());
+      }, "The torque limits this solve held (after scale and margin; the problem's TorqueLimits, else its contact "
+         "constraint's), or None without torque limits")
+      .def_property_readonly("tau_max", [](const Result& r) -> py::object {
+        return r.tau_max.size() ? py::cast(r.tau_max) : py::object(py::none());
+      }, "See tau_min")
       .def("trajectory", [](const Result& r) { return std::make_shared<Trajectory>(r.trajectory()); })
       .def("__bool__", &Result::ok, "True when the timing is usable (``ok``): ``if res: ...``")
       .def(py::pickle([](const Result& r) {
@@ -544,10 +587,10 @@ void bind_problem(py::module_& m) {
                             stats_state(r.stats),
                             std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
                             std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding.strings(),
-                            phases_list(r.contact_phases));
+                            phases_list(r.contact_phases), drift_list(r.contact_drift), r.tau_min, r.tau_max);
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 15, "Result");
+                        if (t.size() != 15) check_state(t, 18, "Result");  // 15: before contact_drift, tau_min/max
                         Result r;
                         r.status = static_cast<Status>(t[0].cast<int>());
                         r.message = t[1].cast<std::string>();
@@ -567,11 +610,17 @@ void bind_problem(py::module_& m) {
                         r.relaxation = t[12].cast<std::map<std::string, double>>();
                         r.binding = BindingLabels(t[13].cast<std::vector<std::string>>());
                         r.contact_phases = phases_vector(t[14]);
+                        if (t.size() == 18) {
+                          r.contact_drift = drift_vector(t[15]);
+                          r.tau_min = to_vector(t[16], "tau_min");
+                          r.tau_max = to_vector(t[17], "tau_max");
+                        }
                         return r;
                       }))
       .def("__repr__", [](const Result& r) {
         std::string s = "<Result status=" + std::string(to_string(r.status));
-        if (r.ok()) s += " duration=" + std::to_string(r.duration);
+        if (r.ok()) s += " duration=" + short_number(r.duration);
+        if (!r.contact_drift.empty()) s += " moving_contacts=" + std::to_string(r.contact_drift.size());
         else if (!r.message.empty()) s += " message='" + r.message + "'";
         return s + ">";
       });
@@ -637,7 +686,7 @@ void bind_problem(py::module_& m) {
                                     py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                                     py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                                     py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
-                                    py::handle impact_tolerance, py::handle cone_offset, py::handle projection_tolerance) {
+                                    py::handle impact_tolerance, py::handle cone_offset, py::handle projection_tolerance, py::handle drift_h) {
         const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
                                                      torque_margin, min_link_normal_force, max_lps, cone_offset,
                                                      projection_tolerance);
@@ -646,33 +695,29 @@ void bind_problem(py::module_& m) {
         std::vector<ContactPhase> phases;
         for (size_t i = 0; i < items.size(); ++i) phases.push_back(contact_phase_arg(items[i], i, o));
         const double drift_tolerance = drift_tolerance_arg(drift_tolerance_h);
+        const DriftPolicy drift = drift_policy_arg(drift_h);
         const double impact = to_double(impact_tolerance, "impact_tolerance");
         const Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
         const Eigen::VectorXd hi = optional_vector(tau_max, "tau_max");
-        std::vector<std::string> moved;
+        std::vector<ContactDrift> moved;
         {
           ProblemUse use(p, ProblemUse::kWrite, "add_contact_phases");
           py::gil_scoped_release release;
-          p.add_contact_phases(robot, phases, o, lo, hi, impact);
-          // Each phase must keep its own contacts in place on its own stretch (ContactConstraint::max_drift).
-          const auto& cons = p.constraints();
-          for (size_t i = cons.size() - phases.size(); i < cons.size(); ++i) {
-            auto c = std::dynamic_pointer_cast<const ContactConstraint>(cons[i]);
-            if (!c) continue;
-            const std::string msg = drift_warning(*c, p.samples(), drift_tolerance, "its phase");
-            if (!msg.empty()) moved.push_back(c->options().label + ": " + msg);
-          }
+          const size_t before = p.contact_drift().size();
+          // Each phase must keep its own contacts in place on its own stretch (check_contact_drift).
+          p.add_contact_phases(robot, phases, o, lo, hi, impact, drift_tolerance, drift);
+          moved.assign(p.contact_drift().begin() + static_cast<long>(before), p.contact_drift().end());
         }
-        for (const std::string& msg : moved) warn(msg);
+        for (const ContactDrift& d : moved) warn(d.message());
       }, "robot"_a, "phases"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
          "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "impact_tolerance"_a = 1e-6,
-         "cone_offset"_a = 0.0, "projection_tolerance"_a = 0.0)
+         "cone_offset"_a = 0.0, "projection_tolerance"_a = 0.0, "drift"_a = "auto")
       .def("add_contacts", [](TimeScalingProblem& p, py::handle robot, py::handle contacts, py::handle cone_edges,
                               py::handle friction_margin, py::handle min_normal_force, py::handle torque_scale,
                               py::handle torque_margin, py::handle drift_tolerance_h, py::handle tau_min,
                               py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps,
-                              py::handle cone_offset, py::handle projection_tolerance) {
+                              py::handle cone_offset, py::handle projection_tolerance, py::handle drift_h) {
         const ContactOptions o = contact_options_arg(cone_edges, friction_margin, min_normal_force, torque_scale,
                                                      torque_margin, min_link_normal_force, max_lps, cone_offset,
                                                      projection_tolerance);
@@ -680,16 +725,20 @@ void bind_problem(py::module_& m) {
             to_object<RobotModel>(robot, "robot", "RobotModel"), to_contacts(contacts, "contacts"), o,
             optional_vector(tau_min, "tau_min"), optional_vector(tau_max, "tau_max"));
         const double drift_tolerance = drift_tolerance_arg(drift_tolerance_h);
-        if (p.samples().dof() != c->robot()->nq())
-          throw InvalidInput("path has " + std::to_string(p.samples().dof()) + " coordinates, robot '" +
-                             c->robot()->name() + "' has " + std::to_string(c->robot()->nq()) + " joints");
-        const std::string msg = drift_warning(*c, p.samples(), drift_tolerance, "the path");
-        if (!msg.empty()) warn(msg);
-        add_released(p, std::move(c), "add_contacts");
+        const DriftPolicy drift = drift_policy_arg(drift_h);
+        std::vector<ContactDrift> moved;
+        {
+          ProblemUse use(p, ProblemUse::kWrite, "add_contacts");
+          py::gil_scoped_release release;
+          const size_t before = p.contact_drift().size();
+          p.add_contacts(std::move(c), drift_tolerance, drift);  // checks the drift (check_contact_drift)
+          moved.assign(p.contact_drift().begin() + static_cast<long>(before), p.contact_drift().end());
+        }
+        for (const ContactDrift& d : moved) warn(d.message());
       }, "robot"_a, "contacts"_a, "cone_edges"_a = 8, "friction_margin"_a = 0.0, "min_normal_force"_a = 0.0,
          "torque_scale"_a = 1.0, "torque_margin"_a = 0.0, "drift_tolerance"_a = 1e-6, "tau_min"_a = py::none(),
          "tau_max"_a = py::none(), "min_link_normal_force"_a = 0.0, "max_lps"_a = 2000, "cone_offset"_a = 0.0,
-         "projection_tolerance"_a = 0.0)
+         "projection_tolerance"_a = 0.0, "drift"_a = "auto")
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         add_released(p, to_object<Constraint>(c, "constraint", "Constraint"), "add_constraint");
       }, "constraint"_a)
@@ -716,10 +765,10 @@ void bind_problem(py::module_& m) {
                         std::vector<std::shared_ptr<Constraint>> cs;
                         for (const auto& c : p.constraints()) cs.push_back(std::const_pointer_cast<Constraint>(c));
                         return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs,
-                                              settings_state(p.settings()));
+                                              settings_state(p.settings()), drift_list(p.contact_drift()));
                       },
                       [](const py::tuple& t) {
-                        check_state(t, 4, "TimeScalingProblem");
+                        if (t.size() != 4) check_state(t, 5, "TimeScalingProblem");  // 4: before contact drift
                         auto p = std::make_shared<TimeScalingProblem>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "grid"));
                         const auto cs = t[2].cast<std::vector<std::shared_ptr<Constraint>>>();
                         const ProblemSettings settings = settings_from_state(t[3]);
@@ -728,6 +777,7 @@ void bind_problem(py::module_& m) {
                           for (const auto& c : cs) p->add_constraint(c);
                         }
                         p->set_settings(settings);
+                        if (t.size() == 5) p->set_contact_drift(drift_vector(t[4]));
                         return p;
                       }))
       .def("set_zero_boundary_accelerations", [](TimeScalingProblem& p, py::handle at_begin, py::handle at_end) {
@@ -745,6 +795,16 @@ void bind_problem(py::module_& m) {
       }, "names"_a,
          "Names of the path's coordinates for the labels and messages of velocity and acceleration limits\n"
          "(set automatically from the robot of add_torque_limits / add_contacts when it has one joint per coordinate).")
+      .def("__repr__", [](const TimeScalingProblem& p) {
+        std::string names;
+        for (const auto& c : p.constraints()) names += (names.empty() ? "" : ", ") + c->name();
+        std::string s = "<TimeScalingProblem dof=" + std::to_string(p.samples().dof()) + " intervals=" +
+                        std::to_string(p.intervals()) + " s=[" + short_number(p.grid()[0]) + ", " +
+                        short_number(p.grid()[p.intervals()]) + "] constraints=[" + names + "] sdot=(" +
+                        short_number(p.sdot_begin()) + ", " + short_number(p.sdot_end()) + ")";
+        if (!p.contact_drift().empty()) s += " moving_contacts=" + std::to_string(p.contact_drift().size());
+        return s + ">";
+      })
       .def_property_readonly("joint_names", &TimeScalingProblem::joint_names, "list of str: see set_joint_names")
       .def_property_readonly("sdot_begin", &TimeScalingProblem::sdot_begin)
       .def_property_readonly("sdot_end", &TimeScalingProblem::sdot_end)

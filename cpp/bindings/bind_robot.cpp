@@ -133,6 +133,11 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("nq", &RobotModel::nq)
       .def_property_readonly("name", &RobotModel::name)
       .def_property_readonly("joint_names", &RobotModel::joint_names)
+      .def_property_readonly("joint_units", [](const RobotModel& r) {
+        std::vector<std::string> out;
+        for (RobotModel::JointType t : r.joint_types()) out.push_back(t == RobotModel::JointType::Prismatic ? "m" : "rad");
+        return out;
+      }, "The unit of each coordinate q[j]: 'rad' (revolute) or 'm' (prismatic; a floating base's x, y, z)")
       .def_property_readonly("link_names", &RobotModel::link_names)
       .def_property_readonly("velocity_limits", &RobotModel::velocity_limits)
       .def_property_readonly("effort_limits", &RobotModel::effort_limits)
@@ -193,7 +198,18 @@ void bind_robot(py::module_& m) {
         }
         return py::make_tuple(A, B, C);
       }, "q"_a, "dq"_a, "ddq"_a, "eq. (12): τ = a ṡ² + b s̈ + c at each row; arrays (m, nq)")
-      .def("__repr__", [](const RobotModel& r) { return "<RobotModel '" + r.name() + "' nq=" + std::to_string(r.nq()) + ">"; });
+      .def_property_readonly("frozen_mimic_joints", &RobotModel::frozen_mimic_joints,
+                             "Mimic joints locked without their joint: frozen at their value while their joint moves "
+                             "(the relation dropped, as in a model reduced on them alone); lock their joint to keep it")
+      .def("__repr__", [](const RobotModel& r) {
+        std::string s = "<RobotModel '" + r.name() + "' nq=" + std::to_string(r.nq());
+        if (!r.frozen_mimic_joints().empty()) {
+          s += " frozen_mimic_joints=[";
+          for (size_t i = 0; i < r.frozen_mimic_joints().size(); ++i) s += (i ? ", '" : "'") + r.frozen_mimic_joints()[i] + "'";
+          s += "]";
+        }
+        return s + ">";
+      });
 
   py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits")
       .def(py::init([](py::handle robot, py::object tau_min, py::object tau_max, py::handle scale, py::handle margin) {

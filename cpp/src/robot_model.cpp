@@ -83,6 +83,7 @@ struct Builder {
   std::vector<double> q_lo, q_hi, v_max, effort;
   std::map<std::string, bool> locked_used;
   std::vector<RobotModel::MimicJoint> mimics;  // in body order; resolved to coordinates after the tree
+  std::vector<std::string> frozen_mimics;       // mimic joints locked without their joint
 
   int add_body(int parent, RobotModel::JointType type, const Eigen::Vector3d& axis, const Eigen::Isometry3d& tree,
                const std::string& name, double lo, double hi, double vel, double eff) {
@@ -160,6 +161,26 @@ struct Builder {
     if (std::isnan(l.upper)) detail::fail(where + "limit upper = nan must be a number");
   }
 
+  // A mimic joint locked together with its joint must agree with the relation (else the two locks
+  // contradict each other: refused, naming both). Locked alone it is frozen where it is while its joint
+  // moves: the relation is dropped for it, which is what a model reduced on that joint alone does
+  // (pinocchio's buildReducedModel, MuJoCo's weld), so such a lock is kept, and recorded
+  // (RobotModel::frozen_mimic_joints) so that it is not silent.
+  void check_locked_mimic(const urdf::Joint& joint, double value) {
+    const urdf::JointMimic& m = *joint.mimic;
+    auto held = options.locked_joints.find(m.joint_name);
+    if (held == options.locked_joints.end()) {
+      frozen_mimics.push_back(joint.name);
+      return;
+    }
+    const double implied = m.multiplier * held->second + m.offset;
+    if (std::abs(implied - value) > 1e-9 * std::max(1.0, std::abs(implied)))
+      detail::fail("locked_joints: '" + joint.name + "' = " + detail::fmt(value) + " breaks its mimic relation (q = " +
+                   detail::fmt(m.multiplier) + " * q_" + m.joint_name + " + " + detail::fmt(m.offset) + "): '" +
+                   m.joint_name + "' = " + detail::fmt(held->second) + " gives " + detail::fmt(implied) +
+                   "; lock '" + m.joint_name + "' alone (its mimics follow it)");
+  }
+
   // Depth-first over the link tree with an explicit stack, in the order a recursion would take (so the
   // joint order is the URDF's): a recursion overflowed the thread's stack at ~10,000 links in a chain.
   // `placement`: the link frame in the coordinates of body `body` (-1: the world).
@@ -215,6 +236,7 @@ struct Builder {
         if (movable) {
           locked_used[joint->name] = true;
           const double value = locked->second;
+          if (joint->mimic) check_locked_mimic(*joint, value);
           if (prismatic) motion.translation() = axis.normalized() * value;
           else motion.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
         }
@@ -312,6 +334,21 @@ void RobotModel::remove_mimic_coordinates(const std::vector<MimicJoint>& mimics)
   mimic_ = std::move(map);
 }
 
+std::vector<RobotModel::JointType> RobotModel::joint_types() const {
+  std::vector<JointType> out;
+  if (!mimic_) {  // one body per coordinate
+    for (Eigen::Index j = 0; j < nq(); ++j) out.push_back(bodies_[static_cast<size_t>(j)].type);
+    return out;
+  }
+  // With mimic joints the bodies keep the names of their joints (bodies_model); a coordinate is its joint's body.
+  const std::vector<std::string>& body_joint = mimic_->bodies_model->joint_names();
+  for (const std::string& name : joint_names_) {
+    const size_t b = static_cast<size_t>(std::find(body_joint.begin(), body_joint.end(), name) - body_joint.begin());
+    out.push_back(b < bodies_.size() ? bodies_[b].type : JointType::Revolute);
+  }
+  return out;
+}
+
 const std::vector<RobotModel::MimicJoint>& RobotModel::mimic_joints() const {
   static const std::vector<MimicJoint> none;
   return mimic_ ? mimic_->joints : none;
@@ -373,6 +410,7 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const RobotModel
       detail::fail("locked_joints: '" + name + "' is not a movable joint of robot '" + m.name_ + "'");
   b.store_limits(m.q_lo_, m.q_hi_, m.v_max_, m.effort_);
   if (!b.mimics.empty()) m.remove_mimic_coordinates(b.mimics);
+  m.frozen_mimics_ = b.frozen_mimics;
   auto source = std::make_shared<Source>();
   source->kind = Source::Kind::Urdf;
   source->urdf = xml;
@@ -1209,6 +1247,7 @@ RobotModel RobotModel::combine(const std::vector<RobotModel>& parts, const std::
   std::vector<double> lo, hi, vel, eff;
   for (size_t i = 0; i < parts.size(); ++i) {
     const RobotModel& p = parts[i];
+    m.frozen_mimics_.insert(m.frozen_mimics_.end(), p.frozen_mimics_.begin(), p.frozen_mimics_.end());
     if ((p.gravity_ - m.gravity_).norm() > 0.0)
       detail::fail("parts[" + std::to_string(i) + "] ('" + p.name_ + "') has gravity (" + detail::fmt(p.gravity_.x()) + ", " +
                    detail::fmt(p.gravity_.y()) + ", " + detail::fmt(p.gravity_.z()) + "), parts[0] has (" +

@@ -233,7 +233,8 @@ void TimeScalingProblem::check_rows(const Constraint& constraint, const Constrai
 
 void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
                                             const ContactOptions& options, const Eigen::VectorXd& tau_min,
-                                            const Eigen::VectorXd& tau_max, double impact_tolerance) {
+                                            const Eigen::VectorXd& tau_max, double impact_tolerance,
+                                            double drift_tolerance, DriftPolicy drift) {
   if (!robot) detail::fail("robot must not be None");
   if (robot->nq() != samples_.dof())
     detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + robot->name() + "' has " +
@@ -361,6 +362,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
   }
   std::vector<std::shared_ptr<const Constraint>> added;
   std::vector<ConstraintRows> added_rows;
+  std::vector<ContactDrift> drifts;
   for (size_t i = 0; i < phases.size(); ++i) {
     ContactOptions o = phases[i].options.value_or(options);
     o.active_begin = edge[i];
@@ -368,6 +370,8 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     o.label = "phases[" + std::to_string(i) + "]";
     o.rest_at_begin = rest[i];
     std::shared_ptr<const ContactConstraint> c = std::make_shared<ContactConstraint>(robot, phases[i].contacts, o, tau_min, tau_max);
+    // Each phase keeps its own contacts in place on its own stretch (checked before its projection).
+    if (auto d = check_contact_drift(*c, samples, drift_tolerance, drift)) drifts.push_back(std::move(*d));
     if (!replaced.empty()) c = c->with_torque_limits(lo, hi);
     added_rows.push_back(timed_evaluate(*c, samples));
     check_rows(*c, added_rows.back(), samples.size());
@@ -386,7 +390,19 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     constraints_.push_back(std::move(added[i]));
     rows_.push_back(std::move(added_rows[i]));
   }
+  contact_drift_.insert(contact_drift_.end(), drifts.begin(), drifts.end());
   if (joint_names_.empty() && robot->nq() == samples_.dof()) set_joint_names(robot->joint_names());
+}
+
+void TimeScalingProblem::add_contacts(std::shared_ptr<const ContactConstraint> contacts, double drift_tolerance,
+                                      DriftPolicy drift) {
+  if (!contacts) detail::fail("contacts must not be None");
+  if (contacts->robot()->nq() != samples_.dof())
+    detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + contacts->robot()->name() +
+                 "' has " + std::to_string(contacts->robot()->nq()) + " joints");
+  std::optional<ContactDrift> d = check_contact_drift(*contacts, samples_, drift_tolerance, drift);
+  add_constraint(std::move(contacts));
+  if (d) contact_drift_.push_back(std::move(*d));
 }
 
 void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
@@ -465,6 +481,20 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   return fs;
 }
 
+namespace {
+
+// A timing of a path that moves its contacts (DriftPolicy::Warn) says so in its message as well as in
+// Result::contact_drift: its contact forces assume contacts that the path slides.
+Result with_drift_note(Result res) {
+  if (res.contact_drift.empty()) return res;
+  std::string note = "the path moves its contacts, which the contact forces assume fixed: ";
+  for (size_t i = 0; i < res.contact_drift.size(); ++i) note += (i ? "; " : "") + res.contact_drift[i].message();
+  res.message = res.message.empty() ? note : res.message + "; " + note;
+  return res;
+}
+
+}  // namespace
+
 Result TimeScalingProblem::solve(const SolverOptions& options) const {
   if (options.max_iterations < 0)
     detail::fail("max_iterations = " + std::to_string(options.max_iterations) + " must be >= 0");
@@ -484,11 +514,11 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     detail::fail("sddot = 0 at s_end needs sdot_end > 0: with sddot constant on each interval (eq. 24), a stop at "
                  "rest with sddot = 0 is never reached");
   if (options.guarantee == Guarantee::Grid) {
-    if (!zero_sddot_begin_ && !zero_sddot_end_) return solve_rows(rows_, nullptr, options);
+    if (!zero_sddot_begin_ && !zero_sddot_end_) return with_drift_note(solve_rows(rows_, nullptr, options));
     std::vector<ConstraintRows> rows = rows_;
     detail::IntervalExtra extra;
     add_boundary_rows(rows, extra);
-    return solve_rows(rows, &extra, options);
+    return with_drift_note(solve_rows(rows, &extra, options));
   }
   if (options.audit_points < 1 || options.audit_points > 1000)
     detail::fail("audit_points = " + std::to_string(options.audit_points) + " must be in [1, 1000]");
@@ -536,7 +566,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   }
   res.stats.audit_rounds = rounds;
   res.stats.audit_cuts = cuts;
-  return res;
+  return with_drift_note(std::move(res));
 }
 
 Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constraint_rows,
@@ -548,11 +578,22 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
 
   Result res;
   res.path = path_;
+  res.contact_drift = contact_drift_;
+  bool own_torque_limits = false;  // a TorqueLimits' limits are the ones shown, else a contact constraint's
   for (const auto& c : constraints_) {
-    if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(c)) res.robot = torque->robot();
+    if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(c)) {
+      res.robot = torque->robot();
+      res.tau_min = torque->tau_min();
+      res.tau_max = torque->tau_max();
+      own_torque_limits = true;
+    }
     if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
       res.robot = contact->robot();
       res.contacts = contact;
+      if (!own_torque_limits) {
+        res.tau_min = contact->tau_min();
+        res.tau_max = contact->tau_max();
+      }
       if (std::isfinite(contact->options().active_begin) || std::isfinite(contact->options().active_end))
         res.contact_phases.push_back(contact);
     }
@@ -787,6 +828,15 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
       res.message = "the reachability analysis's profile breaks a constraint by " + detail::fmt(violation) +
                     " (relative) at grid index " + std::to_string(at) + " (s = " + detail::fmt(samples_.s[at]) +
                     "): rounding on this grid; a coarser or more uniform grid avoids it";
+    }
+    // The budget is checked inside the SLP; a problem proven without it can still have spent it on the
+    // feasible sets and the reachability analysis: then the time limit is what the status says.
+    if (res.status == Status::Optimal && std::chrono::steady_clock::now() >= deadline) {
+      res.status = Status::TimeLimit;
+      res.message = "time_limit = " + detail::fmt(options.time_limit) + " s reached before the SLP (the feasible sets "
+                    "and the reachability analysis took " + detail::fmt(seconds_since(started)) +
+                    " s); the timing is feasible, T exceeds the optimum by at most " + detail::fmt(res.stats.gap) +
+                    " (relative, certified)";
     }
   }
   theta *= scale.x_unit;  // back to ṡ² (a power of two: exact)

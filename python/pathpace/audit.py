@@ -61,11 +61,20 @@ def load_trajectory_csv(file: str | os.PathLike, joint_names: list[str]) -> dict
     return {"t": t, "q": q, "qd": qd, "qdd": qdd}
 
 
-def _row(name: str, margins: np.ndarray, scale: np.ndarray, t: np.ndarray, where: list[str], unit: str) -> dict[str, Any]:
-    """The worst (smallest) margin over samples (rows) and joints (columns)."""
+def _row(name: str, margins: np.ndarray, scale: np.ndarray, t: np.ndarray, where: list[str], unit) -> dict[str, Any]:
+    """The worst (smallest) margin over samples (rows) and joints (columns); `unit` is one string, or one per
+    joint (the worst joint's is reported)."""
     k, j = np.unravel_index(int(np.argmin(margins)), margins.shape)
-    return {"constraint": name, "margin": float(margins[k, j]), "scale": float(scale[j]), "unit": unit,
-            "t": float(t[k]), "where": where[j] if where else ""}
+    return {"constraint": name, "margin": float(margins[k, j]), "scale": float(scale[j]),
+            "unit": unit if isinstance(unit, str) else unit[j], "t": float(t[k]), "where": where[j] if where else ""}
+
+
+def _units(spec, n: int, suffix: str, torque: bool = False) -> list[str]:
+    """Per joint: rad or m (from the robot's joint kinds), then `suffix`; "rad or m" without a robot."""
+    kinds = list(spec.robot.joint_units) if spec.robot is not None and spec.robot.nq == n else None
+    if torque:
+        return ["N" if k == "m" else "N·m" for k in kinds] if kinds else ["N·m or N"] * n
+    return [k + suffix for k in kinds] if kinds else [f"rad{suffix} or m{suffix}"] * n
 
 
 def _bound_margins(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -88,18 +97,18 @@ def audit_trajectory(spec, traj: dict[str, np.ndarray], progress: bool = False, 
         lim = robot.position_limits
         if np.isfinite(lim).any():
             m, sc = _bound_margins(q, lim[0], lim[1])
-            rows.append(_row("position", m, sc, t, names, "rad|m"))
+            rows.append(_row("position", m, sc, t, names, _units(spec, q.shape[1], "")))
     if spec.velocity_limits is not None:
         m, sc = _bound_margins(qd, *spec.velocity_limits)
-        rows.append(_row("velocity", m, sc, t, names, "rad|m/s"))
+        rows.append(_row("velocity", m, sc, t, names, _units(spec, q.shape[1], "/s")))
     if spec.acceleration_limits is not None:
         m, sc = _bound_margins(qdd, *spec.acceleration_limits)
-        rows.append(_row("acceleration", m, sc, t, names, "rad|m/s²"))
+        rows.append(_row("acceleration", m, sc, t, names, _units(spec, q.shape[1], "/s²")))
     if spec.torque_limits is not None:
         # τ = a ṡ² + b s̈ + c (eq. 12) of the motion itself (ṡ = 1, s̈ = 0): M q̈ + C q̇ + g by batch RNEA.
         a, _, c = robot.path_torque_coefficients(q, qd, qdd)
         m, sc = _bound_margins(a + c, spec.torque_limits.tau_min, spec.torque_limits.tau_max)
-        rows.append(_row("torque", m, sc, t, names, "N·m|N"))
+        rows.append(_row("torque", m, sc, t, names, _units(spec, q.shape[1], "", torque=True)))
     if spec.contacts is not None:
         margins = np.empty(len(t))
         with ProgressBar(len(t), "contact forces", enabled=progress) as bar:

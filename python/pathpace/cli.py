@@ -37,7 +37,9 @@ def fail(message: str) -> NoReturn:
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:  # argparse's usage errors, also as one line
-        fail(f"{self.prog}: {message}")
+        # "pathpace: error: solve: ..." (the subcommand, without repeating the program's name)
+        sub = self.prog.split(" ", 1)[1] if " " in self.prog else ""
+        fail(f"{sub}: {message}" if sub else message)
 
 
 def _floats(text: str, option: str, n: int) -> np.ndarray:
@@ -63,6 +65,43 @@ def _summary(res, name: str = "") -> dict:
     return ({"problem": name} if name else {}) | d
 
 
+def _one_line(res, name: str = "") -> str:
+    """What a solve prints by default: status, T, N and the solve time; where and why when it failed."""
+    st = res.stats
+    ms = 1e3 * (st["time_feasible_sets"] + st["time_reachability"] + st["time_slp"])
+    head = f"{name}: " if name else ""
+    if res.ok:
+        line = f"{head}{res.status.name.lower()}, T = {res.duration:.6g} s (N = {len(res.s) - 1}, solved in {ms:.3g} ms)"
+        if res.status.name != "OPTIMAL" or res.contact_drift:
+            line += f": {res.message}"
+        return line
+    return f"{head}{res.status.name.lower()}: {res.message}"
+
+
+def _print_result(res, name: str, stats: bool, indent: int | None = 1) -> None:
+    print(json.dumps(_summary(res, name), indent=indent) if stats else _one_line(res, name))
+
+
+def _check_dt(dt: float) -> None:
+    """--dt before any solve: a sample period of 0 is an error found in a second, not after a long solve."""
+    if not (np.isfinite(dt) and dt > 0):
+        raise CliError(f"--dt = {dt} must be > 0 and finite")
+
+
+def _urdf_arg(value: str) -> str:
+    """--urdf: a file, or "erd:<path>" inside example-robot-data (as in problem files)."""
+    if value.startswith("erd:"):
+        from .robots import example_robot_urdf
+
+        try:
+            return str(example_robot_urdf(value[4:]))
+        except FileNotFoundError as e:
+            raise CliError(f"argument --urdf: {e}") from None
+    if not Path(value).is_file():
+        raise CliError(f"argument --urdf: file '{value}' does not exist")
+    return value
+
+
 def _write_outputs(spec, res, out: str | None, json_path: str | None, dt: float, joint_trajectory: str | None) -> None:
     from .io import save_result_json, save_trajectory_csv
 
@@ -83,7 +122,7 @@ def _solve_waypoints(args: argparse.Namespace) -> int:
 
     from .io import load_waypoints_csv
 
-    for option, value in (("--acc-factor", args.acc_factor), ("--torque-scale", args.torque_scale), ("--dt", args.dt)):
+    for option, value in (("--acc-factor", args.acc_factor), ("--torque-scale", args.torque_scale)):
         if not (np.isfinite(value) and value > 0):
             raise CliError(f"{option} = {value} must be > 0 and finite")
     file = args.problems[0]
@@ -97,7 +136,7 @@ def _solve_waypoints(args: argparse.Namespace) -> int:
     vmax = amax = None
     robot = None
     if args.urdf:
-        robot = pp.RobotModel.from_urdf(args.urdf, locked_joints=_locked(args.locked_joints))
+        robot = pp.RobotModel.from_urdf(_urdf_arg(args.urdf), locked_joints=_locked(args.locked_joints))
         vmax = robot.velocity_limits
         amax = args.acc_factor * vmax
     if args.vmax:
@@ -115,7 +154,7 @@ def _solve_waypoints(args: argparse.Namespace) -> int:
     prob.set_boundary_speeds(*args.boundary_speeds)
     opts = {"tolerance": args.tolerance} if args.tolerance else {}
     res = prob.solve(**opts)
-    print(json.dumps(_summary(res), indent=1))
+    _print_result(res, Path(file).stem, args.stats)
     names = robot.joint_names if robot is not None and robot.nq == n else [f"joint_{j}" for j in range(n)]
     spec = SimpleNamespace(joint_names=names, robot=robot)
     _write_outputs(spec, res, args.out, args.json, args.dt, args.joint_trajectory)
@@ -143,6 +182,7 @@ def _load(file: str, grid: int | None = None, tolerance: float | None = None):
 
 
 def cmd_solve(args: argparse.Namespace) -> int:
+    _check_dt(args.dt)
     if len(args.problems) == 1 and args.problems[0].lower().endswith(".csv"):
         return _solve_waypoints(args)
     for flag in ("vmax", "amax", "urdf", "torque"):
@@ -157,7 +197,7 @@ def cmd_solve(args: argparse.Namespace) -> int:
 
         spec = specs[0]
         res = run_with_progress(spec.solve, f"solving {spec.name}", progress)
-        print(json.dumps(_summary(res, spec.name), indent=1))
+        _print_result(res, spec.name, args.stats)
         _write_outputs(spec, res, args.out, args.json, args.dt, args.joint_trajectory)
         return 0 if res.ok else 1
     if args.out or args.json or args.joint_trajectory:
@@ -174,7 +214,7 @@ def cmd_solve(args: argparse.Namespace) -> int:
     if out_dir:
         out_dir.mkdir(parents=True, exist_ok=True)
     for spec, res in zip(specs, results):
-        print(json.dumps(_summary(res, spec.name)))
+        _print_result(res, spec.name, args.stats, indent=None)
         if out_dir:
             stem = Path(spec.file).stem
             _write_outputs(spec, res, str(out_dir / f"{stem}.csv"), str(out_dir / f"{stem}.json"), args.dt, None)
@@ -210,7 +250,7 @@ def _solved(args: argparse.Namespace):
     spec = _load(args.problem, args.grid, args.tolerance)
     res = run_with_progress(spec.solve, f"solving {spec.name}", sys.stderr.isatty())
     if not res.ok:
-        print(json.dumps(_summary(res, spec.name), indent=1))
+        print(_one_line(res, spec.name))
     return spec, res
 
 
@@ -220,6 +260,15 @@ def cmd_plot(args: argparse.Namespace) -> int:
     matplotlib.use("Agg")  # files only: no display needed
     from . import plot
 
+    import matplotlib.pyplot as plt
+
+    # The format from the suffix, checked before the solve (savefig's own error is a traceback, after it).
+    formats = plt.figure().canvas.get_supported_filetypes()
+    plt.close("all")
+    suffix = Path(args.out).suffix.lower().lstrip(".")
+    if suffix not in formats:
+        raise CliError(f"argument --out: '{args.out}' has suffix '{suffix}'; supported: "
+                       f"{', '.join('.' + f for f in sorted(formats))}")
     spec, res = _solved(args)
     fig = plot.summary_figure(spec, res, polygons_at=args.polygons_at)
     fig.savefig(args.out, dpi=args.dpi)
@@ -228,6 +277,8 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
+    import plotly  # noqa: F401 - before the solve: a missing plotly is an error found in a second
+
     from .report import write_report
 
     spec, res = _solved(args)
@@ -288,6 +339,9 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="pathpace", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    from . import __version__
+
+    parser.add_argument("--version", action="version", version=f"pathpace {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def common(p, grid=True):
@@ -306,16 +360,23 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--workers", type=int, help="threads for several problems (default: all cores)")
     s.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr (default: when stderr is a terminal)")
+    s.add_argument("--stats", "-v", action="store_true",
+                   help="print the whole result (status, message, solver statistics) as JSON instead of one line")
     q = s.add_argument_group("waypoint CSV only")
-    q.add_argument("--knots", default="uniform", choices=["uniform", "chord"])
+    q.add_argument("--knots", default="uniform", choices=["uniform", "chord"],
+                   help="spline parameter of the waypoints: uniform (s_k = k / (K-1)) or chord length "
+                        "(s proportional to the distance between waypoints) (default uniform)")
     q.add_argument("--vmax", help="velocity limits, comma-separated (one value = all joints)")
     q.add_argument("--amax", help="acceleration limits, comma-separated (one value = all joints)")
-    q.add_argument("--urdf", help="robot URDF: velocity limits from it, and torque limits with --torque")
+    q.add_argument("--urdf", help="robot URDF, or erd:<path> inside example-robot-data: velocity limits from it, and "
+                                  "torque limits with --torque")
     q.add_argument("--locked-joints", nargs="*", metavar="NAME[=VALUE]", help="joints of the URDF held fixed")
     q.add_argument("--acc-factor", type=float, default=2.0, help="with --urdf: amax = factor * vmax")
     q.add_argument("--torque", action="store_true", help="add the URDF effort limits (needs --urdf)")
-    q.add_argument("--torque-scale", type=float, default=1.0)
-    q.add_argument("--boundary-speeds", nargs=2, type=float, default=(0.0, 0.0), metavar=("SDOT_BEGIN", "SDOT_END"))
+    q.add_argument("--torque-scale", type=float, default=1.0,
+                   help="with --torque: the limits are this times the URDF effort (default 1; 0.9 keeps 10 %% in reserve)")
+    q.add_argument("--boundary-speeds", nargs=2, type=float, default=(0.0, 0.0), metavar=("SDOT_BEGIN", "SDOT_END"),
+                   help="path speed ds/dt in 1/s at the start and the end (default 0 0: rest to rest)")
     s.set_defaults(func=cmd_solve)
 
     c = sub.add_parser("check", help="audit a trajectory CSV against a problem file: worst margin per constraint")
@@ -323,7 +384,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("trajectory", help="CSV with t and q_<joint> (or <joint>) columns; qd_, qdd_ optional")
     c.add_argument("--tolerance", type=float, default=1e-3,
                    help="allowed violation relative to each limit (default 1e-3: between grid points a timing at "
-                        "N = 1000 exceeds the limits by O(Δs), about 1e-4)")
+                        "N = 1000 exceeds the limits by O(Δs²), about 1e-4)")
     c.add_argument("--json", help="write the audit as JSON")
     c.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None)
     c.set_defaults(func=cmd_check)
@@ -331,7 +392,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plot", help="phase plane, polygons, torques and contacts of a solved problem (PNG/PDF/SVG)")
     p.add_argument("problem")
     common(p)
-    p.add_argument("--out", default="pathpace.png")
+    p.add_argument("--out", default="pathpace.png", help="the figure; its suffix gives the format (.png, .pdf, .svg, ...)")
     p.add_argument("--dpi", type=int, default=120)
     p.add_argument("--polygons-at", type=float, nargs="*", help="s values for the feasible polygons (default: 3)")
     p.set_defaults(func=cmd_plot)
@@ -348,6 +409,11 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The extra of pyproject.toml that brings a package the commands import on demand.
+_EXTRA_OF = {"matplotlib": "plot", "plotly": "plot", "yaml": "cli", "dask": "batch", "distributed": "batch",
+             "mujoco": "sim"}
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     from ._core import Error
     from .problem_file import ProblemFileError
@@ -362,7 +428,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as e:
         fail(f"{e.filename or args.command}: {e.strerror or e}")
     except ImportError as e:
-        fail(f"{args.command}: needs the Python package '{e.name}' (pip install {e.name})")
+        extra = _EXTRA_OF.get((e.name or "").split(".")[0])
+        fail(f"{args.command}: needs the Python package '{e.name}' (pip install {e.name}"
+             + (f", or pathpace[{extra}])" if extra else ")"))
 
 
 if __name__ == "__main__":

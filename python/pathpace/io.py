@@ -38,6 +38,7 @@ def result_to_dict(res: Result) -> dict[str, Any]:
         "infeasible_s": finite(float(res.infeasible_s)),
         "binding_constraints": list(res.binding_constraints),
         "stats": dict(res.stats),
+        "contact_drift": [dict(d) for d in res.contact_drift],
     }
 
 

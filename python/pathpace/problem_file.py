@@ -22,6 +22,7 @@ solver options; relative file names are relative to the problem file. Example (Y
       cone_edges: 8
       friction_margin: 0.0
       min_normal_force: 0.0             # also: torque_scale, torque_margin, min_link_normal_force, cone_offset
+      drift_tolerance: 1.0e-6           # m a contact point may move along the path; drift: auto | warn | error
       # or phases: [{s: [0, 1], points: [...]}, {s: [1, 2], points: [...], min_normal_force: 5}]
       #            (add_contact_phases: each phase's points, and options over these)
     boundary: {sdot: [0, 0]}            # or {qd_begin: [...], qd_end: [...]}
@@ -80,11 +81,17 @@ def read_mapping(file: str | os.PathLike) -> dict[str, Any]:
         raise ProblemFileError(f"{path}: cannot be read ({e.strerror or e})") from None
     try:
         if path.suffix.lower() in (".yaml", ".yml"):
-            import yaml
+            try:
+                import yaml
+            except ImportError:
+                raise ProblemFileError(f"{path}: reading a YAML problem file needs pyyaml: pip install pyyaml "
+                                       "(or pathpace[cli]); a JSON problem file needs nothing") from None
 
             data = yaml.safe_load(text)
         else:
             data = json.loads(text)
+    except ProblemFileError:
+        raise
     except Exception as e:  # noqa: BLE001 - any parser error becomes one line naming the file
         raise ProblemFileError(f"{path}: not valid {'YAML' if path.suffix.lower() in ('.yaml', '.yml') else 'JSON'}: "
                                f"{str(e).splitlines()[0]}") from None
@@ -110,6 +117,10 @@ class _Reader:
         return value
 
     def array(self, value: Any, key: str, ndim: int, size: int | None = None) -> np.ndarray:
+        if ndim == 2 and isinstance(value, (list, tuple)) and value and all(isinstance(v, (list, tuple)) for v in value):
+            for i, row in enumerate(value):  # ragged rows: name the first that differs from row 0
+                if len(row) != len(value[0]):
+                    raise self.fail(f"{key}[{i}]", f"has {len(row)} entries, row 0 has {len(value[0])}")
         try:
             a = np.asarray(value, dtype=float)
         except (TypeError, ValueError):
@@ -181,7 +192,7 @@ def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | 
 
 
 _CONTACT_OPTIONS = ("friction_margin", "min_normal_force", "torque_scale", "torque_margin", "min_link_normal_force",
-                    "cone_offset", "drift_tolerance")
+                    "cone_offset", "projection_tolerance", "drift_tolerance")
 
 
 def _contact_points(r: _Reader, points: Any, key: str) -> list:
@@ -203,6 +214,8 @@ def _contact_options(r: _Reader, cd: dict, key: str) -> dict:
     opts = {k: r.number(cd[k], f"{key}.{k}") for k in _CONTACT_OPTIONS if k in cd}
     if "cone_edges" in cd:
         opts["cone_edges"] = int(r.number(cd["cone_edges"], f"{key}.cone_edges"))
+    if "drift" in cd:
+        opts["drift"] = cd["drift"]  # auto | warn | error: add_contacts names a bad one
     return opts
 
 
@@ -210,17 +223,15 @@ def _contacts(r: _Reader, value: Any, robot: pp.RobotModel, prob: pp.TimeScaling
     """contacts: {points: [...], options...} (one set for the whole path) or {phases: [{s: [s0, s1],
     points: [...], options...}, ...], options...} (TimeScalingProblem.add_contact_phases: each phase's
     options over the shared ones)."""
-    allowed = {"points", "phases", "cone_edges", *_CONTACT_OPTIONS}
+    allowed = {"points", "phases", "cone_edges", "drift", *_CONTACT_OPTIONS}
     cd = r.mapping(value, "contacts", allowed)
     if ("points" in cd) == ("phases" in cd):
         raise r.fail("contacts", "expected either 'points' (one set of contacts) or 'phases' (contact phases)")
     opts = _contact_options(r, cd, "contacts")
     if "points" in cd:
-        if "drift_tolerance" in cd:
-            raise r.fail("contacts.drift_tolerance", "applies to contacts.phases (add_contact_phases) only")
-        spec.contacts = _wrap(r, "contacts", pp.ContactConstraint, robot, _contact_points(r, cd["points"], "contacts.points"),
-                              **{k: v for k, v in opts.items() if k != "drift_tolerance"})
-        _wrap(r, "contacts", prob.add_constraint, spec.contacts)
+        # add_contacts checks that the path keeps the contacts in place (check_contact_drift in C++).
+        _wrap(r, "contacts", prob.add_contacts, robot, _contact_points(r, cd["points"], "contacts.points"), **opts)
+        spec.contacts = [c for c in prob.constraints if isinstance(c, pp.ContactConstraint)][-1]
         return
     phases = cd["phases"]
     if not isinstance(phases, list) or not phases:
@@ -228,12 +239,12 @@ def _contacts(r: _Reader, value: Any, robot: pp.RobotModel, prob: pp.TimeScaling
     out = []
     for i, ph in enumerate(phases):
         key = f"contacts.phases[{i}]"
-        ph = r.mapping(ph, key, {"s", "points", "cone_edges", *_CONTACT_OPTIONS})
+        ph = r.mapping(ph, key, {"s", "points", "cone_edges", "drift", *_CONTACT_OPTIONS})
         if "s" not in ph:
             raise r.fail(f"{key}.s", "missing: [s_begin, s_end]")
         span = r.array(ph["s"], f"{key}.s", 1, 2)
-        own = {k: v for k, v in _contact_options(r, ph, key).items() if k not in ("drift_tolerance", "cone_edges")}
-        for k in ("drift_tolerance", "cone_edges"):
+        own = {k: v for k, v in _contact_options(r, ph, key).items() if k not in ("drift_tolerance", "drift", "cone_edges")}
+        for k in ("drift_tolerance", "drift", "cone_edges"):
             if k in ph:
                 raise r.fail(f"{key}.{k}", "is one for all phases: give it under 'contacts'")
         points = _contact_points(r, ph.get("points"), f"{key}.points")

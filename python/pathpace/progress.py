@@ -28,9 +28,10 @@ class ProgressBar:
         frac = self.done / self.total if self.total else 1.0
         filled = int(round(self.width * frac))
         elapsed = now - self.start
-        eta = elapsed / frac - elapsed if frac > 0 else float("nan")
+        # No estimate until something is done (0 done says nothing about the rate).
+        left = f", {elapsed / frac - elapsed:.1f} s left" if 0 < frac < 1 else ""
         self.file.write(f"\r{self.label} [{'#' * filled}{'.' * (self.width - filled)}] {self.done}/{self.total} "
-                        f"{elapsed:.1f} s elapsed, {eta:.1f} s left ")
+                        f"{elapsed:.1f} s elapsed{left} ")
         self.file.flush()
 
     def __enter__(self) -> "ProgressBar":

@@ -14,7 +14,8 @@ def example_robot_data_dir() -> Path:
     try:
         dist = importlib.metadata.distribution("example-robot-data")
     except importlib.metadata.PackageNotFoundError as e:
-        raise FileNotFoundError("example-robot-data is not installed: pip install example-robot-data") from e
+        raise FileNotFoundError("example-robot-data is not installed: pip install example-robot-data "
+                                "(or pathpace[examples])") from e
     return Path(str(dist.locate_file("cmeel.prefix/share/example-robot-data/robots")))
 
 

@@ -94,7 +94,7 @@ def test_cli_solves_a_waypoint_file(tmp_path, capsys):
     f = tmp_path / "w.csv"
     f.write_text("0,0\n1,0.5\n0.2,1.5\n")
     code = main(["solve", str(f), "--vmax", "1", "--amax", "2", "-N", "200", "--out", str(tmp_path / "t.csv"),
-                 "--json", str(tmp_path / "r.json")])
+                 "--json", str(tmp_path / "r.json"), "--stats"])
     assert code == 0
     out = json.loads(capsys.readouterr().out)
     assert out["status"] == "optimal" and out["duration"] > 0

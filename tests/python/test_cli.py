@@ -55,7 +55,7 @@ def api_result():
 
 def test_solve_writes_named_columns_and_the_result(problem, tmp_path):
     out, js, jt = tmp_path / "t.csv", tmp_path / "r.json", tmp_path / "jt.json"
-    p = run("solve", problem, "--out", out, "--json", js, "--joint-trajectory", jt, "--dt", 0.005)
+    p = run("solve", problem, "--out", out, "--json", js, "--joint-trajectory", jt, "--dt", 0.005, "--stats")
     assert p.returncode == 0, p.stderr
     summary = json.loads(p.stdout)
     assert summary["status"] == "optimal" and summary["problem"] == "swing"
@@ -126,7 +126,7 @@ def test_argument_and_file_errors_are_one_line(problem, tmp_path):
     one_line_error(run("solve"), "the following arguments are required: problems")
     one_line_error(run("solve", problem, "--dt", "fast"), "argument --dt", "'fast'")
     one_line_error(run("solve", problem, "--vmax", "1"), "argument --vmax")
-    one_line_error(run("solve", problem, "--out", tmp_path / "t.csv", "--dt", "-1"), "dt = -1 must be > 0")
+    one_line_error(run("solve", problem, "--out", tmp_path / "t.csv", "--dt", "-1"), "--dt = -1.0 must be > 0")
     one_line_error(run("check", problem, tmp_path / "nothing.csv"), "nothing.csv", "cannot be read")
     bad = tmp_path / "bad.csv"
     bad.write_text("t,elbow\n0,1\n1,2\n")
@@ -135,7 +135,7 @@ def test_argument_and_file_errors_are_one_line(problem, tmp_path):
 
 
 def test_progress_on_a_single_solve(problem):
-    p = run("solve", problem, "--progress")
+    p = run("solve", problem, "--progress", "-v")
     assert p.returncode == 0, p.stderr
     assert "solving swing done in" in p.stderr
     assert json.loads(p.stdout)["status"] == "optimal"
@@ -145,7 +145,7 @@ def test_infeasible_exits_1_with_where_and_why(problem, tmp_path):
     f = tmp_path / "weak.yaml"
     f.write_text(PENDULUM.replace("torque: {from: urdf, scale: 0.9, margin: 0.1}", "torque: {min: [-0.1], max: [0.1]}")
                  .replace("[[0.0], [-0.3], [0.4]]", "[[1.0], [2.0]]"))
-    p = run("solve", f)
+    p = run("solve", f, "--stats")
     assert p.returncode == 1
     out = json.loads(p.stdout)
     assert out["status"] == "infeasible" and out["binding_constraints"] and out["infeasible_index"] >= 0
@@ -162,7 +162,7 @@ def test_batch_with_progress_bar(problem, tmp_path):
         d["grid"] = g
         f.write_text(json.dumps(d))
         files.append(f)
-    p = run("solve", *files, "--out-dir", tmp_path / "out", "--progress", "--workers", 2)
+    p = run("solve", *files, "--out-dir", tmp_path / "out", "--progress", "--workers", 2, "--stats")
     assert p.returncode == 0, p.stderr
     assert "solving [" in p.stderr and "3/3" in p.stderr
     assert [json.loads(ln)["status"] for ln in p.stdout.splitlines()] == ["optimal"] * 3
@@ -219,7 +219,7 @@ def test_contact_problem_file_solves_and_checks(tmp_path):
     expected = prob.solve()
     assert expected.ok
     out = tmp_path / "t.csv"
-    p = run("solve", problem, "--out", out)
+    p = run("solve", problem, "--out", out, "--stats")
     assert p.returncode == 0, p.stderr
     # The same problem, built through the file (its constraints in the file's order): the same optimum to
     # far below the certified tolerance (1e-7), not necessarily to the last bit (measured 4e-11).
@@ -228,3 +228,143 @@ def test_contact_problem_file_solves_and_checks(tmp_path):
     assert p.returncode == 0, p.stdout + p.stderr
     contact = [ln for ln in p.stdout.splitlines() if ln.startswith("contact")]
     assert len(contact) == 1 and contact[0].endswith("ok") and "force-distribution margin" in contact[0]
+
+
+# ---- papercuts of issue 24 ----
+
+
+def test_version_and_single_prefix_errors(problem):
+    p = run("--version")
+    assert p.returncode == 0 and p.stdout.strip() == f"pathpace {pp.__version__}"
+    line = one_line_error(run("solve", problem, "--grid", "many"), "argument -N/--grid")
+    assert line.startswith("pathpace: error: solve: argument") and "pathpace: error: pathpace" not in line
+    line = one_line_error(run("frobnicate"))
+    assert line.startswith("pathpace: error: argument command: invalid choice")
+
+
+def test_solve_prints_one_line_unless_asked_for_stats(problem, tmp_path):
+    p = run("solve", problem)
+    assert p.returncode == 0, p.stderr
+    (line,) = p.stdout.splitlines()
+    T = api_result().duration
+    assert line.startswith(f"swing: optimal, T = {T:.6g} s (N = 400, solved in ")
+    for flag in ("--stats", "-v"):
+        assert json.loads(run("solve", problem, flag).stdout)["duration"] == pytest.approx(T, rel=1e-12)
+    f = tmp_path / "weak.yaml"
+    f.write_text(PENDULUM.replace("torque: {from: urdf, scale: 0.9, margin: 0.1}", "torque: {min: [-0.1], max: [0.1]}"))
+    p = run("solve", f)
+    assert p.returncode == 1
+    (line,) = p.stdout.splitlines()
+    assert line.startswith("swing: infeasible: ") and "torque hinge" in line
+    p = run("plot", f, "--out", tmp_path / "weak.png")  # a failed solve still plots (the phase plane), exit 1
+    assert p.returncode == 1 and p.stdout.splitlines()[0].startswith("swing: infeasible: ")
+
+
+def test_one_line_names_a_time_limit_and_moving_contacts():
+    from types import SimpleNamespace
+
+    from pathpace.cli import _one_line
+
+    prob = kinematic_problem(pp.CubicSplinePath(np.array([[0.0], [-0.3], [0.4]])), 100, [-3.0], [3.0], [-15.0], [20.0])
+    res = prob.solve(time_limit=1e-9)
+    assert res.status == pp.Status.TIME_LIMIT
+    line = _one_line(res, "p")
+    assert line.startswith("p: time_limit, T = ") and "time_limit = 1e-09 s reached" in line
+    fake = SimpleNamespace(ok=True, status=pp.Status.OPTIMAL, duration=1.0, s=[0, 1], message="the path moves its contacts",
+                           contact_drift=[{}], stats={"time_feasible_sets": 0, "time_reachability": 0, "time_slp": 0})
+    assert _one_line(fake).endswith(": the path moves its contacts")
+
+
+def test_dt_is_checked_before_the_solve(problem, tmp_path, monkeypatch):
+    from pathpace import cli, problem_file
+
+    def no_load(*a, **k):
+        raise AssertionError("the problem was loaded before --dt was checked")
+
+    monkeypatch.setattr(problem_file, "load_problem", no_load)
+    for dt in ("0", "nan", "-0.5"):
+        with pytest.raises(SystemExit) as e:
+            cli.main(["solve", str(problem), "--dt", dt])
+        assert e.value.code == 2
+
+
+def test_plot_out_suffix_is_checked_before_the_solve(problem, tmp_path):
+    pytest.importorskip("matplotlib")
+    line = one_line_error(run("plot", problem, "--out", tmp_path / "f.xyz"), "argument --out", "suffix 'xyz'",
+                          ".png", ".pdf", ".svg")
+    assert not (tmp_path / "f.xyz").exists()
+    assert "solving" not in line
+
+
+def test_urdf_erd_on_the_command_line_and_its_errors(tmp_path):
+    w = tmp_path / "w.csv"
+    np.savetxt(w, np.random.default_rng(2).uniform(-0.5, 0.5, (3, 7)), delimiter=",")
+    p = run("solve", w, "--urdf", "erd:panda_description/urdf/panda.urdf", "--locked-joints", "panda_finger_joint1",
+            "panda_finger_joint2", "--torque", "--torque-scale", "0.9")
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.startswith("w: optimal, T = ")
+    one_line_error(run("solve", w, "--urdf", "erd:nothing/here.urdf"), "argument --urdf", "nothing/here.urdf")
+    one_line_error(run("solve", w, "--urdf", tmp_path / "absent.urdf"), "argument --urdf", "absent.urdf", "does not exist")
+
+
+def test_locked_mimic_against_its_joint_is_an_error_naming_both(tmp_path):
+    w = tmp_path / "w.csv"
+    np.savetxt(w, np.zeros((3, 7)), delimiter=",")
+    one_line_error(run("solve", w, "--urdf", "erd:panda_description/urdf/panda.urdf", "--locked-joints",
+                       "panda_finger_joint1=0.01", "panda_finger_joint2=0.03"),
+                   "'panda_finger_joint2' = 0.03 breaks its mimic relation", "'panda_finger_joint1' = 0.01 gives 0.01")
+
+
+def test_ragged_waypoints_name_the_row(tmp_path):
+    f = tmp_path / "ragged.yaml"
+    f.write_text(PENDULUM.replace("[[0.0], [-0.3], [0.4]]", "[[0.0], [-0.3, 1.0], [0.4]]"))
+    one_line_error(run("solve", f), "key 'path.waypoints[1]'", "has 2 entries, row 0 has 1")
+
+
+def test_yaml_without_pyyaml_says_what_to_install(problem, tmp_path):
+    code = ("import sys; sys.modules['yaml'] = None\n"
+            "from pathpace.cli import main\n"
+            f"main(['solve', {str(problem)!r}])\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 2
+    assert "reading a YAML problem file needs pyyaml: pip install pyyaml (or pathpace[cli])" in p.stderr
+
+
+def test_help_texts_and_units(problem, tmp_path):
+    h = run("solve", "--help").stdout
+    for needle in ("--knots {uniform,chord}", "chord length", "--torque-scale", "URDF effort",
+                   "SDOT_BEGIN SDOT_END", "rest to rest", "erd:<path>", "--stats, -v"):
+        assert needle in " ".join(h.split()), needle
+    assert "O(Δs²)" in run("check", "--help").stdout
+    out = tmp_path / "t.csv"
+    assert run("solve", problem, "--out", out).returncode == 0
+    p = run("check", problem, out)
+    assert "rad|m" not in p.stdout and "N·m|N" not in p.stdout
+    units = {ln.split()[0]: ln.split()[4] for ln in p.stdout.splitlines()}
+    assert units == {"velocity": "rad/s", "acceleration": "rad/s²", "torque": "N·m"}
+
+
+def test_audit_units_per_joint_kind():
+    from types import SimpleNamespace
+
+    from pathpace.audit import _units
+
+    robot = pp.RobotModel.from_urdf(DATA / "pendulum.urdf", floating_base=True)
+    assert robot.joint_units == ["m", "m", "m", "rad", "rad", "rad", "rad"]
+    spec = SimpleNamespace(robot=robot)
+    assert _units(spec, 7, "/s") == ["m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s", "rad/s"]
+    assert _units(spec, 7, "", torque=True)[:4] == ["N", "N", "N", "N·m"]
+    none = SimpleNamespace(robot=None)
+    assert _units(none, 2, "/s²") == ["rad/s² or m/s²"] * 2
+    assert _units(none, 1, "", torque=True) == ["N·m or N"]
+
+
+def test_a_missing_optional_package_names_its_extra(problem, tmp_path):
+    for module, extra in (("matplotlib", "plot"), ("plotly", "plot")):
+        command = "plot" if module == "matplotlib" else "report"
+        code = (f"import sys; sys.modules[{module!r}] = None\n"
+                "from pathpace.cli import main\n"
+                f"main([{command!r}, {str(problem)!r}, '--out', {str(tmp_path / ('x.png' if command == 'plot' else 'x.html'))!r}])\n")
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+        assert p.returncode == 2, p.stderr
+        assert f"needs the Python package '{module}' (pip install {module}, or pathpace[{extra}])" in p.stderr, p.stderr

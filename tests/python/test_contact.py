@@ -95,9 +95,16 @@ def test_contact_validation_and_drift_warning():
         prob.add_contacts(robot, [pp.Contact("rod", friction=0.0)])
     with pytest.raises(pp.InvalidInputError, match=r"cone_edges = 2 must be >= 3"):
         prob.add_contacts(robot, [pp.Contact("rod")], cone_edges=2)
-    # The rod's centre moves along the path: a contact there does not stay in place.
+    # The rod's centre moves along the path: a contact there does not stay in place. It moves by far more
+    # than 10x drift_tolerance: an error by default (drift="auto") and with "error"; "warn" times it.
+    for kw in ({}, {"drift": "error"}):
+        with pytest.raises(pp.InvalidInputError, match=r"contact 0 \(link 'rod'\) moves by .* m \(farthest at s = "):
+            prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])], **kw)
+    assert prob.constraints == []
+    with pytest.raises(pp.InvalidInputError, match=r"drift = 'never', expected 'auto', 'warn' or 'error'"):
+        prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])], drift="never")
     with pytest.warns(UserWarning, match=r"contact 0 \(link 'rod'\) moves by"):
-        prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])])
+        prob.add_contacts(robot, [pp.Contact("rod", point=[0, 0, 0])], drift="warn")
 
 
 

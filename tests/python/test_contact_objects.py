@@ -192,8 +192,10 @@ def test_robot_robot_contact_validation_and_drift():
     dq[:, 0] = 1.0
     slipping = pp.SampledPath(s, q, dq, np.zeros_like(q))
     prob = pp.TimeScalingProblem(slipping, grid=s)
-    with pytest.warns(UserWarning, match=r"contact 0 \(link 'box'\) moves by 1\.0"):
+    with pytest.raises(pp.InvalidInputError, match=r"contact 0 \(link 'box'\) moves by 1 m \(farthest at s = 1;"):
         prob.add_contacts(model, box_corners())
+    with pytest.warns(UserWarning, match=r"contact 0 \(link 'box'\) moves by 1 m"):
+        prob.add_contacts(model, box_corners(), drift="warn")
     c = pp.ContactConstraint(model, box_corners())
     assert c.contacts[0].other_link == "platform" and pp.Contact("box").other_link is None
     assert c.max_drift(slipping, s) == (pytest.approx(1.0), 0)

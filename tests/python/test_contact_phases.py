@@ -145,8 +145,12 @@ def test_a_contact_made_moving_along_its_normal_stops_the_path_breaking_does_not
 def test_drift_is_checked_per_phase():
     _, robot, path, ph = foot_problem(landing=True)
     prob = pp.TimeScalingProblem(path, grid=20)
-    with pytest.warns(UserWarning, match=r"phases\[0\]: contact 0 \(link 'foot'\) moves by 1\.0"):
+    with pytest.raises(pp.InvalidInputError, match=r"phases\[0\]: contact 0 \(link 'foot'\) moves by 1 m"):
         prob.add_contact_phases(robot, [(0.0, 1.0, ph[1][2]), (1.0, 2.0, [])])
+    assert prob.constraints == []
+    with pytest.warns(UserWarning, match=r"phases\[0\]: contact 0 \(link 'foot'\) moves by 1 m"):
+        prob.add_contact_phases(robot, [(0.0, 1.0, ph[1][2]), (1.0, 2.0, [])], drift="warn")
+    assert [d["constraint"] for d in prob.solve().contact_drift] == ["phases[0]"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         pp.TimeScalingProblem(path, grid=20).add_contact_phases(robot, ph)  # held only where it stays: no warning

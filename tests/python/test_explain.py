@@ -357,7 +357,8 @@ def test_contact_polygon_edges_are_named_by_what_binds_them():
     seen = set()
     for k in range(len(th)):
         for label in prob.feasible_set(k).labels:
-            base = re.sub(r" \(\d+\)$", "", label)  # a second edge held by the same limit: "... (2)"
+            # A second edge held by the same limit says so: "... [polygon edge 2 of this limit]".
+            base = re.sub(r" \[polygon edge \d+ of this limit\]$", "", label)
             assert base in {friction, "torque theta upper", "torque theta lower"}, label
             seen.add(base)
     assert seen == {friction, "torque theta upper", "torque theta lower"}

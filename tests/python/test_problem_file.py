@@ -62,7 +62,7 @@ def test_contact_phases_in_a_file_are_add_contact_phases(tmp_path):
     ({"phases": [{"s": [-0.15, 0.15], "points": [{"point": [0, 0, 0]}]}]}, r"contacts.phases\[0\].points\[0\].link"),
     ({"phases": [{"s": [-0.15, 0.15], "points": [ROD], "cone_edges": 4}]}, r"is one for all phases"),
     ({"phases": [{"s": [-0.15, 0.15], "points": [ROD], "mu": 1}]}, r"contacts.phases\[0\]"),
-    ({"points": [ROD], "drift_tolerance": 1e-3}, "applies to contacts.phases"),
+    ({"points": [ROD], "drift": "never"}, r"drift"),
 ])
 def test_every_phase_key_error_is_named(tmp_path, contacts, match):
     f = rod_file(tmp_path, contacts)[0]

@@ -35,3 +35,27 @@ def test_readme_first_python_example_runs_as_pasted():
     exec(compile(block, "README.md", "exec"), scope)  # noqa: S102 - the README's own example
     assert scope["res"].ok and abs(scope["res"].duration - 2.8189) < 1e-3  # the value the README prints
     assert set(scope["samples"]) == {"t", "q", "qd", "qdd"}
+
+
+def test_readme_infeasible_example_prints_what_the_readme_says():
+    """The infeasible Panda of the README, run as pasted (it needs example-robot-data): the message and the
+    relaxation are the ones its comments show."""
+    import numpy as np
+    import pytest
+
+    import pathpace as pp
+
+    from pathpace.robots import example_robot_data_dir
+
+    try:
+        example_robot_data_dir()
+    except FileNotFoundError:
+        pytest.skip("example-robot-data is not installed")
+    readme = (ROOT / "README.md").read_text()
+    (block,) = [b for b in re.findall(r"```python\n(.*?)```", readme, re.S) if "res.relaxation   #" in b]
+    scope = {"np": np, "pp": pp}
+    exec(compile(block, "README.md", "exec"), scope)  # noqa: S102 - the README's own example
+    res = scope["res"]
+    comment = re.search(r'res\.message\s+# "(.*?)"\n', block, re.S).group(1)
+    assert res.message == " ".join(part.strip().lstrip("#").strip() for part in comment.splitlines())
+    assert res.relaxation["torque"] == pytest.approx(2.0646, abs=1e-4) and res.relaxation["velocity"] == np.inf

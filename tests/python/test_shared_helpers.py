@@ -92,7 +92,8 @@ def test_matplotlib_and_plotly_draw_the_same_velocity_curves():
     np.testing.assert_allclose(expected[0][1], d["qd"][:, 0])
 
     ax = plot.velocities(res, [-1.0, -np.inf], [1.0, np.inf], joint_names=["a", "b"])
-    drawn = [line for line in ax.get_lines() if line.get_label() == "a"]
+    peak = 100 * np.max(np.abs(expected[0][1]))
+    drawn = [line for line in ax.get_lines() if line.get_label() == f"a (peak {peak:.0f} %)"]
     assert len(drawn) == 1 and len(ax.get_lines()) == 3  # the curve and the two limits
     np.testing.assert_array_equal(drawn[0].get_ydata(), expected[0][1])
 
@@ -100,9 +101,12 @@ def test_matplotlib_and_plotly_draw_the_same_velocity_curves():
                                  velocity_limits=([-1.0, -np.inf], [1.0, np.inf]))
     figs = dict(report.figures(spec, res))
     traces = figs["Joint velocities against the limits"].data
-    assert [t.name for t in traces] == ["a"]
-    np.testing.assert_array_equal(np.asarray(traces[0].y), expected[0][1])
-    np.testing.assert_array_equal(np.asarray(traces[0].x), d["t"])
+    # The page samples fewer points and stores them as float32 (report._SAMPLES, report._f32).
+    d = plot.velocities_data(res, [-1.0, -np.inf], [1.0, np.inf], ["a", "b"], samples=report._SAMPLES)
+    expected = plot.limit_ratios(d["qd"], d["vmin"], d["vmax"], d["joint_names"])
+    assert [t.name for t in traces] == [f"a (peak {100 * np.max(np.abs(expected[0][1])):.0f} %)"]
+    np.testing.assert_array_equal(np.asarray(traces[0].y), expected[0][1].astype(np.float32))
+    np.testing.assert_array_equal(np.asarray(traces[0].x), d["t"].astype(np.float32))
 
 
 def test_a_generated_bench_section_replaces_its_block_and_never_repeats_its_heading(tmp_path):

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/binding_labels.hpp"
+#include "pathpace/contact_drift.hpp"
 #include "pathpace/path.hpp"
 
 namespace pathpace {
@@ -98,6 +99,12 @@ class Result {
   /// in order of s; empty without phases. Trajectory::contact_forces then uses the phase at each time
   /// (and only it: a contact constraint of the whole path added besides the phases is not in its LP).
   std::vector<std::shared_ptr<const ContactConstraint>> contact_phases;
+  /// Contacts that the path moves although they should hold (TimeScalingProblem::add_contacts with
+  /// DriftPolicy::Warn or Auto): the contact forces of this timing assume they stay; message says so too.
+  std::vector<ContactDrift> contact_drift;
+  /// The torque limits this solve held (N·m or N, after scale and margin): the problem's TorqueLimits, or
+  /// those of its (last) contact constraint; empty without torque limits. What a plot "against the limits" shows.
+  Eigen::VectorXd tau_min, tau_max;
 
   /// True for Optimal (and for IterationLimit and TimeLimit, whose timing is feasible).
   bool ok() const {

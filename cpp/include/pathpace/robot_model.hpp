@@ -124,6 +124,14 @@ class RobotModel {
     double multiplier = 1.0, offset = 0.0;
   };
   const std::vector<MimicJoint>& mimic_joints() const;
+  /// Mimic joints locked without their joint (RobotModelOptions::locked_joints): each is frozen at its
+  /// value while its joint moves, its relation dropped (as a model reduced on that joint alone, e.g.
+  /// pinocchio's buildReducedModel). Locking its joint instead keeps the relation. A mimic locked with its
+  /// joint at values that break the relation is an InvalidInput.
+  const std::vector<std::string>& frozen_mimic_joints() const { return frozen_mimics_; }
+  /// The kind of each coordinate q[j] (nq entries): Revolute (rad) or Prismatic (m); a floating base's
+  /// x, y, z are prismatic, its rotations revolute.
+  std::vector<JointType> joint_types() const;
 
   /// Body index of a link (merged links map to the body that carries them) and the link's fixed
   /// placement in that body's frame. Throws InvalidInput for an unknown name.
@@ -164,6 +172,7 @@ class RobotModel {
   std::shared_ptr<const Source> source_;
   struct MimicMap;  // robot_model.cpp: body -> coordinate map and the one-coordinate-per-body model
   std::shared_ptr<const MimicMap> mimic_;
+  std::vector<std::string> frozen_mimics_;
 };
 
 }  // namespace pathpace

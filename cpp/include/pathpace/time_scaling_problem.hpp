@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
+#include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
 #include "pathpace/path.hpp"
@@ -85,9 +86,22 @@ class TimeScalingProblem {
   /// Each phase is one ContactConstraint with active_begin/active_end set (label "phases[i]", which prefixes
   /// its row labels, so Result::binding and messages name the phase); TorqueLimits of the same robot are
   /// merged into every phase. tau_min / tau_max as in ContactConstraint.
+  ///
+  /// Each phase must keep its contacts in place on its own stretch: check_contact_drift with
+  /// drift_tolerance (m) and `drift`, as add_contacts.
   void add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
                           const ContactOptions& options = ContactOptions(), const Eigen::VectorXd& tau_min = Eigen::VectorXd(),
-                          const Eigen::VectorXd& tau_max = Eigen::VectorXd(), double impact_tolerance = 1e-6);
+                          const Eigen::VectorXd& tau_max = Eigen::VectorXd(), double impact_tolerance = 1e-6,
+                          double drift_tolerance = 1e-6, DriftPolicy drift = DriftPolicy::Auto);
+  /// add_constraint for contacts, after checking that the path keeps them in place (check_contact_drift:
+  /// an InvalidInput under DriftPolicy::Error, or Auto beyond 10 x drift_tolerance); a drift that is
+  /// timed anyway is kept in contact_drift() and reported by every Result (Result::contact_drift).
+  void add_contacts(std::shared_ptr<const ContactConstraint> contacts, double drift_tolerance = 1e-6,
+                    DriftPolicy drift = DriftPolicy::Auto);
+  /// The contacts that add_contacts / add_contact_phases let through although they move (DriftPolicy::Warn
+  /// or Auto within 10x the tolerance); set_contact_drift restores them (pickling).
+  const std::vector<ContactDrift>& contact_drift() const { return contact_drift_; }
+  void set_contact_drift(std::vector<ContactDrift> drift) { contact_drift_ = std::move(drift); }
 
   /// Names of the path's coordinates, used in the row labels and messages of the velocity and
   /// acceleration limits (those added before as well as after). Set automatically from the robot of the
@@ -172,6 +186,7 @@ class TimeScalingProblem {
   double sdot_begin_ = 0.0, sdot_end_ = 0.0;
   bool zero_sddot_begin_ = false, zero_sddot_end_ = false;
   std::vector<std::string> joint_names_;
+  std::vector<ContactDrift> contact_drift_;
 };
 
 }  // namespace pathpace

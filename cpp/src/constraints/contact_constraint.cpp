@@ -214,7 +214,7 @@ void ContactConstraint::point_velocities(const PathSamples& samples, Eigen::Matr
   }
 }
 
-double ContactConstraint::max_drift(const PathSamples& samples, int* which) const {
+double ContactConstraint::max_drift(const PathSamples& samples, int* which, double* at_s) const {
   double worst = 0.0;
   std::vector<Eigen::Isometry3d> T;
   std::vector<Eigen::Vector3d> first(contacts_.size());
@@ -236,6 +236,7 @@ double ContactConstraint::max_drift(const PathSamples& samples, int* which) cons
       if (d > worst) {
         worst = d;
         if (which) *which = static_cast<int>(i);
+        if (at_s) *at_s = samples.s[s];
       }
     }
   }
@@ -493,7 +494,7 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
       auto it = column.find({l, occurrence});
       if (it == column.end()) {
         it = column.emplace(std::make_pair(l, occurrence), static_cast<Eigen::Index>(labels.size())).first;
-        labels.push_back(occurrence == 0 ? l : l + " (" + std::to_string(occurrence + 1) + ")");
+        labels.push_back(occurrence == 0 ? l : l + " [polygon edge " + std::to_string(occurrence + 1) + " of this limit]");
       }
       at[static_cast<size_t>(p)].push_back(it->second);
     }

@@ -93,8 +93,8 @@ class ContactConstraint : public Constraint {
   /// The largest distance a contact point moves along the path's samples (0 for a path that keeps
   /// every contact in place): in the world for a world contact, relative to `other_link` for a
   /// robot–robot contact, over the samples where the constraint is active (a phase: its own stretch).
-  /// `contact` receives the index of the worst one.
-  double max_drift(const PathSamples& samples, int* contact = nullptr) const;
+  /// `contact` receives the index of the worst one, `at_s` the s where it is farthest.
+  double max_drift(const PathSamples& samples, int* contact = nullptr, double* at_s = nullptr) const;
 
   /// True if s lies in [active_begin, active_end] (to 1e-12 relative): the rows hold there.
   bool active_at(double s) const;
