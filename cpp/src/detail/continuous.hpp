@@ -48,6 +48,8 @@ struct AuditMemory {
 struct Audit {
   double worst = 0.0;  ///< largest violation found, relative to max(|c|, |a θ(s)| + |b u|) (<= 0: none)
   int cuts = 0;        ///< rows added to `extra`
+  int lps = 0;         ///< contact slice LPs (ContactConstraint::slice) spent
+  int projections = 0; ///< polygons projected (at cut points)
 };
 
 /// Checks every constraint other than velocity and acceleration limits between the grid points of `s` under
