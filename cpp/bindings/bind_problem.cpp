@@ -205,6 +205,7 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("projection_lps_cold_retry", s.projection_lps_cold_retry);
   f("audit_lps", s.audit_lps);
   f("audit_projections", s.audit_projections);
+  f("audit_reused", s.audit_reused);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {

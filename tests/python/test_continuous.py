@@ -205,6 +205,8 @@ def test_contact_limits_hold_between_grid_points_of_a_coarse_grid(amplitude, N):
         # sample) and projects a polygon only where it cuts (at most one point per interval and round).
         assert cont.stats["audit_lps"] > 0
         assert 1 <= cont.stats["audit_projections"] <= cont.stats["audit_rounds"] * N
+        # Later rounds settle most samples from the slices kept at u ± δ (no LP).
+        assert cont.stats["audit_reused"] > 0
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])

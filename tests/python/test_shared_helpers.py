@@ -15,14 +15,15 @@ import pathpace as pp
 from helpers import two_joint_problem
 from pathpace import plot
 
-# Result's pickle state keeps SolverStats as a tuple of these 25 entries, in this order (the format pickles
+# Result's pickle state keeps SolverStats as a tuple of these 26 entries, in this order (the format pickles
 # written so far have): a new field may only be appended, with a new entry count. The first pickles had
 # the first 18, the next ones the first 23.
 STATS_STATE = ("slp_iterations", "lp_solves", "greatest_element", "gap", "average_halfplanes", "time_constraints",
                "time_feasible_sets", "time_reachability", "time_slp", "audit_rounds", "audit_cuts", "audit_worst",
                "windows", "window_points", "time_projection", "projection_lp_solves", "inexact_points", "newton_steps",
                "projection_lps_initial", "projection_lps_vertex", "projection_lps_certificate",
-               "projection_lps_cap_growth", "projection_lps_cold_retry", "audit_lps", "audit_projections")
+               "projection_lps_cap_growth", "projection_lps_cold_retry", "audit_lps", "audit_projections",
+               "audit_reused")
 
 
 def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
@@ -37,14 +38,14 @@ def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
     assert prob.solve().stats["time_constraints"] > 0.0
 
 
-def test_result_stats_are_the_25_fields_and_a_pickle_round_trip_keeps_them():
+def test_result_stats_are_the_26_fields_and_a_pickle_round_trip_keeps_them():
     res = two_joint_problem(N=50).solve()
     assert set(res.stats) == set(STATS_STATE)
     back = pickle.loads(pickle.dumps(res))
     assert back.stats == res.stats and back.duration == res.duration
 
 
-def test_result_reads_a_stats_state_in_the_25_23_and_18_entry_layouts():
+def test_result_reads_a_stats_state_in_the_26_23_and_18_entry_layouts():
     """A state written in the layout pickles have (each value distinct, of its field's type) is read into
     the fields of that name; one in the earlier 18- and 23-entry layouts too, the fields they lack at
     0; a state of another length is refused, named."""
@@ -64,9 +65,9 @@ def test_result_reads_a_stats_state_in_the_25_23_and_18_entry_layouts():
         state[8] = tuple(values[:first])
         r = pp.Result.__new__(pp.Result)
         r.__setstate__(tuple(state))
-        assert r.stats == dict(zip(STATS_STATE, values[:first] + [0] * (25 - first)))
+        assert r.stats == dict(zip(STATS_STATE, values[:first] + [0] * (26 - first)))
     state[8] = tuple(values[:-1])
-    with pytest.raises(pp.InvalidInputError, match=r"Result stats pickle state has 24 entries, expected 25"):
+    with pytest.raises(pp.InvalidInputError, match=r"Result stats pickle state has 25 entries, expected 26"):
         pp.Result.__new__(pp.Result).__setstate__(tuple(state))
 
 

@@ -74,6 +74,7 @@ struct SolverStats {
   /// timing's own s̈, two per sample point) and polygons they projected (one per cut point).
   int audit_lps = 0;
   int audit_projections = 0;
+  int audit_reused = 0;  ///< contact samples settled by the slices of an earlier round (no LP)
 };
 
 class Result {

@@ -185,6 +185,76 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     memory.coarse.assign(constraints.size(), ConstraintRows());
     memory.cut_points.assign(constraints.size(), std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N)));
   }
+  if (memory.slices.size() != constraints.size()) memory.slices.assign(constraints.size(), {});
+  // A contact constraint's samples (ks[i], ls[i]) of the intervals todo[t] (samples first[t] ..
+  // first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slices from an
+  // earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
+  // slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
+  // slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
+  auto contact_samples = [&](const ContactConstraint& cc, size_t ci, int pts, const std::vector<Eigen::Index>& kk,
+                             const std::vector<double>& ll, const std::vector<size_t>& first,
+                             const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
+    auto& memo = memory.slices[ci];
+    if (memo.size() != static_cast<size_t>(N * pts)) memo.assign(static_cast<size_t>(N * pts), {});
+    const double cap = cc.options().cap;
+    f.assign(kk.size(), nan);
+    std::vector<Eigen::Index> bk;
+    std::vector<double> bl, bu;
+    std::vector<size_t> main_of;  // per sample asked: its index in kk
+    std::vector<int> role;        // 1: the sample itself; 0, 2: u - δ, u + δ of a Chebyshev point
+    for (size_t t = 0; t < todo.size(); ++t)
+      for (size_t i = first[t]; i < first[t + 1]; ++i) {
+        const Eigen::Index k = kk[i];
+        const double u = u_of(k), x = x_of(k, ll[i]);
+        const bool cheb = i - first[t] < static_cast<size_t>(pts);
+        if (cheb) {
+          const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + (i - first[t])];
+          if (M.valid && M.u[0] <= u && u <= M.u[2]) {
+            const int j = u <= M.u[1] ? 0 : 1;
+            const double w = M.u[j + 1] > M.u[j] ? (u - M.u[j]) / (M.u[j + 1] - M.u[j]) : 0.0;
+            const double hi = (1.0 - w) * M.hi[j] + w * M.hi[j + 1], lo = (1.0 - w) * M.lo[j] + w * M.lo[j + 1];
+            const double v = slice_violation(x, lo, hi >= cap * (1.0 - 1e-9) ? inf : hi);
+            if (v <= 0.0) {
+              f[i] = v;
+              ++audit.reused;
+              continue;
+            }
+          }
+        }
+        const double delta = 1e-4 * (std::abs(u) + (theta[k] + theta[k + 1]) / (2.0 * (s[k + 1] - s[k])));
+        for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
+          bk.push_back(k);
+          bl.push_back(ll[i]);
+          bu.push_back(u + (r - 1) * delta);
+          main_of.push_back(i);
+          role.push_back(r);
+        }
+      }
+    if (bk.empty()) return;
+    const PathSamples ps = samples_at(bk, bl);
+    Eigen::VectorXd lo, hi;
+    audit.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), static_cast<Eigen::Index>(bu.size())), lo, hi);
+    // The memory of each Chebyshev point asked: valid only if all three slices are non-empty.
+    for (size_t q = 0; q < bk.size(); ++q) {
+      const size_t i = main_of[q];
+      const Eigen::Index e = static_cast<Eigen::Index>(q);
+      if (role[q] == 1) f[i] = slice_violation(x_of(bk[q], bl[q]), lo[e], hi[e]);
+    }
+    for (size_t q = 0; q + 2 < bk.size(); ++q) {
+      if (role[q] != 0) continue;
+      size_t t = 0;
+      while (first[t + 1] <= main_of[q]) ++t;
+      AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + (main_of[q] - first[t])];
+      M.valid = true;
+      for (int r = 0; r < 3; ++r) {
+        const Eigen::Index e = static_cast<Eigen::Index>(q + static_cast<size_t>(r));
+        M.u[r] = bu[q + static_cast<size_t>(r)];
+        M.lo[r] = lo[e];
+        M.hi[r] = std::min(hi[e], cap);
+        if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) M.valid = false;
+      }
+    }
+  };
   for (size_t ci : which) {
     const auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints[ci]);
     // The violation at (interval ks[i], λ ls[i]) under θ. A contact constraint is asked only whether the
@@ -253,7 +323,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
         }
       }
       first[todo.size()] = ks.size();
-      violations(ks, ls, fc);
+      contact_samples(*contact, ci, points, ks, ls, first, todo, fc);
     }
     Ls.assign(todo.size(), {});
     Vs.assign(todo.size(), {});
