@@ -63,8 +63,9 @@ TEST(ContactSlice, EqualsTheProjectedPolygonsSlice) {
   for (double u : {-20.0, -3.0, -1.0, 0.0, 0.7, 2.0, 4.0, 20.0}) {
     const Eigen::VectorXd uu = Eigen::VectorXd::Constant(ps.size(), u);
     Eigen::VectorXd lo, hi;
-    EXPECT_EQ(c.slice(ps, uu, lo, hi), 2 * static_cast<int>(ps.size()) - static_cast<int>(
-        (lo.array() > hi.array()).count()));  // an empty slice takes one LP
+    const int lps = c.slice(ps, uu, lo, hi);
+    EXPECT_EQ(lps, 2 * static_cast<int>(ps.size()) - static_cast<int>((lo.array() > hi.array()).count()))
+        << "an empty slice takes one LP";
     for (Eigen::Index p = 0; p < ps.size(); ++p) {
       double rlo, rhi;
       row_slice(rows, p, u, rlo, rhi);
