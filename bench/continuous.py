@@ -15,6 +15,15 @@ negative = forces that do not exist). Reported as distributions: median and wors
                                                        the generated section of bench/README.md)
     .venv/bin/python bench/continuous.py --quick      (3 seeds per arm, no humanoid, README left alone)
     .venv/bin/python bench/continuous.py --humanoid   (the humanoid rows only, README left alone)
+    .venv/bin/python bench/continuous.py --contact-corpus [--margins off1.5 fn1.5] [--cases talos-squat ...]
+                                                      (issue 27's corpus, README left alone)
+
+Contact corpus (`--contact-corpus`): every case of tests/python/contact_corpus.hard_cases (Talos, Romeo, G1;
+a strong lean and a squat each; 60-64 sole points, torque limits scaled until they bind), 4-edge cones,
+N = 100, with the margins named (`contact_corpus.HARD_MARGINS` / `SHIFTED_MARGINS`). Per row and guarantee:
+thread CPU s of add_contacts + solve (one run: the rows take seconds), audit rounds, cuts, the audit's slice
+LPs and cut projections, T, and the independent dense audit: the smallest force-distribution margin (N) of
+the returned trajectory at 1 kHz (>= -1e-6 is the contract the tests assert).
 """
 
 from __future__ import annotations
@@ -121,6 +130,55 @@ def humanoid_row(robot, path, feet, N, repeat):
     return row
 
 
+def contact_corpus_rows(margins, cases, edges=4, N=100):
+    sys.path.insert(0, str(HERE.parent / "tests" / "python"))
+    import contact_corpus as cc
+
+    rows = []
+    for case in cc.hard_cases():
+        name = f"{case.robot}-{case.kind}"
+        if cases and name not in cases:
+            continue
+        h = cc.load(case.robot)
+        path = cc.make_hard_path(h, case)
+        cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[case.robot])
+        scale = cc.HARD_TORQUE_SCALE[(case.robot, case.kind)]
+        for mname in margins:
+            opts = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[mname]
+            row = {"case": name, "margins": mname, "points": len(cons), "edges": edges, "N": N,
+                   "load_before": os.getloadavg()[0]}
+            for g in GUARANTEES:
+                t0 = time.thread_time()
+                prob = pp.TimeScalingProblem(path, grid=N)
+                prob.add_contacts(h.robot, cons, cone_edges=edges, drift_tolerance=1e-4, torque_scale=scale, **opts)
+                res = prob.solve(guarantee=g)
+                cpu = time.thread_time() - t0
+                r = {"status": res.status.name, "T": res.duration, "cpu": cpu,
+                     **{k: res.stats[k] for k in ("audit_rounds", "audit_cuts", "audit_lps", "audit_projections",
+                                                   "projection_lp_solves")}}
+                if res.ok:
+                    t = np.append(np.arange(0.0, res.duration, 1e-3), res.duration)
+                    r["margin_N"] = float(np.min(res.trajectory().contact_forces(t).margin))
+                row[g] = r
+            rows.append(row)
+            print(contact_line(row), flush=True)
+    return rows
+
+
+CONTACT_HEADER = ("| case | margins | grid CPU s | continuous CPU s | ratio | rounds | cuts | audit LPs | "
+                  "cut projections | T grid (s) | T cont. / grid - 1 | 1 kHz margin grid (N) | 1 kHz margin cont. (N) |\n"
+                  "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+
+
+def contact_line(row):
+    g, c = row["grid"], row["continuous"]
+    dT = c["T"] / g["T"] - 1 if g["status"] == c["status"] == "OPTIMAL" else float("nan")
+    return (f"| {row['case']} | {row['margins']} | {g['cpu']:.3f} | {c['cpu']:.3f} | {c['cpu'] / g['cpu']:.1f}x | "
+            f"{c['audit_rounds']} | {c['audit_cuts']} | {c['audit_lps']} | {c['audit_projections']} | {g['T']:.6f} | "
+            f"{dT:+.2e} | {g.get('margin_N', float('nan')):+.3g} | {c.get('margin_N', float('nan')):+.3g} |"
+            + ("" if c["status"] == "OPTIMAL" else f" {c['status']}"))
+
+
 def summarize(rows):
     out = []
     keys = sorted({(r["case"], r["N"]) for r in rows})
@@ -171,7 +229,16 @@ def main():
     ap.add_argument("--humanoid", action="store_true")
     ap.add_argument("--seeds", type=int, default=None)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--contact-corpus", action="store_true")
+    ap.add_argument("--margins", nargs="+", default=["off1.5"])
+    ap.add_argument("--cases", nargs="*", default=[], help="e.g. talos-squat romeo-lean (default: all six)")
     args = ap.parse_args()
+    if args.contact_corpus:
+        print(CONTACT_HEADER)
+        rows = contact_corpus_rows(args.margins, args.cases)
+        ratios = [r["continuous"]["cpu"] / r["grid"]["cpu"] for r in rows]
+        print(f"\ncontinuous / grid CPU: median {statistics.median(ratios):.1f}x, worst {max(ratios):.1f}x over {len(rows)} rows")
+        return
     seeds = args.seeds or (3 if args.quick else 10)
     t0 = time.time()
     if args.humanoid:

@@ -240,6 +240,9 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("projection_lps_certificate", s.projection_lps_certificate);
   f("projection_lps_cap_growth", s.projection_lps_cap_growth);
   f("projection_lps_cold_retry", s.projection_lps_cold_retry);
+  f("audit_lps", s.audit_lps);
+  f("audit_projections", s.audit_projections);
+  f("audit_reused", s.audit_reused);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -263,8 +266,10 @@ py::tuple stats_state(const SolverStats& s) {
 }
 
 SolverStats stats_from_state(const py::tuple& st) {
-  constexpr size_t kFirstStatsStateSize = 18;  // pickles written before the projection's LP causes
-  if (st.size() != kFirstStatsStateSize) check_state(st, kStatsStateSize, "Result stats");
+  constexpr size_t kFirstStatsStateSize = 18;   // pickles written before the projection's LP causes
+  constexpr size_t kSecondStatsStateSize = 23;  // ... and before the audit's LP and projection counts
+  if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize)
+    check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;
   for_each_stat(s, [&](const char*, auto& value) {

@@ -540,7 +540,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     id += static_cast<int>(cr.rows());
   }
   Result res;
-  int rounds = 0, cuts = 0;
+  int rounds = 0, cuts = 0, audit_lps = 0, audit_projections = 0, audit_reused = 0;
   detail::AuditMemory memory;
   // The time budget covers all rounds: each solve gets what is left.
   const auto started = std::chrono::steady_clock::now();
@@ -554,6 +554,9 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
                                                       options.audit_points, options.audit_tolerance, extra, memory);
     ++rounds;
     cuts += audit.cuts;
+    audit_lps += audit.lps;
+    audit_projections += audit.projections;
+    audit_reused += audit.reused;
     res.stats.audit_worst = audit.worst;
     if (audit.cuts == 0) break;
     if (rounds >= options.max_audit_rounds) {
@@ -566,6 +569,9 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   }
   res.stats.audit_rounds = rounds;
   res.stats.audit_cuts = cuts;
+  res.stats.audit_lps = audit_lps;
+  res.stats.audit_projections = audit_projections;
+  res.stats.audit_reused = audit_reused;
   return with_drift_note(std::move(res));
 }
 

@@ -71,6 +71,11 @@ struct SolverStats {
   int projection_lps_certificate = 0;
   int projection_lps_cap_growth = 0;
   int projection_lps_cold_retry = 0;
+  /// guarantee = continuous: LPs the audits spent on contact constraints (the polygon's slice at the
+  /// timing's own s̈, two per sample point) and polygons they projected (one per cut point).
+  int audit_lps = 0;
+  int audit_projections = 0;
+  int audit_reused = 0;  ///< contact samples settled by the slices of an earlier round (no LP)
 };
 
 class Result {

@@ -9,6 +9,7 @@
 #include "detail/interval_bounds.hpp"
 #include "detail/validate.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 
@@ -94,6 +95,30 @@ double bump_bound(double la, double va, double lb, double vb, double K) {
   return va + slope * tau + 0.5 * K * tau * (h - tau);
 }
 
+// A contact constraint's violation at one point: x beyond the polygon's slice [lo, hi] at the timing's u,
+// relative to x's own size (as a row's violation is relative to its terms); an empty slice (no x at
+// all fits this u) or a failed LP counts as a full violation, which the cut's projection then settles.
+double slice_violation(double x, double lo, double hi) {
+  if (std::isnan(lo) || std::isnan(hi) || lo > hi) return 1.0;
+  const double over = std::max(x - hi, lo - x);
+  if (over == -std::numeric_limits<double>::infinity()) return over;
+  return over / std::max({std::abs(x), std::isfinite(hi) ? std::abs(hi) : 0.0, 1e-300});
+}
+
+// The same from a polygon's rows (row r of `rows`): the slice at u is where every row a x + b u <= c holds.
+double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double lo = -inf, hi = inf;
+  for (Eigen::Index j = 0; j < rows.rows(); ++j) {
+    const double a = rows.a(r, j), rest = rows.c(r, j) - rows.b(r, j) * u;
+    if (rows.c(r, j) == inf) continue;
+    if (a > 0.0) hi = std::min(hi, rest / a);
+    else if (a < 0.0) lo = std::max(lo, rest / a);
+    else if (rest < 0.0) return 1.0;  // a row on u alone that this u breaks
+  }
+  return slice_violation(x, lo, hi);
+}
+
 // v'' from three samples.
 double second_difference(double la, double va, double lb, double vb, double lc, double vc) {
   return 2.0 * ((vc - vb) / (lc - lb) - (vb - va) / (lb - la)) / (lc - la);
@@ -107,6 +132,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
                     double tolerance, IntervalExtra& extra, AuditMemory& memory) {
   Audit audit;
   const Eigen::Index N = s.size() - 1;
+  const double inf = std::numeric_limits<double>::infinity();
   std::vector<size_t> which;
   for (size_t i = 0; i < constraints.size(); ++i)
     if (!std::dynamic_pointer_cast<const VelocityLimits>(constraints[i]) &&
@@ -126,7 +152,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
   };
   std::vector<Eigen::Index> ks;
   std::vector<double> ls;
-  audit.worst = -std::numeric_limits<double>::infinity();
+  audit.worst = -inf;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (memory.theta0.size() != constraints.size()) {
     memory.theta0.assign(constraints.size(), std::vector<double>(static_cast<size_t>(N), nan));
@@ -134,6 +160,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     memory.worst = memory.theta0;
   }
   auto u_of = [&](Eigen::Index k) { return (theta[k + 1] - theta[k]) / (2.0 * (s[k + 1] - s[k])); };
+  auto x_of = [&](Eigen::Index k, double l) { return (1.0 - l) * theta[k] + l * theta[k + 1]; };
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   // Per interval and constraint, the violation at λ is the largest relative violation over the
   // constraint's rows there (a contact polygon's rows differ from one point to the next, so rows are
@@ -146,27 +173,112 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     double best() const { return std::max({fa, fb, fc}); }
     double at() const { return fb >= fa && fb >= fc ? b : (fa >= fc ? a : c); }
   };
-  auto worst_row = [&](const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k, Eigen::Index* arg) {
-    double w = -std::numeric_limits<double>::infinity();
-    for (Eigen::Index j = 0; j < rr.rows(); ++j) {
-      const double v = violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[k], theta[k + 1], u_of(k));
-      if (v > w) {
-        w = v;
-        if (arg) *arg = j;
-      }
-    }
+  auto worst_row = [&](const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) {
+    double w = -inf;
+    for (Eigen::Index j = 0; j < rr.rows(); ++j)
+      w = std::max(w, violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[k], theta[k + 1], u_of(k)));
     return w;
   };
   std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
-  std::vector<double> L, V;
+  std::vector<std::vector<double>> Ls, Vs;      // [interval]: the samples, sorted and merged
   if (memory.coarse.size() != constraints.size()) {
     memory.coarse.assign(constraints.size(), ConstraintRows());
     memory.cut_points.assign(constraints.size(), std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N)));
   }
+  if (memory.slices.size() != constraints.size()) memory.slices.assign(constraints.size(), {});
+  // A contact constraint's samples (ks[i], ls[i]) of the intervals todo[t] (samples first[t] ..
+  // first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slices from an
+  // earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
+  // slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
+  // slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
+  auto contact_samples = [&](const ContactConstraint& cc, size_t ci, int pts, const std::vector<Eigen::Index>& kk,
+                             const std::vector<double>& ll, const std::vector<size_t>& first,
+                             const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
+    auto& memo = memory.slices[ci];
+    if (memo.size() != static_cast<size_t>(N * pts)) memo.assign(static_cast<size_t>(N * pts), {});
+    const double cap = cc.options().cap;
+    f.assign(kk.size(), nan);
+    std::vector<Eigen::Index> bk;
+    std::vector<double> bl, bu;
+    std::vector<size_t> main_of;  // per sample asked: its index in kk
+    std::vector<int> role;        // 1: the sample itself; 0, 2: u - δ, u + δ of a Chebyshev point
+    for (size_t t = 0; t < todo.size(); ++t)
+      for (size_t i = first[t]; i < first[t + 1]; ++i) {
+        const Eigen::Index k = kk[i];
+        const double u = u_of(k), x = x_of(k, ll[i]);
+        const bool cheb = i - first[t] < static_cast<size_t>(pts);
+        if (cheb) {
+          const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + (i - first[t])];
+          if (M.valid && M.u[0] <= u && u <= M.u[2]) {
+            const int j = u <= M.u[1] ? 0 : 1;
+            const double w = M.u[j + 1] > M.u[j] ? (u - M.u[j]) / (M.u[j + 1] - M.u[j]) : 0.0;
+            const double hi = (1.0 - w) * M.hi[j] + w * M.hi[j + 1], lo = (1.0 - w) * M.lo[j] + w * M.lo[j + 1];
+            const double v = slice_violation(x, lo, hi >= cap * (1.0 - 1e-9) ? inf : hi);
+            if (v <= 0.0) {
+              f[i] = v;
+              ++audit.reused;
+              continue;
+            }
+          }
+        }
+        const double delta = 1e-4 * (std::abs(u) + (theta[k] + theta[k + 1]) / (2.0 * (s[k + 1] - s[k])));
+        for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
+          bk.push_back(k);
+          bl.push_back(ll[i]);
+          bu.push_back(u + (r - 1) * delta);
+          main_of.push_back(i);
+          role.push_back(r);
+        }
+      }
+    if (bk.empty()) return;
+    const PathSamples ps = samples_at(bk, bl);
+    Eigen::VectorXd lo, hi;
+    audit.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), static_cast<Eigen::Index>(bu.size())), lo, hi);
+    // The memory of each Chebyshev point asked: valid only if all three slices are non-empty.
+    for (size_t q = 0; q < bk.size(); ++q) {
+      const size_t i = main_of[q];
+      const Eigen::Index e = static_cast<Eigen::Index>(q);
+      if (role[q] == 1) f[i] = slice_violation(x_of(bk[q], bl[q]), lo[e], hi[e]);
+    }
+    for (size_t q = 0; q + 2 < bk.size(); ++q) {
+      if (role[q] != 0) continue;
+      size_t t = 0;
+      while (first[t + 1] <= main_of[q]) ++t;
+      AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + (main_of[q] - first[t])];
+      M.valid = true;
+      for (int r = 0; r < 3; ++r) {
+        const Eigen::Index e = static_cast<Eigen::Index>(q + static_cast<size_t>(r));
+        M.u[r] = bu[q + static_cast<size_t>(r)];
+        M.lo[r] = lo[e];
+        M.hi[r] = std::min(hi[e], cap);
+        if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) M.valid = false;
+      }
+    }
+  };
   for (size_t ci : which) {
-    // The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (for a
-    // contact constraint, a polygon projection per point: most of the audit's cost).
-    if (memory.coarse[ci].a.rows() != N * points) {
+    const auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints[ci]);
+    // The violation at (interval ks[i], λ ls[i]) under θ. A contact constraint is asked only whether the
+    // timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, no
+    // projection); its violation is x's relative distance beyond the slice. Any other constraint gives
+    // its rows (cheap: no LPs).
+    auto violations = [&](const std::vector<Eigen::Index>& kk, const std::vector<double>& ll, std::vector<double>& f) {
+      f.resize(kk.size());
+      if (kk.empty()) return;
+      const PathSamples ps = samples_at(kk, ll);
+      if (contact) {
+        Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), lo, hi;
+        for (size_t i = 0; i < kk.size(); ++i) u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
+        audit.lps += contact->slice(ps, u, lo, hi);
+        for (size_t i = 0; i < kk.size(); ++i)
+          f[i] = slice_violation(x_of(kk[i], ll[i]), lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
+        return;
+      }
+      const ConstraintRows rr = constraints[ci]->evaluate(ps);
+      for (size_t i = 0; i < kk.size(); ++i) f[i] = worst_row(rr, static_cast<Eigen::Index>(i), ll[i], kk[i]);
+    };
+    // The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (not for
+    // a contact constraint, whose polygons are not projected there).
+    if (!contact && memory.coarse[ci].a.rows() != N * points) {
       ks.clear();
       ls.clear();
       for (Eigen::Index k = 0; k < N; ++k)
@@ -180,31 +292,68 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     auto& t0 = memory.theta0[ci];
     auto& t1 = memory.theta1[ci];
     auto& remembered = memory.worst[ci];
-    std::vector<Candidate> cand;
+    // The intervals to audit: those whose speeds differ from the ones they were audited at (the same
+    // speeds have the same violation).
+    std::vector<Eigen::Index> todo;
     for (Eigen::Index k = 0; k < N; ++k) {
       const size_t kk = static_cast<size_t>(k);
-      // An interval whose speeds are those it was audited at has the same violation.
       if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) {
         audit.worst = std::max(audit.worst, remembered[kk]);
         continue;
       }
+      todo.push_back(k);
+    }
+    // A contact constraint's samples, all in one batch (one warm-started LP sequence): both grid
+    // points, the Chebyshev points and the earlier cut points of every interval to audit.
+    std::vector<double> fc;
+    std::vector<size_t> first(todo.size() + 1, 0);
+    if (contact) {
+      ks.clear();
+      ls.clear();
+      for (size_t t = 0; t < todo.size(); ++t) {
+        const Eigen::Index k = todo[t];
+        first[t] = ks.size();
+        for (int m = 0; m < points; ++m) {
+          ks.push_back(k);
+          ls.push_back(lam[static_cast<size_t>(m)]);
+        }
+        for (const AuditMemory::Point& pt : memory.cut_points[ci][static_cast<size_t>(k)]) {
+          ks.push_back(k);
+          ls.push_back(pt.lam);
+        }
+      }
+      first[todo.size()] = ks.size();
+      contact_samples(*contact, ci, points, ks, ls, first, todo, fc);
+    }
+    Ls.assign(todo.size(), {});
+    Vs.assign(todo.size(), {});
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const Eigen::Index k = todo[t];
+      const size_t kk = static_cast<size_t>(k);
       // Samples: both grid points (the grid's own rows), the Chebyshev points, and the points where the
       // interval was cut before (the timing is tight there, and a violation next to one would lie
       // between the Chebyshev points).
       sample.clear();
-      sample.emplace_back(0.0, worst_row(grid_rows[ci], k, 0.0, k, nullptr));
-      sample.emplace_back(1.0, worst_row(grid_rows[ci], k + 1, 1.0, k, nullptr));
-      for (int m = 0; m < points; ++m)
-        sample.emplace_back(lam[static_cast<size_t>(m)], worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k, nullptr));
-      for (const AuditMemory::Point& pt : memory.cut_points[ci][kk]) {
-        double w = -std::numeric_limits<double>::infinity();
-        for (Eigen::Index j = 0; j < pt.a.size(); ++j)
-          w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta[k], theta[k + 1], u_of(k)));
-        sample.emplace_back(pt.lam, w);
+      if (contact) {
+        // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP.
+        sample.emplace_back(0.0, row_slice_violation(grid_rows[ci], k, x_of(k, 0.0), u_of(k)));
+        sample.emplace_back(1.0, row_slice_violation(grid_rows[ci], k + 1, x_of(k, 1.0), u_of(k)));
+        for (size_t i = first[t]; i < first[t + 1]; ++i) sample.emplace_back(ls[i], fc[i]);
+      } else {
+        sample.emplace_back(0.0, worst_row(grid_rows[ci], k, 0.0, k));
+        sample.emplace_back(1.0, worst_row(grid_rows[ci], k + 1, 1.0, k));
+        for (int m = 0; m < points; ++m)
+          sample.emplace_back(lam[static_cast<size_t>(m)], worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k));
+        for (const AuditMemory::Point& pt : memory.cut_points[ci][kk]) {
+          double w = -inf;
+          for (Eigen::Index j = 0; j < pt.a.size(); ++j)
+            w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta[k], theta[k + 1], u_of(k)));
+          sample.emplace_back(pt.lam, w);
+        }
       }
       std::sort(sample.begin(), sample.end());
-      L.clear();
-      V.clear();
+      std::vector<double>& L = Ls[t];
+      std::vector<double>& V = Vs[t];
       for (const auto& [l, v] : sample) {
         if (!L.empty() && l - L.back() <= 1e-6) {
           V.back() = std::max(V.back(), v);
@@ -213,30 +362,46 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
         L.push_back(l);
         V.push_back(v);
       }
-      const size_t P = L.size();
-      double worst = -std::numeric_limits<double>::infinity();
+      double worst = -inf;
       for (double v : V) worst = std::max(worst, v);
       t0[kk] = theta[k];
       t1[kk] = theta[k + 1];
       remembered[kk] = worst;
       audit.worst = std::max(audit.worst, worst);
-      // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
-      // K τ (h - τ) / 2 with K >= -v'' there. K is taken as 4 times the largest concavity that the
-      // second divided differences of the neighbouring samples show (no bound of v'' is known in closed
-      // form: a polygon's edges move with s). On a timing that is tight at a grid point and falls away
-      // into the interval, the chord's slope outweighs that and no search is needed; the peak is
-      // searched (golden section below) between every two samples whose bound reaches the tolerance.
-      for (size_t i = 0; i + 1 < P; ++i) {
+    }
+    // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
+    // K τ (h - τ) / 2 where v'' >= -K. K is not known in closed form (a polygon's edges move with s), so
+    // the screen assumes (docs/method.md, "Limits between grid points") that v's concavity in s is at
+    // most 4 times the largest that the second divided differences of the samples show anywhere on
+    // the path in this round (in λ: that times Δs_k²). A path-wide bound, not each interval's own
+    // neighbours: one interval whose samples happen to lie on a line (a rounding-level change of its
+    // polygons can make them so) does not switch its screen off.
+    double curvature = 0.0;  // the largest -v''(s) seen
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const std::vector<double>& L = Ls[t];
+      const std::vector<double>& V = Vs[t];
+      const double h = s[todo[t] + 1] - s[todo[t]];
+      for (size_t j = 1; j + 1 < L.size(); ++j) {
+        if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) continue;
+        // Samples closer than 1 % of the interval amplify the rows' rounding into a curvature.
+        if (L[j] - L[j - 1] < 0.01 || L[j + 1] - L[j] < 0.01) continue;
+        curvature = std::max(curvature, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]) / (h * h));
+      }
+    }
+    auto K_of = [&](Eigen::Index k) {
+      const double h = s[k + 1] - s[k];
+      return 4.0 * curvature * h * h;
+    };
+    std::vector<Candidate> cand;
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const Eigen::Index k = todo[t];
+      const std::vector<double>& L = Ls[t];
+      const std::vector<double>& V = Vs[t];
+      const double K = K_of(k);
+      for (size_t i = 0; i + 1 < L.size(); ++i) {
         const double va = V[i], vb = V[i + 1];
-        if (va == -std::numeric_limits<double>::infinity() && vb == -std::numeric_limits<double>::infinity()) continue;
-        double concave = 0.0;
-        bool known = std::isfinite(va) && std::isfinite(vb);
-        for (size_t j : {i, i + 1})
-          if (j >= 1 && j + 1 < P) {
-            if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) known = false;
-            else concave = std::max(concave, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]));
-          }
-        if (known && bump_bound(L[i], va, L[i + 1], vb, 4.0 * concave) <= tolerance) continue;
+        if (va == -inf && vb == -inf) continue;
+        if (std::isfinite(va) && std::isfinite(vb) && bump_bound(L[i], va, L[i + 1], vb, K) <= tolerance) continue;
         const double b = vb > va ? L[i] + g * (L[i + 1] - L[i]) : L[i + 1] - g * (L[i + 1] - L[i]);
         cand.push_back({k, L[i], b, L[i + 1], va, 0.0, vb, L[i + 1] - L[i], L[i + 1] - L[i]});
       }
@@ -249,10 +414,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     auto eval = [&](const std::vector<size_t>& which_cand, const std::vector<double>& at_lam, std::vector<double>& f) {
       ks.clear();
       for (size_t i : which_cand) ks.push_back(cand[i].k);
-      const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, at_lam));
-      f.resize(which_cand.size());
-      for (size_t q = 0; q < which_cand.size(); ++q)
-        f[q] = worst_row(rr, static_cast<Eigen::Index>(q), at_lam[q], cand[which_cand[q]].k, nullptr);
+      violations(ks, at_lam, f);
     };
     std::vector<size_t> active;
     std::vector<double> x, f;
@@ -274,7 +436,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
           continue;
         }
         if (std::isfinite(c.fa) && std::isfinite(c.fc)) {
-          const double K = 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc));
+          const double K = std::max(K_of(c.k), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
           if (c.best() <= tolerance && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance &&
               bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance) {
             c.done = true;
@@ -353,8 +515,10 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     }
     if (cut.empty()) continue;
     // The cuts: every row broken at the peak, as a row of the interval (exact, see the header), labelled
-    // as the problem's own row of that name (the constraint's first row if it has none).
+    // as the problem's own row of that name (the constraint's first row if it has none). For a contact
+    // constraint this is the only projection of the audit: one polygon per cut.
     const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, ls));
+    audit.projections += static_cast<int>(cut.size());
     std::map<std::string, int> named;
     for (size_t j = 0; j < grid_rows[ci].labels.size(); ++j) named.emplace(grid_rows[ci].labels[j], static_cast<int>(j));
     for (size_t q = 0; q < cut.size(); ++q) {

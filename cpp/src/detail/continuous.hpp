@@ -43,11 +43,23 @@ struct AuditMemory {
     Eigen::VectorXd a, b, c;
   };
   std::vector<std::vector<std::vector<Point>>> cut_points;
+  /// [constraint][k·points + m]: a contact polygon's slice at its Chebyshev point m of interval k, at
+  /// three values of u about the one it was audited at (x_hi concave and x_lo convex in u, so their
+  /// chords bound an inner slice for any u between: a later round whose u lies there and whose x is
+  /// inside needs no LP).
+  struct Slices {
+    double u[3] = {0.0, 0.0, 0.0}, lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0};
+    bool valid = false;
+  };
+  std::vector<std::vector<Slices>> slices;
 };
 
 struct Audit {
   double worst = 0.0;  ///< largest violation found, relative to max(|c|, |a θ(s)| + |b u|) (<= 0: none)
   int cuts = 0;        ///< rows added to `extra`
+  int lps = 0;         ///< contact slice LPs (ContactConstraint::slice) spent
+  int projections = 0; ///< polygons projected (at cut points)
+  int reused = 0;      ///< contact samples settled by the slices kept from an earlier round (no LP)
 };
 
 /// Checks every constraint other than velocity and acceleration limits between the grid points of `s` under

@@ -130,6 +130,15 @@ class ContactConstraint : public Constraint {
   PointCheck check_point(const PathSamples& samples, Eigen::Index k,
                          const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra) const;
 
+  /// The feasible polygon's slice at a given s̈, without projecting it: for each sample p, the smallest
+  /// and largest ṡ² with (ṡ², u[p]) in the polygon at samples.s[p], by two LPs on the projection's
+  /// polytope (max and min of its x column with its u column fixed; warm-started from sample to
+  /// sample). This is how guarantee = continuous audits the timing's own (x(s), u(s)) between grid
+  /// points (the membership of one point, not the whole polygon). x_hi = +inf where only the stand-in
+  /// cap bounds x; an empty slice gives x_lo = +inf, x_hi = -inf; inactive samples (a phase) give
+  /// [-inf, +inf]; NaN where an LP failed. Returns the number of LPs solved.
+  int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo, Eigen::VectorXd& x_hi) const;
+
   /// Indices of the contacts whose forces enter the projection LPs (all of them, or the convex-hull
   /// vertices of each flat group, see above).
   const std::vector<int>& projected_contacts() const { return projected_; }

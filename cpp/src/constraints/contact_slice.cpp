@@ -1,0 +1,64 @@
+// ContactConstraint::slice: the polygon's slice at the timing's own s̈ (guarantee = continuous).
+// Kept apart from contact_constraint.cpp: it uses the projection polytope only through lp_structure and
+// lp_point and PolytopeLp's contract (columns 0 and 1 are x and u), not the layout of its other columns.
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "detail/projection.hpp"
+#include "detail/validate.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/robot_workspace.hpp"
+
+namespace pathpace {
+
+int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
+                             Eigen::VectorXd& x_hi) const {
+  const int n = robot_->nq();
+  if (samples.dof() != n)
+    detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
+                 std::to_string(n) + " joints");
+  if (u.size() != samples.size())
+    detail::fail("u has " + std::to_string(u.size()) + " entries, samples has " + std::to_string(samples.size()));
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  x_lo.resize(samples.size());
+  x_hi.resize(samples.size());
+  int lps = 0;
+  detail::PolytopeLp lp;
+  lp_structure(projected_, 0, lp);
+  RobotWorkspace ws(*robot_);
+  Eigen::MatrixXd a, b, c;  // eq. (12) at every sample
+  robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
+  // One GLPK problem per direction: each warm-starts from its own previous optimum (a neighbouring
+  // sample's), which is nearly optimal here.
+  detail::PolytopeProjector up, down;
+  Eigen::VectorXd objective = Eigen::VectorXd::Zero(lp.A.cols()), z;
+  for (Eigen::Index p = 0; p < samples.size(); ++p) {
+    if (!active_at(samples.s[p])) {
+      x_lo[p] = -inf;
+      x_hi[p] = inf;
+      continue;
+    }
+    lp_point(projected_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
+    lp.col_lo[1] = lp.col_hi[1] = u[p];
+    lp.col_hi[0] = !options_.rest_at_begin.empty() && at_active_begin(samples.s[p]) ? 0.0 : options_.cap;
+    objective[0] = 1.0;
+    ++lps;
+    const int st = up.maximize(lp, objective, z);
+    if (st == 0) {
+      x_lo[p] = inf;
+      x_hi[p] = -inf;
+      continue;
+    }
+    // On the stand-in cap: no limit on x there (as the projection drops such edges).
+    x_hi[p] = st < 0 ? nan : (z[0] >= options_.cap * (1.0 - 1e-9) ? inf : z[0]);
+    objective[0] = -1.0;
+    ++lps;
+    const int sl = down.maximize(lp, objective, z);
+    x_lo[p] = sl == 1 ? z[0] : (sl == 0 ? inf : nan);
+  }
+  return lps;
+}
+
+}  // namespace pathpace

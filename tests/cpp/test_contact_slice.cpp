@@ -1,0 +1,112 @@
+// ContactConstraint::slice (guarantee = continuous's membership test): the polygon's slice at a given s̈
+// from two LPs equals the slice of the projected polygon, at every sample and for s̈ inside, at the rim of
+// and beyond the polygon's range.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "pathpace/pathpace.hpp"
+#include "test_fixtures.hpp"
+
+using namespace pathpace;
+using test::corners;
+using test::lifter_with_box;
+
+namespace {
+
+// The box carried by the lifter's slide along x while the lift raises it: a polygon with edges of
+// both signs of a (friction limits and the box's weight).
+PathSamples lifter_samples(int n) {
+  PathSamples ps;
+  ps.s = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0);
+  ps.q = Eigen::MatrixXd::Zero(n, 7);
+  ps.dq = ps.q;
+  ps.ddq = ps.q;
+  for (int p = 0; p < n; ++p) {
+    const double s = ps.s[p];
+    ps.q(p, 0) = ps.q(p, 1) = s;
+    ps.dq(p, 0) = ps.dq(p, 1) = 1.0;
+    ps.q(p, 2) = 0.3 * std::sin(3.0 * s);  // the lift
+    ps.dq(p, 2) = 0.9 * std::cos(3.0 * s);
+    ps.ddq(p, 2) = -2.7 * std::sin(3.0 * s);
+  }
+  return ps;
+}
+
+// [lo, hi] of {x : a x + b u <= c for every row} at sample p.
+void row_slice(const ConstraintRows& r, Eigen::Index p, double u, double& lo, double& hi) {
+  const double inf = std::numeric_limits<double>::infinity();
+  lo = -inf;
+  hi = inf;
+  for (Eigen::Index j = 0; j < r.rows(); ++j) {
+    if (r.c(p, j) == inf) continue;
+    const double a = r.a(p, j), rest = r.c(p, j) - r.b(p, j) * u;
+    if (a > 0) hi = std::min(hi, rest / a);
+    else if (a < 0) lo = std::max(lo, rest / a);
+    else if (rest < 0) lo = inf, hi = -inf;
+  }
+}
+
+}  // namespace
+
+TEST(ContactSlice, EqualsTheProjectedPolygonsSlice) {
+  auto model = lifter_with_box();
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  opt.min_normal_force = 0.5;
+  const ContactConstraint c(model, corners(0.5), opt);
+  const PathSamples ps = lifter_samples(7);
+  const ConstraintRows rows = c.evaluate(ps);
+  int compared = 0, empty = 0;
+  for (double u : {-20.0, -3.0, -1.0, 0.0, 0.7, 2.0, 4.0, 20.0}) {
+    const Eigen::VectorXd uu = Eigen::VectorXd::Constant(ps.size(), u);
+    Eigen::VectorXd lo, hi;
+    const int lps = c.slice(ps, uu, lo, hi);
+    EXPECT_EQ(lps, 2 * static_cast<int>(ps.size()) - static_cast<int>((lo.array() > hi.array()).count()))
+        << "an empty slice takes one LP";
+    for (Eigen::Index p = 0; p < ps.size(); ++p) {
+      double rlo, rhi;
+      row_slice(rows, p, u, rlo, rhi);
+      if (rlo > rhi + 1e-7 * std::max(1.0, std::abs(rhi))) {
+        EXPECT_GT(lo[p], hi[p]) << "u " << u << " p " << p;
+        ++empty;
+        continue;
+      }
+      if (lo[p] > hi[p]) {  // empty by the LPs, non-empty by the rows: only at the polygon's rim
+        EXPECT_LE(rhi - rlo, 1e-7 * std::max(1.0, std::abs(rhi))) << "u " << u << " p " << p;
+        continue;
+      }
+      // The polygon is exact to 1e-9 of its size (sec. IV.C); x's bounds here are O(10).
+      const double scale = 1e-7 * std::max({1.0, std::abs(rhi), std::abs(rlo)});
+      if (std::isfinite(rhi)) EXPECT_NEAR(hi[p], rhi, scale) << "u " << u << " p " << p;
+      else EXPECT_TRUE(std::isinf(hi[p]) && hi[p] > 0) << "u " << u << " p " << p;
+      EXPECT_NEAR(std::max(lo[p], 0.0), std::max(rlo, 0.0), scale) << "u " << u << " p " << p;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 10);
+  EXPECT_GT(empty, 2);  // u = ±20 is beyond what friction can carry
+}
+
+TEST(ContactSlice, InactiveSamplesAreUnboundedAndArgumentsAreChecked) {
+  auto model = lifter_with_box();
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  opt.active_begin = 0.0;
+  opt.active_end = 0.5;
+  const ContactConstraint c(model, corners(0.5), opt);
+  const PathSamples ps = lifter_samples(5);  // s = 0, 0.25, 0.5, 0.75, 1
+  Eigen::VectorXd lo, hi;
+  EXPECT_EQ(c.slice(ps, Eigen::VectorXd::Zero(5), lo, hi), 6);
+  for (Eigen::Index p : {3, 4}) {
+    EXPECT_TRUE(std::isinf(lo[p]) && lo[p] < 0);
+    EXPECT_TRUE(std::isinf(hi[p]) && hi[p] > 0);
+  }
+  EXPECT_LE(lo[0], hi[0]);  // the box at rest on the slide, lifted: feasible
+  EXPECT_THROW(c.slice(ps, Eigen::VectorXd::Zero(4), lo, hi), InvalidInput);
+  PathSamples narrow = ps;
+  narrow.q = ps.q.leftCols(3);
+  EXPECT_THROW(c.slice(narrow, Eigen::VectorXd::Zero(5), lo, hi), InvalidInput);
+}
