@@ -491,12 +491,15 @@ friction_margin : float
     μ is used as μ (1 - friction_margin): every force keeps this fraction of its friction in reserve
     (sec. V.D).
 min_normal_force : float
-    N per contact point (n·f >= min_normal_force). Keeps every point in the LPs.
+    N per contact point (n·f >= min_normal_force). With an even cone_edges a flat sole still reduces
+    exactly: its hull corners' cones plus cone_edges/2 bounded weights per point (each point's minimal
+    force on its cone's cross-section; docs/method.md). With an odd cone_edges every point enters the LPs
+    with its own row.
 cone_offset : float
     N per contact point: the shifted cone (sec. V.D's offset of each friction cone along its normal;
     Klampt's forceRobustness): f - cone_offset·n lies in the friction cone, so each point pushes at
     least cone_offset and keeps its friction reserve on top. A flat sole still reduces exactly to its
-    hull corners (docs/method.md), so it is much cheaper than min_normal_force.
+    hull corners (docs/method.md), so it is cheaper than min_normal_force.
 torque_scale, torque_margin : float
     The torque limits are multiplied by torque_scale and shrunk by torque_margin (N·m per side).
 drift_tolerance : float

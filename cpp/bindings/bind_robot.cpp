@@ -316,7 +316,10 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("tau_min", &ContactConstraint::tau_min, "after scale and margin (and any merged TorqueLimits)")
       .def_property_readonly("tau_max", &ContactConstraint::tau_max)
       .def_property_readonly("projected_contacts", &ContactConstraint::projected_contacts,
-                             "indices of the contacts whose forces enter the projection LPs (flat groups: hull vertices)")
+                             "indices of the contacts whose cone weights enter the projection LPs (flat groups: hull vertices)")
+      .def_property_readonly("section_contacts", &ContactConstraint::section_contacts,
+                             "indices of the contacts whose per-point minimum enters the projection LPs as k/2 bounded "
+                             "tangential weights (min_normal_force > cone_offset, even cone_edges, reduced flat groups)")
       .def_property_readonly("contacts", &ContactConstraint::contacts)
       .def_property_readonly("active_begin", [](const ContactConstraint& c) { return c.options().active_begin; },
                              "the phase's first s (-inf: the whole path; see TimeScalingProblem.add_contact_phases)")

@@ -2,7 +2,9 @@
 // model combination and the force-distribution LP.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <memory>
 
 #include "pathpace/pathpace.hpp"
@@ -114,6 +116,83 @@ TEST(Contact, ForceDistributionReportsMissingForces) {
   EXPECT_TRUE(std::isinf(g[0].margin));
   EXPECT_TRUE(std::isnan(g[0].torques.sum()));
   EXPECT_THROW(c.force_distribution(q.leftCols(3), qd, qdd), InvalidInput);
+}
+
+namespace {
+// The range of u = s̈ at x = ṡ² = 1 that rows a x + b u <= c allow at sample p.
+std::pair<double, double> u_range(const ConstraintRows& r, Eigen::Index p) {
+  double lo = -INFINITY, hi = INFINITY;
+  for (Eigen::Index j = 0; j < r.rows(); ++j) {
+    const double a = r.a(p, j), b = r.b(p, j), c = r.c(p, j);
+    if (!std::isfinite(c) || b == 0.0) continue;
+    if (b > 0) hi = std::min(hi, (c - a) / b);
+    else lo = std::max(lo, (c - a) / b);
+  }
+  return {lo, hi};
+}
+
+// check_point's answer (the unreduced polytope: every point, its cone, its row) at (x, u) = (1, u).
+int feasible_at(const ContactConstraint& c, const PathSamples& ps, Eigen::Index p, double u) {
+  Eigen::Matrix<double, Eigen::Dynamic, 3> pin(4, 3);
+  pin << 1, 0, 1, -1, 0, -1, 0, 1, u, 0, -1, -u;
+  return c.check_point(ps, p, pin).feasible;
+}
+}  // namespace
+
+TEST(Contact, PerPointMinimumReducesExactlyOnADenseBoxBottom) {
+  // The box on 20 points (a 5 x 4 grid on its bottom, robot–robot contacts: the normals in the
+  // platform's frame), each pushing at least 0.6 N: for an even k the LPs see the 4 corners' cones and
+  // k/2 cross-section weights per point (docs/method.md), for an odd k every point with its row. The
+  // accelerations allowed (friction, and tipping: the centre of mass 5 cm above the soles, which the
+  // per-point minimum makes bind sooner) are those of the unreduced polytope: check_point's LP over
+  // every point says feasible 1e-7 inside each end, infeasible (confirmed exactly) 1e-7 outside.
+  auto model = lifter_with_box();
+  std::vector<Contact> cons;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 4; ++j) {
+      Contact c = corners(2.5)[0];
+      c.point = Eigen::Vector3d(-0.1 + 0.05 * i, -0.1 + 0.2 * j / 3.0, 0.0);
+      cons.push_back(c);
+    }
+  PathSamples ps;
+  ps.s = Eigen::VectorXd::LinSpaced(3, 0.0, 1.0);
+  ps.q = Eigen::MatrixXd::Zero(3, 7);
+  ps.dq = Eigen::MatrixXd::Zero(3, 7);
+  ps.ddq = Eigen::MatrixXd::Zero(3, 7);
+  ps.q.col(0) = ps.q.col(1) = ps.s;
+  ps.dq.col(0).setOnes();
+  ps.dq.col(1).setOnes();
+  for (int k : {4, 8, 16, 5}) {
+    ContactOptions opt;
+    opt.cone_edges = k;
+    opt.friction_margin = 0.2;
+    ContactConstraint bare(model, cons, opt);
+    opt.min_normal_force = 0.6;
+    ContactConstraint c(model, cons, opt);
+    EXPECT_EQ(c.projected_contacts().size(), k % 2 == 0 ? 4u : 20u) << k;
+    EXPECT_EQ(c.section_contacts().size(), k % 2 == 0 ? 20u : 0u) << k;
+    const ConstraintRows r = c.evaluate(ps), rb = bare.evaluate(ps);
+    for (Eigen::Index p = 0; p < 3; ++p) {
+      const auto [lo, hi] = u_range(r, p);
+      ASSERT_TRUE(std::isfinite(lo) && std::isfinite(hi) && lo < 0.0 && hi > 0.0) << k;
+      EXPECT_LT(hi, u_range(rb, p).second * (1 - 1e-3)) << k << ": the per-point minimum binds";
+      const double tol = 1e-7 * (hi - lo);
+      EXPECT_EQ(feasible_at(c, ps, p, hi - tol), 1) << k;
+      EXPECT_EQ(feasible_at(c, ps, p, hi + tol), 0) << k;
+      EXPECT_EQ(feasible_at(c, ps, p, lo + tol), 1) << k;
+      EXPECT_EQ(feasible_at(c, ps, p, lo - tol), 0) << k;
+    }
+    // The most robust forces at the largest acceleration keep every point's minimum, in its cone.
+    Eigen::MatrixXd q = ps.q.topRows(1), qd = ps.dq.topRows(1), qdd = (1 - 1e-6) * u_range(r, 0).second * ps.dq.topRows(1);
+    const ContactForces f = c.force_distribution(q, qd, qdd)[0];
+    ASSERT_TRUE(f.feasible);
+    EXPECT_GE(f.margin, 0.0);
+    const double mu = 2.5 * (1 - 0.2);
+    for (int i = 0; i < 20; ++i) {
+      EXPECT_GE(f.forces(i, 2), 0.6 - 1e-9) << k << " point " << i;
+      EXPECT_LE(std::hypot(f.forces(i, 0), f.forces(i, 1)), mu * f.forces(i, 2) + 1e-9) << k << " point " << i;
+    }
+  }
 }
 
 TEST(Contact, CombineRejectsDuplicateLinks) {

@@ -105,7 +105,8 @@ def test_carrying_a_box_nests_in_the_cone_edges_too():
 def test_flat_soles_reduce_exactly_to_their_corners(paths):
     """30 points per sole (6 x 5 grid): without a per-point minimum only the 4 corners of each sole enter
     the LPs, and every polygon still equals the exact projection over all 60 points (also with a per-link
-    minimum); with a per-point minimum, all 60 points enter."""
+    minimum); with a per-point minimum and an even k the corners' cones plus every point's cross-section
+    weights (test_point_minimum_reduction.py), with an odd k all 60 points."""
     h, path = paths("talos", "sway")
     cons = cc.contacts(h, "sway", grid=(6, 5))
     assert len(cons) == 60
@@ -118,7 +119,9 @@ def test_flat_soles_reduce_exactly_to_their_corners(paths):
         worst, compared, _ = cc.compare(h, prob, cons, opts, points=[0, 3, 6])
         assert compared == 2  # at point 6 (s = 3/4) the sway turns back: unbounded in every direction
         assert worst <= 1e-6
-    assert len(pp.ContactConstraint(h.robot, cons, min_normal_force=1.0).projected_contacts) == 60
+    per_point = pp.ContactConstraint(h.robot, cons, min_normal_force=1.0)
+    assert sorted(per_point.projected_contacts) == corners and per_point.section_contacts == list(range(60))
+    assert len(pp.ContactConstraint(h.robot, cons, cone_edges=5, min_normal_force=1.0).projected_contacts) == 60
 
 
 def test_torque_limits_and_contacts_compose_on_a_floating_base(paths):

@@ -26,7 +26,7 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
   x_hi.resize(samples.size());
   int lps = 0;
   detail::PolytopeLp lp;
-  lp_structure(projected_, 0, lp);
+  lp_structure(reduced_, 0, lp);
   RobotWorkspace ws(*robot_);
   Eigen::MatrixXd a, b, c;  // eq. (12) at every sample
   robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
@@ -40,7 +40,7 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
       x_hi[p] = inf;
       continue;
     }
-    lp_point(projected_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
+    lp_point(reduced_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
     lp.col_lo[1] = lp.col_hi[1] = u[p];
     lp.col_hi[0] = !options_.rest_at_begin.empty() && at_active_begin(samples.s[p]) ? 0.0 : options_.cap;
     objective[0] = 1.0;

@@ -26,8 +26,9 @@ struct ContactOptions {
   /// The cone is that of μ (1 - friction_margin) (sec. V.D): every force keeps at least this fraction of
   /// the friction it could use in reserve (0.5: tangential force at most half of what would slip).
   double friction_margin = 0.0;
-  /// N, per contact point: every point pushes at least this hard along its normal (sec. V.D). It keeps
-  /// each point loaded, so it disables the reduction of a flat foot's points to their convex hull.
+  /// N, per contact point: every point pushes at least this hard along its normal (sec. V.D). With an even
+  /// cone_edges a flat foot still reduces exactly: its hull corners' cones plus, per point, the k/2
+  /// tangential weights of its minimal force (docs/method.md); with an odd cone_edges every point enters.
   double min_normal_force = 0.0;
   /// N, per link: the normal forces of all of a link's contact points sum to at least this (a foot
   /// pushes at least this hard in total, however it spreads it over its points).
@@ -74,9 +75,12 @@ struct ContactOptions {
 /// The polygon is the convex hull of LP optima with every edge certified by its own LP (sec. IV.C), so
 /// it is exact to 1e-9 of its size. Points of one link with one normal and one μ that lie in a plane
 /// (a flat sole) span the same wrench cone as the vertices of their convex hull (a force at a convex
-/// combination of points is that combination of forces at the points), so without a per-point
-/// min_normal_force only those vertices enter the LPs: an exact reduction (the per-link minimum is
-/// kept exactly, as the sum of normal forces does not change).
+/// combination of points is that combination of forces at the points), so only those vertices' cones
+/// enter the LPs: an exact reduction (the per-link minimum is kept exactly, as the sum of normal forces
+/// does not change). A per-point min_normal_force d splits each point's force into its part on the
+/// cone's cross-section at n·f = d (a regular k-gon around d·n) plus a force in the cone; the cone parts
+/// reduce to the hull vertices as before, and for an even k each point's cross-section part is d·n (a
+/// constant) plus k/2 bounded weights (the k-gon is a zonotope): exact, with no per-point rows.
 class ContactConstraint : public Constraint {
  public:
   ContactConstraint(std::shared_ptr<const RobotModel> robot, std::vector<Contact> contacts,
@@ -141,7 +145,11 @@ class ContactConstraint : public Constraint {
 
   /// Indices of the contacts whose forces enter the projection LPs (all of them, or the convex-hull
   /// vertices of each flat group, see above).
-  const std::vector<int>& projected_contacts() const { return projected_; }
+  const std::vector<int>& projected_contacts() const { return reduced_.cone; }
+  /// Indices of the contacts whose per-point minimum enters the projection LPs as the tangential part of
+  /// their force on the cone's cross-section at the minimum (even cone_edges, min_normal_force >
+  /// cone_offset: every point of a reduced flat group; see above). Empty otherwise.
+  const std::vector<int>& section_contacts() const { return reduced_.section; }
 
   const std::vector<Contact>& contacts() const { return contacts_; }
   const ContactOptions& options() const { return options_; }
@@ -150,27 +158,44 @@ class ContactConstraint : public Constraint {
   // True if s is active_begin (to active_at's tolerance): a phase's first point, where its no-impact row
   // ṡ² <= 0 holds (options().rest_at_begin; evaluate writes it, check_point imposes it).
   bool at_active_begin(double s) const;
+  // Which variables an LP of this constraint has: k cone weights for each contact of `cone` (with its own
+  // minimum-normal-force row where point_row says so), then k/2 weights in [-d, d] for each contact of
+  // `section` (d = min_normal_force - cone_offset): the tangential part of its force on the cone's
+  // cross-section at n·f = d, a regular k-gon written as a zonotope (docs/method.md). `jacobians` is cone
+  // then section, the order of contact_jacobians' rows.
+  struct LpLayout {
+    std::vector<int> cone;
+    std::vector<char> point_row;
+    std::vector<int> section;
+    std::vector<int> jacobians;
+  };
   std::shared_ptr<const RobotModel> robot_;
   std::vector<Contact> contacts_;
   // Fills J (3·m x nq: the stacked J_i) and the cone generators in world coordinates (3 x m·k) at q.
   // With `use`, only those contacts, in that order.
   // Names of what can bind a projected edge (see detail::Projection::binding), in lp_structure's layout.
-  std::vector<std::string> binding_names(const std::vector<int>& use) const;
+  std::vector<std::string> binding_names(const LpLayout& layout) const;
   // evaluate() on every sample of `samples`, without the phase's range, prefix or rest row.
   ConstraintRows project(const PathSamples& samples) const;
-  std::string binding_label(const std::vector<std::string>& names, int code) const;
+  std::string binding_label(const LpLayout& layout, const std::vector<std::string>& names, int code) const;
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr) const;
-  // The projection LP's fixed part for the contacts `use`: bounds, minimum-normal-force rows; `extra`
-  // more rows (zero, free) after them. every_point_row: a per-point row even where min_normal_force is 0
-  // (the force distribution's margin counts each point's normal force).
-  void lp_structure(const std::vector<int>& use, int extra, detail::PolytopeLp& lp, bool every_point_row = false) const;
+  // Every contact with its cone weights, no reduction (the force distribution, the infeasibility check);
+  // every_point_row: a per-point row even where min_normal_force is 0 (the force distribution's margin
+  // counts each point's normal force).
+  LpLayout full_layout(bool every_point_row) const;
+  // The projection LP's fixed part for `layout`: bounds, minimum-normal-force rows; `extra` more rows
+  // (zero, free) after them.
+  void lp_structure(const LpLayout& layout, int extra, detail::PolytopeLp& lp) const;
   /// cone_offset Σ_i J_iᵀ n_i over every contact at q: the generalized force of the shifted cones' offsets.
   Eigen::VectorXd offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  void lp_point(const std::vector<int>& use, const Eigen::Ref<const Eigen::VectorXd>& q,
+  void lp_point(const LpLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
-  std::vector<int> projected_;
+  // The rotation from contact i's normal frame (the world, or other_link) to the world, at placements T.
+  Eigen::Matrix3d normal_frame(size_t i, const std::vector<Eigen::Isometry3d>& T) const;
+  LpLayout reduced_;                                    // the projection's LPs
+  std::vector<Eigen::Matrix3Xd> local_half_edges_;      // μ' (u_{m+1} - u_m) / 2, m < k/2 (even k only)
   std::vector<int> body_, other_body_;                  // other_body_ -1: the world
   std::vector<Eigen::Vector3d> point_in_body_;
   std::vector<Eigen::Isometry3d> other_in_body_;        // other_link's frame in its body's frame
