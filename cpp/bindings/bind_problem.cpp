@@ -43,6 +43,15 @@ struct WrenchSamples {
   }
 };
 
+WrenchSamples wrench_samples(const Trajectory& tr, py::handle t) {
+  const Eigen::VectorXd tv = to_vector(t, "t");
+  WrenchSamples out;
+  out.scalar = is_scalar(t);
+  py::gil_scoped_release release;  // the force-distribution LPs
+  out.w = tr.contact_wrenches(tv);
+  return out;
+}
+
 Guarantee parse_guarantee(const std::string& g) {
   if (g == "grid") return Guarantee::Grid;
   if (g == "continuous") return Guarantee::Continuous;
@@ -433,23 +442,10 @@ void bind_problem(py::module_& m) {
       }, "t"_a, "Contact forces at each t from the force-distribution LP, with their margin (pp.ContactForces). With "
                 "contact phases each t uses its phase (the later one at a switch; .phase says which), forces padded "
                 "with NaN to the largest phase.")
-      .def("contact_wrenches", [](const Trajectory& tr, py::handle t) {
-        const Eigen::VectorXd tv = to_vector(t, "t");
-        WrenchSamples out;
-        out.scalar = is_scalar(t);
-        py::gil_scoped_release release;
-        out.w = tr.contact_wrenches(tv);
-        return out;
-      }, "t"_a)
+      .def("contact_wrenches", &wrench_samples, "t"_a)
       .def("centers_of_pressure", [](const Trajectory& tr, py::handle t) {
-        const Eigen::VectorXd tv = to_vector(t, "t");
-        WrenchSamples out;
-        out.scalar = is_scalar(t);
-        {
-          py::gil_scoped_release release;
-          out.w = tr.contact_wrenches(tv);
-        }
-        return out.per_link(out.w.center_of_pressure);
+        const WrenchSamples w = wrench_samples(tr, t);
+        return w.per_link(w.w.center_of_pressure);
       }, "t"_a)
       .def("contact_phase", [](const Trajectory& tr, py::handle t) -> py::object {
         const Eigen::VectorXi out = tr.contact_phase(to_vector(t, "t"));

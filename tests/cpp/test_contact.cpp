@@ -14,10 +14,10 @@ using namespace pathpace;
 using test::corners;
 using test::lifter_with_box;
 
-TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
-  auto model = lifter_with_box();
-  ASSERT_EQ(model->nq(), 7);
-  const int N = 40;
+namespace {
+
+// The platform and the box on it slide together from x = 0 to 1: N intervals.
+PathSamples slide_together(int N) {
   PathSamples ps;
   ps.s = Eigen::VectorXd::LinSpaced(N + 1, 0.0, 1.0);
   ps.q = Eigen::MatrixXd::Zero(N + 1, 7);
@@ -26,6 +26,15 @@ TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
   ps.q.col(0) = ps.q.col(1) = ps.s;  // the slide and the box's x
   ps.dq.col(0).setOnes();
   ps.dq.col(1).setOnes();
+  return ps;
+}
+
+}  // namespace
+
+TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
+  auto model = lifter_with_box();
+  ASSERT_EQ(model->nq(), 7);
+  const PathSamples ps = slide_together(40);
   auto path = std::make_shared<SampledPath>(ps.s, ps.q, ps.dq, ps.ddq);
   TimeScalingProblem prob(path, ps.s);
   ContactOptions opt;
@@ -57,15 +66,7 @@ TEST(Contact, WrenchesAndCentreOfPressureOfTheCarriedBox) {
   // The box on the platform's four corners, accelerating at a = μ g: the box link takes m (a, 0, g) and
   // the platform the opposite; the box's centre of pressure is the corners' normal-force-weighted mean.
   auto model = lifter_with_box();
-  const int N = 20;
-  PathSamples ps;
-  ps.s = Eigen::VectorXd::LinSpaced(N + 1, 0.0, 1.0);
-  ps.q = Eigen::MatrixXd::Zero(N + 1, 7);
-  ps.dq = Eigen::MatrixXd::Zero(N + 1, 7);
-  ps.ddq = Eigen::MatrixXd::Zero(N + 1, 7);
-  ps.q.col(0) = ps.q.col(1) = ps.s;
-  ps.dq.col(0).setOnes();
-  ps.dq.col(1).setOnes();
+  const PathSamples ps = slide_together(20);
   TimeScalingProblem prob(std::make_shared<SampledPath>(ps.s, ps.q, ps.dq, ps.ddq), ps.s);
   ContactOptions opt;
   opt.cone_edges = 4;

@@ -53,7 +53,7 @@ PY
 # The command-line entry point of the wheel, on a JSON problem file (no YAML parser in the fresh venv).
 echo '{"robot": {"urdf": "pendulum.urdf"}, "path": {"waypoints": [[0.0], [-0.3], [0.4]]}, "grid": 500,
        "limits": {"torque": {"scale": 0.9}}}' > problem.json
-out=$("$repo/$venv/bin/pathpace" solve problem.json --out traj.csv)
+out=$("$repo/$venv/bin/pathpace" solve problem.json --out traj.csv --stats)  # --stats: the JSON, not the one-line summary
 echo "$out" | grep -q '"status": "optimal"' ||
   { echo "wheel_test: pathpace solve failed in the fresh venv"; exit 1; }
 head -1 traj.csv | tr -d '\r' | grep -q '^t,q_hinge,qd_hinge,qdd_hinge$' || { echo "wheel_test: unexpected CSV header"; exit 1; }
