@@ -415,15 +415,35 @@ def _nothing(ax, title: str, text: str):
     return ax
 
 
-def contacts(result: Result, ax=None):
-    """Force magnitude |f| of each contact point (N) and the force-distribution margin (N) over t."""
+def wrenches_data(result: Result, samples: int = 300) -> dict[str, Any] | None:
+    """Per-link totals over t (Trajectory.contact_wrenches): links, normal force (m, links) in N, centre of
+    pressure (m, links, 3) in m, and each link's contact points in the world at t = 0 (for its support
+    polygon)."""
+    traj = result.trajectory()
+    if traj.contacts is None:
+        return None
+    t = np.linspace(0.0, traj.duration, samples)
+    w = traj.contact_wrenches(t)
+    return {"t": t, "links": list(w.links), "normal_force": np.asarray(w.normal_force),
+            "cop": np.asarray(w.center_of_pressure)}
+
+
+def contacts(result: Result, ax=None, per_point: bool = False):
+    """The normal force on each contact link (N; Trajectory.contact_wrenches) and the force-distribution
+    margin (N) over t. per_point=True draws |f| of every contact point instead (one line each)."""
     d = contacts_data(result) if result.ok else None
     ax = _axes(ax)
     if d is None:
         return _nothing(ax, "contact forces", "no contacts in this problem" if result.ok else "no timing")
-    mags = [(i, link, np.linalg.norm(d["forces"][:, i, :], axis=1)) for i, link in enumerate(d["links"])]
-    for n, (i, link, f) in enumerate(mags):
-        ax.plot(d["t"], f, lw=1, color=plt_color(n, len(mags)), label=f"|f| {link} #{i}")
+    if per_point:
+        mags = [(i, link, np.linalg.norm(d["forces"][:, i, :], axis=1)) for i, link in enumerate(d["links"])]
+        for n, (i, link, f) in enumerate(mags):
+            ax.plot(d["t"], f, lw=1, color=plt_color(n, len(mags)), label=f"|f| {link} #{i}")
+    else:
+        w = wrenches_data(result)
+        mags = list(w["links"])
+        for n, link in enumerate(mags):
+            ax.plot(w["t"], w["normal_force"][:, n], lw=1.5, color=plt_color(n, len(mags)), label=f"normal force on {link}")
     ax.plot(d["t"], d["margin"], "k", lw=2, label="margin (weakest cone weight)")
     ax.axhline(0.0, color="r", ls="--", lw=1)
     ax.set_xlabel("t (s)")
@@ -431,6 +451,53 @@ def contacts(result: Result, ax=None):
     ax.set_title("contact forces and their margin", fontsize="medium")
     _legend_outside(ax, ncol=1 if len(mags) <= 12 else 2)
     return ax
+
+
+def centers_of_pressure(result: Result, ax=None):
+    """Each contact link's centre of pressure over the motion (x, y in the world, m) inside its support
+    polygon (the hull of its contact points at t = 0): a balance check at a glance."""
+    ax = _axes(ax)
+    w = wrenches_data(result) if result.ok else None
+    if w is None:
+        return _nothing(ax, "centres of pressure", "no contacts in this problem" if result.ok else "no timing")
+    traj = result.trajectory()
+    phases = traj.contact_phases or [traj.contacts]
+    robot = phases[0].robot
+    q0 = traj.q(np.array([0.0]))[0]
+    for n, link in enumerate(w["links"]):
+        pts = {tuple((robot.frame_placement(q0, c.link) @ np.append(c.point, 1.0))[:2])
+               for ph in phases for c in ph.contacts if c.link == link}
+        color = plt_color(n, len(w["links"]))
+        if len(pts) >= 3:
+            xy = np.array(sorted(pts))
+            hull = _hull(xy)
+            ax.fill(hull[:, 0], hull[:, 1], color=color, alpha=0.15, lw=1, label=f"support of {link}")
+        cop = w["cop"][:, n, :2]
+        ax.plot(cop[:, 0], cop[:, 1], color=color, lw=1.5, label=f"centre of pressure of {link}")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title("centres of pressure in their support polygons", fontsize="medium")
+    _legend_outside(ax, ncol=1)
+    return ax
+
+
+def _hull(xy: np.ndarray) -> np.ndarray:
+    """Convex hull of 2-D points, counter-clockwise, closed (monotone chain)."""
+    pts = sorted(map(tuple, xy))
+
+    def half(points):
+        out: list = []
+        for p in points:
+            while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (p[1] - out[-2][1])
+                                     - (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0])) <= 0:
+                out.pop()
+            out.append(p)
+        return out
+
+    lower, upper = half(pts), half(pts[::-1])
+    ring = lower[:-1] + upper[:-1]
+    return np.array(ring + ring[:1])
 
 
 def plt_color(i: int, n: int):

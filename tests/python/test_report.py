@@ -275,7 +275,7 @@ def test_phase_plane_of_the_rod_shows_friction_and_the_clipped_curve():
     d = plot.phase_plane_data(prob, res)
     for label, cat in zip(d["binding"], d["category"]):
         assert cat == plot._category(label)
-    ax = plot.contacts(res)
+    ax = plot.contacts(res, per_point=True)
     forces = {k: v for k, v in _curves(ax).items() if k.startswith("|f|")}
     (t, f), = forces.values()
     cf = res.trajectory().contact_forces(t)
@@ -395,4 +395,36 @@ def test_clipped_curve_and_narrowed_view_are_noted_on_both_backends():
     assert [a.text for a in poly.layout.annotations] == ["unbounded polygons extend beyond the view"]
     assert poly.layout.xaxis.range[1] < 1e3
     assert plot.velocities(res).texts[0].get_text() == "no velocity limits given (pass problem=, or the limits)"
+    plt.close("all")
+
+
+def test_contacts_default_to_per_link_normal_forces_and_centres_of_pressure_sit_in_their_soles():
+    """The Talos sway on 9 points per sole: one line per sole (not 18), equal to contact_wrenches'
+    normal force; the centre-of-pressure plot draws each sole's support hull and its CoP trace inside."""
+    plt = _agg()
+    import sys as _sys
+
+    _sys.path.insert(0, str(pathlib.Path(__file__).parent))
+    import contact_corpus as cc
+
+    h = cc.load("talos")
+    cons = cc.contacts(h, "sway", grid=(3, 3))
+    prob = pp.TimeScalingProblem(cc.make_path(h, "sway"), grid=60)
+    prob.add_contacts(h.robot, cons, cone_edges=8, min_normal_force=5.0, drift_tolerance=1e-4)
+    res = prob.solve()
+    ax = plot.contacts(res)
+    lines = {k: v for k, v in _curves(ax).items() if k.startswith("normal force on")}
+    assert sorted(lines) == ["normal force on left_sole_link", "normal force on right_sole_link"]
+    t, f = lines["normal force on left_sole_link"]
+    w = res.trajectory().contact_wrenches(t)
+    np.testing.assert_allclose(f, w.normal_force[:, w.links.index("left_sole_link")], rtol=1e-12)
+    ax = plot.centers_of_pressure(res)
+    curves = _curves(ax)
+    for link in ("left_sole_link", "right_sole_link"):
+        x, y = curves[f"centre of pressure of {link}"]
+        hull = [p for p in ax.patches if p.get_label() == f"support of {link}"][0].get_xy()
+        assert (x.min() >= hull[:, 0].min() - 1e-6 and x.max() <= hull[:, 0].max() + 1e-6
+                and y.min() >= hull[:, 1].min() - 1e-6 and y.max() <= hull[:, 1].max() + 1e-6)
+        assert len(hull) == 5  # the sole's 4 corners, closed: interior points are not on the hull
+    assert plot.centers_of_pressure(pp.TimeScalingProblem(cc.make_path(h, "sway"), grid=4).solve()).texts
     plt.close("all")
