@@ -173,23 +173,25 @@ def torques_data(result: Result, robot=None, tau_min=None, tau_max=None, samples
     return {"t": t, "tau": tau, "tau_min": lo, "tau_max": hi, "joint_names": list(robot.joint_names), "limits": source}
 
 
+def _joint_series(result: Result, which: str, samples: int, joint_names: Sequence[str] | None):
+    traj = result.trajectory()
+    t = np.linspace(0.0, traj.duration, samples)
+    values = traj.qd(t) if which == "qd" else traj.qdd(t)
+    names = list(joint_names) if joint_names else [f"joint {j}" for j in range(values.shape[1])]
+    return t, values, names
+
+
 def velocities_data(result: Result, vmin, vmax, joint_names: Sequence[str] | None = None,
                     samples: int = 1000) -> dict[str, Any]:
     """q̇(t) (m, nq) along the timing, with the limits and the joints' names ("joint j" when not given)."""
-    traj = result.trajectory()
-    t = np.linspace(0.0, traj.duration, samples)
-    qd = traj.qd(t)
-    names = list(joint_names) if joint_names else [f"joint {j}" for j in range(qd.shape[1])]
+    t, qd, names = _joint_series(result, "qd", samples, joint_names)
     return {"t": t, "qd": qd, "vmin": np.asarray(vmin), "vmax": np.asarray(vmax), "joint_names": names}
 
 
 def accelerations_data(result: Result, amin, amax, joint_names: Sequence[str] | None = None,
                        samples: int = 1000) -> dict[str, Any]:
     """q̈(t) (m, nq) along the timing (eq. 11: p'' ṡ² + p' s̈; it jumps where s̈ does), with the limits."""
-    traj = result.trajectory()
-    t = np.linspace(0.0, traj.duration, samples)
-    qdd = traj.qdd(t)
-    names = list(joint_names) if joint_names else [f"joint {j}" for j in range(qdd.shape[1])]
+    t, qdd, names = _joint_series(result, "qdd", samples, joint_names)
     return {"t": t, "qdd": qdd, "amin": np.asarray(amin), "amax": np.asarray(amax), "joint_names": names}
 
 

@@ -464,9 +464,12 @@ class Simulator:
         mask = np.zeros((len(t), len(key)), dtype=bool)
         for s0, s1, m in held:  # later phases win at a switch
             mask[(s >= s0) & (s <= s1)] = m
-        q = traj.q(t)
-        planned = np.array([[(self.robot.frame_placement(qi, c.link) @ np.append(c.point, 1.0))[:3]
-                             for c in self.contacts] for qi in q])
+        links = sorted({c.link for c in self.contacts})
+        planned = np.empty((len(t), len(self.contacts), 3))
+        for i, qi in enumerate(traj.q(t)):
+            X = {link: self.robot.frame_placement(qi, link) for link in links}  # once per link, not per point
+            for k, c in enumerate(self.contacts):
+                planned[i, k] = (X[c.link] @ np.append(c.point, 1.0))[:3]
         out = d - (planned - planned[0])
         out[~mask] = np.nan
         return out
