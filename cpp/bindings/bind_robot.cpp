@@ -5,7 +5,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "convert.hpp"
-#include "detail/torque_lanes.hpp"
+#include "robot/torque_lanes.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/path.hpp"

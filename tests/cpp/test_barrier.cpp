@@ -1,4 +1,4 @@
-// The log-barrier window solver (detail/barrier.hpp) on problems whose optimum is known, and its certificate.
+// The log-barrier window solver (solve/barrier.hpp) on problems whose optimum is known, and its certificate.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "detail/barrier.hpp"
+#include "solve/barrier.hpp"
 #include "test_util.hpp"
 
 using namespace pathpace::detail;

@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "detail/chain_simplex.hpp"
-#include "detail/glpk_lp.hpp"
-#include "detail/reachability.hpp"
+#include "solve/chain_simplex.hpp"
+#include "lp/glpk_lp.hpp"
+#include "solve/reachability.hpp"
 
 using namespace pathpace::detail;
 

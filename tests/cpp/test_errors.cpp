@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "detail/validate.hpp"
+#include "base/validate.hpp"
 #include "pathpace/errors.hpp"
 #include "test_util.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "detail/projection.hpp"
+#include "lp/projection.hpp"
 #include "pathpace/pathpace.hpp"
 
 namespace pathpace::test {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "detail/gather_rows.hpp"
+#include "base/gather_rows.hpp"
 
 using pathpace::detail::gather_rows;
 

@@ -1,4 +1,4 @@
-// The one GLPK guard (detail/glpk_guard.hpp): a GLPK error injected at every guarded call of the
+// The one GLPK guard (lp/glpk_guard.hpp): a GLPK error injected at every guarded call of the
 // projection, the feasibility and maximisation LPs and the contact force distribution becomes a status
 // or an exception, and the GLPK problems that were alive at the time (which GLPK frees with its
 // environment) are rebuilt, not used after being freed. Run under ASan by scripts/sanitize.sh.
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "detail/glpk_guard.hpp"
-#include "detail/glpk_lp.hpp"
-#include "detail/projection.hpp"
+#include "lp/glpk_guard.hpp"
+#include "lp/glpk_lp.hpp"
+#include "lp/projection.hpp"
 #include "pathpace/pathpace.hpp"
 #include "test_fixtures.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "detail/interval_bounds.hpp"
+#include "geometry/interval_bounds.hpp"
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/sampled_path.hpp"
 

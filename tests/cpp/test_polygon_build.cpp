@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "detail/polygon2d.hpp"
+#include "geometry/polygon2d.hpp"
 
 using namespace pathpace::detail;
 

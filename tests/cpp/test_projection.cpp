@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "detail/projection.hpp"
+#include "lp/projection.hpp"
 #include "pathpace/pathpace.hpp"
 #include "test_fixtures.hpp"
 

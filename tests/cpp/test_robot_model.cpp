@@ -9,7 +9,7 @@
 
 #include "pathpace/pathpace.hpp"
 #include "test_util.hpp"
-#include "detail/torque_lanes.hpp"
+#include "robot/torque_lanes.hpp"
 
 using namespace pathpace;
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <memory>
 
-#include "detail/grid_sets.hpp"
+#include "solve/grid_sets.hpp"
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/time_scaling_problem.hpp"
 

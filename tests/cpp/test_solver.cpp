@@ -4,7 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "detail/polygon2d.hpp"
+#include "geometry/polygon2d.hpp"
 #include "pathpace/pathpace.hpp"
 #include "test_util.hpp"
 
@@ -210,7 +210,7 @@ TimeScalingProblem reversing_problem(int N) {
 }  // namespace
 
 TEST(Solver, WindowsGiveTheWholeChainOptimum) {
-  // The window argument (detail/slp.hpp): SLP on windows only must find the optimum of the whole chain,
+  // The window argument (solve/slp.hpp): SLP on windows only must find the optimum of the whole chain,
   // which Method::Slp finds by SLP over every grid point. Both are certified to the tolerance.
   for (int N : {60, 300, 1000}) {
     const TimeScalingProblem prob = reversing_problem(N);

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "detail/tridiagonal.hpp"
+#include "lp/tridiagonal.hpp"
 
 using pathpace::detail::solve_tridiagonal;
 

@@ -166,7 +166,7 @@ def solved_walk(i):
 def test_long_random_walks_solved_by_the_barrier_window_solver(i):
     """Many short spline pieces per grid interval: the optimum is interior along most of the grid, where the
     trust-region SLP crawls (1.4 s and ITERATION_LIMIT on the bench's 400-waypoint walk at N = 1000); windows of
-    500+ points go to the log-barrier Newton solver (detail/barrier.hpp). Same contract as above: cvxpy's
+    500+ points go to the log-barrier Newton solver (solve/barrier.hpp). Same contract as above: cvxpy's
     optimum, HiGHS's Frank-Wolfe certificate, every grid-point limit."""
     w = solved_walk(i)
     res = w["res"]

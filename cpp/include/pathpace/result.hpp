@@ -42,7 +42,7 @@ struct Infeasibility {
 
 struct SolverStats {
   int slp_iterations = 0;
-  int lp_solves = 0;              ///< LPs solved: by the chain simplex (detail/chain_simplex.hpp) or GLPK
+  int lp_solves = 0;              ///< LPs solved: by the chain simplex (solve/chain_simplex.hpp) or GLPK
   bool greatest_element = false;  ///< the optimum is a max-closed set's greatest element (exact, no SLP)
   double gap = 0.0;               ///< certified bound on (T - T*) / T* (0 when exact)
   int windows = 0;                ///< SLP windows (disjoint stretches of the grid solved by LPs)

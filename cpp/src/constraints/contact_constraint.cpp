@@ -9,9 +9,9 @@
 
 #include <Eigen/SVD>
 
-#include "detail/gather_rows.hpp"
-#include "detail/projection.hpp"
-#include "detail/validate.hpp"
+#include "base/gather_rows.hpp"
+#include "lp/projection.hpp"
+#include "base/validate.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/robot_workspace.hpp"
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "detail/projection.hpp"
-#include "detail/validate.hpp"
+#include "lp/projection.hpp"
+#include "base/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/robot_workspace.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "detail/validate.hpp"
+#include "base/validate.hpp"
 
 namespace pathpace {
 

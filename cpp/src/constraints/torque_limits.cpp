@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "detail/torque_lanes.hpp"
-#include "detail/validate.hpp"
+#include "robot/torque_lanes.hpp"
+#include "base/validate.hpp"
 #include "pathpace/robot_workspace.hpp"
 
 namespace pathpace {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/validate.hpp"
+#include "base/validate.hpp"
 
 namespace pathpace {
 

@@ -1,0 +1,52 @@
+#include "lp/glpk_util.hpp"
+
+#include <cmath>
+
+namespace pathpace::detail {
+
+void glpk_set_bounds(glp_prob* lp, bool row, int i, double lo, double hi) {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  const int type = has_lo && has_hi ? (lo == hi ? GLP_FX : GLP_DB) : has_lo ? GLP_LO : has_hi ? GLP_UP : GLP_FR;
+  (row ? glp_set_row_bnds : glp_set_col_bnds)(lp, i, type, has_lo ? lo : 0.0, has_hi ? hi : 0.0);
+}
+
+void dense_triplets(const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<int>& ja, std::vector<double>& ar) {
+  ia.assign(1, 0);  // GLPK's arrays are 1-based
+  ja.assign(1, 0);
+  ar.assign(1, 0.0);
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    for (Eigen::Index j = 0; j < A.cols(); ++j)
+      if (A(i, j) != 0.0) {
+        ia.push_back(static_cast<int>(i) + 1);
+        ja.push_back(static_cast<int>(j) + 1);
+        ar.push_back(A(i, j));
+      }
+}
+
+void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vector<int>& ja, const std::vector<double>& ar) {
+  glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
+}
+
+int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation) {
+  int ret = glp_simplex(lp, &parm);
+  int st = glp_get_status(lp);
+  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS) || (st == GLP_NOFEAS && !exact_confirmation)) {
+    // From the slack basis, with the dual simplex when the primal one stalled (a degenerate cycle
+    // was seen to use the whole iteration limit on a humanoid carrying a box).
+    glp_smcp retry = parm;
+    if (ret != 0) retry.meth = GLP_DUALP;
+    glp_std_basis(lp);
+    ret = glp_simplex(lp, &retry);
+    st = glp_get_status(lp);
+  }
+  if (ret == 0 && st == GLP_OPT) return GLP_OPT;
+  // Two simplex runs from different bases agree (the warm one and the slack basis): enough for a
+  // projection, whose infeasibility claims solve() re-checks exactly before reporting them.
+  if (ret == 0 && st == GLP_NOFEAS && !exact_confirmation) return GLP_NOFEAS;
+  glp_std_basis(lp);
+  if (glp_exact(lp, &parm) != 0) return -1;
+  st = glp_get_status(lp);
+  return st == GLP_OPT || st == GLP_NOFEAS ? st : -1;
+}
+
+}  // namespace pathpace::detail

@@ -1,0 +1,137 @@
+#pragma once
+// Projection of a polytope {z = (x, u, y) : lo <= A z <= hi, col_lo <= z <= col_hi} onto the (x, u)
+// plane by recursive expansion (sec. IV.C; Bretl & Lall), made right by construction:
+//  - the polygon is the convex hull of the LP optima found so far (support points of the shadow), so
+//    it is always an inner set, whatever the LPs did;
+//  - an LP optimum is added only when it lies outside the current hull by more than a tolerance scaled
+//    to the polygon's size (never a near-duplicate that would fold a vertex sequence: the hull is
+//    recomputed, not spliced);
+//  - an edge is final only when an LP along its own outward normal finds nothing beyond it (its
+//    certificate), so the shadow lies within the tolerance of the polygon.
+// Each LP is eq. (19); GLPK is warm-started from the previous direction's basis.
+
+#include <climits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lp/dense_simplex.hpp"
+#include "lp/glpk_guard.hpp"
+#include "geometry/polygon2d.hpp"
+#include "pathpace/constraints/constraint.hpp"
+
+namespace pathpace::detail {
+
+struct PolytopeLp {
+  // Columns 0 and 1 are x = ṡ² and u = s̈; the rest are eliminated (forces, ...).
+  Eigen::MatrixXd A;          // (rows, cols), dense is fine at these sizes
+  Eigen::VectorXd row_lo, row_hi;  // -inf / +inf for one-sided rows; equal for equalities
+  Eigen::VectorXd col_lo, col_hi;
+  /// Bounds of x or u at least this large in magnitude are stand-ins (no limit): vertices on them do
+  /// not count towards the polygon's size, which scales the tolerance.
+  double stand_in = 1e300;
+};
+
+/// What stops the shadow at an edge: the constraint of the polytope with the largest dual at the edge's
+/// certifying LP. Row r at its lower bound: 2r, at its upper bound: 2r + 1; column j at a bound: -(j + 1).
+inline constexpr int kBindingUnknown = INT_MIN;
+/// The stand-in bounds are never grown past this: the feasible sets' own box (Polygon2d's 1e15 sides).
+inline constexpr double kLargestStandIn = 1e15;
+inline bool binding_is_row(int code) { return code >= 0; }
+inline int binding_row(int code) { return code / 2; }
+inline bool binding_upper(int code) { return code % 2 == 1; }
+inline int binding_column(int code) { return -code - 1; }
+
+struct Projection {
+  enum class Outcome { Polygon, Empty, Failed };
+  Outcome outcome = Outcome::Failed;
+  /// Polygon only: every edge certified by its own LP. False when an LP failed or the LP budget ran
+  /// out: the polygon is then the hull found so far (an inner approximation) and `note` says why.
+  bool complete = false;
+  std::string note;
+  std::vector<Line> halfplanes;  // a x + b u <= c, (a, b) of unit length, counter-clockwise
+  std::vector<int> binding;      // per half-plane: the polytope's binding constraint (kBinding... codes)
+  std::vector<Vertex> vertices;  // counter-clockwise (the hull of the support points)
+  double tolerance = 0.0;        // absolute: the shadow lies within this of every edge (approximation included)
+  /// The stand-in bound the polygon was computed with: PolytopeLp::stand_in, or larger when the shadow
+  /// lies only beyond it (the stand-in bounds grown past it; edges on them are still not limits).
+  double stand_in = 0.0;
+  int lp_solves = 0;
+  /// lp_solves by cause: the initial triangle, edge LPs that did not certify their edge (a new vertex, or
+  /// a failure), edge LPs that certified it, the feasibility LP without the stand-in bounds.
+  LpCounts by_cause;
+  int ranged_certificates = 0;  ///< edges certified by an endpoint's ranging instead of an LP
+  int approximate_edges = 0;    ///< edges final by `approximation` (no LP; binding unknown)
+  int dense_solves = 0;         ///< LPs solved (and certified) by the dense simplex, not GLPK
+  int dense_fallbacks = 0;      ///< LPs the dense simplex gave up on (then solved by GLPK)
+};
+
+/// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
+/// is kept from one call to the next and each call starts from the previous call's final basis, which
+/// is nearly optimal for a neighbouring grid point (sec. IV.C's warm start, carried across points).
+/// `relative_tolerance`: an LP optimum is a new vertex, and an edge is not final, when it lies beyond
+/// the edge by more than this times the polygon's size (the larger of its x and u extents, vertices
+/// on stand-in bounds left out). `max_lps` bounds the work (the result then says it is incomplete).
+class PolytopeProjector {
+ public:
+  PolytopeProjector() = default;
+  PolytopeProjector(const PolytopeProjector&) = delete;
+  PolytopeProjector& operator=(const PolytopeProjector&) = delete;
+  ~PolytopeProjector();
+  /// `approximation` (ContactOptions::projection_tolerance): an edge is also final, without its LP, when
+  /// the outer bound beyond it (the apex of the support lines at its ends) lies within this times the
+  /// polygon's size of it; the polygon is then an inner set within that of the shadow in every direction.
+  Projection project(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000,
+                     double approximation = 0.0);
+
+  /// One LP: is the polytope non-empty (1), empty (0, confirmed in exact arithmetic), or did the
+  /// solver fail (-1)? With `fix` the point (x, u) = (fix[0], fix[1]) is imposed.
+  int feasible(const PolytopeLp& lp, const double* fix = nullptr);
+
+  /// One LP: maximise c·z over the polytope (c one per column). 1: optimal, z its point; 0: empty
+  /// (confirmed in exact arithmetic); -1: the solver failed; -2: a GLPK error (see glpk_guard.hpp).
+  /// Unbounded is a failure. Warm-started like project() (the same problem, from the last basis).
+  int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z);
+
+ private:
+  // Loads the problem (same shape: the previous basis is kept as the warm start). -1: a GLPK error;
+  // else 1 if warm, 0 if cold.
+  int load(const PolytopeLp& lp);
+  GlpkProblem lp_;
+  int rows_ = -1, cols_ = -1;
+  std::vector<int> ia_, ja_;  // matrix-loading scratch
+  std::vector<double> ar_;
+  std::vector<signed char> stat_;  // an LP's final basis, before it is kept
+  std::vector<double> z_;          // an LP's point
+  struct Basis {  // an LP's final basis: its direction, then GLPK's row and column statuses
+    double angle = 0.0;
+    std::vector<signed char> stat;
+  };
+  std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
+  struct Ranging;
+  std::vector<int> tab_ind_;  // glp_eval_tab_row scratch
+  std::vector<double> tab_val_;
+  std::vector<double> tab_x_, tab_u_;  // the tableau rows of x and u, over every variable (1-based)
+ public:
+  /// Certify an edge without its LP when an endpoint's optimal basis is also optimal along the edge's
+  /// normal (see Ranging in the .cpp). On by default; off for tests that compare both.
+  bool ranging = true;
+  /// Solve the LPs after a grid point's first with the dense simplex (GLPK the fallback). Off by
+  /// default: on the corpus of test_projection_corpus.py one grid point of a Talos wall with 32-edge
+  /// cones came out 2e-6 of its size outside the exact shadow (cause not found yet).
+  bool dense = false;
+
+ private:
+  DenseSimplex dense_;
+};
+
+/// One polytope, from a cold start.
+Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000,
+                            double approximation = 0.0);
+
+/// Convex hull of points, counter-clockwise, collinear and duplicate points dropped (Andrew's monotone
+/// chain). `order` receives, for each hull vertex, its index in `points`.
+void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order);
+
+}  // namespace pathpace::detail

@@ -1,0 +1,194 @@
+#include "pathpace/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/gather_rows.hpp"
+#include "base/validate.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/errors.hpp"
+#include "pathpace/robot_model.hpp"
+#include "pathpace/robot_workspace.hpp"
+
+namespace pathpace {
+
+Trajectory::Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot)
+    : path_(std::move(path)), s_(std::move(s)), sdot_(std::move(sdot)) {
+  if (!path_) detail::fail("path must not be None");
+  if (s_.size() < 2) detail::fail("grid has " + std::to_string(s_.size()) + " points, expected at least 2");
+  detail::require_size("sdot", sdot_.size(), s_.size(), "one speed per grid point");
+  detail::require_finite("grid", s_);
+  detail::require_finite("sdot", sdot_);
+  detail::require_increasing("grid", s_);
+  const Eigen::Index n = s_.size() - 1;
+  times_.resize(n + 1);
+  sddot_.resize(n);
+  times_[0] = 0.0;
+  for (Eigen::Index k = 0; k <= n; ++k)
+    if (sdot_[k] < 0.0) detail::fail(detail::at("sdot", k) + " = " + detail::fmt(sdot_[k]) + " must be >= 0");
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double w = sdot_[k] + sdot_[k + 1];
+    if (!(w > 0.0))
+      detail::fail("sdot[" + std::to_string(k) + "] + sdot[" + std::to_string(k + 1) +
+                   "] = 0 must be > 0 (the interval would take forever)");
+    const double ds = s_[k + 1] - s_[k];
+    times_[k + 1] = times_[k] + 2.0 * ds / w;                                        // eq. (25)
+    sddot_[k] = (sdot_[k + 1] * sdot_[k + 1] - sdot_[k] * sdot_[k]) / (2.0 * ds);  // constant on the interval
+    // Speeds so large that ṡ² or s̈ overflows, or that an interval takes no time at all, give a
+    // trajectory whose t -> s map is not invertible: refuse them rather than return infinities.
+    if (!std::isfinite(sddot_[k]) || !(times_[k + 1] > times_[k])) {
+      const Eigen::Index j = sdot_[k] >= sdot_[k + 1] ? k : k + 1;
+      detail::fail(detail::at("sdot", j) + " = " + detail::fmt(sdot_[j]) + " is too large for interval " +
+                   std::to_string(k) + " of length " + detail::fmt(ds) + " (s̈ = " + detail::fmt(sddot_[k]) +
+                   ", time " + detail::fmt(times_[k + 1] - times_[k]) + ")");
+    }
+  }
+}
+
+Eigen::Index Trajectory::interval(double t) const {
+  const Eigen::Index n = s_.size() - 1;
+  const auto it = std::upper_bound(times_.data(), times_.data() + n + 1, t);
+  Eigen::Index k = static_cast<Eigen::Index>(it - times_.data()) - 1;
+  return std::clamp<Eigen::Index>(k, 0, n - 1);
+}
+
+void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::VectorXd& sd,
+                            Eigen::VectorXd& sdd) const {
+  s.resize(t.size());
+  sd.resize(t.size());
+  sdd.resize(t.size());
+  const double T = duration();
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    if (std::isnan(t[i])) detail::fail(detail::at("t", i) + " = nan must be a number");
+    const double ti = std::clamp(t[i], 0.0, T);
+    const Eigen::Index k = interval(ti);
+    const double tau = ti - times_[k];
+    // eq. (24): s(t) = s̈_k τ²/2 + ṡ_k τ + s_k on interval k
+    s[i] = std::min(s_[k] + sdot_[k] * tau + 0.5 * sddot_[k] * tau * tau, s_[k + 1]);
+    sd[i] = std::max(sdot_[k] + sddot_[k] * tau, 0.0);
+    sdd[i] = sddot_[k];
+  }
+}
+
+void Trajectory::evaluate(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::MatrixXd& q, Eigen::MatrixXd& qd,
+                          Eigen::MatrixXd& qdd) const {
+  Eigen::VectorXd s;
+  evaluate_with_s(t, s, q, qd, qdd);
+}
+
+void Trajectory::evaluate_with_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q,
+                                 Eigen::MatrixXd& qd, Eigen::MatrixXd& qdd) const {
+  Eigen::VectorXd sd, sdd;
+  evaluate_s(t, s, sd, sdd);
+  Eigen::MatrixXd dq, ddq;
+  path_->evaluate(s, q, dq, ddq);
+  qd = dq.array().colwise() * sd.array();                                             // eq. (10)
+  qdd = ddq.array().colwise() * (sd.array() * sd.array()) + dq.array().colwise() * sdd.array();  // eq. (11)
+}
+
+Eigen::MatrixXd Trajectory::q(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return q;
+}
+
+Eigen::MatrixXd Trajectory::qd(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return qd;
+}
+
+Eigen::MatrixXd Trajectory::qdd(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  return qdd;
+}
+
+Eigen::MatrixXd Trajectory::torques(const Eigen::Ref<const Eigen::VectorXd>& t, const RobotModel& robot) const {
+  if (robot.nq() != path_->dof())
+    detail::fail("robot '" + robot.name() + "' has " + std::to_string(robot.nq()) + " joints, the path has " +
+                 std::to_string(path_->dof()) + " coordinates");
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate(t, q, qd, qdd);
+  RobotWorkspace ws(robot);
+  Eigen::MatrixXd tau(t.size(), robot.nq());
+  Eigen::VectorXd out(robot.nq());
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    robot.inverse_dynamics(ws, q.row(i).transpose(), qd.row(i).transpose(), qdd.row(i).transpose(), true, out);
+    tau.row(i) = out.transpose();
+  }
+  return tau;
+}
+
+Eigen::VectorXi Trajectory::contact_phase(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  if (contact_phases_.empty()) return Eigen::VectorXi::Constant(t.size(), -1);
+  Eigen::VectorXd s, sd, sdd;
+  evaluate_s(t, s, sd, sdd);
+  return phase_of_s(s);
+}
+
+Eigen::VectorXi Trajectory::phase_of_s(const Eigen::VectorXd& s) const {
+  Eigen::VectorXi out = Eigen::VectorXi::Constant(s.size(), -1);  // callers have phases (front() below)
+  for (Eigen::Index i = 0; i < s.size(); ++i) {
+    // The last phase that holds s: the later one at a switch (both hold there).
+    for (size_t p = contact_phases_.size(); p-- > 0;)
+      if (contact_phases_[p]->active_at(s[i])) {
+        out[i] = static_cast<int>(p);
+        break;
+      }
+    // Between phases there is no gap (they are contiguous); a time beyond them gets the nearest one.
+    if (out[i] < 0) out[i] = s[i] < contact_phases_.front()->options().active_begin ? 0 : static_cast<int>(contact_phases_.size()) - 1;
+  }
+  return out;
+}
+
+std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
+                                                      Eigen::VectorXi* phase_out) const {
+  if (!contacts_ && contact_phases_.empty())
+    throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
+  Eigen::VectorXd s;
+  Eigen::MatrixXd q, qd, qdd;
+  evaluate_with_s(t, s, q, qd, qdd);
+  if (contact_phases_.empty()) {
+    if (phase_out) *phase_out = Eigen::VectorXi::Constant(t.size(), -1);
+    return contacts_->force_distribution(q, qd, qdd);
+  }
+  // One force-distribution batch per phase, each with that phase's contacts.
+  Eigen::VectorXi phase = phase_of_s(s);
+  std::vector<ContactForces> out(static_cast<size_t>(t.size()));
+  for (size_t p = 0; p < contact_phases_.size(); ++p) {
+    std::vector<Eigen::Index> idx;
+    for (Eigen::Index i = 0; i < t.size(); ++i)
+      if (phase[i] == static_cast<int>(p)) idx.push_back(i);
+    if (idx.empty()) continue;
+    std::vector<ContactForces> f = contact_phases_[p]->force_distribution(
+        detail::gather_rows(q, idx), detail::gather_rows(qd, idx), detail::gather_rows(qdd, idx));
+    for (size_t j = 0; j < idx.size(); ++j) out[static_cast<size_t>(idx[j])] = std::move(f[j]);
+  }
+  if (phase_out) *phase_out = std::move(phase);
+  return out;
+}
+
+CubicSplinePath Trajectory::time_spline() const {
+  const Eigen::Index last = s_.size() - 1;
+  Eigen::MatrixXd q, dq, ddq;
+  path_->evaluate(s_, q, dq, ddq);
+  // Clamped ends: the exact joint velocities p'(s) ṡ (eq. 10) at t = 0 and t = T.
+  const Eigen::VectorXd v0 = dq.row(0).transpose() * sdot_[0], v1 = dq.row(last).transpose() * sdot_[last];
+  return CubicSplinePath(q, times_, SplineBoundary::Clamped, v0, v1);
+}
+
+Eigen::VectorXd Trajectory::sample_times(double dt) const {
+  if (!(dt > 0.0) || !std::isfinite(dt)) detail::fail("dt = " + detail::fmt(dt) + " must be > 0 and finite");
+  const double T = duration();
+  const double count = std::floor(T / dt);
+  if (count > 1e8) detail::fail("dt = " + detail::fmt(dt) + " gives more than 1e8 samples for T = " + detail::fmt(T));
+  const Eigen::Index m = static_cast<Eigen::Index>(count) + 1;
+  const bool append = T - static_cast<double>(m - 1) * dt > 1e-12 * std::max(1.0, T);
+  Eigen::VectorXd t(m + (append ? 1 : 0));
+  for (Eigen::Index i = 0; i < m; ++i) t[i] = static_cast<double>(i) * dt;
+  if (append) t[m] = T;
+  return t;
+}
+
+}  // namespace pathpace

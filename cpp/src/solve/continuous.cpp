@@ -1,0 +1,543 @@
+#include "solve/continuous.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "geometry/interval_bounds.hpp"
+#include "base/validate.hpp"
+#include "pathpace/constraints/acceleration_limits.hpp"
+#include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/constraints/velocity_limits.hpp"
+#include "pathpace/piecewise_polynomial_path.hpp"
+
+namespace pathpace::detail {
+
+namespace {
+
+int total_rows(const std::vector<ConstraintRows>& rows) {
+  int n = 0;
+  for (const ConstraintRows& r : rows) n += static_cast<int>(r.rows());
+  return n;
+}
+
+}  // namespace
+
+void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
+                                   const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                   std::vector<ConstraintRows>& rows, IntervalExtra& extra) {
+  const Eigen::Index N = samples.size() - 1, n = samples.dof();
+  extra.rows.resize(static_cast<size_t>(N));
+  bool any = false;
+  for (const auto& c : constraints)
+    any = any || std::dynamic_pointer_cast<const VelocityLimits>(c) || std::dynamic_pointer_cast<const AccelerationLimits>(c);
+  if (!any) return;
+  const auto* pp = dynamic_cast<const PiecewisePolynomialPath*>(&path);
+  if (!pp)
+    fail("guarantee = 'continuous' bounds velocity and acceleration between grid points on piecewise-polynomial "
+         "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath); this path is not one");
+  const IntervalRows ir = interval_rows(*pp, samples.s);
+  const double inf = std::numeric_limits<double>::infinity();
+  const size_t own = rows.size();  // rows[i] are constraints[i]'s grid rows (for their labels)
+  for (size_t ci = 0; ci < constraints.size(); ++ci) {
+    const std::shared_ptr<const Constraint>& c = constraints[ci];
+    if (auto vl = std::dynamic_pointer_cast<const VelocityLimits>(c)) {
+      // One bound per grid point for all joints (each joint's own would do too, but the polygon keeps only
+      // the smallest bound on x alone anyway).
+      ConstraintRows cr;
+      cr.resize(samples.size(), 1);
+      cr.labels[0] = "velocity (between grid points)";
+      const Eigen::VectorXd bound = continuous_speed_bounds(*pp, samples.s, ir, samples.dq, vl->vmin(), vl->vmax());
+      for (Eigen::Index k = 0; k <= N; ++k)
+        if (bound[k] < inf) {
+          cr.a(k, 0) = 1.0;
+          cr.c(k, 0) = bound[k];
+        }
+      rows.push_back(std::move(cr));
+    } else if (auto al = std::dynamic_pointer_cast<const AccelerationLimits>(c)) {
+      const int id0 = total_rows(rows);
+      ConstraintRows cr;  // labels only: its rows are inactive at the grid points, they act on intervals
+      cr.resize(samples.size(), 2 * n);
+      // The grid rows' own labels (joint names where the problem has them), "between grid points".
+      const bool named = ci < own && rows[ci].labels.size() == static_cast<size_t>(2 * n);
+      for (size_t l = 0; l < static_cast<size_t>(2 * n); ++l)
+        cr.labels[l] = (named ? rows[ci].labels[l]
+                              : "acceleration joint " + std::to_string(l / 2) + (l % 2 ? " lower" : " upper")) +
+                       " (between grid points)";
+      rows.push_back(std::move(cr));
+      for (Eigen::Index k = 0; k < N; ++k) {
+        auto& out = extra.rows[static_cast<size_t>(k)];
+        for (size_t i = ir.offset[static_cast<size_t>(k)]; i < ir.offset[static_cast<size_t>(k) + 1]; ++i) {
+          const int j = ir.joint[i];
+          if (std::isfinite(al->amax()[j])) out.push_back({ir.A[i], ir.B[i], al->amax()[j], id0 + 2 * j});
+          if (std::isfinite(al->amin()[j])) out.push_back({-ir.A[i], -ir.B[i], -al->amin()[j], id0 + 2 * j + 1});
+        }
+      }
+    }
+  }
+}
+
+namespace {
+
+// Relative violation of row (a, b, c) at λ on an interval with θ_k = t0, θ_{k+1} = t1, u = (t1 - t0)/(2Δs).
+double violation(double a, double b, double c, double lam, double t0, double t1, double u) {
+  if (c == std::numeric_limits<double>::infinity()) return -std::numeric_limits<double>::infinity();
+  const double ax = a * ((1.0 - lam) * t0 + lam * t1), bu = b * u;
+  return (ax + bu - c) / std::max({std::abs(c), std::abs(ax) + std::abs(bu), 1e-300});
+}
+
+// An upper bound of v on [la, lb] from its end values, if v'' >= -K there: the chord plus K τ (h - τ) / 2.
+double bump_bound(double la, double va, double lb, double vb, double K) {
+  const double h = lb - la, slope = (vb - va) / h;
+  const double tau = K > 0.0 ? std::clamp(0.5 * h + slope / K, 0.0, h) : (slope > 0.0 ? h : 0.0);
+  return va + slope * tau + 0.5 * K * tau * (h - tau);
+}
+
+// A contact constraint's violation at one point: x beyond the polygon's slice [lo, hi] at the timing's u,
+// relative to x's own size (as a row's violation is relative to its terms); an empty slice (no x at
+// all fits this u) or a failed LP counts as a full violation, which the cut's projection then settles.
+double slice_violation(double x, double lo, double hi) {
+  if (std::isnan(lo) || std::isnan(hi) || lo > hi) return 1.0;
+  const double over = std::max(x - hi, lo - x);
+  if (over == -std::numeric_limits<double>::infinity()) return over;
+  return over / std::max({std::abs(x), std::isfinite(hi) ? std::abs(hi) : 0.0, 1e-300});
+}
+
+// The same from a polygon's rows (row r of `rows`): the slice at u is where every row a x + b u <= c holds.
+double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double lo = -inf, hi = inf;
+  for (Eigen::Index j = 0; j < rows.rows(); ++j) {
+    const double a = rows.a(r, j), rest = rows.c(r, j) - rows.b(r, j) * u;
+    if (rows.c(r, j) == inf) continue;
+    if (a > 0.0) hi = std::min(hi, rest / a);
+    else if (a < 0.0) lo = std::max(lo, rest / a);
+    else if (rest < 0.0) return 1.0;  // a row on u alone that this u breaks
+  }
+  return slice_violation(x, lo, hi);
+}
+
+// v'' from three samples.
+double second_difference(double la, double va, double lb, double vb, double lc, double vc) {
+  return 2.0 * ((vc - vb) / (lc - lb) - (vb - va) / (lb - la)) / (lc - la);
+}
+
+}  // namespace
+
+Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
+                    const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                    const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
+                    double tolerance, IntervalExtra& extra, AuditMemory& memory) {
+  Audit audit;
+  const Eigen::Index N = s.size() - 1;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<size_t> which;
+  for (size_t i = 0; i < constraints.size(); ++i)
+    if (!std::dynamic_pointer_cast<const VelocityLimits>(constraints[i]) &&
+        !std::dynamic_pointer_cast<const AccelerationLimits>(constraints[i]))
+      which.push_back(i);
+  if (which.empty() || points < 1) return audit;
+  // Coarse pass at Chebyshev points of each interval: dense near the ends, where a row that is tight at
+  // the grid point with a slope into the interval peaks.
+  std::vector<double> lam(static_cast<size_t>(points));
+  for (int m = 0; m < points; ++m) lam[static_cast<size_t>(m)] = 0.5 * (1.0 - std::cos(M_PI * (m + 1.0) / (points + 1.0)));
+  auto samples_at = [&](const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) {
+    PathSamples ps;
+    ps.s.resize(static_cast<Eigen::Index>(ks.size()));
+    for (size_t i = 0; i < ks.size(); ++i) ps.s[static_cast<Eigen::Index>(i)] = s[ks[i]] + (s[ks[i] + 1] - s[ks[i]]) * ls[i];
+    path.evaluate(ps.s, ps.q, ps.dq, ps.ddq);
+    return ps;
+  };
+  std::vector<Eigen::Index> ks;
+  std::vector<double> ls;
+  audit.worst = -inf;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (memory.theta0.size() != constraints.size()) {
+    memory.theta0.assign(constraints.size(), std::vector<double>(static_cast<size_t>(N), nan));
+    memory.theta1 = memory.theta0;
+    memory.worst = memory.theta0;
+  }
+  auto u_of = [&](Eigen::Index k) { return (theta[k + 1] - theta[k]) / (2.0 * (s[k + 1] - s[k])); };
+  auto x_of = [&](Eigen::Index k, double l) { return (1.0 - l) * theta[k] + l * theta[k + 1]; };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  // Per interval and constraint, the violation at λ is the largest relative violation over the
+  // constraint's rows there (a contact polygon's rows differ from one point to the next, so rows are
+  // not followed one by one); its peak is found, and every row broken at the peak becomes a cut.
+  struct Candidate {
+    Eigen::Index k;
+    double a, b, c, fa, fb, fc;  // a < b < c: b the best interior point so far (its violation fb)
+    double step = 0.0, step_before = 0.0;  // the last two steps (Brent's safeguard on parabolic steps)
+    bool done = false;
+    double best() const { return std::max({fa, fb, fc}); }
+    double at() const { return fb >= fa && fb >= fc ? b : (fa >= fc ? a : c); }
+  };
+  auto worst_row = [&](const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) {
+    double w = -inf;
+    for (Eigen::Index j = 0; j < rr.rows(); ++j)
+      w = std::max(w, violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[k], theta[k + 1], u_of(k)));
+    return w;
+  };
+  std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
+  std::vector<std::vector<double>> Ls, Vs;      // [interval]: the samples, sorted and merged
+  if (memory.coarse.size() != constraints.size()) {
+    memory.coarse.assign(constraints.size(), ConstraintRows());
+    memory.cut_points.assign(constraints.size(), std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N)));
+  }
+  if (memory.slices.size() != constraints.size()) memory.slices.assign(constraints.size(), {});
+  // A contact constraint's samples (ks[i], ls[i]) of the intervals todo[t] (samples first[t] ..
+  // first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slices from an
+  // earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
+  // slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
+  // slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
+  auto contact_samples = [&](const ContactConstraint& cc, size_t ci, int pts, const std::vector<Eigen::Index>& kk,
+                             const std::vector<double>& ll, const std::vector<size_t>& first,
+                             const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
+    auto& memo = memory.slices[ci];
+    if (memo.size() != static_cast<size_t>(N * pts)) memo.assign(static_cast<size_t>(N * pts), {});
+    const double cap = cc.options().cap;
+    f.assign(kk.size(), nan);
+    std::vector<Eigen::Index> bk;
+    std::vector<double> bl, bu;
+    std::vector<size_t> main_of;  // per sample asked: its index in kk
+    std::vector<int> role;        // 1: the sample itself; 0, 2: u - δ, u + δ of a Chebyshev point
+    for (size_t t = 0; t < todo.size(); ++t)
+      for (size_t i = first[t]; i < first[t + 1]; ++i) {
+        const Eigen::Index k = kk[i];
+        const double u = u_of(k), x = x_of(k, ll[i]);
+        const bool cheb = i - first[t] < static_cast<size_t>(pts);
+        if (cheb) {
+          const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + (i - first[t])];
+          if (M.valid && M.u[0] <= u && u <= M.u[2]) {
+            const int j = u <= M.u[1] ? 0 : 1;
+            const double w = M.u[j + 1] > M.u[j] ? (u - M.u[j]) / (M.u[j + 1] - M.u[j]) : 0.0;
+            const double hi = (1.0 - w) * M.hi[j] + w * M.hi[j + 1], lo = (1.0 - w) * M.lo[j] + w * M.lo[j + 1];
+            const double v = slice_violation(x, lo, hi >= cap * (1.0 - 1e-9) ? inf : hi);
+            if (v <= 0.0) {
+              f[i] = v;
+              ++audit.reused;
+              continue;
+            }
+          }
+        }
+        const double delta = 1e-4 * (std::abs(u) + (theta[k] + theta[k + 1]) / (2.0 * (s[k + 1] - s[k])));
+        for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
+          bk.push_back(k);
+          bl.push_back(ll[i]);
+          bu.push_back(u + (r - 1) * delta);
+          main_of.push_back(i);
+          role.push_back(r);
+        }
+      }
+    if (bk.empty()) return;
+    const PathSamples ps = samples_at(bk, bl);
+    Eigen::VectorXd lo, hi;
+    audit.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), static_cast<Eigen::Index>(bu.size())), lo, hi);
+    // The memory of each Chebyshev point asked: valid only if all three slices are non-empty.
+    for (size_t q = 0; q < bk.size(); ++q) {
+      const size_t i = main_of[q];
+      const Eigen::Index e = static_cast<Eigen::Index>(q);
+      if (role[q] == 1) f[i] = slice_violation(x_of(bk[q], bl[q]), lo[e], hi[e]);
+    }
+    for (size_t q = 0; q + 2 < bk.size(); ++q) {
+      if (role[q] != 0) continue;
+      size_t t = 0;
+      while (first[t + 1] <= main_of[q]) ++t;
+      AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + (main_of[q] - first[t])];
+      M.valid = true;
+      for (int r = 0; r < 3; ++r) {
+        const Eigen::Index e = static_cast<Eigen::Index>(q + static_cast<size_t>(r));
+        M.u[r] = bu[q + static_cast<size_t>(r)];
+        M.lo[r] = lo[e];
+        M.hi[r] = std::min(hi[e], cap);
+        if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) M.valid = false;
+      }
+    }
+  };
+  for (size_t ci : which) {
+    const auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints[ci]);
+    // The violation at (interval ks[i], λ ls[i]) under θ. A contact constraint is asked only whether the
+    // timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, no
+    // projection); its violation is x's relative distance beyond the slice. Any other constraint gives
+    // its rows (cheap: no LPs).
+    auto violations = [&](const std::vector<Eigen::Index>& kk, const std::vector<double>& ll, std::vector<double>& f) {
+      f.resize(kk.size());
+      if (kk.empty()) return;
+      const PathSamples ps = samples_at(kk, ll);
+      if (contact) {
+        Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), lo, hi;
+        for (size_t i = 0; i < kk.size(); ++i) u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
+        audit.lps += contact->slice(ps, u, lo, hi);
+        for (size_t i = 0; i < kk.size(); ++i)
+          f[i] = slice_violation(x_of(kk[i], ll[i]), lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
+        return;
+      }
+      const ConstraintRows rr = constraints[ci]->evaluate(ps);
+      for (size_t i = 0; i < kk.size(); ++i) f[i] = worst_row(rr, static_cast<Eigen::Index>(i), ll[i], kk[i]);
+    };
+    // The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (not for
+    // a contact constraint, whose polygons are not projected there).
+    if (!contact && memory.coarse[ci].a.rows() != N * points) {
+      ks.clear();
+      ls.clear();
+      for (Eigen::Index k = 0; k < N; ++k)
+        for (int m = 0; m < points; ++m) {
+          ks.push_back(k);
+          ls.push_back(lam[static_cast<size_t>(m)]);
+        }
+      memory.coarse[ci] = constraints[ci]->evaluate(samples_at(ks, ls));
+    }
+    const ConstraintRows& cr = memory.coarse[ci];
+    auto& t0 = memory.theta0[ci];
+    auto& t1 = memory.theta1[ci];
+    auto& remembered = memory.worst[ci];
+    // The intervals to audit: those whose speeds differ from the ones they were audited at (the same
+    // speeds have the same violation).
+    std::vector<Eigen::Index> todo;
+    for (Eigen::Index k = 0; k < N; ++k) {
+      const size_t kk = static_cast<size_t>(k);
+      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) {
+        audit.worst = std::max(audit.worst, remembered[kk]);
+        continue;
+      }
+      todo.push_back(k);
+    }
+    // A contact constraint's samples, all in one batch (one warm-started LP sequence): both grid
+    // points, the Chebyshev points and the earlier cut points of every interval to audit.
+    std::vector<double> fc;
+    std::vector<size_t> first(todo.size() + 1, 0);
+    if (contact) {
+      ks.clear();
+      ls.clear();
+      for (size_t t = 0; t < todo.size(); ++t) {
+        const Eigen::Index k = todo[t];
+        first[t] = ks.size();
+        for (int m = 0; m < points; ++m) {
+          ks.push_back(k);
+          ls.push_back(lam[static_cast<size_t>(m)]);
+        }
+        for (const AuditMemory::Point& pt : memory.cut_points[ci][static_cast<size_t>(k)]) {
+          ks.push_back(k);
+          ls.push_back(pt.lam);
+        }
+      }
+      first[todo.size()] = ks.size();
+      contact_samples(*contact, ci, points, ks, ls, first, todo, fc);
+    }
+    Ls.assign(todo.size(), {});
+    Vs.assign(todo.size(), {});
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const Eigen::Index k = todo[t];
+      const size_t kk = static_cast<size_t>(k);
+      // Samples: both grid points (the grid's own rows), the Chebyshev points, and the points where the
+      // interval was cut before (the timing is tight there, and a violation next to one would lie
+      // between the Chebyshev points).
+      sample.clear();
+      if (contact) {
+        // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP.
+        sample.emplace_back(0.0, row_slice_violation(grid_rows[ci], k, x_of(k, 0.0), u_of(k)));
+        sample.emplace_back(1.0, row_slice_violation(grid_rows[ci], k + 1, x_of(k, 1.0), u_of(k)));
+        for (size_t i = first[t]; i < first[t + 1]; ++i) sample.emplace_back(ls[i], fc[i]);
+      } else {
+        sample.emplace_back(0.0, worst_row(grid_rows[ci], k, 0.0, k));
+        sample.emplace_back(1.0, worst_row(grid_rows[ci], k + 1, 1.0, k));
+        for (int m = 0; m < points; ++m)
+          sample.emplace_back(lam[static_cast<size_t>(m)], worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k));
+        for (const AuditMemory::Point& pt : memory.cut_points[ci][kk]) {
+          double w = -inf;
+          for (Eigen::Index j = 0; j < pt.a.size(); ++j)
+            w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta[k], theta[k + 1], u_of(k)));
+          sample.emplace_back(pt.lam, w);
+        }
+      }
+      std::sort(sample.begin(), sample.end());
+      std::vector<double>& L = Ls[t];
+      std::vector<double>& V = Vs[t];
+      for (const auto& [l, v] : sample) {
+        if (!L.empty() && l - L.back() <= 1e-6) {
+          V.back() = std::max(V.back(), v);
+          continue;
+        }
+        L.push_back(l);
+        V.push_back(v);
+      }
+      double worst = -inf;
+      for (double v : V) worst = std::max(worst, v);
+      t0[kk] = theta[k];
+      t1[kk] = theta[k + 1];
+      remembered[kk] = worst;
+      audit.worst = std::max(audit.worst, worst);
+    }
+    // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
+    // K τ (h - τ) / 2 where v'' >= -K. K is not known in closed form (a polygon's edges move with s), so
+    // the screen assumes (docs/method.md, "Limits between grid points") that v's concavity in s is at
+    // most 4 times the largest that the second divided differences of the samples show anywhere on
+    // the path in this round (in λ: that times Δs_k²). A path-wide bound, not each interval's own
+    // neighbours: one interval whose samples happen to lie on a line (a rounding-level change of its
+    // polygons can make them so) does not switch its screen off.
+    double curvature = 0.0;  // the largest -v''(s) seen
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const std::vector<double>& L = Ls[t];
+      const std::vector<double>& V = Vs[t];
+      const double h = s[todo[t] + 1] - s[todo[t]];
+      for (size_t j = 1; j + 1 < L.size(); ++j) {
+        if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) continue;
+        // Samples closer than 1 % of the interval amplify the rows' rounding into a curvature.
+        if (L[j] - L[j - 1] < 0.01 || L[j + 1] - L[j] < 0.01) continue;
+        curvature = std::max(curvature, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]) / (h * h));
+      }
+    }
+    auto K_of = [&](Eigen::Index k) {
+      const double h = s[k + 1] - s[k];
+      return 4.0 * curvature * h * h;
+    };
+    std::vector<Candidate> cand;
+    for (size_t t = 0; t < todo.size(); ++t) {
+      const Eigen::Index k = todo[t];
+      const std::vector<double>& L = Ls[t];
+      const std::vector<double>& V = Vs[t];
+      const double K = K_of(k);
+      for (size_t i = 0; i + 1 < L.size(); ++i) {
+        const double va = V[i], vb = V[i + 1];
+        if (va == -inf && vb == -inf) continue;
+        if (std::isfinite(va) && std::isfinite(vb) && bump_bound(L[i], va, L[i + 1], vb, K) <= tolerance) continue;
+        const double b = vb > va ? L[i] + g * (L[i + 1] - L[i]) : L[i + 1] - g * (L[i + 1] - L[i]);
+        cand.push_back({k, L[i], b, L[i + 1], va, 0.0, vb, L[i + 1] - L[i], L[i + 1] - L[i]});
+      }
+    }
+    if (cand.empty()) continue;
+    // The peak between the two samples: successive parabolic interpolation through the best point and
+    // its two neighbours, with golden-section steps where a parabola does not apply or does not shrink
+    // the bracket fast enough (Brent's rule), all candidates evaluated in one batch per step. A candidate
+    // is settled early when the bound above, from its three points, shows no violation.
+    auto eval = [&](const std::vector<size_t>& which_cand, const std::vector<double>& at_lam, std::vector<double>& f) {
+      ks.clear();
+      for (size_t i : which_cand) ks.push_back(cand[i].k);
+      violations(ks, at_lam, f);
+    };
+    std::vector<size_t> active;
+    std::vector<double> x, f;
+    for (size_t i = 0; i < cand.size(); ++i) {
+      active.push_back(i);
+      x.push_back(cand[i].b);
+    }
+    eval(active, x, f);
+    for (size_t q = 0; q < active.size(); ++q) cand[active[q]].fb = f[q];
+    for (int it = 0; it < 30; ++it) {
+      active.clear();
+      x.clear();
+      for (size_t i = 0; i < cand.size(); ++i) {
+        Candidate& c = cand[i];
+        if (c.done) continue;
+        const double tol = 1e-9 + 1e-7 * (c.c - c.a);
+        if (c.c - c.a <= 1e-7 || !std::isfinite(c.fb)) {
+          c.done = true;
+          continue;
+        }
+        if (std::isfinite(c.fa) && std::isfinite(c.fc)) {
+          const double K = std::max(K_of(c.k), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
+          if (c.best() <= tolerance && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance &&
+              bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance) {
+            c.done = true;
+            continue;
+          }
+        }
+        double next;
+        bool parabolic = false;
+        if (c.fb >= c.fa && c.fb >= c.fc) {
+          const double p = (c.b - c.a) * (c.fb - c.fc), q = (c.b - c.c) * (c.fb - c.fa);
+          const double den = 2.0 * (p - q);
+          if (den != 0.0) {
+            const double d = -((c.b - c.a) * p - (c.b - c.c) * q) / den;
+            if (std::abs(d) < 0.5 * std::abs(c.step_before) && c.b + d > c.a + tol && c.b + d < c.c - tol) {
+              next = std::abs(d) < tol ? c.b + (d < 0 ? -tol : tol) : c.b + d;
+              parabolic = true;
+            }
+          }
+          if (!parabolic) next = c.b - c.a > c.c - c.b ? c.b - (1.0 - g) * (c.b - c.a) : c.b + (1.0 - g) * (c.c - c.b);
+        } else if (c.fa >= c.fc) {  // v falls from a: the peak is nearer a
+          next = c.a + (1.0 - g) * (c.b - c.a);
+        } else {
+          next = c.c - (1.0 - g) * (c.c - c.b);
+        }
+        c.step_before = c.step;
+        c.step = next - c.b;
+        if (!parabolic) c.step_before = c.c - c.a;  // a golden step re-opens the safeguard
+        active.push_back(i);
+        x.push_back(next);
+      }
+      if (active.empty()) break;
+      eval(active, x, f);
+      for (size_t q = 0; q < active.size(); ++q) {
+        Candidate& c = cand[active[q]];
+        const double xq = x[q], fq = f[q];
+        if (fq >= c.fb) {
+          if (xq < c.b) {
+            c.c = c.b;
+            c.fc = c.fb;
+          } else {
+            c.a = c.b;
+            c.fa = c.fb;
+          }
+          c.b = xq;
+          c.fb = fq;
+        } else if (xq < c.b) {
+          c.a = xq;
+          c.fa = fq;
+        } else {
+          c.c = xq;
+          c.fc = fq;
+        }
+      }
+    }
+    ks.clear();
+    ls.clear();
+    std::vector<size_t> cut;
+    // One cut per interval and round, at its largest violation (cuts at several points of one interval
+    // in one round are near-parallel rows that can leave the LPs ill-conditioned).
+    std::map<Eigen::Index, size_t> best_of;
+    for (size_t i = 0; i < cand.size(); ++i) {
+      auto it = best_of.emplace(cand[i].k, i).first;
+      if (cand[i].best() > cand[it->second].best()) it->second = i;
+    }
+    for (size_t i = 0; i < cand.size(); ++i) {
+      const Candidate& c = cand[i];
+      const double best = c.best();
+      audit.worst = std::max(audit.worst, best);
+      memory.worst[ci][static_cast<size_t>(c.k)] = std::max(memory.worst[ci][static_cast<size_t>(c.k)], best);
+      if (best_of[c.k] != i) continue;
+      if (best > tolerance) {
+        cut.push_back(i);
+        ks.push_back(c.k);
+        ls.push_back(c.at());
+      }
+    }
+    if (cut.empty()) continue;
+    // The cuts: every row broken at the peak, as a row of the interval (exact, see the header), labelled
+    // as the problem's own row of that name (the constraint's first row if it has none). For a contact
+    // constraint this is the only projection of the audit: one polygon per cut.
+    const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, ls));
+    audit.projections += static_cast<int>(cut.size());
+    std::map<std::string, int> named;
+    for (size_t j = 0; j < grid_rows[ci].labels.size(); ++j) named.emplace(grid_rows[ci].labels[j], static_cast<int>(j));
+    for (size_t q = 0; q < cut.size(); ++q) {
+      const Candidate& c = cand[cut[q]];
+      const double l = ls[q], h = s[c.k + 1] - s[c.k];
+      const Eigen::Index r = static_cast<Eigen::Index>(q);
+      memory.cut_points[ci][static_cast<size_t>(c.k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose()});
+      for (Eigen::Index j = 0; j < rr.rows(); ++j) {
+        if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[c.k], theta[c.k + 1], u_of(c.k)) <= tolerance) continue;
+        const double a = rr.a(r, j), b = rr.b(r, j);
+        const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
+        extra.rows[static_cast<size_t>(c.k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
+                                                        row_offset[ci] + (id == named.end() ? 0 : id->second)});
+        ++audit.cuts;
+      }
+    }
+  }
+  if (!std::isfinite(audit.worst)) audit.worst = 0.0;
+  return audit;
+}
+
+}  // namespace pathpace::detail

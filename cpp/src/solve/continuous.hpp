@@ -1,0 +1,78 @@
+#pragma once
+// guarantee = continuous: limits that hold at every instant, not only at the grid points.
+//
+// Velocity and acceleration limits get rows that are sufficient by construction (Bernstein bounds of
+// the path's polynomial pieces, geometry/interval_bounds.hpp): per grid point, a speed bound from the
+// largest |p'_j| on the two adjacent intervals (ṡ² is linear on an interval, so it never exceeds its
+// larger end value); per interval, the Bernstein forms of q̈_j. Every other constraint (torque,
+// contact, linear) is audited at interior points of every interval, and where the timing breaks a
+// row there, that row is added to its interval: at s = s_k + λΔs_k a row a x + b u <= c reads
+//   (a (1 - λ) - b / (2Δs_k)) θ_k + (a λ + b / (2Δs_k)) θ_{k+1} <= c
+// (θ(s) = (1 - λ)θ_k + λθ_{k+1}, u = (θ_{k+1} - θ_k)/(2Δs_k)): an exact constraint of the timing, not a
+// margin, so the cuts cost T only what the limits between grid points really demand.
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solve/reachability.hpp"
+#include "pathpace/constraints/constraint.hpp"
+#include "pathpace/path.hpp"
+
+namespace pathpace::detail {
+
+/// Appends to `rows` the grid-point speed bounds, and to `extra` the interval forms, of every
+/// VelocityLimits and AccelerationLimits in `constraints` (whose own rows are rows[0..constraints.size())).
+/// Throws InvalidInput if the path is not piecewise polynomial.
+void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
+                                   const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                   std::vector<ConstraintRows>& rows, IntervalExtra& extra);
+
+/// What earlier audits of one solve found per constraint and interval: an interval whose θ_k, θ_{k+1} are
+/// (bitwise) those it was audited at has the same rows and the same violation, so it is not audited again
+/// (after a cut, the re-solve changes θ near it and leaves most of the path as it was).
+struct AuditMemory {
+  std::vector<std::vector<double>> theta0, theta1, worst;  // [constraint][interval]
+  /// [constraint]: its rows at the audit's Chebyshev points of every interval (row k·points + m), which do
+  /// not depend on the timing: evaluated in the first round only.
+  std::vector<ConstraintRows> coarse;
+  /// [constraint][interval]: the rows at each point where the interval was cut.
+  struct Point {
+    double lam;
+    Eigen::VectorXd a, b, c;
+  };
+  std::vector<std::vector<std::vector<Point>>> cut_points;
+  /// [constraint][k·points + m]: a contact polygon's slice at its Chebyshev point m of interval k, at
+  /// three values of u about the one it was audited at (x_hi concave and x_lo convex in u, so their
+  /// chords bound an inner slice for any u between: a later round whose u lies there and whose x is
+  /// inside needs no LP).
+  struct Slices {
+    double u[3] = {0.0, 0.0, 0.0}, lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0};
+    bool valid = false;
+  };
+  std::vector<std::vector<Slices>> slices;
+};
+
+struct Audit {
+  double worst = 0.0;  ///< largest violation found, relative to max(|c|, |a θ(s)| + |b u|) (<= 0: none)
+  int cuts = 0;        ///< rows added to `extra`
+  int lps = 0;         ///< contact slice LPs (ContactConstraint::slice) spent
+  int projections = 0; ///< polygons projected (at cut points)
+  int reused = 0;      ///< contact samples settled by the slices kept from an earlier round (no LP)
+};
+
+/// Checks every constraint other than velocity and acceleration limits between the grid points of `s` under
+/// the timing θ: at `points` Chebyshev points of each interval (their rows kept in `memory` for later
+/// rounds), both grid points and the interval's earlier cut points, then, where a concavity bound from
+/// those samples reaches `tolerance`, at the peak found by parabolic/golden search. Adds to `extra` each
+/// row violated by more than `tolerance` (relative) at the interval's worst point, one point per interval
+/// and round. Rows are followed by their label (a contact polygon's columns differ from one evaluation to
+/// the next); `grid_rows[i]` are constraint i's rows on the grid and `row_offset[i]` the label id of its
+/// first row, which name the cuts.
+Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
+                    const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                    const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
+                    double tolerance, IntervalExtra& extra, AuditMemory& memory);
+
+}  // namespace pathpace::detail
