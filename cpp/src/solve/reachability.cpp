@@ -495,4 +495,14 @@ bool reachability_pair(const Chain& chain, double theta_begin, double theta_end,
   return true;
 }
 
+bool avoid_stopped_profile(const Chain& chain, Reachability& reach, double th0, Eigen::VectorXd& theta) {
+  if (!has_stopped_interval(theta)) return true;
+  if (chain.lattice) return false;
+  Eigen::VectorXd start = unstopped_profile(reach, th0);
+  if (has_stopped_interval(start)) return false;
+  theta = reach.theta = std::move(start);
+  reach.theta_is_greedy = false;
+  return true;
+}
+
 }  // namespace pathpace::detail

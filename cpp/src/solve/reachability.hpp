@@ -152,6 +152,12 @@ bool has_stopped_interval(const Eigen::VectorXd& theta);
 /// feasible set is convex) and stops nowhere either.
 Eigen::VectorXd unstopped_profile(const Reachability& reach, double theta_begin);
 
+/// A greedy profile that stops on an interval is the answer only if it is the greatest element of a
+/// max-closed feasible set (chain.lattice: then every feasible profile stops there); otherwise it may have
+/// walked into a trap of the coupling rows, and the profile that does not stop (detail::unstopped_profile)
+/// replaces it, in theta and reach.theta, when there is one. Returns whether theta moves on every interval.
+bool avoid_stopped_profile(const Chain& chain, Reachability& reach, double th0, Eigen::VectorXd& theta);
+
 
 
 }  // namespace pathpace::detail
