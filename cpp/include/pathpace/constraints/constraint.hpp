@@ -46,7 +46,7 @@ struct ConstraintRows {
   std::vector<Eigen::Index> inexact_points;
   /// True when no entry can be bad by construction (a and b finite, c a number or +inf), as in the
   /// library's velocity and acceleration limits, built from finite samples and validated limits: the
-  /// problem then skips its scan of the entries (~1.5 % of a solve at N = 1000). A constraint of your own
+  /// problem then skips its scan of the entries (a cost on the order of the rows' own). A constraint of your own
   /// leaves it false, and its rows are checked; one that edits the rows another's evaluate() returned
   /// (a subclass of VelocityLimits, say) must set it false again.
   bool valid_by_construction = false;

@@ -132,12 +132,12 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// TorqueLimits of the same robot): one projection for both.
   std::shared_ptr<ContactConstraint> with_torque_limits(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) const;
 
+  using PointCheck = pathpace::PointCheck;
   /// One LP on the full (ṡ², s̈, τ, forces) polytope at grid point k of `samples`, all contact points
   /// and both minimum normal forces, intersected with `extra` half-planes a x + b u <= c (rows [a, b,
   /// c]: the other constraints there). feasible / rest_feasible ((x, u) = (0, 0)): 1 yes, 0 no
   /// (confirmed in exact arithmetic), -1 the solver failed. This confirms an infeasibility before it is
   /// reported.
-  using PointCheck = pathpace::PointCheck;
   PointCheck check_point(const PathSamples& samples, Eigen::Index k,
                          const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra) const override;
 
