@@ -16,21 +16,12 @@
 
 namespace pathpace {
 
-void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
-                                            const ContactOptions& options, const Eigen::VectorXd& tau_min,
-                                            const Eigen::VectorXd& tau_max, double impact_tolerance,
-                                            double drift_tolerance, DriftPolicy drift) {
-  if (!robot) detail::fail("robot must not be None");
-  if (robot->nq() != samples_.dof())
-    detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + robot->name() + "' has " +
-                 std::to_string(robot->nq()) + " joints");
-  if (phases.empty()) detail::fail("phases is empty, expected at least one (s_begin, s_end, contacts)");
-  if (!(impact_tolerance >= 0.0) || !std::isfinite(impact_tolerance))
-    detail::fail("impact_tolerance = " + detail::fmt(impact_tolerance) + " must be >= 0 and finite");
-  const Eigen::Index n = intervals();
-  const double a = samples_.s[0], b = samples_.s[n], length = b - a;
-  const double tol = 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
+namespace {
+
+// Phases contiguous, covering [a, b] (the path's s range) to 1e-12 relative, each with s_begin < s_end.
+void check_phase_ranges(const std::vector<ContactPhase>& phases, double a, double b) {
   auto name = [](size_t i, const char* field) { return "phases[" + std::to_string(i) + "]." + field; };
+  const double tol = 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
   for (size_t i = 0; i < phases.size(); ++i) {
     const ContactPhase& ph = phases[i];
     if (!std::isfinite(ph.s_begin)) detail::fail(name(i, "s_begin") + " = " + detail::fmt(ph.s_begin) + " must be finite");
@@ -48,6 +39,65 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
       detail::fail(name(i, "s_end") + " = " + detail::fmt(ph.s_end) + " must equal the path's s_end = " + detail::fmt(b) +
                    " (the phases cover the path)");
   }
+}
+
+// Per phase, the no-impact row's label if a contact of phase i (i >= 1) that phase i-1 does not have is made at
+// the switch while its point still moves along its normal (then ṡ = 0 there), else "" (eq. 10: c' = J p').
+std::vector<std::string> no_impact_rows(const Path& path, const std::vector<std::shared_ptr<ContactConstraint>>& probe,
+                                        const PathSamples& samples, const std::vector<double>& edge, double length,
+                                        double impact_tolerance) {
+  std::vector<std::string> rest(probe.size());
+  for (size_t i = 1; i < probe.size(); ++i) {
+    const std::vector<Contact>& now = probe[i]->contacts();
+    const std::vector<Contact>& before = probe[i - 1]->contacts();
+    std::vector<size_t> made;  // the contacts of phase i that phase i-1 does not have
+    for (size_t c = 0; c < now.size(); ++c)
+      if (std::none_of(before.begin(), before.end(), [&](const Contact& o) {
+            return o.link == now[c].link && o.other_link == now[c].other_link && (o.point - now[c].point).norm() <= 1e-9;
+          }))
+        made.push_back(c);
+    if (made.empty()) continue;  // contacts kept or broken only: nothing to check
+    // The approach velocity: c' just before the switch (1e-9 of the length), from the path of the phase that
+    // ends there. On a path that is C¹ at the switch a contact held fixed after it has c' = 0 there; a
+    // kinked path (p' jumps) can bring the point in at speed.
+    PathSamples before_switch;
+    before_switch.s = Eigen::VectorXd::Constant(1, edge[i] - 1e-9 * length);
+    path.evaluate(before_switch.s, before_switch.q, before_switch.dq, before_switch.ddq);
+    Eigen::MatrixXd normal, speed, unused;
+    probe[i]->point_velocities(samples, unused, speed);
+    probe[i]->point_velocities(before_switch, normal, unused);
+    for (size_t c : made) {
+      const Eigen::Index j = static_cast<Eigen::Index>(c);
+      const double vn = normal(0, j), scale = speed.col(j).maxCoeff();
+      if (!(std::abs(vn) > impact_tolerance * scale) || scale == 0.0) continue;
+      std::ostringstream os;
+      os.precision(4);
+      os << "no impact: contact " << c << " (link '" << now[c].link << "') is made at s = " << edge[i]
+         << " moving along its normal (n.c'(s) = " << vn << " m per unit s): sdot = 0 there";
+      rest[i] = os.str();
+      break;
+    }
+  }
+  return rest;
+}
+
+}  // namespace
+
+void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
+                                            const ContactOptions& options, const Eigen::VectorXd& tau_min,
+                                            const Eigen::VectorXd& tau_max, double impact_tolerance,
+                                            double drift_tolerance, DriftPolicy drift) {
+  if (!robot) detail::fail("robot must not be None");
+  if (robot->nq() != samples_.dof())
+    detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + robot->name() + "' has " +
+                 std::to_string(robot->nq()) + " joints");
+  if (phases.empty()) detail::fail("phases is empty, expected at least one (s_begin, s_end, contacts)");
+  if (!(impact_tolerance >= 0.0) || !std::isfinite(impact_tolerance))
+    detail::fail("impact_tolerance = " + detail::fmt(impact_tolerance) + " must be >= 0 and finite");
+  const Eigen::Index n = intervals();
+  const double a = samples_.s[0], b = samples_.s[n], length = b - a;
+  check_phase_ranges(phases, a, b);
+  auto name = [](size_t i, const char* field) { return "phases[" + std::to_string(i) + "]." + field; };
   // Every contact set and option is checked (and its phase named) before anything changes.
   std::vector<std::shared_ptr<ContactConstraint>> probe;
   for (size_t i = 0; i < phases.size(); ++i) {
@@ -107,38 +157,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
   }
   const PathSamples& samples = inserted ? new_samples : samples_;
   // The no-impact rule at each switch, from the contact points' velocities along the path (eq. 10: c' = J p').
-  std::vector<std::string> rest(phases.size());
-  for (size_t i = 1; i < phases.size(); ++i) {
-    const std::vector<Contact>& now = probe[i]->contacts();
-    const std::vector<Contact>& before = probe[i - 1]->contacts();
-    std::vector<size_t> made;  // the contacts of phase i that phase i-1 does not have
-    for (size_t c = 0; c < now.size(); ++c)
-      if (std::none_of(before.begin(), before.end(), [&](const Contact& o) {
-            return o.link == now[c].link && o.other_link == now[c].other_link && (o.point - now[c].point).norm() <= 1e-9;
-          }))
-        made.push_back(c);
-    if (made.empty()) continue;  // contacts kept or broken only: nothing to check
-    // The approach velocity: c' just before the switch (1e-9 of the length), from the path of the phase that
-    // ends there. On a path that is C¹ at the switch a contact held fixed after it has c' = 0 there; a
-    // kinked path (p' jumps) can bring the point in at speed.
-    PathSamples before_switch;
-    before_switch.s = Eigen::VectorXd::Constant(1, edge[i] - 1e-9 * length);
-    path_->evaluate(before_switch.s, before_switch.q, before_switch.dq, before_switch.ddq);
-    Eigen::MatrixXd normal, speed, unused;
-    probe[i]->point_velocities(samples, unused, speed);
-    probe[i]->point_velocities(before_switch, normal, unused);
-    for (size_t c : made) {
-      const Eigen::Index j = static_cast<Eigen::Index>(c);
-      const double vn = normal(0, j), scale = speed.col(j).maxCoeff();
-      if (!(std::abs(vn) > impact_tolerance * scale) || scale == 0.0) continue;
-      std::ostringstream os;
-      os.precision(4);
-      os << "no impact: contact " << c << " (link '" << now[c].link << "') is made at s = " << edge[i]
-         << " moving along its normal (n.c'(s) = " << vn << " m per unit s): sdot = 0 there";
-      rest[i] = os.str();
-      break;
-    }
-  }
+  const std::vector<std::string> rest = no_impact_rows(*path_, probe, samples, edge, length, impact_tolerance);
   std::vector<std::shared_ptr<const Constraint>> added;
   std::vector<ConstraintRows> added_rows;
   std::vector<ContactDrift> drifts;
