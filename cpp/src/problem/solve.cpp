@@ -11,6 +11,7 @@
 #include "solve/binding.hpp"
 #include "solve/continuous.hpp"
 #include "solve/grid_sets.hpp"
+#include "solve/options.hpp"
 #include "solve/reachability.hpp"
 #include "solve/slp.hpp"
 #include "base/validate.hpp"
@@ -65,17 +66,7 @@ Result with_drift_note(Result res) {
 }  // namespace
 
 Result TimeScalingProblem::solve(const SolverOptions& options) const {
-  if (options.max_iterations < 0)
-    detail::fail("max_iterations = " + std::to_string(options.max_iterations) + " must be >= 0");
-  if (!(options.tolerance > 0.0 && options.tolerance < 1.0))
-    detail::fail("tolerance = " + detail::fmt(options.tolerance) + " must be in (0, 1)");
-  if (!(options.initial_trust_region > 0.0) || !std::isfinite(options.initial_trust_region))
-    detail::fail("initial_trust_region = " + detail::fmt(options.initial_trust_region) + " must be > 0 and finite");
-  if (!(options.lp_feasibility_tolerance > 0.0 && options.lp_feasibility_tolerance < 1e-3))
-    detail::fail("lp_feasibility_tolerance = " + detail::fmt(options.lp_feasibility_tolerance) +
-                 " must be in (0, 1e-3)");
-  if (!(options.time_limit > 0.0))
-    detail::fail("time_limit = " + detail::fmt(options.time_limit) + " must be > 0 (seconds)");
+  detail::validate(options);
   if (zero_sddot_begin_ && sdot_begin_ == 0.0)
     detail::fail("sddot = 0 at s_begin needs sdot_begin > 0: with sddot constant on each interval (eq. 24), a start "
                  "from rest with sddot = 0 never moves");
@@ -89,12 +80,6 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     add_boundary_rows(rows, extra);
     return with_drift_note(solve_rows(rows, &extra, options));
   }
-  if (options.audit_points < 1 || options.audit_points > 1000)
-    detail::fail("audit_points = " + std::to_string(options.audit_points) + " must be in [1, 1000]");
-  if (!(options.audit_tolerance >= 0.0 && options.audit_tolerance < 1.0))
-    detail::fail("audit_tolerance = " + detail::fmt(options.audit_tolerance) + " must be in [0, 1)");
-  if (options.max_audit_rounds < 1)
-    detail::fail("max_audit_rounds = " + std::to_string(options.max_audit_rounds) + " must be >= 1");
 
   // guarantee = continuous (see solve/continuous.hpp): velocity and acceleration rows that hold between
   // grid points by construction, then audit-and-cut rounds for the other constraints.
