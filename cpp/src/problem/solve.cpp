@@ -15,6 +15,7 @@
 #include "solve/reachability.hpp"
 #include "solve/slp.hpp"
 #include "base/validate.hpp"
+#include "base/clock.hpp"
 #include "problem/sampling.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
@@ -314,9 +315,9 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
     // θ' (Method::Slp, or the relaxed analysis did not end feasible) one window, the whole chain, under θ_hi.
     // Every feasible θ_k is also below the backward-controllable bound K_k (tighter than x_hi, which is the
     // solve's cap where nothing bounds ṡ² alone: a column bound of 1e100 would not help GLPK).
-    const detail::SlpOutcome out = detail::windowed_slp(chain, reach,
-                                                        have_full ? relaxed.theta : chain.x_hi.cwiseMin(reach.k_hi),
-                                                        have_full, th0, options, deadline, T_relaxed);
+    const Eigen::VectorXd upper = have_full ? relaxed.theta : chain.x_hi.cwiseMin(reach.k_hi);
+    const detail::SlpOutcome out =
+        detail::windowed_slp(chain, {reach, upper, have_full, th0, T_relaxed}, detail::slp_limits(options, deadline));
     res.stats.time_slp = detail::seconds_since(t0);
     res.stats.slp_iterations = out.iterations;
     res.stats.lp_solves = out.lp_solves;
