@@ -169,14 +169,14 @@ class TimeScalingProblem {
  private:
   /// Throws InvalidInput unless `rows` fit the grid (a user's own Constraint may return anything).
   static void check_rows(const Constraint& constraint, const ConstraintRows& rows, Eigen::Index points);
-  /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
   /// Appends the rows of set_zero_boundary_accelerations (a labels-only ConstraintRows to `rows`, the
   /// interval rows θ_1 = θ_0 / θ_N = θ_{N-1} to `extra`, sized here).
   void add_boundary_rows(std::vector<ConstraintRows>& rows, detail::IntervalExtra& extra) const;
+  /// True if the reachability analysis finds a timing for these rows (one ConstraintRows per constraint).
   bool feasible_with(const std::vector<std::shared_ptr<const Constraint>>& constraints,
                      std::vector<ConstraintRows> rows, Guarantee guarantee) const;
   /// solve() on these rows (one ConstraintRows per constraint, then any extra ones), plus rows of single
-  /// intervals if `extra` (guarantee = continuous).
+  /// intervals if `extra` (guarantee = continuous): the stages of solve/pipeline.hpp, in order.
   Result solve_rows(const std::vector<ConstraintRows>& rows, const detail::IntervalExtra* extra,
                     const SolverOptions& options) const;
   std::shared_ptr<const Path> path_;

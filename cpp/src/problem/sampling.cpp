@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "base/clock.hpp"
 #include "base/validate.hpp"
 
 namespace pathpace::detail {
@@ -16,10 +17,6 @@ void sample_path(const Path& path, PathSamples& samples) {
       if (!std::isfinite(samples.q(k, j)) || !std::isfinite(samples.dq(k, j)) || !std::isfinite(samples.ddq(k, j)))
         detail::fail("path is not finite at grid[" + std::to_string(k) + "] = " + detail::fmt(samples.s[k]) +
                      " (coordinate " + std::to_string(j) + ")");
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 ConstraintRows timed_evaluate(const Constraint& constraint, const PathSamples& samples) {

@@ -38,8 +38,6 @@ bool finite_entries(const Matrix& m) {
 // that is not finite named.
 void sample_path(const Path& path, PathSamples& samples);
 
-double seconds_since(std::chrono::steady_clock::time_point t0);
-
 // A constraint's rows on `samples` with the time they took (summed into SolverStats::time_constraints): every
 // evaluation that ends up in the problem's rows goes through here, so that no row keeps another's time.
 ConstraintRows timed_evaluate(const Constraint& constraint, const PathSamples& samples);

@@ -16,7 +16,7 @@ namespace pathpace::detail {
 /// slack relative to its terms at θ, if that slack is below `tolerance`; "" otherwise.
 /// With `violation`: also the largest violation of any row of the chain or of the bounds x_lo <= θ <= x_hi,
 /// each relative to max(1, |c|, |α θ_k|, |β θ_{k+1}|) (raise_violation, bound_violation), from the same pass
-/// over the rows (after SLP both are needed; two passes were ~2 % of a solve at N = 1000).
+/// over the rows (after SLP both are needed, and a second pass over every row would cost as much again).
 BindingLabels binding_labels(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta,
                              double* violation = nullptr, double tolerance = 1e-6);
 

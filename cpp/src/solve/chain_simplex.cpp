@@ -13,7 +13,7 @@ ChainSimplex::ChainSimplex(const Chain& chain, Eigen::Index a, Eigen::Index m, c
                            const Eigen::VectorXd& hi, Eigen::Index first, Eigen::Index last)
     : lo_(lo), hi_(hi), first_(first), last_(last), n_(static_cast<std::size_t>(last - first + 1)) {
   row_begin_.resize(static_cast<std::size_t>(m) + 1);
-  // The window's rows are contiguous in the chain: sized once (push_back grew it ~10 times per window).
+  // The window's rows are contiguous in the chain: sized once, not grown by push_back.
   rows_.reserve(chain.row_offset[static_cast<std::size_t>(a + m)] - chain.row_offset[static_cast<std::size_t>(a)]);
   for (Eigen::Index k = 0; k < m; ++k) {
     row_begin_[static_cast<std::size_t>(k)] = rows_.size();

@@ -2,8 +2,8 @@
 // A primal simplex for the LP of one SLP window (sec. V.C) that uses the chain structure of eq. (26).
 //
 // Why. The first LP of a window is the Frank-Wolfe check at its greedy start, and on the arm corpus it nearly
-// always certifies the window at once (with the step to its vertex): a GLPK call costs 50-90 µs for 100
-// points, mostly set-up and factorisation. A primal simplex on the chain itself costs O(window) per pivot.
+// always certifies the window at once (with the step to its vertex): a GLPK call is mostly set-up and
+// factorisation, while a primal simplex on the chain itself costs O(window) per pivot.
 //
 // The LP: minimise g·y over the window's rows and lo <= y <= hi (g = ∇T at the start θ). A basis is a set S of
 // active constraints (rows, or a bound of a column), one per free column, nonsingular. Every row touches two

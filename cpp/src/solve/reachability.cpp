@@ -183,7 +183,7 @@ void slice(const Vertex* v, const Line* e, size_t m, double x_min, double x_max,
   // share their vertices, so the edges of each kind tile the x-range exactly, and an edge that reaches x
   // only by a tolerance has its y clamped to its end vertex, which is not on the slice (beside a vertex of
   // two nearly parallel rows, as every interval has on a fine grid, that vertex's y is above the slice's
-  // top: s̈ broke its limit by 7e-9 relative at N = 5e5). The tolerance only if no edge contains x.
+  // top, and s̈ would break its limit). The tolerance only if no edge contains x.
   auto pass = [&](bool by_kind, double reach, double& lo, double& hi) {
     lo = inf;
     hi = -inf;
@@ -249,8 +249,8 @@ void clip_rows(Polygon2d& poly, View<Line> rows) {
 }
 
 // Room for the polygons of n intervals at `per` vertices each, so that storing them does not reallocate
-// (each reallocation copies everything stored so far). An interval's polygon has 7.0 vertices on average on
-// the arm corpus (N = 1000, case (a)), at most 7.9 on a path; more only grows the vectors.
+// (each reallocation copies everything stored so far). kPolygonVertices is the mean vertex count of an
+// interval's polygon rounded up; more only grows the vectors.
 constexpr size_t kPolygonVertices = 8;
 void reserve_polygons(Reachability& o, Eigen::Index n, size_t per) {
   o.vertices.clear();

@@ -145,8 +145,8 @@ bool has_stopped_interval(const Eigen::VectorXd& theta);
 /// A feasible profile that stops on no interval if any feasible profile does not, for a start when the
 /// greedy one stops somewhere. Where the rows couple θ_k and θ_{k+1} positively (Chain::lattice false)
 /// the greedy maximum can walk into a trap: θ_k at the top of K_k may leave only θ_{k+1} = 0, and the
-/// next interval then only θ_{k+2} = 0 (seen on coarse grids, N = 6, reported INFEASIBLE although
-/// θ = 1e-3 everywhere is feasible). Taking θ_{k+1} in the middle of each slice instead keeps every
+/// next interval then only θ_{k+2} = 0 (on a coarse grid the greedy profile can stop where a small
+/// constant θ is feasible). Taking θ_{k+1} in the middle of each slice instead keeps every
 /// θ_{k+1} strictly inside K_{k+1} (the slice at a point strictly inside K_k has positive length when the
 /// polygon has positive area), so it stops nowhere; its average with the greedy profile is feasible (the
 /// feasible set is convex) and stops nowhere either.

@@ -39,21 +39,39 @@ struct SlpOutcome {
   int newton_steps = 0;   // barrier Newton steps, all windows (solve/barrier.hpp)
   int windows = 0;        // windows in the final cover
   Eigen::Index window_points = 0;  // grid points in the final cover
-  int widenings = 0;      // rounds in which a window whose optimum pressed an edge was widened
 };
 
 /// T(θ) = Σ 2Δs_k / (√θ_k + √θ_{k+1}) (eq. 27); +inf if some interval has θ_k = θ_{k+1} = 0.
 double duration(const Eigen::Ref<const Eigen::VectorXd>& ds, const Eigen::Ref<const Eigen::VectorXd>& theta);
 
-/// The optimum of eq. (26)-(27) by SLP on windows (see above). `upper` bounds every feasible θ
-/// componentwise and satisfies every row except on the intervals the first windows must cover: the relaxed
-/// greatest element θ' with `relaxed` = true (windows around the intervals where it violates a coupling
-/// row), or any bound (e.g. θ_hi) with `relaxed` = false (one window, the whole chain). `full` is the full
-/// reachability analysis: its greedy profile is each window's feasible start and its polygons repair the
-/// result. Stops at `deadline` with the best feasible profile and its bound. T_upper is T(upper) when the
-/// caller has it (NaN: computed here).
-SlpOutcome windowed_slp(const Chain& chain, const Reachability& full, const Eigen::VectorXd& upper, bool relaxed,
-                        double theta_begin, const SolverOptions& options, Clock::time_point deadline,
-                        double T_upper = std::numeric_limits<double>::quiet_NaN());
+/// What the SLP takes of SolverOptions (checked once, by validate() in solve/options.hpp) and the solve's
+/// deadline.
+struct SlpLimits {
+  double tolerance = 1e-7;                 ///< relative gap to certify (SolverOptions::tolerance)
+  int max_iterations = 200;                ///< GLPK SLP iterations per window
+  double initial_trust_region = 0.5;       ///< relative to max θ of the window's start
+  double lp_feasibility_tolerance = 1e-9;  ///< GLPK's tol_bnd
+  bool use_barrier = true;                 ///< Method::Auto: the barrier may take a window (Method::Slp: not)
+  Clock::time_point deadline = Clock::time_point::max();
+};
+SlpLimits slp_limits(const SolverOptions& options, Clock::time_point deadline);
+
+/// Where the SLP starts. `upper` bounds every feasible θ componentwise and satisfies every row except on the
+/// intervals the first windows must cover: the relaxed greatest element θ' with `relaxed` = true (windows
+/// around the intervals where it violates a coupling row), or any bound (e.g. θ_hi) with `relaxed` = false
+/// (one window, the whole chain). `full` is the full reachability analysis: its greedy profile is each
+/// window's feasible start and its polygons repair the result. θ_0 = theta_begin. T_upper is T(upper) when
+/// the caller has it (NaN: computed here).
+struct SlpStart {
+  const Reachability& full;
+  const Eigen::VectorXd& upper;
+  bool relaxed;
+  double theta_begin;
+  double T_upper = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The optimum of eq. (26)-(27) by SLP on windows (see above). Stops at the deadline with the best feasible
+/// profile and its bound.
+SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimits& limits);
 
 }  // namespace pathpace::detail
