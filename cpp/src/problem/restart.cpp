@@ -26,6 +26,7 @@ std::shared_ptr<const Constraint> restricted_rows(const LinearConstraint& c, con
 }  // namespace
 
 TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const {
+  const Use use(*this, Use::Read, "restarted");
   const Eigen::Index n = intervals();
   const double a = samples_.s[0], b = samples_.s[n];
   if (!std::isfinite(s0) || s0 < a || s0 >= b)

@@ -65,6 +65,7 @@ Result with_drift_note(Result res) {
 }  // namespace
 
 Result TimeScalingProblem::solve(const SolverOptions& options) const {
+  const Use use(*this, Use::Read, "solve");
   if (options.max_iterations < 0)
     detail::fail("max_iterations = " + std::to_string(options.max_iterations) + " must be >= 0");
   if (!(options.tolerance > 0.0 && options.tolerance < 1.0))
