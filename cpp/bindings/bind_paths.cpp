@@ -59,9 +59,7 @@ std::vector<Eigen::MatrixXd> polynomial_pieces(py::handle coefficients) {
   return pieces;
 }
 
-}  // namespace
-
-void bind_paths(py::module_& m) {
+void bind_path(py::module_& m) {
   py::class_<Path, std::shared_ptr<Path>>(m, "Path", doc::Path)
       .def_property_readonly("dof", &Path::dof, doc::Path_dof)
       .def_property_readonly("s_begin", &Path::s_begin, doc::Path_s_begin)
@@ -72,7 +70,9 @@ void bind_paths(py::module_& m) {
       .def("evaluate", [](const Path& p, py::handle s) {
         return py::make_tuple(eval(p, s, 0), eval(p, s, 1), eval(p, s, 2));
       }, "s"_a, doc::Path_evaluate);
+}
 
+void bind_piecewise_polynomial_path(py::module_& m) {
   py::class_<PiecewisePolynomialPath, Path, std::shared_ptr<PiecewisePolynomialPath>>(m, "PiecewisePolynomialPath",
                                                                                       doc::PiecewisePolynomialPath)
       .def(py::init([](py::handle breakpoints, py::handle coefficients) {
@@ -90,7 +90,9 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const PiecewisePolynomialPath& p) {
         return "<PiecewisePolynomialPath pieces=" + std::to_string(p.coefficients().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+}
 
+void bind_cubic_spline_path(py::module_& m) {
   py::class_<CubicSplinePath, PiecewisePolynomialPath, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath", doc::CubicSplinePath)
       .def(py::init([](py::handle waypoints, py::object knots, py::handle boundary, py::handle start_derivative,
                        py::handle end_derivative, py::handle s_begin_arg, py::handle s_end_arg) {
@@ -138,7 +140,9 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const CubicSplinePath& p) {
         return "<CubicSplinePath waypoints=" + std::to_string(p.waypoints().rows()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+}
 
+void bind_sampled_path(py::module_& m) {
   py::class_<SampledPath, PiecewisePolynomialPath, std::shared_ptr<SampledPath>>(m, "SampledPath", doc::SampledPath)
       .def(py::init([](py::handle s, py::handle q, py::handle dq, py::handle ddq) {
              return std::make_shared<SampledPath>(to_vector(s, "s"), to_matrix(q, "q", true), to_matrix(dq, "dq", true),
@@ -160,7 +164,15 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const SampledPath& p) {
         return "<SampledPath samples=" + std::to_string(p.samples().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+}
 
+}  // namespace
+
+void bind_paths(py::module_& m) {
+  bind_path(m);
+  bind_piecewise_polynomial_path(m);
+  bind_cubic_spline_path(m);
+  bind_sampled_path(m);
   m.def("auto_grid", [](std::shared_ptr<Path> path, double tolerance, int min_intervals, int max_intervals) {
     if (!path) throw InvalidInput("path must be a pathpace Path, not None");
     py::gil_scoped_release release;
