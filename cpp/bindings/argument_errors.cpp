@@ -49,6 +49,10 @@ std::vector<std::string> parameter_types(const std::string& sig) {
     if (c == ']' || c == ')' || c == '}') --depth;
     cur += c;
   }
+  // The markers of keyword-only ("*") and positional-only ("/") parameters are no parameters.
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [](const std::string& p) { return p.find_first_not_of(" */") == std::string::npos && !p.empty(); }),
+            out.end());
   for (std::string& p : out) {  // "name: type = default" -> "type"
     const size_t colon = p.find(": ");
     p = colon == std::string::npos ? std::string() : p.substr(colon + 2);

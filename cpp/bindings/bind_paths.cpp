@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "docstrings.hpp"
 #include "pathpace/auto_grid.hpp"
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
@@ -17,19 +18,7 @@ namespace pathpace::python {
 namespace {
 
 // p, p' or p'' at scalar or array s: a scalar gives shape (n,), an array (m, n).
-py::object eval(const Path& p, py::handle s, int which) {
-  const Eigen::VectorXd sv = to_vector(s, "s");
-  for (Eigen::Index i = 0; i < sv.size(); ++i)
-    if (std::isnan(sv[i])) throw InvalidInput("s[" + std::to_string(i) + "] = nan must be a number");
-  Eigen::MatrixXd q, dq, ddq;
-  {
-    py::gil_scoped_release release;
-    p.evaluate(sv, q, dq, ddq);
-  }
-  const Eigen::MatrixXd& out = which == 0 ? q : (which == 1 ? dq : ddq);
-  if (is_scalar(s)) return py::cast(Eigen::VectorXd(out.row(0).transpose()));
-  return py::cast(out);
-}
+py::object eval(const Path& p, py::handle s, int which) { return evaluate_at(p, s, to_path_parameters(s, "s"), which); }
 
 SplineBoundary parse_boundary(const std::string& b) {
   if (b == "not-a-knot") return SplineBoundary::NotAKnot;
@@ -70,35 +59,28 @@ std::vector<Eigen::MatrixXd> polynomial_pieces(py::handle coefficients) {
   return pieces;
 }
 
-}  // namespace
-
-void bind_paths(py::module_& m) {
-  py::class_<Path, std::shared_ptr<Path>>(m, "Path", "A geometric path q = p(s), s in [s_begin, s_end].")
-      .def_property_readonly("dof", &Path::dof)
-      .def_property_readonly("s_begin", &Path::s_begin)
-      .def_property_readonly("s_end", &Path::s_end)
-      .def("q", [](const Path& p, py::handle s) { return eval(p, s, 0); }, "s"_a, "p(s): (n,) for scalar s, (m, n) for an array")
-      .def("dq", [](const Path& p, py::handle s) { return eval(p, s, 1); }, "s"_a, "p'(s)")
-      .def("ddq", [](const Path& p, py::handle s) { return eval(p, s, 2); }, "s"_a, "p''(s)")
+void bind_path(py::module_& m) {
+  py::class_<Path, std::shared_ptr<Path>>(m, "Path", doc::Path)
+      .def_property_readonly("dof", &Path::dof, doc::Path_dof)
+      .def_property_readonly("s_begin", &Path::s_begin, doc::Path_s_begin)
+      .def_property_readonly("s_end", &Path::s_end, doc::Path_s_end)
+      .def("q", [](const Path& p, py::handle s) { return eval(p, s, 0); }, "s"_a, doc::Path_q)
+      .def("dq", [](const Path& p, py::handle s) { return eval(p, s, 1); }, "s"_a, doc::Path_dq)
+      .def("ddq", [](const Path& p, py::handle s) { return eval(p, s, 2); }, "s"_a, doc::Path_ddq)
       .def("evaluate", [](const Path& p, py::handle s) {
         return py::make_tuple(eval(p, s, 0), eval(p, s, 1), eval(p, s, 2));
-      }, "s"_a, "(p, p', p'') at s");
+      }, "s"_a, doc::Path_evaluate);
+}
 
-  py::class_<PiecewisePolynomialPath, Path, std::shared_ptr<PiecewisePolynomialPath>>(m, "PiecewisePolynomialPath")
+void bind_piecewise_polynomial_path(py::module_& m) {
+  py::class_<PiecewisePolynomialPath, Path, std::shared_ptr<PiecewisePolynomialPath>>(m, "PiecewisePolynomialPath",
+                                                                                      doc::PiecewisePolynomialPath)
       .def(py::init([](py::handle breakpoints, py::handle coefficients) {
              Eigen::VectorXd b = to_vector(breakpoints, "breakpoints");
-             auto c = as_float_array(coefficients, "coefficients");
-             if (c.ndim() != 3)
-               throw InvalidInput("coefficients has shape " + shape_str(c) + ", expected (pieces, degree + 1, n)");
-             std::vector<Eigen::MatrixXd> pieces;
-             using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-             for (py::ssize_t i = 0; i < c.shape(0); ++i)
-               pieces.emplace_back(Eigen::Map<const RowMajor>(c.data() + i * c.shape(1) * c.shape(2), c.shape(1), c.shape(2)));
-             return std::make_shared<PiecewisePolynomialPath>(std::move(b), std::move(pieces));
+             return std::make_shared<PiecewisePolynomialPath>(std::move(b), polynomial_pieces(coefficients));
            }),
-           "breakpoints"_a, "coefficients"_a,
-           "coefficients[i, j, :] multiplies (s - breakpoints[i])**j on piece i")
-      .def_property_readonly("breakpoints", &PiecewisePolynomialPath::breakpoints)
+           "breakpoints"_a, "coefficients"_a)
+      .def_property_readonly("breakpoints", &PiecewisePolynomialPath::breakpoints, doc::PiecewisePolynomialPath_breakpoints)
       .def(py::pickle([](const PiecewisePolynomialPath& p) { return polynomial_state(p); },
                       [](const py::tuple& t) {
                         check_state(t, 2, "PiecewisePolynomialPath");
@@ -108,8 +90,10 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const PiecewisePolynomialPath& p) {
         return "<PiecewisePolynomialPath pieces=" + std::to_string(p.coefficients().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+}
 
-  py::class_<CubicSplinePath, PiecewisePolynomialPath, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath")
+void bind_cubic_spline_path(py::module_& m) {
+  py::class_<CubicSplinePath, PiecewisePolynomialPath, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath", doc::CubicSplinePath)
       .def(py::init([](py::handle waypoints, py::object knots, py::handle boundary, py::handle start_derivative,
                        py::handle end_derivative, py::handle s_begin_arg, py::handle s_end_arg) {
              const Eigen::MatrixXd w = to_matrix(waypoints, "waypoints");
@@ -129,18 +113,17 @@ void bind_paths(py::module_& m) {
              return std::make_shared<CubicSplinePath>(w, to_vector(knots, "knots"), b, d0, d1);
            }),
            "waypoints"_a, "knots"_a = "uniform", "boundary"_a = "not-a-knot", "start_derivative"_a = py::none(),
-           "end_derivative"_a = py::none(), "s_begin"_a = 0.0, "s_end"_a = 1.0,
-           "Cubic spline through waypoints (K, n); boundary as scipy's CubicSpline bc_type.")
-      .def_property_readonly("knots", &CubicSplinePath::knots)
-      .def_property_readonly("waypoints", &CubicSplinePath::waypoints)
+           "end_derivative"_a = py::none(), "s_begin"_a = 0.0, "s_end"_a = 1.0)
+      .def_property_readonly("knots", &CubicSplinePath::knots, doc::CubicSplinePath_knots)
+      .def_property_readonly("waypoints", &CubicSplinePath::waypoints, doc::CubicSplinePath_waypoints)
       .def_property_readonly("boundary", [](const CubicSplinePath& p) { return boundary_name(p.boundary()); },
-                             "str: 'not-a-knot', 'natural' or 'clamped'")
+                             doc::CubicSplinePath_boundary)
       .def_property_readonly("start_derivative", [](const CubicSplinePath& p) -> py::object {
         return p.start_derivative().size() ? py::cast(p.start_derivative()) : py::object(py::none());
-      }, "ndarray (n,) or None: p'(s_begin) of a clamped spline")
+      }, doc::CubicSplinePath_start_derivative)
       .def_property_readonly("end_derivative", [](const CubicSplinePath& p) -> py::object {
         return p.end_derivative().size() ? py::cast(p.end_derivative()) : py::object(py::none());
-      }, "ndarray (n,) or None: p'(s_end) of a clamped spline")
+      }, doc::CubicSplinePath_end_derivative)
       // Rebuilt from its constructor arguments (waypoints, knots, boundary, end slopes): the same
       // deterministic computation gives the same coefficients.
       .def(py::pickle([](const CubicSplinePath& p) {
@@ -157,14 +140,16 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const CubicSplinePath& p) {
         return "<CubicSplinePath waypoints=" + std::to_string(p.waypoints().rows()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+}
 
-  py::class_<SampledPath, PiecewisePolynomialPath, std::shared_ptr<SampledPath>>(m, "SampledPath")
+void bind_sampled_path(py::module_& m) {
+  py::class_<SampledPath, PiecewisePolynomialPath, std::shared_ptr<SampledPath>>(m, "SampledPath", doc::SampledPath)
       .def(py::init([](py::handle s, py::handle q, py::handle dq, py::handle ddq) {
              return std::make_shared<SampledPath>(to_vector(s, "s"), to_matrix(q, "q", true), to_matrix(dq, "dq", true),
                                                   to_matrix(ddq, "ddq", true));
            }),
-           "s"_a, "q"_a, "dq"_a, "ddq"_a, "q, q', q'' given at samples s; quintic Hermite in between.")
-      .def_property_readonly("samples", &SampledPath::samples)
+           "s"_a, "q"_a, "dq"_a, "ddq"_a)
+      .def_property_readonly("samples", &SampledPath::samples, doc::SampledPath_samples)
       // Rebuilt from (s, q, q', q'') at its samples; the quintic Hermite pieces reproduce them exactly.
       .def(py::pickle([](const SampledPath& p) {
                         Eigen::MatrixXd q, dq, ddq;
@@ -179,17 +164,20 @@ void bind_paths(py::module_& m) {
       .def("__repr__", [](const SampledPath& p) {
         return "<SampledPath samples=" + std::to_string(p.samples().size()) + " dof=" + std::to_string(p.dof()) + ">";
       });
+}
 
+}  // namespace
+
+void bind_paths(py::module_& m) {
+  bind_path(m);
+  bind_piecewise_polynomial_path(m);
+  bind_cubic_spline_path(m);
+  bind_sampled_path(m);
   m.def("auto_grid", [](std::shared_ptr<Path> path, double tolerance, int min_intervals, int max_intervals) {
     if (!path) throw InvalidInput("path must be a pathpace Path, not None");
     py::gil_scoped_release release;
     return auto_grid(*path, tolerance, min_intervals, max_intervals);
-  }, "path"_a, "tolerance"_a = 1e-3, "min_intervals"_a = 16, "max_intervals"_a = 1000000,
-     "A grid of s fitted to the path's shape (what grid='auto' uses).\n\n"
-     "Every interval is halved until p, p' and p'' deviate from their chords at its midpoint by at most "
-     "`tolerance` times their scale over the path (largest coordinate range, largest |p'_j|, largest "
-     "|p''_j|); starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial "
-     "path. Returns the grid points s_0..s_N (the N used is len - 1). InvalidInputError past `max_intervals`.");
+  }, "path"_a, "tolerance"_a = 1e-3, "min_intervals"_a = 16, "max_intervals"_a = 1000000, doc::auto_grid);
 }
 
 }  // namespace pathpace::python

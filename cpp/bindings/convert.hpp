@@ -5,13 +5,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "pathpace/constraints/contact_constraint.hpp"
-#include "pathpace/contact_forces.hpp"
 #include "pathpace/errors.hpp"
 
 namespace pathpace::python {
@@ -211,7 +211,7 @@ inline std::string shape_str(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
-/// A 1-D array (or a scalar when allow_scalar) as an Eigen vector.
+/// A 1-D array as an Eigen vector (a scalar or 0-d array: one entry).
 inline Eigen::VectorXd to_vector(py::handle obj, const std::string& name) {
   auto a = as_float_array(obj, name);
   if (!a) throw InvalidInput(name + " must be an array of numbers");
@@ -235,78 +235,46 @@ inline Eigen::MatrixXd to_matrix(py::handle obj, const std::string& name, bool o
   return Eigen::Map<const RowMajor>(a.data(), a.shape(0), a.shape(1));
 }
 
-inline ContactOptions contact_options(int cone_edges, double friction_margin, double min_normal_force, double torque_scale,
-                                     double torque_margin) {
-  ContactOptions o;
-  o.cone_edges = cone_edges;
-  o.friction_margin = friction_margin;
-  o.min_normal_force = min_normal_force;
-  o.torque_scale = torque_scale;
-  o.torque_margin = torque_margin;
-  return o;
+/// Values of a path parameter (s of Path.q, ContactConstraint.max_drift): a vector without NaN.
+inline Eigen::VectorXd to_path_parameters(py::handle h, const std::string& name) {
+  Eigen::VectorXd s = to_vector(h, name);
+  for (Eigen::Index i = 0; i < s.size(); ++i)
+    if (std::isnan(s[i])) throw InvalidInput(name + "[" + std::to_string(i) + "] = nan must be a number");
+  return s;
 }
 
-/// contact_options from Python arguments, each checked and named (the options add_contacts,
-/// add_contact_phases and ContactConstraint share).
-inline ContactOptions contact_options_arg(py::handle cone_edges, py::handle friction_margin, py::handle min_normal_force,
-                                          py::handle torque_scale, py::handle torque_margin,
-                                          py::handle min_link_normal_force, py::handle max_lps,
-                                          py::handle cone_offset = py::float_(0.0),
-                                          py::handle projection_tolerance = py::float_(0.0)) {
-  ContactOptions o = contact_options(to_int32(cone_edges, "cone_edges"), to_double(friction_margin, "friction_margin"),
-                                     to_double(min_normal_force, "min_normal_force"), to_double(torque_scale, "torque_scale"),
-                                     to_double(torque_margin, "torque_margin"));
-  o.min_link_normal_force = to_double(min_link_normal_force, "min_link_normal_force");
-  o.max_lps = to_int32(max_lps, "max_lps");
-  o.cone_offset = to_double(cone_offset, "cone_offset");
-  o.projection_tolerance = to_double(projection_tolerance, "projection_tolerance");
-  return o;
-}
+/// Rows per grid point (N+1, r) of a LinearConstraint; a 1-D array of length N+1 is one row.
+inline Eigen::MatrixXd to_rows(py::handle h, const char* name) { return to_matrix(h, name, true); }
 
-/// A Python scalar or 0-d array (functions of s or t then return one row instead of a matrix).
-// A pickled state tuple of the expected length (a state from another version is refused, named).
+/// A pickled state tuple of the expected length (a state from another version is refused, named).
 inline void check_state(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size)
     throw InvalidInput(std::string(what) + " pickle state has " + std::to_string(t.size()) + " entries, expected " +
                        std::to_string(size));
 }
 
+/// A Python scalar or 0-d array (functions of s or t then return one row instead of a matrix).
 inline bool is_scalar(py::handle h) {
   return py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h) ||
          (py::isinstance<py::array>(h) && py::array(py::reinterpret_borrow<py::object>(h)).ndim() == 0);
 }
 
-/// Force-distribution results over samples, as arrays (the Python ContactForces).
-struct ForceSamples {
-  py::array_t<bool> feasible;   // (S,)
-  Eigen::VectorXd margin;       // (S,)
-  py::array_t<double> forces;   // (S, m, 3)
-  Eigen::MatrixXd torques;      // (S, n)
-  Eigen::VectorXi phase;        // (S,): the contact phase of each sample (Trajectory.contact_forces), -1: none
-  bool scalar = false;          // one sample asked for as a scalar: drop the leading axis
-};
+/// The rows of a function of s or t evaluated at `at`: one row (n,) for a scalar, all (m, n) otherwise.
+inline py::object rows_at(py::handle at, const Eigen::MatrixXd& rows) {
+  if (is_scalar(at)) return py::cast(Eigen::VectorXd(rows.row(0).transpose()));
+  return py::cast(rows);
+}
 
-inline ForceSamples to_force_samples(const std::vector<ContactForces>& v, int contacts, int joints, bool scalar) {
-  ForceSamples out;
-  const auto S = static_cast<py::ssize_t>(v.size());
-  out.feasible = py::array_t<bool>(S);
-  out.forces = py::array_t<double>({S, static_cast<py::ssize_t>(contacts), static_cast<py::ssize_t>(3)});
-  out.margin.resize(S);
-  out.torques.resize(S, joints);
-  out.phase = Eigen::VectorXi::Constant(S, -1);
-  auto fe = out.feasible.mutable_unchecked<1>();
-  auto fo = out.forces.mutable_unchecked<3>();
-  for (py::ssize_t s = 0; s < S; ++s) {
-    const ContactForces& c = v[static_cast<size_t>(s)];
-    fe(s) = c.feasible;
-    out.margin[s] = c.margin;
-    out.torques.row(s) = c.torques.transpose();
-    // Contact phases have their own numbers of contacts: rows beyond a phase's own are NaN.
-    for (int i = 0; i < contacts; ++i)
-      for (int d = 0; d < 3; ++d) fo(s, i, d) = i < c.forces.rows() ? c.forces(i, d) : std::numeric_limits<double>::quiet_NaN();
+/// p, p', p'' of a Path or q, q̇, q̈ of a Trajectory (which = 0, 1, 2) at `at`, whose values are x; the
+/// GIL is released while it evaluates.
+template <typename Curve>
+py::object evaluate_at(const Curve& curve, py::handle at, const Eigen::VectorXd& x, int which) {
+  Eigen::MatrixXd d0, d1, d2;
+  {
+    py::gil_scoped_release release;
+    curve.evaluate(x, d0, d1, d2);
   }
-  out.scalar = scalar;
-  return out;
+  return rows_at(at, which == 0 ? d0 : (which == 1 ? d1 : d2));
 }
 
 }  // namespace pathpace::python

@@ -8,16 +8,21 @@
 #include <malloc.h>
 #endif
 
+#include "docstrings.hpp"
 #include "pathpace/errors.hpp"
 
 namespace py = pybind11;
 
 namespace pathpace::python {
+// In this order: a class is bound before the signatures that name it (pybind11 writes its Python name).
 void bind_paths(py::module_& m);
 void bind_constraints(py::module_& m);  // the Constraint base: before any derived constraint
 void bind_robot(py::module_& m);
+void bind_torque_limits(py::module_& m);  // bind_constraints.cpp
+void bind_contacts(py::module_& m);
+void bind_trajectory(py::module_& m);
+void bind_result(py::module_& m);
 void bind_problem(py::module_& m);
-void add_docstrings(py::module_& m);  // bind_docs.cpp: after every binding
 void name_argument_errors(py::module_& m);  // argument_errors.cpp: last, over every bound function
 
 namespace {
@@ -49,13 +54,19 @@ PYBIND11_MODULE(_core, m) {
   // InvalidInputError derives from both pathpace.Error and ValueError, so ordinary Python code that
   // catches bad arguments (ValueError) works, as does code that catches everything from pathpace.
   auto error = py::register_exception<pathpace::Error>(m, "Error", PyExc_RuntimeError);
-  py::register_exception<pathpace::InvalidInput>(m, "InvalidInputError",
-                                                 py::make_tuple(error, py::handle(PyExc_ValueError)));
+  auto invalid = py::register_exception<pathpace::InvalidInput>(m, "InvalidInputError",
+                                                                py::make_tuple(error, py::handle(PyExc_ValueError)));
+  // Exception types are made by register_exception, which takes no docstring.
+  error.attr("__doc__") = pathpace::python::doc::Error;
+  invalid.attr("__doc__") = pathpace::python::doc::InvalidInputError;
   pathpace::python::bind_paths(m);
   pathpace::python::bind_constraints(m);
   pathpace::python::bind_robot(m);
+  pathpace::python::bind_torque_limits(m);
+  pathpace::python::bind_contacts(m);
+  pathpace::python::bind_trajectory(m);
+  pathpace::python::bind_result(m);
   pathpace::python::bind_problem(m);
-  pathpace::python::add_docstrings(m);
   pathpace::python::name_argument_errors(m);
   m.attr("malloc_tuned") = pathpace::python::tune_malloc();
 }

@@ -28,10 +28,7 @@ from ._core import (
     auto_grid,
 )
 
-from . import export as _export
 from .batch import solve_many
-
-_export.install()  # Trajectory.to_joint_trajectory, Trajectory.resample
 
 try:
     __version__ = _version("pathpace")

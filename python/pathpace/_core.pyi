@@ -13,27 +13,103 @@ Array = NDArray[np.float64]
 #: True if the module asked glibc to keep freed heap memory (see PATHPACE_NO_MALLOC_TUNING).
 malloc_tuned: bool
 
-class Error(RuntimeError): ...
-class InvalidInputError(Error, ValueError): ...
+class Error(RuntimeError):
+    """Every error pathpace raises (a RuntimeError); e.g. Result.trajectory() without a timing, or a problem
+    modified while another thread solves it.
+    """
+class InvalidInputError(Error, ValueError):
+    """Bad input (also a ValueError): the message names the argument, index, value and what was expected."""
 
 class Path:
+    """A geometric path q = p(s) for s in [s_begin, s_end] (abstract).
+
+    Joint coordinates q are in rad (revolute) or m (prismatic); s is dimensionless, so p' = dq/ds and
+    p'' = d²q/ds² are in rad (or m) per unit s.
+
+    Attributes
+    ----------
+    dof : int
+        Number of coordinates n.
+    s_begin, s_end : float
+        The parameter's range.
+    """
     @property
-    def dof(self) -> int: ...
+    def dof(self) -> int:
+        """int: Number of coordinates n."""
     @property
-    def s_begin(self) -> float: ...
+    def s_begin(self) -> float:
+        """float: The parameter's range."""
     @property
-    def s_end(self) -> float: ...
-    def q(self, s: float | ArrayLike) -> Array: ...
-    def dq(self, s: float | ArrayLike) -> Array: ...
-    def ddq(self, s: float | ArrayLike) -> Array: ...
-    def evaluate(self, s: float | ArrayLike) -> tuple[Array, Array, Array]: ...
+    def s_end(self) -> float:
+        """float: The parameter's range."""
+    def q(self, s: float | ArrayLike) -> Array:
+        """p(s).
+
+        Parameters
+        ----------
+        s : float or array_like (m,)
+            Path parameter, clamped to [s_begin, s_end].
+
+        Returns
+        -------
+        ndarray
+            (n,) for a scalar s, (m, n) for an array; rad or m.
+        """
+    def dq(self, s: float | ArrayLike) -> Array:
+        """p'(s) = dq/ds: (n,) for a scalar s, (m, n) for an array."""
+    def ddq(self, s: float | ArrayLike) -> Array:
+        """p''(s) = d²q/ds²: (n,) for a scalar s, (m, n) for an array."""
+    def evaluate(self, s: float | ArrayLike) -> tuple[Array, Array, Array]:
+        """(p(s), p'(s), p''(s)) at once; shapes as in ``q``."""
 
 class PiecewisePolynomialPath(Path):
+    """Polynomial pieces between breakpoints.
+
+    On [b_i, b_{i+1}], p(s) = Σ_j coefficients[i, j, :] (s - b_i)**j (lowest degree first).
+
+    Parameters
+    ----------
+    breakpoints : array_like (M+1,)
+        Strictly increasing.
+    coefficients : array_like (M, degree + 1, n)
+        coefficients[i, j, :] multiplies (s - breakpoints[i])**j on piece i.
+
+    Attributes
+    ----------
+    breakpoints : ndarray (M+1,)
+    """
     def __init__(self, breakpoints: ArrayLike, coefficients: ArrayLike) -> None: ...
     @property
-    def breakpoints(self) -> Array: ...
+    def breakpoints(self) -> Array:
+        """ndarray (M+1,)"""
 
 class CubicSplinePath(PiecewisePolynomialPath):
+    """A C² cubic spline through waypoints, as scipy.interpolate.CubicSpline.
+
+    Parameters
+    ----------
+    waypoints : array_like (K, n)
+        K >= 2 waypoints in rad (or m), one per row.
+    knots : {'uniform', 'chord'} or array_like (K,)
+        Knot placement on [s_begin, s_end]: equally spaced, proportional to the chord lengths, or explicit
+        (strictly increasing; then the domain is [knots[0], knots[-1]]).
+    boundary : {'not-a-knot', 'natural', 'clamped'}
+        scipy's bc_type: p''' continuous at the second and second-last knots; p'' = 0 at the ends; or
+        given end slopes p' (zero when no derivative is given, scipy's "clamped").
+    start_derivative, end_derivative : array_like (n,), optional
+        p'(s_begin), p'(s_end) for ``boundary='clamped'``.
+    s_begin, s_end : float
+        Domain for 'uniform' and 'chord' knots.
+
+    Attributes
+    ----------
+    knots : ndarray (K,)
+    waypoints : ndarray (K, n)
+    boundary : str
+        'not-a-knot', 'natural' or 'clamped'.
+    start_derivative, end_derivative : ndarray (n,) or None
+        p'(s_begin), p'(s_end) of a clamped spline.
+    """
     def __init__(
         self,
         waypoints: ArrayLike,
@@ -45,47 +121,136 @@ class CubicSplinePath(PiecewisePolynomialPath):
         s_end: float = 1.0,
     ) -> None: ...
     @property
-    def knots(self) -> Array: ...
+    def knots(self) -> Array:
+        """ndarray (K,)"""
     @property
-    def waypoints(self) -> Array: ...
+    def waypoints(self) -> Array:
+        """ndarray (K, n)"""
     @property
-    def boundary(self) -> str: ...
+    def boundary(self) -> str:
+        """str: 'not-a-knot', 'natural' or 'clamped'."""
     @property
-    def start_derivative(self) -> Array | None: ...
+    def start_derivative(self) -> Array | None:
+        """ndarray (n,) or None: p'(s_begin), p'(s_end) of a clamped spline."""
     @property
-    def end_derivative(self) -> Array | None: ...
+    def end_derivative(self) -> Array | None:
+        """ndarray (n,) or None: p'(s_begin), p'(s_end) of a clamped spline."""
 
 class SampledPath(PiecewisePolynomialPath):
+    """A path known at samples: q, q', q'' given at each s (e.g. from another planner).
+
+    Between samples, the quintic Hermite interpolant: C², and exact at every sample.
+
+    Parameters
+    ----------
+    s : array_like (m,)
+        Strictly increasing, m >= 2.
+    q, dq, ddq : array_like (m, n)
+        p, p', p'' at the samples.
+
+    Attributes
+    ----------
+    samples : ndarray (m,)
+    """
     def __init__(self, s: ArrayLike, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike) -> None: ...
     @property
-    def samples(self) -> Array: ...
+    def samples(self) -> Array:
+        """ndarray (m,)"""
 
 class Constraint:
+    """Base of all constraints: half-planes a·x + b·u <= c per grid point, x = ṡ², u = s̈ (eq. 9).
+
+    Attributes
+    ----------
+    name : str
+        Used in infeasibility reports.
+    """
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """str: Used in infeasibility reports."""
 
 class VelocityLimits(Constraint):
+    """Joint velocity limits vmin <= p'(s) ṡ <= vmax (eq. 13, as the bound on ṡ² of eq. 16).
+
+    Parameters
+    ----------
+    vmin, vmax : array_like (n,)
+        rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none.
+    joint_names : list of str, optional
+        Name the joints in row labels and messages ("velocity panda_joint2"; default "velocity joint 1").
+
+    Attributes
+    ----------
+    vmin, vmax : ndarray (n,)
+    joint_names : list of str
+    """
     def __init__(self, vmin: ArrayLike, vmax: ArrayLike, joint_names: list[str] | None = None) -> None: ...
     @property
-    def joint_names(self) -> list[str]: ...
+    def joint_names(self) -> list[str]:
+        """list of str"""
     @property
-    def vmin(self) -> Array: ...
+    def vmin(self) -> Array:
+        """ndarray (n,)"""
     @property
-    def vmax(self) -> Array: ...
+    def vmax(self) -> Array:
+        """ndarray (n,)"""
 
 class AccelerationLimits(Constraint):
+    """Joint acceleration limits amin <= p''ṡ² + p's̈ <= amax (eq. 14).
+
+    Parameters
+    ----------
+    amin, amax : array_like (n,)
+        rad/s² (or m/s²); amin <= amax, ±inf for none.
+    joint_names : list of str, optional
+        Name the joints in row labels and messages ("acceleration panda_joint2 upper").
+
+    Attributes
+    ----------
+    amin, amax : ndarray (n,)
+    joint_names : list of str
+    """
     def __init__(self, amin: ArrayLike, amax: ArrayLike, joint_names: list[str] | None = None) -> None: ...
     @property
-    def joint_names(self) -> list[str]: ...
+    def joint_names(self) -> list[str]:
+        """list of str"""
     @property
-    def amin(self) -> Array: ...
+    def amin(self) -> Array:
+        """ndarray (n,)"""
     @property
-    def amax(self) -> Array: ...
+    def amax(self) -> Array:
+        """ndarray (n,)"""
 
 class LinearConstraint(Constraint):
+    """lo <= A·x + B·u + C <= hi at every grid point (x = ṡ², u = s̈).
+
+    Parameters
+    ----------
+    A, B, C, lo, hi : array_like (N+1, r) (or (N+1,) for one row)
+        Row k holds the coefficients at grid point s_k; lo may be -inf and hi +inf.
+    label : str
+        Names the rows in infeasibility reports.
+    """
     def __init__(self, A: ArrayLike, B: ArrayLike, C: ArrayLike, lo: ArrayLike, hi: ArrayLike, label: str = "linear") -> None: ...
 
 class TorqueLimits(Constraint):
+    """Joint torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15), by our RNEA.
+
+    Parameters
+    ----------
+    robot : RobotModel
+    tau_min, tau_max : array_like (nq,), optional
+        N·m (N for prismatic joints); default ∓ the URDF effort.
+    scale : float
+        Multiplies the limits (sec. V.D's safety margin).
+    margin : float
+        N·m subtracted from each side after scaling.
+
+    Attributes
+    ----------
+    tau_min, tau_max : ndarray (nq,)
+        After scale and margin.
+    """
     def __init__(
         self,
         robot: RobotModel,
@@ -95,132 +260,441 @@ class TorqueLimits(Constraint):
         margin: float = 0.0,
     ) -> None: ...
     @property
-    def tau_min(self) -> Array: ...
+    def tau_min(self) -> Array:
+        """ndarray (nq,): After scale and margin."""
     @property
-    def tau_max(self) -> Array: ...
+    def tau_max(self) -> Array:
+        """ndarray (nq,): After scale and margin."""
 
 class Contact:
+    """A point contact with Coulomb friction: a point fixed in a link (link coordinates) touching the world, or
+    `other_link` when given.
+
+    Parameters
+    ----------
+    link : str
+        The link that touches.
+    point : array_like (3,)
+        Contact point in the link frame, m.
+    normal : array_like (3,)
+        Into `link`: world coordinates for a world contact, other_link's frame otherwise.
+    friction : float
+        Coulomb coefficient μ.
+    other_link : str, optional
+        The other body of a robot–robot (or robot–object) contact; None: the world.
+
+    Attributes
+    ----------
+    link : str
+    point : ndarray (3,)
+        m, link frame.
+    normal : ndarray (3,)
+    friction : float
+    other_link : str or None
+    """
     def __init__(self, link: str, point: ArrayLike = (0.0, 0.0, 0.0), normal: ArrayLike = (0.0, 0.0, 1.0),
                  friction: float = 0.5, other_link: str | None = None) -> None: ...
     @property
-    def other_link(self) -> str | None: ...
+    def other_link(self) -> str | None:
+        """str or None"""
     @property
-    def link(self) -> str: ...
+    def link(self) -> str:
+        """str"""
     @property
-    def point(self) -> Array: ...
+    def point(self) -> Array:
+        """ndarray (3,): m, link frame."""
     @property
-    def normal(self) -> Array: ...
+    def normal(self) -> Array:
+        """ndarray (3,)"""
     @property
-    def friction(self) -> float: ...
+    def friction(self) -> float:
+        """float"""
 
 class ContactConstraint(Constraint):
-    def __init__(self, robot: RobotModel, contacts: list[Contact], cone_edges: int = 8, friction_margin: float = 0.0,
-                 min_normal_force: float = 0.0, torque_scale: float = 1.0, torque_margin: float = 0.0,
-                 tau_min: ArrayLike | None = None, tau_max: ArrayLike | None = None,
-                 min_link_normal_force: float = 0.0, max_lps: int = 2000, cone_offset: float = 0.0,
-                 projection_tolerance: float = 0.0) -> None: ...
+    """Torque limits with frictional contact forces (eq. 17-18), projected onto (ṡ², s̈).
+
+    Includes the torque limits: do not add TorqueLimits to the same problem.
+
+    Parameters
+    ----------
+    robot : RobotModel
+    contacts : list of Contact
+    cone_edges : int
+        Edges of the polyhedral cone inscribed in each friction cone.
+    friction_margin : float
+        μ is used as μ (1 - friction_margin) (sec. V.D).
+    min_normal_force : float
+        N each contact must push at least.
+    torque_scale, torque_margin : float
+        As TorqueLimits' scale and margin (N·m).
+    tau_min, tau_max : array_like (nq,), optional
+    min_link_normal_force, max_lps, cone_offset, projection_tolerance :
+        See TimeScalingProblem.add_contacts: points in link frames, normals in the world frame; margins per
+        point (min_normal_force, cone_offset) and per link (min_link_normal_force).
+
+    Attributes
+    ----------
+    robot : RobotModel
+    contacts : list of Contact
+    tau_min, tau_max : ndarray (nq,)
+        After scale and margin (and any merged TorqueLimits).
+    projected_contacts : list of int
+        Indices of the contacts whose cone weights enter the projection LPs (flat groups: hull vertices).
+    section_contacts : list of int
+        Indices of the contacts whose per-point minimum enters the projection LPs as k/2 bounded tangential
+        weights (min_normal_force > cone_offset, even cone_edges, reduced flat groups).
+    active_begin, active_end : float
+        The phase's stretch of s (-inf, inf: the whole path; see TimeScalingProblem.add_contact_phases).
+    label : str
+        Prefix of its row labels, e.g. 'phases[1]'.
+    rest_at_begin : str
+        The no-impact row's label if the phase forces sdot = 0 at its first point, else ''.
+    """
+    def __init__(
+        self,
+        robot: RobotModel,
+        contacts: list[Contact],
+        *,
+        tau_min: ArrayLike | None = None,
+        tau_max: ArrayLike | None = None,
+        cone_edges: int = 8,
+        friction_margin: float = 0.0,
+        min_normal_force: float = 0.0,
+        torque_scale: float = 1.0,
+        torque_margin: float = 0.0,
+        min_link_normal_force: float = 0.0,
+        max_lps: int = 2000,
+        cone_offset: float = 0.0,
+        projection_tolerance: float = 0.0,
+    ) -> None: ...
     @property
-    def tau_min(self) -> Array: ...
+    def tau_min(self) -> Array:
+        """ndarray (nq,): After scale and margin (and any merged TorqueLimits)."""
     @property
-    def tau_max(self) -> Array: ...
+    def tau_max(self) -> Array:
+        """ndarray (nq,): After scale and margin (and any merged TorqueLimits)."""
     @property
-    def projected_contacts(self) -> list[int]: ...
+    def projected_contacts(self) -> list[int]:
+        """list of int: Indices of the contacts whose cone weights enter the projection LPs (flat groups: hull vertices)."""
     @property
-    def section_contacts(self) -> list[int]: ...
+    def section_contacts(self) -> list[int]:
+        """list of int: Indices of the contacts whose per-point minimum enters the projection LPs as k/2 bounded tangential
+        weights (min_normal_force > cone_offset, even cone_edges, reduced flat groups).
+        """
     @property
-    def contacts(self) -> list[Contact]: ...
+    def contacts(self) -> list[Contact]:
+        """list of Contact"""
     @property
-    def robot(self) -> RobotModel: ...
-    def force_distribution(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> ContactForces: ...
-    def max_drift(self, path: Path, s: ArrayLike) -> tuple[float, int]: ...
+    def robot(self) -> RobotModel:
+        """RobotModel"""
+    def force_distribution(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> ContactForces:
+        """The most robust contact forces at each configuration: the force-distribution LP at each row of q, qd,
+        qdd (how a timing is audited between grid points).
+
+        Parameters
+        ----------
+        q, qd, qdd : array_like (samples, nq) or (nq,)
+            Positions (rad, m), velocities (per s), accelerations (per s²).
+
+        Returns
+        -------
+        ContactForces
+        """
+    def max_drift(self, path: Path, s: ArrayLike) -> tuple[float, int]:
+        """How far contact points move along a path (they should not).
+
+        Parameters
+        ----------
+        path : Path
+            With as many coordinates as the robot has joints.
+        s : array_like (m,)
+            Where to look along the path.
+
+        Returns
+        -------
+        (float, int)
+            Largest distance in m, and the index of that contact.
+        """
     @property
-    def active_begin(self) -> float: ...
+    def active_begin(self) -> float:
+        """float: The phase's stretch of s (-inf, inf: the whole path; see TimeScalingProblem.add_contact_phases)."""
     @property
-    def active_end(self) -> float: ...
+    def active_end(self) -> float:
+        """float: The phase's stretch of s (-inf, inf: the whole path; see TimeScalingProblem.add_contact_phases)."""
     @property
-    def label(self) -> str: ...
+    def label(self) -> str:
+        """str: Prefix of its row labels, e.g. 'phases[1]'."""
     @property
-    def rest_at_begin(self) -> str: ...
+    def rest_at_begin(self) -> str:
+        """str: The no-impact row's label if the phase forces sdot = 0 at its first point, else ''."""
 
 class ContactForces:
+    """Force-distribution LP results at samples.
+
+    Attributes
+    ----------
+    feasible : ndarray of bool (samples,) or bool
+        False where no forces of any sign meet the torque limits.
+    margin : ndarray (samples,) or float
+        N: the smallest cone weight or normal force beyond the minimum; < 0 needs forces that do not exist.
+    forces : ndarray (samples, contacts, 3)
+        World-frame force on each contact's link, N.
+    torques : ndarray (samples, nq)
+        Joint torques with these forces, N·m.
+    phase : ndarray of int (samples,) or int
+        Index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the
+        later phase at a switch); -1 without phases. forces then has as many rows as the largest phase has
+        contacts, NaN beyond a phase's own.
+    """
     @property
-    def feasible(self) -> Array | bool: ...
+    def feasible(self) -> Array | bool:
+        """ndarray of bool (samples,) or bool: False where no forces of any sign meet the torque limits."""
     @property
-    def margin(self) -> Array | float: ...
+    def margin(self) -> Array | float:
+        """ndarray (samples,) or float: N: the smallest cone weight or normal force beyond the minimum; < 0 needs forces that do not exist."""
     @property
-    def forces(self) -> Array: ...
+    def forces(self) -> Array:
+        """ndarray (samples, contacts, 3): World-frame force on each contact's link, N."""
     @property
-    def torques(self) -> Array: ...
+    def torques(self) -> Array:
+        """ndarray (samples, nq): Joint torques with these forces, N·m."""
     @property
-    def phase(self) -> Array | int: ...
+    def phase(self) -> Array | int:
+        """ndarray of int (samples,) or int: Index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the
+        later phase at a switch); -1 without phases. forces then has as many rows as the largest phase has
+        contacts, NaN beyond a phase's own.
+        """
 
 class ContactWrenches:
+    """Per-link totals of a contact-force distribution (``Trajectory.contact_wrenches``).
+
+    Attributes
+    ----------
+    links : list of str
+        Every link on either side of a contact, in first appearance over the contacts (and phases).
+    force : ndarray (samples, links, 3)
+        World-frame total force on each link, N.
+    moment : ndarray (samples, links, 3)
+        Its moment about the link's origin, world axes, N·m.
+    center_of_pressure : ndarray (samples, links, 3)
+        Σ (n·f_i) p_i / Σ n·f_i, world frame, m; NaN where the link does not push or has several normals.
+    normal_force : ndarray (samples, links)
+        Sum of the normal forces into each link, N.
+    """
     @property
-    def links(self) -> list[str]: ...
+    def links(self) -> list[str]:
+        """list of str: Every link on either side of a contact, in first appearance over the contacts (and phases)."""
     @property
-    def force(self) -> Array: ...
+    def force(self) -> Array:
+        """ndarray (samples, links, 3): World-frame total force on each link, N."""
     @property
-    def moment(self) -> Array: ...
+    def moment(self) -> Array:
+        """ndarray (samples, links, 3): Its moment about the link's origin, world axes, N·m."""
     @property
-    def center_of_pressure(self) -> Array: ...
+    def center_of_pressure(self) -> Array:
+        """ndarray (samples, links, 3): Σ (n·f_i) p_i / Σ n·f_i, world frame, m; NaN where the link does not push or has several normals."""
     @property
-    def normal_force(self) -> Array: ...
+    def normal_force(self) -> Array:
+        """ndarray (samples, links): Sum of the normal forces into each link, N."""
 
 class RobotModel:
+    """A rigid-body tree from a URDF (immutable, shareable across threads).
+
+    Joint coordinates are in rad (revolute) or m (prismatic); fixed joints are merged into their parent.
+
+    Attributes
+    ----------
+    nq : int
+    name : str
+    joint_names, link_names : list of str
+    velocity_limits : ndarray (nq,)
+        URDF velocity limits, rad/s (m/s).
+    effort_limits : ndarray (nq,)
+        URDF effort limits, N·m (N).
+    position_limits : ndarray (2, nq)
+        Lower and upper, rad (m).
+    gravity_vector : ndarray (3,)
+        m/s² in the world frame.
+    mass : float
+        kg, of the moving bodies.
+    mimic_joints : list of (str, str, float, float)
+        URDF mimic joints (name, joint, multiplier, offset): q_name = multiplier · q_joint + offset, as in
+        pinocchio. They have no coordinate in q; their torque acts on their joint, times the multiplier.
+    frozen_mimic_joints : list of str
+        Mimic joints locked without their joint: frozen at their value while their joint moves (the
+        relation dropped, as in a model reduced on them alone); lock their joint to keep it.
+    joint_units : list of str
+        The unit of each coordinate q[j]: 'rad' (revolute) or 'm' (prismatic; a floating base's x, y, z).
+    """
     @staticmethod
-    def combine(parts: list[RobotModel], name: str = "") -> RobotModel: ...
+    def combine(parts: list[RobotModel], name: str = "") -> RobotModel:
+        """One model of several independent trees (robots and free objects, sec. III.b); q concatenates the parts'.
+
+        Link names must be unique; a joint name shared by parts becomes '<part>/<joint>'.
+
+        Parameters
+        ----------
+        parts : list of RobotModel
+        name : str
+            The combined model's name.
+        """
     @staticmethod
     def free_object(name: str, mass: float, com: ArrayLike = (0.0, 0.0, 0.0), inertia: ArrayLike = ...,
-                    gravity: ArrayLike = (0.0, 0.0, -9.81)) -> RobotModel: ...
+                    gravity: ArrayLike = (0.0, 0.0, -9.81)) -> RobotModel:
+        """A free rigid body: one link `name` with six floating coordinates (x, y, z, rz, ry, rx) and zero effort.
+
+        Parameters
+        ----------
+        name : str
+        mass : float
+            kg.
+        com : array_like (3,)
+            Centre of mass in the link frame, m.
+        inertia : array_like (3, 3)
+            About the centre of mass `com`, in the link frame, kg·m².
+        gravity : array_like (3,)
+            m/s², world frame.
+        """
     @staticmethod
     def from_urdf(
         path: str | os.PathLike[str], floating_base: bool = False, locked_joints: dict[str, float] | None = None,
         gravity: ArrayLike = (0.0, 0.0, -9.81),
-    ) -> RobotModel: ...
+    ) -> RobotModel:
+        """Loads a URDF file.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+        floating_base : bool
+            Six unactuated virtual joints in front of the root (x, y, z in m, then rotations about z, y, x in rad).
+        locked_joints : dict of str to float, optional
+            Joints held at a value (rad or m) and removed from q (e.g. gripper fingers).
+        gravity : array_like (3,)
+            m/s², world frame.
+
+        Returns
+        -------
+        RobotModel
+
+        Raises
+        ------
+        InvalidInputError
+            Unreadable file, invalid URDF, unknown locked joint.
+        """
     @staticmethod
     def from_urdf_file(
         path: str | os.PathLike[str], floating_base: bool = False, locked_joints: dict[str, float] | None = None,
         gravity: ArrayLike = (0.0, 0.0, -9.81),
-    ) -> RobotModel: ...
-    def gravity_torques(self, q: ArrayLike) -> Array: ...
+    ) -> RobotModel:
+        """The same as ``from_urdf`` (the C++ name, RobotModel::from_urdf_file)."""
+    def gravity_torques(self, q: ArrayLike) -> Array:
+        """The same as ``gravity(q)`` (the C++ name, RobotModel::gravity_torques): (nq,) in N·m."""
     @staticmethod
     def from_urdf_string(
         xml: str, floating_base: bool = False, locked_joints: dict[str, float] | None = None,
         gravity: ArrayLike = (0.0, 0.0, -9.81),
-    ) -> RobotModel: ...
+    ) -> RobotModel:
+        """As ``from_urdf``, from the URDF's XML text."""
     @property
-    def nq(self) -> int: ...
+    def nq(self) -> int:
+        """int"""
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """str"""
     @property
-    def joint_names(self) -> list[str]: ...
+    def joint_names(self) -> list[str]:
+        """list of str"""
     @property
-    def link_names(self) -> list[str]: ...
+    def link_names(self) -> list[str]:
+        """list of str"""
     @property
-    def velocity_limits(self) -> Array: ...
+    def velocity_limits(self) -> Array:
+        """ndarray (nq,): URDF velocity limits, rad/s (m/s)."""
     @property
-    def effort_limits(self) -> Array: ...
+    def effort_limits(self) -> Array:
+        """ndarray (nq,): URDF effort limits, N·m (N)."""
     @property
-    def position_limits(self) -> Array: ...
+    def position_limits(self) -> Array:
+        """ndarray (2, nq): Lower and upper, rad (m)."""
     @property
-    def gravity_vector(self) -> Array: ...
-    def inverse_dynamics(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> Array: ...
-    def mass_matrix(self, q: ArrayLike) -> Array: ...
-    def gravity(self, q: ArrayLike) -> Array: ...
-    def frame_placement(self, q: ArrayLike, link: str) -> Array: ...
-    def point_jacobian(self, q: ArrayLike, link: str, point: ArrayLike = (0.0, 0.0, 0.0)) -> Array: ...
-    def path_torque_coefficients(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike) -> tuple[Array, Array, Array]: ...
-    def center_of_mass(self, q: ArrayLike) -> Array: ...
+    def gravity_vector(self) -> Array:
+        """ndarray (3,): m/s² in the world frame."""
+    def inverse_dynamics(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> Array:
+        """τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA.
+
+        Parameters
+        ----------
+        q, qd, qdd : array_like (nq,)
+            rad, rad/s, rad/s² (m, m/s, m/s² for prismatic joints).
+
+        Returns
+        -------
+        ndarray (nq,)
+            N·m (N).
+        """
+    def mass_matrix(self, q: ArrayLike) -> Array:
+        """M(q), (nq, nq), in kg·m² (kg for prismatic coordinates)."""
+    def gravity(self, q: ArrayLike) -> Array:
+        """g(q): the joint torques that hold the robot still at q, (nq,) in N·m."""
+    def frame_placement(self, q: ArrayLike, link: str) -> Array:
+        """World placement of a link's frame at q: a 4x4 homogeneous matrix (translation in m)."""
+    def point_jacobian(self, q: ArrayLike, link: str, point: ArrayLike = (0.0, 0.0, 0.0)) -> Array:
+        """World-frame linear Jacobian (3, nq) of a point fixed in a link.
+
+        Parameters
+        ----------
+        q : array_like (nq,)
+        link : str
+        point : array_like (3,)
+            In the link frame, m.
+        """
+    def path_torque_coefficients(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike) -> tuple[Array, Array, Array]:
+        """Eq. (12): τ = a ṡ² + b s̈ + c along a path, at each row.
+
+        Parameters
+        ----------
+        q, dq, ddq : array_like (m, nq)
+            p, p', p'' at m samples.
+
+        Returns
+        -------
+        (a, b, c) : ndarrays (m, nq)
+            a = M p'' + C(q, p') p', b = M p', c = g(q), in N·m per the units of ṡ², s̈ and 1.
+        """
+    def center_of_mass(self, q: ArrayLike) -> Array:
+        """Centre of mass of the moving bodies at q.
+
+        Parameters
+        ----------
+        q : array_like (nq,)
+            Joint positions (rad or m).
+
+        Returns
+        -------
+        ndarray (3,)
+            World coordinates in m. Links fixed to the world are not counted (as pinocchio's centerOfMass).
+        """
     @property
-    def mimic_joints(self) -> list[tuple[str, str, float, float]]: ...
+    def mimic_joints(self) -> list[tuple[str, str, float, float]]:
+        """list of (str, str, float, float): URDF mimic joints (name, joint, multiplier, offset): q_name = multiplier · q_joint + offset, as in
+        pinocchio. They have no coordinate in q; their torque acts on their joint, times the multiplier.
+        """
     @property
-    def frozen_mimic_joints(self) -> list[str]: ...
+    def frozen_mimic_joints(self) -> list[str]:
+        """list of str: Mimic joints locked without their joint: frozen at their value while their joint moves (the
+        relation dropped, as in a model reduced on them alone); lock their joint to keep it.
+        """
     @property
-    def joint_units(self) -> list[str]: ...
+    def joint_units(self) -> list[str]:
+        """list of str: The unit of each coordinate q[j]: 'rad' (revolute) or 'm' (prismatic; a floating base's x, y, z)."""
     @property
-    def mass(self) -> float: ...
+    def mass(self) -> float:
+        """float: kg, of the moving bodies."""
 
 class Status(Enum):
+    """How a solve ended: OPTIMAL, INFEASIBLE, ITERATION_LIMIT, NUMERICAL_ERROR, UNBOUNDED or TIME_LIMIT (see
+    Result.status).
+    """
     OPTIMAL = ...
     INFEASIBLE = ...
     ITERATION_LIMIT = ...
@@ -229,92 +703,431 @@ class Status(Enum):
     TIME_LIMIT = ...
 
 class FeasibleSet:
-    index: int
-    s: float
-    halfplanes: Array
-    labels: list[str]
-    x_min: float
-    x_max: float
-    x_max_label: str
-    vertices: Array
-    empty: bool
-    bounded: bool
-    exact: bool
-    def contains(self, x: float, u: float, tol: float = 1e-9) -> bool: ...
+    """The pruned feasible polygon of (x, u) = (ṡ², s̈) at one grid point.
+
+    Attributes
+    ----------
+    index : int
+    s : float
+    halfplanes : ndarray (r, 3)
+        Rows [a, b, c] of a·x + b·u <= c.
+    labels : list of str
+        The constraint row behind each half-plane.
+    x_min, x_max : float
+        Range of ṡ² (1/s²).
+    x_max_label : str
+        What sets x_max.
+    vertices : ndarray (v, 2)
+        Counter-clockwise vertices (x, u).
+    empty, bounded : bool
+    exact : bool
+        False where the contact polygon is only an inner approximation.
+    """
+    @property
+    def index(self) -> int:
+        """int"""
+    @property
+    def s(self) -> float:
+        """float"""
+    @property
+    def halfplanes(self) -> Array:
+        """ndarray (r, 3): Rows [a, b, c] of a·x + b·u <= c."""
+    @property
+    def labels(self) -> list[str]:
+        """list of str: The constraint row behind each half-plane."""
+    @property
+    def x_min(self) -> float:
+        """float: Range of ṡ² (1/s²)."""
+    @property
+    def x_max(self) -> float:
+        """float: Range of ṡ² (1/s²)."""
+    @property
+    def x_max_label(self) -> str:
+        """str: What sets x_max."""
+    @property
+    def vertices(self) -> Array:
+        """ndarray (v, 2): Counter-clockwise vertices (x, u)."""
+    @property
+    def empty(self) -> bool:
+        """bool"""
+    @property
+    def bounded(self) -> bool:
+        """bool"""
+    @property
+    def exact(self) -> bool:
+        """bool: False where the contact polygon is only an inner approximation."""
+    def contains(self, x: float, u: float, tol: float = 1e-9) -> bool:
+        """Whether (x, u) = (ṡ², s̈) satisfies every half-plane to within tol (absolute)."""
 
 class Trajectory:
+    """The timed path: q(t) = p(s(t)) with s(t) piecewise quadratic through the grid (eq. 24).
+
+    Parameters
+    ----------
+    path : Path
+    s : array_like (N+1,)
+        Grid.
+    sdot : array_like (N+1,)
+        ṡ at the grid points, 1/s; >= 0 with no two consecutive zeros.
+
+    Attributes
+    ----------
+    duration : float
+        T in s.
+    times : ndarray (N+1,)
+        t_k of the grid points, s.
+    grid, sdot_grid : ndarray (N+1,)
+        s and ṡ (1/s) at the grid points.
+    path : Path
+    robot : RobotModel or None
+        The robot whose torque limits or contacts shaped it.
+    contacts : ContactConstraint or None
+    contact_phases : list of ContactConstraint
+        The ContactConstraint of each phase (add_contact_phases), in order of s; [] without phases.
+
+    Calling ``traj(t, order)`` gives q (order 0), q̇ (1) or q̈ (2), as toppra's trajectories.
+    """
     def __init__(self, path: Path, s: ArrayLike, sdot: ArrayLike) -> None: ...
-    def contact_forces(self, t: ArrayLike) -> ContactForces: ...
-    def contact_wrenches(self, t: float | ArrayLike) -> ContactWrenches: ...
-    def centers_of_pressure(self, t: float | ArrayLike) -> Array: ...
-    def contact_phase(self, t: float | ArrayLike) -> Any: ...
+    def contact_forces(self, t: ArrayLike) -> ContactForces:
+        """Contact forces at t from the force-distribution LP (the solver looked only at grid points).
+
+        With contact phases (``add_contact_phases``) each t uses the contacts of its phase, the later one at a
+        switch time; ``.phase`` gives the phase of each t and ``forces`` has as many rows as the largest phase
+        has contacts (NaN beyond a phase's own).
+
+        Returns
+        -------
+        ContactForces
+        """
+    def contact_wrenches(self, t: float | ArrayLike) -> ContactWrenches:
+        """Per-link wrenches and centres of pressure of ``contact_forces(t)``.
+
+        For every link on either side of a contact (first appearance over the contacts and phases): the total
+        force (world frame, N), its moment about the link's origin (world axes, N·m), the sum of the normal
+        forces into the link (N), and the centre of pressure Σ (n·f_i) p_i / Σ n·f_i (world frame, m; NaN
+        where the link does not push, or its contacts have several normals). A link its phase does not hold
+        has zero force there; an infeasible sample is NaN.
+
+        Returns
+        -------
+        ContactWrenches
+        """
+    def centers_of_pressure(self, t: float | ArrayLike) -> Array:
+        """``contact_wrenches(t).center_of_pressure``: (samples, links, 3), m.
+
+        The links are ``contact_wrenches(t).links``; NaN where a link does not push.
+        """
+    def contact_phase(self, t: float | ArrayLike) -> Any:
+        """Index into contact_phases of the phase at each t (the later one at a switch); -1 without phases."""
     @property
-    def contact_phases(self) -> list[ContactConstraint]: ...
+    def contact_phases(self) -> list[ContactConstraint]:
+        """list of ContactConstraint: The ContactConstraint of each phase (add_contact_phases), in order of s; [] without phases."""
     @property
-    def contacts(self) -> ContactConstraint | None: ...
+    def contacts(self) -> ContactConstraint | None:
+        """ContactConstraint or None"""
     @property
-    def duration(self) -> float: ...
+    def duration(self) -> float:
+        """float: T in s."""
     @property
-    def times(self) -> Array: ...
+    def times(self) -> Array:
+        """ndarray (N+1,): t_k of the grid points, s."""
     @property
-    def grid(self) -> Array: ...
+    def grid(self) -> Array:
+        """ndarray (N+1,): s and ṡ (1/s) at the grid points."""
     @property
-    def sdot_grid(self) -> Array: ...
+    def sdot_grid(self) -> Array:
+        """ndarray (N+1,): s and ṡ (1/s) at the grid points."""
     @property
-    def path(self) -> Path: ...
-    def s(self, t: float | ArrayLike) -> tuple[Any, Any, Any]: ...
-    def q(self, t: float | ArrayLike) -> Array: ...
-    def qd(self, t: float | ArrayLike) -> Array: ...
-    def qdd(self, t: float | ArrayLike) -> Array: ...
-    def evaluate(self, t: float | ArrayLike) -> tuple[Array, Array, Array]: ...
-    def sample(self, dt: float, max_memory: float = 1e9) -> dict[str, Array]: ...
-    def sample_times(self, dt: float) -> Array: ...
-    def torques(self, t: float | ArrayLike, robot: RobotModel | None = None) -> Array: ...
-    def __call__(self, t: float | ArrayLike, order: int = 0) -> Array: ...
-    def time_spline(self) -> CubicSplinePath: ...
+    def path(self) -> Path:
+        """Path"""
+    def s(self, t: float | ArrayLike) -> tuple[Any, Any, Any]:
+        """(s, ṡ, s̈) at t: floats for a scalar t, arrays (m,) otherwise; ṡ in 1/s, s̈ in 1/s²."""
+    def q(self, t: float | ArrayLike) -> Array:
+        """q(t), rad (m).
+
+        Parameters
+        ----------
+        t : float or array_like (m,)
+            s, clamped to [0, duration].
+
+        Returns
+        -------
+        ndarray
+            (n,) for a scalar t, (m, n) for an array.
+        """
+    def qd(self, t: float | ArrayLike) -> Array:
+        """q̇(t) = p'(s) ṡ (eq. 10), rad/s; shapes as ``q``."""
+    def qdd(self, t: float | ArrayLike) -> Array:
+        """q̈(t) = p''(s) ṡ² + p'(s) s̈ (eq. 11), rad/s²; s̈ of the interval to the right of t."""
+    def evaluate(self, t: float | ArrayLike) -> tuple[Array, Array, Array]:
+        """(q, q̇, q̈) at t; shapes as ``q``."""
+    def sample(self, dt: float, max_memory: float = 1e9) -> dict[str, Array]:
+        """Uniform resampling.
+
+        Parameters
+        ----------
+        dt : float
+            Period in s; T is appended when it is not a multiple of dt.
+        max_memory : float
+            Bytes: a dt that would need more (t, q, q̇, q̈ and the path's own p, p', p'' while evaluating) is an
+            InvalidInputError saying how much, before anything is allocated.
+
+        Returns
+        -------
+        dict
+            ``t`` (m,) in s, ``q``, ``qd``, ``qdd`` (m, n).
+        """
+    def sample_times(self, dt: float) -> Array:
+        """The times 0, dt, 2 dt, ... (and T) of ``sample``, in s."""
+    def torques(self, t: float | ArrayLike, robot: RobotModel | None = None) -> Array:
+        """τ(t) by inverse dynamics along the timing.
+
+        Parameters
+        ----------
+        t : float or array_like (m,)
+            s.
+        robot : RobotModel, optional
+            Default: the robot whose limits shaped the trajectory.
+
+        Returns
+        -------
+        ndarray
+            (nq,) or (m, nq), N·m.
+        """
+    def __call__(self, t: float | ArrayLike, order: int = 0) -> Array:
+        """q(t) (order 0, rad or m), q̇(t) (1, per s) or q̈(t) (2, per s²), as toppra's ``traj(t, order)``.
+
+        Parameters
+        ----------
+        t : float or array_like (m,)
+            Times in s, clamped to [0, duration].
+        order : {0, 1, 2}
+
+        Returns
+        -------
+        ndarray
+            (n,) for a scalar t, (m, n) for an array.
+        """
+    def time_spline(self) -> CubicSplinePath:
+        """A C² cubic spline in time through the grid (toppra's ParametrizeSpline).
+
+        Returns
+        -------
+        CubicSplinePath
+            Parameter t in s (knots = ``times``), through q(t_k) = p(s_k), clamped to q̇ = p'(s) ṡ at both ends;
+            its ``q``, ``dq``, ``ddq`` are q(t), q̇(t), q̈(t) with q̈ continuous. Between grid points it departs
+            from the exact timing by O(Δt⁴), so check it against the limits.
+        """
     @property
-    def robot(self) -> RobotModel | None: ...
-    # Added by pathpace.export (see there):
+    def robot(self) -> RobotModel | None:
+        """RobotModel or None: The robot whose torque limits or contacts shaped it."""
     def to_joint_trajectory(self, dt: float | None = None, joint_names: list[str] | None = None,
-                            robot: RobotModel | None = None, spline: bool = False) -> dict[str, Any]: ...
-    def resample(self, dt: float | None = None, spline: bool = False) -> dict[str, Array]: ...
+                            robot: RobotModel | None = None, spline: bool = False) -> dict[str, Any]:
+        """The trajectory as a ``trajectory_msgs/JointTrajectory``-shaped dict, ready for ``json.dumps``.
+
+        Parameters
+        ----------
+        dt : float, optional
+            Controller period in s; None: one point per grid time of the solver.
+        joint_names : sequence of str, optional
+            Default: the robot's joint names, else ``joint_0``, ``joint_1``, ...
+        robot : RobotModel, optional
+            For ``effort`` (N·m or N, by inverse dynamics of the exported motion). Default: the robot whose
+            torque limits or contacts shaped the trajectory; without one, ``effort`` lists are empty (as ROS
+            allows).
+        spline : bool
+            See ``resample``.
+
+        Returns
+        -------
+        dict
+            ``{"joint_names": [...], "points": [{"positions", "velocities", "accelerations", "effort",
+            "time_from_start": {"sec", "nanosec"}}, ...]}`` (ROS 2 field names; plain Python floats and ints).
+        """
+    def resample(self, dt: float | None = None, spline: bool = False) -> dict[str, Array]:
+        """Samples of the trajectory at a controller rate.
+
+        Parameters
+        ----------
+        dt : float, optional
+            Sample period in s (e.g. 0.001 for a 1 kHz controller); the duration T is appended when it is not a
+            multiple of dt. None: the solver's grid times. Refused as ``sample`` is beyond 1 GB.
+        spline : bool
+            False (default): the exact timing, sampled (q̈ jumps at grid points, between samples): every sample
+            meets the limits the problem was solved under (at every instant with ``guarantee="continuous"``).
+            True: from ``time_spline()``, the C² cubic spline in t through the grid (continuous q̈), which rings
+            where the exact q̈ jumps: up to 1.26x the acceleration limits (measured, any N); solve with
+            acceleration limits x 0.75 if the spline is what the robot executes.
+
+        Returns
+        -------
+        dict
+            ``t`` (m,) in s; ``q`` (m, n) in rad or m; ``qd`` (m, n) per s; ``qdd`` (m, n) per s².
+        """
 
 class Result:
-    status: Status
-    message: str
-    duration: float
-    s: Array
-    sdot: Array
-    times: Array
-    sddot: Array
+    """What a solve returns. ``bool(result)`` is ``result.ok``.
+
+    Attributes
+    ----------
+    status : Status
+        OPTIMAL, INFEASIBLE (see infeasible_*), ITERATION_LIMIT (feasible, maybe not optimal),
+        TIME_LIMIT (``time_limit`` reached: feasible, stats['gap'] bounds its distance to the optimum),
+        NUMERICAL_ERROR (the LP solver failed) or UNBOUNDED (nothing bounds the speed).
+    ok : bool
+        True for OPTIMAL, ITERATION_LIMIT and TIME_LIMIT (a feasible timing).
+    message : str
+        Why a solve failed, with grid index, s and binding constraint; for a timing whose path moves its
+        contacts (``contact_drift``), which contacts move.
+    contact_drift : list of dict
+        Contacts that the path moves although they should hold (drift='warn', or 'auto' within 10x
+        drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message.
+    tau_min, tau_max : ndarray (nq,) or None
+        The torque limits the solve held (after scale and margin; the problem's TorqueLimits, else its contact
+        constraint's), None without torque limits.
+    duration : float
+        T in s (nan without a timing).
+    s, sdot, times : ndarray (N+1,)
+        Grid, ṡ (1/s) and t (s) at the grid points.
+    sddot : ndarray (N,)
+        s̈ on each interval, 1/s².
+    infeasible_index : int
+        First grid index where no timing exists (-1 if feasible).
+    infeasible_s : float
+    binding_constraints : list of str
+        The constraint rows that bind there.
+    stats : dict
+        slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
+        (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+    relaxation : dict of str to float
+        For an INFEASIBLE result: family -> smallest scale of that family's limits that makes the problem
+        feasible, e.g. {'torque': 1.18, 'velocity': inf} (see TimeScalingProblem.relaxation).
+    binding : list of str
+        For a timed result: per interval (N entries) the label of the constraint that binds there, '' where
+        none does, typically the interval of a switch (to colour a phase-plane plot by the active limit).
+    """
     @property
-    def ok(self) -> bool: ...
+    def status(self) -> Status:
+        """Status: OPTIMAL, INFEASIBLE (see infeasible_*), ITERATION_LIMIT (feasible, maybe not optimal),
+        TIME_LIMIT (``time_limit`` reached: feasible, stats['gap'] bounds its distance to the optimum),
+        NUMERICAL_ERROR (the LP solver failed) or UNBOUNDED (nothing bounds the speed).
+        """
     @property
-    def infeasible_index(self) -> int: ...
+    def message(self) -> str:
+        """str: Why a solve failed, with grid index, s and binding constraint; for a timing whose path moves its
+        contacts (``contact_drift``), which contacts move.
+        """
     @property
-    def infeasible_s(self) -> float: ...
+    def duration(self) -> float:
+        """float: T in s (nan without a timing)."""
     @property
-    def binding_constraints(self) -> list[str]: ...
-    relaxation: dict[str, float]
-    binding: list[str]
+    def s(self) -> Array:
+        """ndarray (N+1,): Grid, ṡ (1/s) and t (s) at the grid points."""
     @property
-    def stats(self) -> dict[str, Any]: ...
+    def sdot(self) -> Array:
+        """ndarray (N+1,): Grid, ṡ (1/s) and t (s) at the grid points."""
     @property
-    def contact_drift(self) -> list[dict[str, Any]]: ...
+    def times(self) -> Array:
+        """ndarray (N+1,): Grid, ṡ (1/s) and t (s) at the grid points."""
     @property
-    def tau_min(self) -> Array | None: ...
+    def sddot(self) -> Array:
+        """ndarray (N,): s̈ on each interval, 1/s²."""
     @property
-    def tau_max(self) -> Array | None: ...
-    def trajectory(self) -> Trajectory: ...
-    def __bool__(self) -> bool: ...
+    def ok(self) -> bool:
+        """bool: True for OPTIMAL, ITERATION_LIMIT and TIME_LIMIT (a feasible timing)."""
+    @property
+    def infeasible_index(self) -> int:
+        """int: First grid index where no timing exists (-1 if feasible)."""
+    @property
+    def infeasible_s(self) -> float:
+        """float"""
+    @property
+    def binding_constraints(self) -> list[str]:
+        """list of str: The constraint rows that bind there."""
+    @property
+    def relaxation(self) -> dict[str, float]:
+        """dict of str to float: For an INFEASIBLE result: family -> smallest scale of that family's limits that makes the problem
+        feasible, e.g. {'torque': 1.18, 'velocity': inf} (see TimeScalingProblem.relaxation).
+        """
+    @property
+    def binding(self) -> list[str]:
+        """list of str: For a timed result: per interval (N entries) the label of the constraint that binds there, '' where
+        none does, typically the interval of a switch (to colour a phase-plane plot by the active limit).
+        """
+    @property
+    def stats(self) -> dict[str, Any]:
+        """dict: slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
+        (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+        """
+    @property
+    def contact_drift(self) -> list[dict[str, Any]]:
+        """list of dict: Contacts that the path moves although they should hold (drift='warn', or 'auto' within 10x
+        drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message.
+        """
+    @property
+    def tau_min(self) -> Array | None:
+        """ndarray (nq,) or None: The torque limits the solve held (after scale and margin; the problem's TorqueLimits, else its contact
+        constraint's), None without torque limits.
+        """
+    @property
+    def tau_max(self) -> Array | None:
+        """ndarray (nq,) or None: The torque limits the solve held (after scale and margin; the problem's TorqueLimits, else its contact
+        constraint's), None without torque limits.
+        """
+    def trajectory(self) -> Trajectory:
+        """The timed trajectory (Trajectory); raises pathpace.Error when there is no timing."""
+    def __bool__(self) -> bool:
+        """True when the timing is usable (``ok``): ``if res: ...``"""
 
 class TimeScalingProblem:
+    """Time-optimal timing of a path under constraints (sec. V).
+
+    Minimises T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) (eq. 25, 27) over the speeds at the grid points, with every
+    constraint enforced at every grid point with the s̈ of the interval on each side (eq. 26). Build once,
+    then ``solve`` (it releases the GIL; a built problem may be solved from several threads).
+
+    Parameters
+    ----------
+    path : Path
+    grid : int, array_like (N+1,) or 'auto'
+        N uniform intervals over the path, a strictly increasing grid from s_begin to s_end, or 'auto'
+        (pathpace.auto_grid(path, grid_tolerance): refined where the path bends; the N used is
+        ``intervals``).
+    grid_tolerance : float
+        Of grid='auto'.
+
+    Attributes
+    ----------
+    grid : ndarray (N+1,)
+    intervals : int
+    path : Path
+    constraints : list of Constraint
+    sdot_begin, sdot_end : float
+        Boundary speeds in 1/s.
+    joint_names : list of str
+        See ``set_joint_names``.
+    """
     def __init__(self, path: Path, grid: int | str | ArrayLike = 100, grid_tolerance: float = 1e-3) -> None: ...
-    def add_velocity_limits(self, vmin: ArrayLike, vmax: ArrayLike) -> None: ...
-    def add_acceleration_limits(self, amin: ArrayLike, amax: ArrayLike) -> None: ...
+    def add_velocity_limits(self, vmin: ArrayLike, vmax: ArrayLike) -> None:
+        """Joint velocity limits (eq. 13).
+
+        Parameters
+        ----------
+        vmin, vmax : array_like (n,)
+            rad/s (m/s); vmin <= 0 <= vmax, ±inf for none.
+        """
+    def add_acceleration_limits(self, amin: ArrayLike, amax: ArrayLike) -> None:
+        """Joint acceleration limits (eq. 14).
+
+        Parameters
+        ----------
+        amin, amax : array_like (n,)
+            rad/s² (m/s²); amin <= amax.
+        """
     def add_linear_constraint(
         self, A: ArrayLike, B: ArrayLike, C: ArrayLike, lo: ArrayLike, hi: ArrayLike, label: str = "linear"
-    ) -> None: ...
+    ) -> None:
+        """lo <= A·ṡ² + B·s̈ + C <= hi per grid point; arrays (N+1, r). See LinearConstraint."""
     def add_torque_limits(
         self,
         robot: RobotModel,
@@ -322,66 +1135,211 @@ class TimeScalingProblem:
         tau_max: ArrayLike | None = None,
         scale: float = 1.0,
         margin: float = 0.0,
-    ) -> None: ...
+    ) -> None:
+        """Torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15).
+
+        Parameters
+        ----------
+        robot : RobotModel
+        tau_min, tau_max : array_like (nq,), optional
+            N·m; default ∓ the URDF effort.
+        scale : float
+            Multiplies the limits (sec. V.D).
+        margin : float
+            N·m taken off each side.
+        """
     def add_contacts(
         self,
         robot: RobotModel,
         contacts: list[Contact],
+        *,
+        tau_min: ArrayLike | None = None,
+        tau_max: ArrayLike | None = None,
+        drift_tolerance: float = 1e-6,
+        drift: str = "auto",
         cone_edges: int = 8,
         friction_margin: float = 0.0,
         min_normal_force: float = 0.0,
         torque_scale: float = 1.0,
         torque_margin: float = 0.0,
-        drift_tolerance: float = 1e-6,
-        tau_min: ArrayLike | None = None,
-        tau_max: ArrayLike | None = None,
         min_link_normal_force: float = 0.0,
         max_lps: int = 2000,
         cone_offset: float = 0.0,
         projection_tolerance: float = 0.0,
-        drift: str = "auto",
-    ) -> None: ...
+    ) -> None:
+        """Torque limits with frictional contact forces (eq. 17-18), projected to (ṡ², s̈) per grid point
+        (sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP); see
+        ContactConstraint. add_torque_limits on the same robot, before or after, merges into this one projection
+        (both limits hold).
+
+        Parameters
+        ----------
+        robot : RobotModel
+        contacts : list of Contact
+            Points in their link's frame, normals in the world frame (other_link's for a robot-robot contact).
+        cone_edges : int
+            Edges of the inscribed friction pyramid.
+        friction_margin : float
+            μ is used as μ (1 - friction_margin): every force keeps this fraction of its friction in reserve
+            (sec. V.D).
+        min_normal_force : float
+            N per contact point (n·f >= min_normal_force). With an even cone_edges a flat sole still reduces
+            exactly: its hull corners' cones plus cone_edges/2 bounded weights per point (each point's minimal
+            force on its cone's cross-section; docs/method.md). With an odd cone_edges every point enters the LPs
+            with its own row.
+        cone_offset : float
+            N per contact point: the shifted cone (sec. V.D's offset of each friction cone along its normal;
+            Klampt's forceRobustness): f - cone_offset·n lies in the friction cone, so each point pushes at
+            least cone_offset and keeps its friction reserve on top. A flat sole still reduces exactly to its
+            hull corners (docs/method.md), so it is cheaper than min_normal_force.
+        torque_scale, torque_margin : float
+            The torque limits are multiplied by torque_scale and shrunk by torque_margin (N·m per side).
+        drift_tolerance : float
+            m: how far a contact point may move along the path (it should not: eq. 17-18 hold it in place).
+        drift : {'auto', 'warn', 'error'}
+            A contact that moves by more than drift_tolerance: 'warn' times it anyway with a UserWarning, and
+            the result says so (``Result.contact_drift`` and ``message``); 'error' raises InvalidInputError naming
+            the contact, s and the drift; 'auto' (default) warns up to 10 x drift_tolerance and raises beyond.
+        tau_min, tau_max : array, optional
+            Torque limits (default -/+ URDF effort; 0 on a floating base).
+        min_link_normal_force : float
+            N per link: the sum of the normal forces of the link's points (e.g. a whole sole).
+        max_lps : int
+            LPs per grid point before the polygon is reported inexact (FeasibleSet.exact,
+            stats['inexact_points']).
+        projection_tolerance : float
+            Relative ε in [0, 1) of a certified approximation of each grid point's polygon (0: exact). The
+            polygon is an inner set whose support function is within ε times its size (its larger extent in
+            sdot^2 or sddot) of the exact one in every direction: the timing stays executable, only slower
+            (T can only grow). Edges kept by ε are labelled "contact forces" in Result.binding.
+        """
     def add_contact_phases(
         self,
         robot: RobotModel,
         phases: list[tuple[float, float, list[Contact]] | tuple[float, float, list[Contact], dict[str, float]]],
+        *,
+        tau_min: ArrayLike | None = None,
+        tau_max: ArrayLike | None = None,
+        drift_tolerance: float = 1e-6,
+        drift: str = "auto",
+        impact_tolerance: float = 1e-6,
         cone_edges: int = 8,
         friction_margin: float = 0.0,
         min_normal_force: float = 0.0,
         torque_scale: float = 1.0,
         torque_margin: float = 0.0,
-        drift_tolerance: float = 1e-6,
-        tau_min: ArrayLike | None = None,
-        tau_max: ArrayLike | None = None,
         min_link_normal_force: float = 0.0,
         max_lps: int = 2000,
-        impact_tolerance: float = 1e-6,
         cone_offset: float = 0.0,
         projection_tolerance: float = 0.0,
-        drift: str = "auto",
-    ) -> None: ...
-    def add_constraint(self, constraint: Constraint) -> None: ...
-    def set_boundary_speeds(self, sdot_begin: float = 0.0, sdot_end: float = 0.0) -> None: ...
-    def set_joint_names(self, names: list[str]) -> None: ...
-    def set_zero_boundary_accelerations(self, at_begin: bool = True, at_end: bool = True) -> None: ...
+    ) -> None:
+        """Contacts that change along the path: one contact set per phase.
+
+        Phase i holds its contacts (a ContactConstraint with torque limits, eq. 17-18) on the grid points of
+        [s_begin, s_end], both ends included: at a switch both adjacent stances hold. Phases must be contiguous,
+        cover the path and have s_begin < s_end (errors name the phase). A switch that is not a grid point is
+        inserted into the grid (one more interval; constraints already added are re-evaluated; a switch within
+        1e-9 of the path's length of a grid point snaps to it); with an ``add_linear_constraint`` (rows per grid
+        point) a switch off the grid is an InvalidInputError naming the nearest grid point. TorqueLimits of the
+        robot are merged into every phase. Row labels and ``Result.binding`` name the phase ("phases[1]: ...").
+
+        No impact: a contact that phase i has and phase i-1 has not is made at the switch; if its point arrives
+        moving along its normal (|n·c'| > impact_tolerance × the point's largest |c'| on the grid, c' = J p' just
+        before the switch), ṡ = 0 there (row "phases[i]: no impact: ..."). Breaking contact needs nothing.
+
+        Parameters
+        ----------
+        robot : RobotModel
+        phases : list of (s_begin, s_end, contacts) or (s_begin, s_end, contacts, options)
+            options: a dict of this phase's own friction_margin, min_normal_force, min_link_normal_force,
+            cone_offset, cone_edges (the others are the call's).
+        cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin, tau_min, tau_max,
+        min_link_normal_force, max_lps, cone_offset, projection_tolerance :
+            As in ``add_contacts``, for every phase.
+        drift_tolerance, drift :
+            As in ``add_contacts``, for each phase's contacts on that phase's stretch.
+        impact_tolerance : float
+            Relative tolerance of the no-impact rule (default 1e-6).
+        """
+    def add_constraint(self, constraint: Constraint) -> None:
+        """Adds any Constraint; its rows are evaluated now, so errors surface here."""
+    def set_boundary_speeds(self, sdot_begin: float = 0.0, sdot_end: float = 0.0) -> None:
+        """ṡ at s_begin and s_end.
+
+        Parameters
+        ----------
+        sdot_begin, sdot_end : float
+            1/s, >= 0 (default 0: rest to rest). For joint velocities use ``set_boundary_velocities``.
+        """
+    def set_joint_names(self, names: list[str]) -> None:
+        """Names of the path's coordinates for the labels and messages of velocity and acceleration limits.
+
+        Set automatically from the robot of add_torque_limits / add_contacts when it has one joint per
+        coordinate.
+        """
+    def set_zero_boundary_accelerations(self, at_begin: bool = True, at_end: bool = True) -> None:
+        """sddot = 0 at s_begin and/or s_end (q̈ = p'' ṡ² there: no jump of q̈ from or to a cruise).
+
+        With sddot constant per interval (eq. 24) it holds on the whole first/last interval, so the boundary
+        speed there must be > 0 (set_boundary_speeds); solve() raises InvalidInputError otherwise.
+        """
     @property
-    def joint_names(self) -> list[str]: ...
-    def set_boundary_velocities(self, qd_begin: ArrayLike, qd_end: ArrayLike, tolerance: float = 1e-6) -> None: ...
+    def joint_names(self) -> list[str]:
+        """list of str: See ``set_joint_names``."""
+    def set_boundary_velocities(self, qd_begin: ArrayLike, qd_end: ArrayLike, tolerance: float = 1e-6) -> None:
+        """Boundary conditions as joint velocities q̇ (rad/s or m/s) at s_begin and s_end.
+
+        q̇ = p'(s) ṡ (eq. 10): each must be a non-negative multiple of the path tangent p'; the speeds
+        ṡ = p'·q̇ / |p'|² are then set as by ``set_boundary_speeds``.
+
+        Parameters
+        ----------
+        qd_begin, qd_end : array_like (n,)
+            Joint velocities at the ends.
+        tolerance : float
+            Allowed |q̇ - p' ṡ|∞ relative to |q̇|.
+
+        Raises
+        ------
+        InvalidInputError
+            Naming the joint index where q̇ is not along p'.
+        """
     @property
-    def sdot_begin(self) -> float: ...
+    def sdot_begin(self) -> float:
+        """float: Boundary speeds in 1/s."""
     @property
-    def sdot_end(self) -> float: ...
+    def sdot_end(self) -> float:
+        """float: Boundary speeds in 1/s."""
     @property
-    def grid(self) -> Array: ...
+    def grid(self) -> Array:
+        """ndarray (N+1,)"""
     @property
-    def intervals(self) -> int: ...
+    def intervals(self) -> int:
+        """int"""
     @property
-    def path(self) -> Path: ...
+    def path(self) -> Path:
+        """Path"""
     @property
-    def constraints(self) -> list[Constraint]: ...
-    def feasible_set(self, k: int) -> FeasibleSet: ...
-    def relaxation(self, max_scale: float = 1e3, tolerance: float = 1e-3, guarantee: str = "grid") -> dict[str, float]: ...
-    def restarted(self, s0: float, sdot0: float) -> TimeScalingProblem: ...
+    def constraints(self) -> list[Constraint]:
+        """list of Constraint"""
+    def feasible_set(self, k: int) -> FeasibleSet:
+        """The pruned feasible polygon at grid index k (0 <= k <= N): a FeasibleSet."""
+    def relaxation(self, max_scale: float = 1e3, tolerance: float = 1e-3, guarantee: str = "grid") -> dict[str, float]:
+        """Smallest uniform relaxation of each constraint family that makes the problem feasible.
+
+        Returns a dict family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family
+        together when there are several): the family's limit intervals widened by that factor about zero, the
+        others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor;
+        inf if `max_scale` is not enough. 1.0 for every family of a feasible problem.
+        """
+    def restarted(self, s0: float, sdot0: float) -> TimeScalingProblem:
+        """The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0).
+
+        The path's tail [s0, s_end] on the grid points beyond s0, the same constraints and every setting
+        pickling keeps (end speed, sddot = 0 at the end, joint names; sddot = 0 at the start only when
+        s0 = s_begin). A LinearConstraint keeps its rows at the kept grid points (s0 must then be a grid point).
+        Its result starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.
+        """
     def solve(
         self,
         method: str = "auto",
@@ -396,14 +1354,53 @@ class TimeScalingProblem:
         max_audit_rounds: int = 30,
         time_limit: float = 60.0,
     ) -> Result:
-        """The optimum of eq. (26)-(27), OPTIMAL when its certified gap is <= `tolerance` (relative).
+        """Solves the problem (the GIL is released meanwhile).
 
-        `max_iterations` bounds the SLP iterations per window, `time_limit` (seconds, inf for none) the whole
-        solve: either ends with the best feasible timing found (ITERATION_LIMIT / TIME_LIMIT, stats["gap"]
-        is its certified bound). UNBOUNDED means that nothing bounds the speed at a grid point where the
-        path moves (the ends, whose speeds are given, never count). A stationary piece of path (p'(s) = 0
-        on a stretch of the grid) that no constraint bounds raises InvalidInputError naming its s-range:
-        it would be crossed in zero time; remove it from the path.
+        Parameters
+        ----------
+        method : {'auto', 'slp'}
+            'auto': reachability analysis, exact when the feasible set has a greatest element, SLP otherwise;
+            'slp': always run sequential linear programming.
+        max_iterations : int
+            SLP iterations.
+        tolerance : float
+            Relative optimality: OPTIMAL when (T - T*) / T* is certified below it.
+        initial_trust_region : float
+            SLP trust-region half-width relative to the largest ṡ² of the start.
+        lp_feasibility_tolerance : float
+            GLPK's primal feasibility tolerance.
+        explain : bool
+            On an infeasible result, also find the smallest relaxation of each constraint family
+            (``Result.relaxation``).
+        guarantee : {'grid', 'continuous'}
+            'grid': limits hold at the grid points (eq. 26); 'continuous': at every instant (velocity and
+            acceleration by Bernstein bounds of a piecewise-polynomial path, torque and contact by an audit at
+            audit_points interior points per interval with exact cuts until it passes; stats['audit_worst'] is
+            the largest relative violation left, negative = the margin reached).
+        audit_points, audit_tolerance, max_audit_rounds :
+            Of the continuous audit: points per interval, relative violation accepted, solve-audit rounds.
+        time_limit : float
+            Seconds (inf for none) for the whole solve: TIME_LIMIT with the best feasible timing found and its
+            certified gap.
+
+        ``max_iterations`` bounds the SLP iterations per window, ``time_limit`` the whole solve: either ends
+        with the best feasible timing found (ITERATION_LIMIT / TIME_LIMIT, stats["gap"] is its certified bound).
+        UNBOUNDED means that nothing bounds the speed at a grid point where the path moves (the ends, whose
+        speeds are given, never count). A stationary piece of path (p'(s) = 0 on a stretch of the grid) that no
+        constraint bounds raises InvalidInputError naming its s-range: it would be crossed in zero time; remove
+        it from the path.
+
+        Returns
+        -------
+        Result
+            Never raises for an infeasible problem: see ``status`` and ``message``.
         """
 
-def auto_grid(path: Path, tolerance: float = 1e-3, min_intervals: int = 16, max_intervals: int = 1000000) -> Array: ...
+def auto_grid(path: Path, tolerance: float = 1e-3, min_intervals: int = 16, max_intervals: int = 1000000) -> Array:
+    """A grid of s fitted to the path's shape (what grid='auto' uses).
+
+    Every interval is halved until p, p' and p'' deviate from their chords at its midpoint by at most
+    `tolerance` times their scale over the path (largest coordinate range, largest |p'_j|, largest |p''_j|);
+    starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial path.
+    Returns the grid points s_0..s_N (the N used is len - 1). InvalidInputError past `max_intervals`.
+    """

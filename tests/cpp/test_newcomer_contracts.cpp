@@ -72,8 +72,10 @@ TEST(ContactDrift, AddContactsRefusesOrRecordsAndTheResultSaysSo) {
   TimeScalingProblem prob(sliding_box_path(0.05), 20);
   EXPECT_THROW(prob.add_contacts(c), InvalidInput);  // default: 1e-6 m, Auto
   EXPECT_TRUE(prob.constraints().empty());            // nothing added
-  prob.add_contacts(c, 1e-6, DriftPolicy::Warn);
+  const std::vector<ContactDrift> warned = prob.add_contacts(c, 1e-6, DriftPolicy::Warn);
   ASSERT_EQ(prob.contact_drift().size(), 1u);
+  ASSERT_EQ(warned.size(), 1u);  // what the caller warns about (Python: one UserWarning)
+  EXPECT_EQ(warned[0].message(), prob.contact_drift()[0].message());
   const Result res = prob.solve();
   ASSERT_TRUE(res.ok()) << res.message;
   ASSERT_EQ(res.contact_drift.size(), 1u);
@@ -81,7 +83,7 @@ TEST(ContactDrift, AddContactsRefusesOrRecordsAndTheResultSaysSo) {
   EXPECT_NE(res.message.find("the path moves its contacts"), std::string::npos) << res.message;
   // A path that keeps the box in place: nothing recorded, nothing said.
   TimeScalingProblem still(sliding_box_path(0.0), 20);
-  still.add_contacts(c);
+  EXPECT_TRUE(still.add_contacts(c).empty());
   EXPECT_TRUE(still.contact_drift().empty());
   const Result ok = still.solve();
   EXPECT_TRUE(ok.contact_drift.empty());
@@ -102,8 +104,11 @@ TEST(ContactDrift, PhasesAreCheckedOnTheirOwnStretch) {
   const std::string msg = error_of([&] { prob.add_contact_phases(model, phases, opt); });
   EXPECT_NE(msg.find("phases[0]: contact 0 (link 'box') moves by 0.025 m"), std::string::npos) << msg;
   EXPECT_TRUE(prob.constraints().empty());
-  prob.add_contact_phases(model, phases, opt, Eigen::VectorXd(), Eigen::VectorXd(), 1e-6, 1e-6, DriftPolicy::Warn);
+  const auto warned =
+      prob.add_contact_phases(model, phases, opt, Eigen::VectorXd(), Eigen::VectorXd(), 1e-6, 1e-6, DriftPolicy::Warn);
   ASSERT_EQ(prob.contact_drift().size(), 2u);
+  ASSERT_EQ(warned.size(), 2u);
+  EXPECT_EQ(warned[1].constraint, "phases[1]");
   EXPECT_EQ(prob.contact_drift()[1].constraint, "phases[1]");
   EXPECT_NEAR(prob.contact_drift()[1].drift, 0.025, 1e-12);  // measured from where phase 1 begins
 }

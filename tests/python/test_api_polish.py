@@ -250,7 +250,8 @@ def test_stubs_match_the_module():
             members = {}
             for f in node.body:
                 if isinstance(f, ast.FunctionDef):
-                    args = [a.arg for a in f.args.posonlyargs + f.args.args + f.args.kwonlyargs]
+                    args = [a.arg for a in f.args.posonlyargs + f.args.args]
+                    args += ["*"] + [a.arg for a in f.args.kwonlyargs] if f.args.kwonlyargs else []  # keyword-only too
                     members[f.name] = args[1:] if args and args[0] in ("self", "cls") else args
                 elif isinstance(f, ast.AnnAssign):
                     members[f.target.id] = None
@@ -274,12 +275,10 @@ def test_stubs_match_the_module():
             if isinstance(member, property) or declared[name][attr] is None:
                 continue
             fn = getattr(obj, attr)
-            if inspect.isfunction(fn):  # added in Python (pathpace.export)
-                params = list(inspect.signature(fn).parameters)[1:]
-            else:
-                sig = (fn.__doc__ or "").strip().split("\n", 1)[0]
-                params = [p.split(":")[0].split("=")[0].strip() for p in top_level_split(sig[sig.find("(") + 1 : sig.rfind(")")])]
-                params = [p for p in params if p and p != "self"]
+            assert not inspect.isfunction(fn), f"{name}.{attr} is added in Python: bind it in C++ (one docstring source)"
+            sig = (fn.__doc__ or "").strip().split("\n", 1)[0]
+            params = [p.split(":")[0].split("=")[0].strip() for p in top_level_split(sig[sig.find("(") + 1 : sig.rfind(")")])]
+            params = [p for p in params if p and p != "self"]
             if params != declared[name][attr]:
                 problems.append(f"{name}.{attr}: runtime {params}, stub {declared[name][attr]}")
     assert problems == [], "\n".join(problems)

@@ -4,7 +4,9 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,7 +25,18 @@ namespace pathpace {
 
 namespace detail {
 struct IntervalExtra;
-}
+
+/// How many callers read (solve, feasible_set, ...) and modify (add_*, set_*) one problem: the state of
+/// TimeScalingProblem::Use. A copy of a problem starts unused.
+struct UseCount {
+  UseCount() = default;
+  UseCount(const UseCount&) noexcept {}
+  UseCount& operator=(const UseCount&) noexcept { return *this; }
+  std::mutex mutex;
+  int readers = 0, writers = 0;
+  std::thread::id writer;  ///< the thread that modifies it (which may read it, and modify it again, meanwhile)
+};
+}  // namespace detail
 
 /// The settings of a problem beside its path, grid and constraints: what pickling stores and what
 /// restarted() carries over, both read through for_each, so that a setting added here reaches both.
@@ -49,8 +62,30 @@ struct ProblemSettings {
 ///
 /// Adding constraints mutates the problem; solve() and feasible_set() are const and keep their scratch
 /// space local, so one problem may be solved from several threads once it is built.
+///
+/// Threads: a problem is either read (any number of solve, feasible_set, relaxation, restarted at once)
+/// or modified (one add_* / set_* at a time), never both. A call that would overlap the other kind in
+/// another thread throws Error at once instead of waiting (a program that does this has a race it
+/// should know about): "add_contacts: this TimeScalingProblem is being solved in another thread; ...".
 class TimeScalingProblem {
  public:
+  /// Holds a problem for reading or modifying while it lives (see "Threads" above); every const method
+  /// that reads the rows takes Read and every add_* / set_* takes Write, so callers need it only to keep
+  /// a problem still across several calls (e.g. while copying constraints()). `what` names the caller
+  /// in the Error.
+  class Use {
+   public:
+    enum Kind { Read, Write };
+    Use(const TimeScalingProblem& problem, Kind kind, const char* what);
+    ~Use();
+    Use(const Use&) = delete;
+    Use& operator=(const Use&) = delete;
+
+   private:
+    detail::UseCount& count_;
+    Kind kind_;
+  };
+
   /// N uniform intervals over [s_begin, s_end] of the path (N >= 1).
   TimeScalingProblem(std::shared_ptr<const Path> path, int intervals);
   /// A strictly increasing grid; its ends must be the path's s_begin and s_end (to 1e-12 relative).
@@ -88,20 +123,25 @@ class TimeScalingProblem {
   /// merged into every phase. tau_min / tau_max as in ContactConstraint.
   ///
   /// Each phase must keep its contacts in place on its own stretch: check_contact_drift with
-  /// drift_tolerance (m) and `drift`, as add_contacts.
-  void add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
+  /// drift_tolerance (m) and `drift`, as add_contacts; returns the drifts it let through likewise.
+  std::vector<ContactDrift> add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
                           const ContactOptions& options = ContactOptions(), const Eigen::VectorXd& tau_min = Eigen::VectorXd(),
                           const Eigen::VectorXd& tau_max = Eigen::VectorXd(), double impact_tolerance = 1e-6,
                           double drift_tolerance = 1e-6, DriftPolicy drift = DriftPolicy::Auto);
   /// add_constraint for contacts, after checking that the path keeps them in place (check_contact_drift:
   /// an InvalidInput under DriftPolicy::Error, or Auto beyond 10 x drift_tolerance); a drift that is
   /// timed anyway is kept in contact_drift() and reported by every Result (Result::contact_drift).
-  void add_contacts(std::shared_ptr<const ContactConstraint> contacts, double drift_tolerance = 1e-6,
+  /// Returns the drifts this call let through (empty, or the one of these contacts): what a caller warns
+  /// about (the Python module as a UserWarning each).
+  std::vector<ContactDrift> add_contacts(std::shared_ptr<const ContactConstraint> contacts, double drift_tolerance = 1e-6,
                     DriftPolicy drift = DriftPolicy::Auto);
   /// The contacts that add_contacts / add_contact_phases let through although they move (DriftPolicy::Warn
   /// or Auto within 10x the tolerance); set_contact_drift restores them (pickling).
   const std::vector<ContactDrift>& contact_drift() const { return contact_drift_; }
-  void set_contact_drift(std::vector<ContactDrift> drift) { contact_drift_ = std::move(drift); }
+  void set_contact_drift(std::vector<ContactDrift> drift) {
+    const Use use(*this, Use::Write, "set_contact_drift");
+    contact_drift_ = std::move(drift);
+  }
 
   /// Names of the path's coordinates, used in the row labels and messages of the velocity and
   /// acceleration limits (those added before as well as after). Set automatically from the robot of the
@@ -187,6 +227,7 @@ class TimeScalingProblem {
   bool zero_sddot_begin_ = false, zero_sddot_end_ = false;
   std::vector<std::string> joint_names_;
   std::vector<ContactDrift> contact_drift_;
+  mutable detail::UseCount use_;
 };
 
 }  // namespace pathpace

@@ -85,6 +85,18 @@ class Trajectory {
   /// Uniform times 0, dt, 2dt, ..., with T appended if it is not a multiple of dt.
   Eigen::VectorXd sample_times(double dt) const;
 
+  /// t (m,) in s and q, q̇, q̈ (m, n) of sample() and sample_at().
+  struct Samples {
+    Eigen::VectorXd t;
+    Eigen::MatrixXd q, qd, qdd;
+  };
+  /// q, q̇, q̈ at the times t: of the exact timing (evaluate), or of time_spline() when `spline`.
+  Samples sample_at(Eigen::VectorXd t, bool spline = false) const;
+  /// sample_at(sample_times(dt), spline), refused before anything is allocated (InvalidInput saying how
+  /// many GB) when t, q, q̇, q̈ and the path's own p, p', p'' while evaluating would take more than
+  /// max_memory bytes (> 0): a dt meant in ms but given in s would otherwise fill the memory.
+  Samples sample(double dt, double max_memory = 1e9, bool spline = false) const;
+
  private:
   Eigen::Index interval(double t) const;
   // evaluate() that also hands back s(t), and contact_phase() from s: contact_forces needs both of one t.

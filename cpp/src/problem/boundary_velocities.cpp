@@ -41,6 +41,7 @@ double speed_from_velocity(const std::string& name, const Eigen::VectorXd& qd, c
 
 void TimeScalingProblem::set_boundary_velocities(const Eigen::VectorXd& qd_begin, const Eigen::VectorXd& qd_end,
                                                  double tolerance) {
+  const Use use(*this, Use::Write, "set_boundary_velocities");
   if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
     detail::fail("tolerance = " + detail::fmt(tolerance) + " must be >= 0 and finite");
   const PathSamples& ps = samples();

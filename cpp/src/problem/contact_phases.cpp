@@ -83,10 +83,11 @@ std::vector<std::string> no_impact_rows(const Path& path, const std::vector<std:
 
 }  // namespace
 
-void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
-                                            const ContactOptions& options, const Eigen::VectorXd& tau_min,
-                                            const Eigen::VectorXd& tau_max, double impact_tolerance,
-                                            double drift_tolerance, DriftPolicy drift) {
+std::vector<ContactDrift> TimeScalingProblem::add_contact_phases(
+    std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases, const ContactOptions& options,
+    const Eigen::VectorXd& tau_min, const Eigen::VectorXd& tau_max, double impact_tolerance, double drift_tolerance,
+    DriftPolicy drift) {
+  const Use use(*this, Use::Write, "add_contact_phases");
   if (!robot) detail::fail("robot must not be None");
   if (robot->nq() != samples_.dof())
     detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + robot->name() + "' has " +
@@ -191,16 +192,20 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
   }
   contact_drift_.insert(contact_drift_.end(), drifts.begin(), drifts.end());
   if (joint_names_.empty() && robot->nq() == samples_.dof()) set_joint_names(robot->joint_names());
+  return drifts;
 }
 
-void TimeScalingProblem::add_contacts(std::shared_ptr<const ContactConstraint> contacts, double drift_tolerance,
-                                      DriftPolicy drift) {
+std::vector<ContactDrift> TimeScalingProblem::add_contacts(std::shared_ptr<const ContactConstraint> contacts,
+                                                           double drift_tolerance, DriftPolicy drift) {
+  const Use use(*this, Use::Write, "add_contacts");
   if (!contacts) detail::fail("contacts must not be None");
   if (contacts->robot()->nq() != samples_.dof())
     detail::fail("path has " + std::to_string(samples_.dof()) + " coordinates, robot '" + contacts->robot()->name() +
                  "' has " + std::to_string(contacts->robot()->nq()) + " joints");
   std::optional<ContactDrift> d = check_contact_drift(*contacts, samples_, drift_tolerance, drift);
   add_constraint(std::move(contacts));
-  if (d) contact_drift_.push_back(std::move(*d));
+  if (!d) return {};
+  contact_drift_.push_back(*d);
+  return {std::move(*d)};
 }
 }  // namespace pathpace

@@ -35,6 +35,7 @@ bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const C
 
 std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, double rel_tolerance,
                                                              Guarantee guarantee) const {
+  const Use use(*this, Use::Read, "relaxation");
   if (!(max_scale > 1.0) || !std::isfinite(max_scale))
     detail::fail("max_scale = " + detail::fmt(max_scale) + " must be > 1 and finite");
   if (!(rel_tolerance > 0.0 && rel_tolerance < 1.0))

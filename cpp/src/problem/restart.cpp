@@ -11,6 +11,7 @@
 namespace pathpace {
 
 TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const {
+  const Use use(*this, Use::Read, "restarted");
   const Eigen::Index n = intervals();
   const double a = samples_.s[0], b = samples_.s[n];
   if (!std::isfinite(s0) || s0 < a || s0 >= b)

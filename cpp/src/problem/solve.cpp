@@ -122,6 +122,7 @@ Result report(const TimeScalingProblem& problem, const std::vector<ConstraintRow
 }  // namespace
 
 Result TimeScalingProblem::solve(const SolverOptions& options) const {
+  const Use use(*this, Use::Read, "solve");
   detail::validate(options);
   if (zero_sddot_begin_ && sdot_begin_ == 0.0)
     detail::fail("sddot = 0 at s_begin needs sdot_begin > 0: with sddot constant on each interval (eq. 24), a start "

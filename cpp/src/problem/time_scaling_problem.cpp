@@ -42,20 +42,24 @@ TimeScalingProblem::TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::
 }
 
 void TimeScalingProblem::add_velocity_limits(const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax) {
+  const Use use(*this, Use::Write, "add_velocity_limits");
   add_constraint(std::make_shared<VelocityLimits>(vmin, vmax, joint_names_));
 }
 
 void TimeScalingProblem::add_acceleration_limits(const Eigen::VectorXd& amin, const Eigen::VectorXd& amax) {
+  const Use use(*this, Use::Write, "add_acceleration_limits");
   add_constraint(std::make_shared<AccelerationLimits>(amin, amax, joint_names_));
 }
 
 void TimeScalingProblem::add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                                                const Eigen::MatrixXd& C, const Eigen::MatrixXd& lo,
                                                const Eigen::MatrixXd& hi, const std::string& label) {
+  const Use use(*this, Use::Write, "add_linear_constraint");
   add_constraint(std::make_shared<LinearConstraint>(A, B, C, lo, hi, label));
 }
 
 void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constraint) {
+  const Use use(*this, Use::Write, "add_constraint");
   if (!constraint) detail::fail("constraint must not be None");
   // A constraint that can hold another's limits in its projection takes them (Constraint::can_absorb: a
   // contact constraint its robot's torque limits, eq. 17-18). Both limits hold; the merged constraint
@@ -123,6 +127,7 @@ void TimeScalingProblem::check_rows(const Constraint& constraint, const Constrai
 }
 
 void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
+  const Use use(*this, Use::Write, "set_joint_names");
   if (static_cast<Eigen::Index>(names.size()) != samples_.dof())
     detail::fail("joint_names has " + std::to_string(names.size()) + " entries, the path has " +
                  std::to_string(samples_.dof()) + " coordinates");
@@ -142,6 +147,7 @@ void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
 }
 
 void TimeScalingProblem::set_boundary_speeds(double sdot_begin, double sdot_end) {
+  const Use use(*this, Use::Write, "set_boundary_speeds");
   if (!std::isfinite(sdot_begin) || sdot_begin < 0.0)
     detail::fail("sdot_begin = " + detail::fmt(sdot_begin) + " must be >= 0 and finite");
   if (!std::isfinite(sdot_end) || sdot_end < 0.0)
@@ -151,6 +157,7 @@ void TimeScalingProblem::set_boundary_speeds(double sdot_begin, double sdot_end)
 }
 
 FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
+  const Use use(*this, Use::Read, "feasible_set");
   if (k < 0 || k >= samples_.size())
     detail::fail("k = " + std::to_string(k) + " must be in [0, " + std::to_string(samples_.size() - 1) + "]");
   detail::Polygon2d polygon;
@@ -195,6 +202,7 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
 }
 
 void TimeScalingProblem::set_zero_boundary_accelerations(bool at_begin, bool at_end) {
+  const Use use(*this, Use::Write, "set_zero_boundary_accelerations");
   zero_sddot_begin_ = at_begin;
   zero_sddot_end_ = at_end;
 }
@@ -231,6 +239,7 @@ ProblemSettings TimeScalingProblem::settings() const {
 }
 
 void TimeScalingProblem::set_settings(const ProblemSettings& s) {
+  const Use use(*this, Use::Write, "set_settings");
   set_boundary_speeds(s.sdot_begin, s.sdot_end);
   set_zero_boundary_accelerations(s.zero_sddot_begin, s.zero_sddot_end);
   if (!s.joint_names.empty()) set_joint_names(s.joint_names);

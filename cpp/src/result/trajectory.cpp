@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "base/gather_rows.hpp"
 #include "base/validate.hpp"
@@ -189,6 +190,34 @@ Eigen::VectorXd Trajectory::sample_times(double dt) const {
   for (Eigen::Index i = 0; i < m; ++i) t[i] = static_cast<double>(i) * dt;
   if (append) t[m] = T;
   return t;
+}
+
+Trajectory::Samples Trajectory::sample_at(Eigen::VectorXd t, bool spline) const {
+  Samples out;
+  if (spline)
+    time_spline().evaluate(t, out.q, out.qd, out.qdd);
+  else
+    evaluate(t, out.q, out.qd, out.qdd);
+  out.t = std::move(t);
+  return out;
+}
+
+Trajectory::Samples Trajectory::sample(double dt, double max_memory, bool spline) const {
+  if (!(max_memory > 0.0)) detail::fail("max_memory = " + std::to_string(max_memory) + " must be > 0 (bytes)");
+  if (dt > 0.0 && std::isfinite(dt)) {
+    // t, q, qd and qdd as doubles, plus the path's own p, p', p'' while evaluating.
+    const double samples = std::floor(duration() / dt) + 2.0;
+    const double bytes = samples * (1.0 + 6.0 * path_->dof()) * 8.0;
+    if (bytes > max_memory) {
+      char msg[320];
+      std::snprintf(msg, sizeof msg,
+                    "dt = %g gives %.3g samples of a %d-coordinate trajectory of duration %g: about %.3g GB, more "
+                    "than max_memory = %.3g GB; use a larger dt or raise max_memory",
+                    dt, samples, path_->dof(), duration(), bytes / 1e9, max_memory / 1e9);
+      detail::fail(msg);
+    }
+  }
+  return sample_at(sample_times(dt), spline);
 }
 
 }  // namespace pathpace
