@@ -16,7 +16,6 @@
 
 #include <Eigen/Core>
 
-#include "lp/dense_simplex.hpp"
 #include "lp/glpk_guard.hpp"
 #include "geometry/polygon2d.hpp"
 #include "pathpace/constraints/constraint.hpp"
@@ -63,8 +62,6 @@ struct Projection {
   LpCounts by_cause;
   int ranged_certificates = 0;  ///< edges certified by an endpoint's ranging instead of an LP
   int approximate_edges = 0;    ///< edges final by `approximation` (no LP; binding unknown)
-  int dense_solves = 0;         ///< LPs solved (and certified) by the dense simplex, not GLPK
-  int dense_fallbacks = 0;      ///< LPs the dense simplex gave up on (then solved by GLPK)
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
@@ -110,6 +107,7 @@ class PolytopeProjector {
   };
   std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
   struct Ranging;
+  class Run;
   std::vector<int> tab_ind_;  // glp_eval_tab_row scratch
   std::vector<double> tab_val_;
   std::vector<double> tab_x_, tab_u_;  // the tableau rows of x and u, over every variable (1-based)
@@ -117,13 +115,6 @@ class PolytopeProjector {
   /// Certify an edge without its LP when an endpoint's optimal basis is also optimal along the edge's
   /// normal (see Ranging in the .cpp). On by default; off for tests that compare both.
   bool ranging = true;
-  /// Solve the LPs after a grid point's first with the dense simplex (GLPK the fallback). Off by
-  /// default: on the corpus of test_projection_corpus.py one grid point of a Talos wall with 32-edge
-  /// cones came out 2e-6 of its size outside the exact shadow (cause not found yet).
-  bool dense = false;
-
- private:
-  DenseSimplex dense_;
 };
 
 /// One polytope, from a cold start.
