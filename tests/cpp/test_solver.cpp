@@ -325,5 +325,5 @@ TEST(Solver, RestartKeepsEverySettingAndALinearConstraintsRows) {
   EXPECT_NEAR(t.sddot[N - k - 1], 0.0, 1e-12);  // s̈ = 0 on the last interval, from θ_N = θ_{N-1}
   EXPECT_EQ(error_of([&] { prob.restarted(0.34, 0.1); }),
             "restarted: s0 = 0.34 is not a grid point (nearest: grid[10] = 0.333333333333) and constraint 'user' is given "
-            "per grid point (LinearConstraint): restart at a grid point");
+            "per grid point (no value between grid points): restart at a grid point");
 }

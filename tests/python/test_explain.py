@@ -251,7 +251,7 @@ def test_restart_off_the_grid_with_a_linear_constraint_names_the_restart():
     s0 = 0.5 * (prob.grid[10] + prob.grid[11]) + 1e-4
     with pytest.raises(pp.InvalidInputError,
                        match=r"^restarted: s0 = 0.1751 is not a grid point \(nearest: grid\[11\] = 0.183333333333\) and "
-                             r"constraint 'user' is given per grid point \(LinearConstraint\): restart at a grid point$"):
+                             r"constraint 'user' is given per grid point \(no value between grid points\): restart at a grid point$"):
         prob.restarted(s0, 0.1)
 
 

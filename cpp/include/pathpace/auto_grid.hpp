@@ -16,8 +16,8 @@ namespace pathpace {
 /// largest range of a coordinate of p, the largest |p'_j|, the largest |p''_j|). Deviation from the chord
 /// is what the grid cannot see, so the limits' excursions between grid points and the discretisation
 /// error of T shrink with it (both O(Δs²) for smooth pieces). The excursions also depend on the speed
-/// profile: relative velocity/acceleration excursions of 4-13x the tolerance were measured on random
-/// splines. For limits that hold between grid points by construction, see solve's guarantee option.
+/// profile, so the tolerance bounds the geometry, not the limits' excursions (bench/README.md has them
+/// measured). For limits that hold between grid points by construction, see solve's guarantee option.
 ///
 /// Starts from `min_intervals` uniform intervals plus the breakpoints of a PiecewisePolynomialPath (so
 /// no interval straddles a kink of p''), and halves every interval that fails, until none fails.

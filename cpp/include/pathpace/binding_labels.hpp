@@ -9,8 +9,8 @@
 namespace pathpace {
 
 /// Per interval k (N entries), the label of the constraint that binds on it, "" if none. Kept as one id per
-/// interval into a table of labels shared by the intervals: a solve builds no string per interval (at N = 1000
-/// the strings were ~3 % of a solve). Indexing gives the label; strings() all of them.
+/// interval into a table of labels shared by the intervals: a solve builds no string per interval (strings
+/// cost a visible part of a fast solve). Indexing gives the label; strings() all of them.
 class BindingLabels {
  public:
   BindingLabels() = default;

@@ -77,4 +77,8 @@ std::shared_ptr<const Constraint> AccelerationLimits::relaxed(double scale) cons
   return std::make_shared<AccelerationLimits>(lo, hi, joint_names_);
 }
 
+std::shared_ptr<const Constraint> AccelerationLimits::with_joint_names(const std::vector<std::string>& names) const {
+  return joint_names_.empty() ? std::make_shared<AccelerationLimits>(amin_, amax_, names) : nullptr;
+}
+
 }  // namespace pathpace

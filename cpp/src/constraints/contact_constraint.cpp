@@ -12,6 +12,8 @@
 #include "base/gather_rows.hpp"
 #include "lp/projection.hpp"
 #include "base/validate.hpp"
+#include "pathpace/constraints/torque_limits.hpp"
+#include "pathpace/result.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/robot_workspace.hpp"
 
@@ -733,6 +735,28 @@ std::shared_ptr<const Constraint> ContactConstraint::relaxed(const std::string& 
     return nullptr;
   }
   return std::make_shared<ContactConstraint>(robot_, std::move(contacts), o, std::move(lo), std::move(hi));
+}
+
+bool ContactConstraint::can_absorb(const Constraint& other) const {
+  const auto* torque = dynamic_cast<const TorqueLimits*>(&other);
+  return torque && torque->robot() == robot_;
+}
+
+std::shared_ptr<const Constraint> ContactConstraint::absorb(const Constraint& other) const {
+  const auto& torque = dynamic_cast<const TorqueLimits&>(other);
+  return with_torque_limits(torque.tau_min(), torque.tau_max());
+}
+
+void ContactConstraint::report(Result& result, int& torque_rank) const {
+  result.robot = robot_;
+  result.contacts = shared_from_this();
+  if (torque_rank <= 1) {
+    result.tau_min = tau_min_;
+    result.tau_max = tau_max_;
+    torque_rank = 1;
+  }
+  if (std::isfinite(options_.active_begin) || std::isfinite(options_.active_end))
+    result.contact_phases.push_back(shared_from_this());
 }
 
 }  // namespace pathpace

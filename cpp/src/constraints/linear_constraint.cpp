@@ -59,4 +59,13 @@ ConstraintRows LinearConstraint::evaluate(const PathSamples& samples) const {
   return rows;
 }
 
+std::shared_ptr<const Constraint> LinearConstraint::at_grid_points(const std::vector<Eigen::Index>& kept) const {
+  const auto pick = [&kept](const Eigen::MatrixXd& m) {
+    Eigen::MatrixXd out(static_cast<Eigen::Index>(kept.size()), m.cols());
+    for (size_t i = 0; i < kept.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = m.row(kept[i]);
+    return out;
+  };
+  return std::make_shared<LinearConstraint>(pick(A_), pick(B_), pick(C_), pick(lo_), pick(hi_), label_);
+}
+
 }  // namespace pathpace

@@ -4,6 +4,7 @@
 
 #include "robot/torque_lanes.hpp"
 #include "base/validate.hpp"
+#include "pathpace/result.hpp"
 #include "pathpace/robot_workspace.hpp"
 
 namespace pathpace {
@@ -59,6 +60,13 @@ std::shared_ptr<const Constraint> TorqueLimits::relaxed(double scale) const {
     hi[j] = widen_upper(hi[j], scale);
   }
   return std::make_shared<TorqueLimits>(robot_, lo, hi);
+}
+
+void TorqueLimits::report(Result& result, int& torque_rank) const {
+  result.robot = robot_;
+  result.tau_min = tau_min_;
+  result.tau_max = tau_max_;
+  torque_rank = 2;
 }
 
 }  // namespace pathpace

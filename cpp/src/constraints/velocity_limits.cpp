@@ -63,4 +63,8 @@ std::shared_ptr<const Constraint> VelocityLimits::relaxed(double scale) const {
   return std::make_shared<VelocityLimits>(vmin_ * scale, vmax_ * scale, joint_names_);
 }
 
+std::shared_ptr<const Constraint> VelocityLimits::with_joint_names(const std::vector<std::string>& names) const {
+  return joint_names_.empty() ? std::make_shared<VelocityLimits>(vmin_, vmax_, names) : nullptr;
+}
+
 }  // namespace pathpace

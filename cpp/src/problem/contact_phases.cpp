@@ -12,8 +12,6 @@
 #include "base/validate.hpp"
 #include "problem/sampling.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
-#include "pathpace/constraints/linear_constraint.hpp"
-#include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 
 namespace pathpace {
@@ -78,7 +76,7 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
       continue;
     }
     for (size_t c = 0; c < constraints_.size(); ++c)
-      if (std::dynamic_pointer_cast<const LinearConstraint>(constraints_[c]))
+      if (constraints_[c]->per_grid_point())
         detail::fail(name(i, "s_begin") + " = " + detail::fmt(sw) + " is not a grid point (nearest: grid[" +
                      std::to_string(k) + "] = " + detail::fmt(g[k]) + ") and the problem has a constraint given per grid "
                      "point ('" + constraints_[c]->name() + "') that cannot be evaluated on a new grid: add the contact "
@@ -88,16 +86,10 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     edge[i] = sw;
     inserted = true;
   }
-  // TorqueLimits of this robot join every phase (as add_constraint merges them into one contact constraint).
+  // What a phase can absorb (its robot's torque limits) joins every phase, as add_constraint merges it.
   std::vector<size_t> replaced;
-  Eigen::VectorXd lo = Eigen::VectorXd::Constant(robot->nq(), -std::numeric_limits<double>::infinity());
-  Eigen::VectorXd hi = -lo;
   for (size_t c = 0; c < constraints_.size(); ++c)
-    if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_[c]); t && t->robot() == robot) {
-      lo = lo.cwiseMax(t->tau_min());
-      hi = hi.cwiseMin(t->tau_max());
-      replaced.push_back(c);
-    }
+    if (probe[0]->can_absorb(*constraints_[c])) replaced.push_back(c);
   // A switch inserted: the path and every constraint that stays on the new grid, checked as add_constraint
   // checks them (a user's own Constraint may hand back anything there); kept apart until the commit below.
   // Without one the problem's samples and rows serve as they are.
@@ -159,10 +151,11 @@ void TimeScalingProblem::add_contact_phases(std::shared_ptr<const RobotModel> ro
     std::shared_ptr<const ContactConstraint> c = std::make_shared<ContactConstraint>(robot, phases[i].contacts, o, tau_min, tau_max);
     // Each phase keeps its own contacts in place on its own stretch (checked before its projection).
     if (auto d = check_contact_drift(*c, samples, drift_tolerance, drift)) drifts.push_back(std::move(*d));
-    if (!replaced.empty()) c = c->with_torque_limits(lo, hi);
-    added_rows.push_back(detail::timed_evaluate(*c, samples));
-    check_rows(*c, added_rows.back(), samples.size());
-    added.push_back(std::move(c));
+    std::shared_ptr<const Constraint> phase = c;
+    for (size_t r : replaced) phase = phase->absorb(*constraints_[r]);
+    added_rows.push_back(detail::timed_evaluate(*phase, samples));
+    check_rows(*phase, added_rows.back(), samples.size());
+    added.push_back(std::move(phase));
   }
   // Commit: nothing above changed the problem.
   if (inserted) {

@@ -6,24 +6,9 @@
 
 #include "paths/sub_path.hpp"
 #include "base/validate.hpp"
-#include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 
 namespace pathpace {
-
-namespace {
-
-// A LinearConstraint's rows at the grid indices `kept` (the points a restart keeps).
-std::shared_ptr<const Constraint> restricted_rows(const LinearConstraint& c, const std::vector<Eigen::Index>& kept) {
-  const auto pick = [&kept](const Eigen::MatrixXd& m) {
-    Eigen::MatrixXd out(static_cast<Eigen::Index>(kept.size()), m.cols());
-    for (size_t i = 0; i < kept.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = m.row(kept[i]);
-    return out;
-  };
-  return std::make_shared<LinearConstraint>(pick(c.A()), pick(c.B()), pick(c.C()), pick(c.lo()), pick(c.hi()), c.label());
-}
-
-}  // namespace
 
 TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const {
   const Eigen::Index n = intervals();
@@ -50,8 +35,7 @@ TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const 
   else tail = std::make_shared<detail::SubPath>(path_, s0);
   TimeScalingProblem p(std::move(tail), Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())));
   for (const auto& c : constraints_) {
-    auto linear = std::dynamic_pointer_cast<const LinearConstraint>(c);
-    if (!linear) {
+    if (!c->per_grid_point()) {
       p.add_constraint(c);
       continue;
     }
@@ -60,9 +44,9 @@ TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const 
       const Eigen::Index near = k0 < n && samples_.s[k0 + 1] - s0 < s0 - samples_.s[k0] ? k0 + 1 : k0;
       detail::fail("restarted: s0 = " + detail::fmt(s0) + " is not a grid point (nearest: grid[" + std::to_string(near) +
                    "] = " + detail::fmt(samples_.s[near]) + ") and constraint '" + c->name() +
-                   "' is given per grid point (LinearConstraint): restart at a grid point");
+                   "' is given per grid point (no value between grid points): restart at a grid point");
     }
-    p.add_constraint(restricted_rows(*linear, kept));
+    p.add_constraint(c->at_grid_points(kept));
   }
   ProblemSettings s = settings();
   s.sdot_begin = sdot0;

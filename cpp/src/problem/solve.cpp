@@ -16,7 +16,6 @@
 #include "base/validate.hpp"
 #include "problem/sampling.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
-#include "pathpace/constraints/torque_limits.hpp"
 
 namespace pathpace {
 
@@ -26,19 +25,19 @@ namespace {
 // it is reported, one LP on the full (ṡ², s̈, τ, f) polytope at the binding grid point, with every other
 // constraint's half-planes there, re-checks it; the message says whether the rest state (0, 0) is
 // feasible there. A point whose polygon is empty but whose full LP is not is a projection failure.
-void recheck_contacts(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows, Eigen::Index k,
-                      bool point_empty, const std::shared_ptr<const ContactConstraint>& contacts, Result& res) {
+void recheck_projection(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows, Eigen::Index k,
+                        bool point_empty, const Constraint& projected, Result& res) {
   Eigen::Matrix<double, Eigen::Dynamic, 3> extra(0, 3);
   for (size_t i = 0; i < rows.size(); ++i) {
     const ConstraintRows& cr = rows[i];
-    if (problem.constraints()[i] == contacts) continue;
+    if (problem.constraints()[i].get() == &projected) continue;
     for (Eigen::Index j = 0; j < cr.rows(); ++j)
       if (std::isfinite(cr.c(k, j))) {
         extra.conservativeResize(extra.rows() + 1, 3);
         extra.row(extra.rows() - 1) << cr.a(k, j), cr.b(k, j), cr.c(k, j);
       }
   }
-  const ContactConstraint::PointCheck check = contacts->check_point(problem.samples(), k, extra);
+  const PointCheck check = projected.check_point(problem.samples(), k, extra);
   auto word = [](int v, const char* yes, const char* no) { return v > 0 ? yes : v == 0 ? no : "unknown (LP failed)"; };
   if (point_empty && check.feasible > 0) {
     res.status = Status::NumericalError;
@@ -154,25 +153,8 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   Result res;
   res.path = path_;
   res.contact_drift = contact_drift_;
-  bool own_torque_limits = false;  // a TorqueLimits' limits are the ones shown, else a contact constraint's
-  for (const auto& c : constraints_) {
-    if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(c)) {
-      res.robot = torque->robot();
-      res.tau_min = torque->tau_min();
-      res.tau_max = torque->tau_max();
-      own_torque_limits = true;
-    }
-    if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
-      res.robot = contact->robot();
-      res.contacts = contact;
-      if (!own_torque_limits) {
-        res.tau_min = contact->tau_min();
-        res.tau_max = contact->tau_max();
-      }
-      if (std::isfinite(contact->options().active_begin) || std::isfinite(contact->options().active_end))
-        res.contact_phases.push_back(contact);
-    }
-  }
+  int torque_rank = 0;  // Constraint::report: a problem's own torque limits are shown over a contact's copy
+  for (const auto& c : constraints_) c->report(res, torque_rank);
   std::stable_sort(res.contact_phases.begin(), res.contact_phases.end(), [](const auto& x, const auto& y) {
     return x->options().active_begin < y->options().active_begin;
   });
@@ -182,7 +164,7 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
   for (size_t i = 0; i < rows_.size(); ++i) {
     res.stats.time_constraints += rows_[i].seconds;
     res.stats.inexact_points += static_cast<int>(rows_[i].inexact_points.size());
-    if (std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i])) {
+    if (constraints_[i]->projected()) {
       res.stats.time_projection += rows_[i].seconds;
       res.stats.projection_lp_solves += rows_[i].lp_solves;
       const LpCounts& by = rows_[i].lp_by_cause;
@@ -218,16 +200,14 @@ Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constra
       os << "; " << describe_relaxation(res.relaxation);
     }
     res.message = os.str();
-    if (st == Status::Infeasible && res.contacts) {
-      // With contact phases: the phase that holds at k (the first of two at a switch; the other's rows
-      // enter the check as half-planes).
-      std::shared_ptr<const ContactConstraint> at_k;
+    if (st == Status::Infeasible) {
+      // A projected constraint (contacts) is re-checked on its full polytope; with contact phases, the phase
+      // that holds at k (the first of two at a switch; the other's rows enter the check as half-planes).
       for (const auto& c : constraints_)
-        if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c); contact && contact->active_at(samples_.s[k])) {
-          at_k = contact;
+        if (c->projected() && c->active_at(samples_.s[k])) {
+          recheck_projection(*this, rows_, k, sets.points[static_cast<size_t>(k)].empty, *c, res);
           break;
         }
-      if (at_k) recheck_contacts(*this, rows_, k, sets.points[static_cast<size_t>(k)].empty, at_k, res);
     }
     return res;
   };

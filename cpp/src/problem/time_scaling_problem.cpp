@@ -9,12 +9,10 @@
 #include "solve/grid_sets.hpp"
 #include "solve/reachability.hpp"
 #include "base/validate.hpp"
-#include "problem/sampling.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
-#include "pathpace/constraints/contact_constraint.hpp"
-#include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
+#include "problem/sampling.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 
 namespace pathpace {
@@ -59,43 +57,36 @@ void TimeScalingProblem::add_linear_constraint(const Eigen::MatrixXd& A, const E
 
 void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constraint) {
   if (!constraint) detail::fail("constraint must not be None");
-  // Torque limits and contacts of one robot are one projection (eq. 17-18): alone, the torque limits
-  // would demand τ = 0 of an unactuated floating base that only contact forces can hold. Both limits
-  // hold; the merged constraint replaces the ones it absorbs (once it has evaluated without error).
+  // A constraint that can hold another's limits in its projection takes them (Constraint::can_absorb: a
+  // contact constraint its robot's torque limits, eq. 17-18). Both limits hold; the merged constraint
+  // replaces the ones it absorbs (once it has evaluated without error).
+  std::vector<size_t> takers;
+  for (size_t i = 0; i < constraints_.size(); ++i)
+    if (constraints_[i]->can_absorb(*constraint)) takers.push_back(i);
   std::vector<size_t> replaced;
-  if (auto torque = std::dynamic_pointer_cast<const TorqueLimits>(constraint)) {
-    std::vector<size_t> phases;
-    for (size_t i = 0; i < constraints_.size(); ++i)
-      if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
-          contact && contact->robot() == torque->robot())
-        phases.push_back(i);
-    if (phases.size() >= 2) {
-      // Contact phases (add_contact_phases): the torque limits join every phase, each in its place.
-      std::vector<std::shared_ptr<const Constraint>> merged;
-      std::vector<ConstraintRows> merged_rows;
-      for (size_t i : phases) {
-        auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[i]);
-        merged.push_back(contact->with_torque_limits(torque->tau_min(), torque->tau_max()));
-        merged_rows.push_back(detail::timed_evaluate(*merged.back(), samples_));
-      }
-      for (size_t j = 0; j < phases.size(); ++j) {
-        constraints_[phases[j]] = std::move(merged[j]);
-        rows_[phases[j]] = std::move(merged_rows[j]);
-      }
-      return;
+  if (takers.size() >= 2) {
+    // Contact phases (add_contact_phases): the new limits join every phase, each in its place.
+    std::vector<std::shared_ptr<const Constraint>> merged;
+    std::vector<ConstraintRows> merged_rows;
+    for (size_t i : takers) {
+      merged.push_back(constraints_[i]->absorb(*constraint));
+      merged_rows.push_back(detail::timed_evaluate(*merged.back(), samples_));
     }
-    if (!phases.empty()) {
-      auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints_[phases[0]]);
-      constraint = contact->with_torque_limits(torque->tau_min(), torque->tau_max());
-      replaced.push_back(phases[0]);
+    for (size_t j = 0; j < takers.size(); ++j) {
+      constraints_[takers[j]] = std::move(merged[j]);
+      rows_[takers[j]] = std::move(merged_rows[j]);
     }
-  } else if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraint)) {
+    return;
+  }
+  if (takers.size() == 1) {
+    constraint = constraints_[takers[0]]->absorb(*constraint);
+    replaced.push_back(takers[0]);
+  } else {
     for (size_t i = 0; i < constraints_.size(); ++i)
-      if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_[i]); t && t->robot() == contact->robot()) {
-        contact = contact->with_torque_limits(t->tau_min(), t->tau_max());
+      if (constraint->can_absorb(*constraints_[i])) {
+        constraint = constraint->absorb(*constraints_[i]);
         replaced.push_back(i);
       }
-    constraint = contact;
   }
   ConstraintRows rows = detail::timed_evaluate(*constraint, samples_);
   check_rows(*constraint, rows, samples_.size());
@@ -106,9 +97,7 @@ void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constr
   constraints_.push_back(std::move(constraint));
   rows_.push_back(std::move(rows));
   if (joint_names_.empty()) {
-    std::shared_ptr<const RobotModel> robot;
-    if (auto t = std::dynamic_pointer_cast<const TorqueLimits>(constraints_.back())) robot = t->robot();
-    if (auto c = std::dynamic_pointer_cast<const ContactConstraint>(constraints_.back())) robot = c->robot();
+    const std::shared_ptr<const RobotModel> robot = constraints_.back()->robot();
     if (robot && robot->nq() == samples_.dof()) set_joint_names(robot->joint_names());
   }
 }
@@ -140,11 +129,7 @@ void TimeScalingProblem::set_joint_names(std::vector<std::string> names) {
   joint_names_ = std::move(names);
   // Limits added before the names were known take them now (labels and messages name the joint).
   for (size_t i = 0; i < constraints_.size(); ++i) {
-    std::shared_ptr<const Constraint> named;
-    if (auto v = std::dynamic_pointer_cast<const VelocityLimits>(constraints_[i]); v && v->joint_names().empty())
-      named = std::make_shared<VelocityLimits>(v->vmin(), v->vmax(), joint_names_);
-    else if (auto a = std::dynamic_pointer_cast<const AccelerationLimits>(constraints_[i]); a && a->joint_names().empty())
-      named = std::make_shared<AccelerationLimits>(a->amin(), a->amax(), joint_names_);
+    std::shared_ptr<const Constraint> named = constraints_[i]->with_joint_names(joint_names_);
     if (!named) continue;
     // Only the labels change (the rows do not depend on the names): they come from an evaluation at no
     // grid point, instead of evaluating every point again.

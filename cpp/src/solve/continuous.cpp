@@ -8,9 +8,6 @@
 
 #include "geometry/interval_bounds.hpp"
 #include "base/validate.hpp"
-#include "pathpace/constraints/acceleration_limits.hpp"
-#include "pathpace/constraints/contact_constraint.hpp"
-#include "pathpace/constraints/velocity_limits.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 
 namespace pathpace::detail {
@@ -31,8 +28,7 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   const Eigen::Index N = samples.size() - 1, n = samples.dof();
   extra.rows.resize(static_cast<size_t>(N));
   bool any = false;
-  for (const auto& c : constraints)
-    any = any || std::dynamic_pointer_cast<const VelocityLimits>(c) || std::dynamic_pointer_cast<const AccelerationLimits>(c);
+  for (const auto& c : constraints) any = any || c->joint_rate_limits().order != 0;
   if (!any) return;
   const auto* pp = dynamic_cast<const PiecewisePolynomialPath*>(&path);
   if (!pp)
@@ -43,20 +39,21 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   const size_t own = rows.size();  // rows[i] are constraints[i]'s grid rows (for their labels)
   for (size_t ci = 0; ci < constraints.size(); ++ci) {
     const std::shared_ptr<const Constraint>& c = constraints[ci];
-    if (auto vl = std::dynamic_pointer_cast<const VelocityLimits>(c)) {
+    const JointRateLimits limits = c->joint_rate_limits();
+    if (limits.order == 1) {
       // One bound per grid point for all joints (each joint's own would do too, but the polygon keeps only
       // the smallest bound on x alone anyway).
       ConstraintRows cr;
       cr.resize(samples.size(), 1);
       cr.labels[0] = "velocity (between grid points)";
-      const Eigen::VectorXd bound = continuous_speed_bounds(*pp, samples.s, ir, samples.dq, vl->vmin(), vl->vmax());
+      const Eigen::VectorXd bound = continuous_speed_bounds(*pp, samples.s, ir, samples.dq, limits.lo, limits.hi);
       for (Eigen::Index k = 0; k <= N; ++k)
         if (bound[k] < inf) {
           cr.a(k, 0) = 1.0;
           cr.c(k, 0) = bound[k];
         }
       rows.push_back(std::move(cr));
-    } else if (auto al = std::dynamic_pointer_cast<const AccelerationLimits>(c)) {
+    } else if (limits.order == 2) {
       const int id0 = total_rows(rows);
       ConstraintRows cr;  // labels only: its rows are inactive at the grid points, they act on intervals
       cr.resize(samples.size(), 2 * n);
@@ -71,8 +68,8 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
         auto& out = extra.rows[static_cast<size_t>(k)];
         for (size_t i = ir.offset[static_cast<size_t>(k)]; i < ir.offset[static_cast<size_t>(k) + 1]; ++i) {
           const int j = ir.joint[i];
-          if (std::isfinite(al->amax()[j])) out.push_back({ir.A[i], ir.B[i], al->amax()[j], id0 + 2 * j});
-          if (std::isfinite(al->amin()[j])) out.push_back({-ir.A[i], -ir.B[i], -al->amin()[j], id0 + 2 * j + 1});
+          if (std::isfinite(limits.hi[j])) out.push_back({ir.A[i], ir.B[i], limits.hi[j], id0 + 2 * j});
+          if (std::isfinite(limits.lo[j])) out.push_back({-ir.A[i], -ir.B[i], -limits.lo[j], id0 + 2 * j + 1});
         }
       }
     }
@@ -135,9 +132,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<size_t> which;
   for (size_t i = 0; i < constraints.size(); ++i)
-    if (!std::dynamic_pointer_cast<const VelocityLimits>(constraints[i]) &&
-        !std::dynamic_pointer_cast<const AccelerationLimits>(constraints[i]))
-      which.push_back(i);
+    if (constraints[i]->joint_rate_limits().order == 0) which.push_back(i);
   if (which.empty() || points < 1) return audit;
   // Coarse pass at Chebyshev points of each interval: dense near the ends, where a row that is tight at
   // the grid point with a slope into the interval peaks.
@@ -191,12 +186,12 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
   // earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
   // slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
   // slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
-  auto contact_samples = [&](const ContactConstraint& cc, size_t ci, int pts, const std::vector<Eigen::Index>& kk,
+  auto contact_samples = [&](const Constraint& cc, size_t ci, int pts, const std::vector<Eigen::Index>& kk,
                              const std::vector<double>& ll, const std::vector<size_t>& first,
                              const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
     auto& memo = memory.slices[ci];
     if (memo.size() != static_cast<size_t>(N * pts)) memo.assign(static_cast<size_t>(N * pts), {});
-    const double cap = cc.options().cap;
+    const double cap = cc.projection_cap();
     f.assign(kk.size(), nan);
     std::vector<Eigen::Index> bk;
     std::vector<double> bl, bu;
@@ -256,7 +251,7 @@ Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::Vec
     }
   };
   for (size_t ci : which) {
-    const auto contact = std::dynamic_pointer_cast<const ContactConstraint>(constraints[ci]);
+    const Constraint* contact = constraints[ci]->projected() ? constraints[ci].get() : nullptr;
     // The violation at (interval ks[i], λ ls[i]) under θ. A contact constraint is asked only whether the
     // timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, no
     // projection); its violation is x's relative distance beyond the slice. Any other constraint gives

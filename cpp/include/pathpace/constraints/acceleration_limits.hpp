@@ -26,6 +26,11 @@ class AccelerationLimits : public Constraint {
   /// [amin, amax] widened by `scale` about zero (Constraint::relaxed).
   std::shared_ptr<const Constraint> relaxed(double scale) const override;
 
+  /// These limits with `names`, if they have none (Constraint::with_joint_names).
+  std::shared_ptr<const Constraint> with_joint_names(const std::vector<std::string>& names) const override;
+  /// Order 2: q̈ within [amin, amax] between grid points too (Constraint::joint_rate_limits).
+  JointRateLimits joint_rate_limits() const override { return {2, amin_, amax_}; }
+
   const Eigen::VectorXd& amin() const { return amin_; }
   const Eigen::VectorXd& amax() const { return amax_; }
   const std::vector<std::string>& joint_names() const { return joint_names_; }

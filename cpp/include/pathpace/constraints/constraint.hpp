@@ -14,6 +14,9 @@
 
 namespace pathpace {
 
+class RobotModel;
+struct Result;
+
 /// LPs of contact projections (sec. IV.C) by cause: the initial directions (a triangle), edge LPs that
 /// found a new vertex (or failed), edge LPs that certified an edge, feasibility LPs that grew the stand-in
 /// bounds, and every LP of a grid point projected once more from a cold start.
@@ -43,7 +46,7 @@ struct ConstraintRows {
   std::vector<Eigen::Index> inexact_points;
   /// True when no entry can be bad by construction (a and b finite, c a number or +inf), as in the
   /// library's velocity and acceleration limits, built from finite samples and validated limits: the
-  /// problem then skips its scan of the entries (~1.5 % of a solve at N = 1000). A constraint of your own
+  /// problem then skips its scan of the entries (a cost on the order of the rows' own). A constraint of your own
   /// leaves it false, and its rows are checked; one that edits the rows another's evaluate() returned
   /// (a subclass of VelocityLimits, say) must set it false again.
   bool valid_by_construction = false;
@@ -67,8 +70,29 @@ struct ConstraintRows {
   Eigen::Index rows() const { return a.cols(); }
 };
 
+/// Joint limits that a constraint bounds between grid points by construction under guarantee = continuous
+/// (docs/method.md): order 1 bounds q̇ = p' ṡ, order 2 bounds q̈ = p' s̈ + p'' ṡ², both per joint in [lo, hi];
+/// order 0 (none) leaves the constraint to the audit, which samples its rows between grid points.
+struct JointRateLimits {
+  int order = 0;
+  Eigen::VectorXd lo, hi;
+};
+
+/// An exact check of one grid point on a constraint's full polytope (Constraint::check_point): feasible and
+/// rest_feasible ((x, u) = (0, 0)) are 1 yes, 0 no (confirmed in exact arithmetic), -1 unknown (the solver
+/// failed, or the constraint has no such check).
+struct PointCheck {
+  int feasible = -1;
+  int rest_feasible = -1;
+};
+
 /// Interface of every constraint. Implementations are immutable after construction, so one instance
 /// can serve several problems and threads; evaluate() keeps its scratch space local.
+///
+/// Besides its rows, a constraint tells the problem what the problem needs to know of it through the hooks
+/// below (merging, renaming, grid changes, the continuous guarantee, what a Result shows). Their defaults fit
+/// a constraint whose rows are a function of the path at s alone, which is all a new family has to be; the
+/// problem never asks for a concrete type (docs/architecture.md: where a new constraint family goes).
 class Constraint {
  public:
   virtual ~Constraint() = default;
@@ -99,6 +123,62 @@ class Constraint {
   virtual std::shared_ptr<const Constraint> relaxed(const std::string& family, double scale) const {
     return family == this->family() ? relaxed(scale) : nullptr;
   }
+
+  // ---- hooks: what the problem asks of a constraint
+
+  /// The robot whose dynamics the rows use, or nullptr. A problem without joint names takes the robot's
+  /// when it has one joint per path coordinate.
+  virtual std::shared_ptr<const RobotModel> robot() const { return nullptr; }
+
+  /// True if this constraint can hold `other`'s limits in its own projection, as a contact constraint
+  /// holds its robot's torque limits (eq. 17-18: alone, torque limits would demand τ = 0 of an unactuated
+  /// base that only contact forces hold). The problem then keeps absorb(other) in place of both.
+  virtual bool can_absorb(const Constraint& /*other*/) const { return false; }
+  /// This constraint with `other`'s limits joined (only called when can_absorb(other)).
+  virtual std::shared_ptr<const Constraint> absorb(const Constraint& other) const;
+
+  /// The same constraint labelled with the problem's joint names, for one that takes its labels from them
+  /// and has none yet (limits added before TimeScalingProblem::set_joint_names); nullptr otherwise. Only its
+  /// labels may differ: the problem keeps its rows.
+  virtual std::shared_ptr<const Constraint> with_joint_names(const std::vector<std::string>& /*names*/) const {
+    return nullptr;
+  }
+
+  /// True if the rows are data given per grid point, with no value between grid points (LinearConstraint):
+  /// the grid may then gain no point (a contact switch) and a restart must begin at a grid point.
+  virtual bool per_grid_point() const { return false; }
+  /// For a per_grid_point() constraint: its rows at the old grid's points `kept` (the new grid of a restart,
+  /// every index >= 0). Any other constraint is evaluated again on the new grid and is never asked.
+  virtual std::shared_ptr<const Constraint> at_grid_points(const std::vector<Eigen::Index>& kept) const;
+
+  /// The joint limits guarantee = continuous bounds between grid points by construction (JointRateLimits).
+  virtual JointRateLimits joint_rate_limits() const { return {}; }
+
+  /// True if the rows are a projection of a polytope in more variables (contact forces, sec. IV.C). Its
+  /// evaluation time counts as projection time, an infeasibility at a point is re-checked on the full
+  /// polytope (check_point), and guarantee = continuous audits it by slices of the polytope (slice).
+  virtual bool projected() const { return false; }
+  /// False where the constraint does not hold (a contact phase outside its stretch of s).
+  virtual bool active_at(double /*s*/) const { return true; }
+  /// One LP on the full polytope at grid point k of `samples`, intersected with `extra` half-planes
+  /// a x + b u <= c (rows [a, b, c]: the other constraints there), before an infeasibility is reported.
+  virtual PointCheck check_point(const PathSamples& /*samples*/, Eigen::Index /*k*/,
+                                 const Eigen::Matrix<double, Eigen::Dynamic, 3>& /*extra*/) const {
+    return {};
+  }
+  /// For a projected() constraint: per sample p, the smallest and largest x with (x, u[p]) feasible at
+  /// samples.s[p], without projecting; returns the LPs spent (see ContactConstraint::slice).
+  virtual int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
+                    Eigen::VectorXd& x_hi) const;
+  /// For a projected() constraint: the stand-in bound on x where nothing else bounds it (its polygons are
+  /// cut there; slice reports +inf instead).
+  virtual double projection_cap() const { return std::numeric_limits<double>::infinity(); }
+
+  /// Fills what a Result shows of this constraint (Result::robot, tau_min/tau_max, contacts, contact_phases).
+  /// The problem calls it for its constraints in order; `torque_rank` records who set tau_min/tau_max: 2 a
+  /// constraint's own torque limits, 1 limits held besides others (a contact constraint's), 0 nobody. Own
+  /// limits are shown over held ones, and the last of a rank wins.
+  virtual void report(Result& /*result*/, int& /*torque_rank*/) const {}
 };
 
 /// A limit interval [lo, hi] widened by scale >= 1 about zero (see Constraint::relaxed).

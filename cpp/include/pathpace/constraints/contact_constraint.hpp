@@ -81,7 +81,7 @@ struct ContactOptions {
 /// cone's cross-section at n·f = d (a regular k-gon around d·n) plus a force in the cone; the cone parts
 /// reduce to the hull vertices as before, and for an even k each point's cross-section part is d·n (a
 /// constant) plus k/2 bounded weights (the k-gon is a zonotope): exact, with no per-point rows.
-class ContactConstraint : public Constraint {
+class ContactConstraint : public Constraint, public std::enable_shared_from_this<ContactConstraint> {
  public:
   ContactConstraint(std::shared_ptr<const RobotModel> robot, std::vector<Contact> contacts,
                     const ContactOptions& options = {}, Eigen::VectorXd tau_min = Eigen::VectorXd(),
@@ -101,7 +101,7 @@ class ContactConstraint : public Constraint {
   double max_drift(const PathSamples& samples, int* contact = nullptr, double* at_s = nullptr) const;
 
   /// True if s lies in [active_begin, active_end] (to 1e-12 relative): the rows hold there.
-  bool active_at(double s) const;
+  bool active_at(double s) const override;
 
   /// Velocities of the contact points per unit of s along the path, at every sample: normal(k, i) =
   /// n_i · c_i'(s_k) (c_i' = J_i p'(s_k), the world normal; relative to other_link for a robot–robot
@@ -114,7 +114,17 @@ class ContactConstraint : public Constraint {
   std::vector<ContactForces> force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
                                                 const Eigen::MatrixXd& qdd) const;
 
-  const std::shared_ptr<const RobotModel>& robot() const { return robot_; }
+  std::shared_ptr<const RobotModel> robot() const override { return robot_; }
+  /// Torque limits of the same robot (a TorqueLimits) join the projection: absorb(t) is
+  /// with_torque_limits(t.tau_min(), t.tau_max()) (Constraint::can_absorb).
+  bool can_absorb(const Constraint& other) const override;
+  std::shared_ptr<const Constraint> absorb(const Constraint& other) const override;
+  /// The rows are the projection of the (ṡ², s̈, τ, f) polytope (sec. IV.C).
+  bool projected() const override { return true; }
+  double projection_cap() const override { return options_.cap; }
+  /// Result::robot, contacts, contact_phases (a phase of add_contact_phases) and, unless the problem has
+  /// torque limits of its own, tau_min/tau_max (rank 1, Constraint::report).
+  void report(Result& result, int& torque_rank) const override;
   const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
 
@@ -122,17 +132,14 @@ class ContactConstraint : public Constraint {
   /// TorqueLimits of the same robot): one projection for both.
   std::shared_ptr<ContactConstraint> with_torque_limits(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) const;
 
+  using PointCheck = pathpace::PointCheck;
   /// One LP on the full (ṡ², s̈, τ, forces) polytope at grid point k of `samples`, all contact points
   /// and both minimum normal forces, intersected with `extra` half-planes a x + b u <= c (rows [a, b,
   /// c]: the other constraints there). feasible / rest_feasible ((x, u) = (0, 0)): 1 yes, 0 no
   /// (confirmed in exact arithmetic), -1 the solver failed. This confirms an infeasibility before it is
   /// reported.
-  struct PointCheck {
-    int feasible = -1;
-    int rest_feasible = -1;
-  };
   PointCheck check_point(const PathSamples& samples, Eigen::Index k,
-                         const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra) const;
+                         const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra) const override;
 
   /// The feasible polygon's slice at a given s̈, without projecting it: for each sample p, the smallest
   /// and largest ṡ² with (ṡ², u[p]) in the polygon at samples.s[p], by two LPs on the projection's
@@ -141,7 +148,8 @@ class ContactConstraint : public Constraint {
   /// points (the membership of one point, not the whole polygon). x_hi = +inf where only the stand-in
   /// cap bounds x; an empty slice gives x_lo = +inf, x_hi = -inf; inactive samples (a phase) give
   /// [-inf, +inf]; NaN where an LP failed. Returns the number of LPs solved.
-  int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo, Eigen::VectorXd& x_hi) const;
+  int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
+            Eigen::VectorXd& x_hi) const override;
 
   /// Indices of the contacts whose forces enter the projection LPs (all of them, or the convex-hull
   /// vertices of each flat group, see above).

@@ -21,6 +21,11 @@ class LinearConstraint : public Constraint {
   std::string name() const override { return label_; }
   /// Throws InvalidInput if the arrays do not have N+1 rows for the samples' grid.
   ConstraintRows evaluate(const PathSamples& samples) const override;
+  /// Given per grid point: no value between grid points (Constraint::per_grid_point).
+  bool per_grid_point() const override { return true; }
+  /// The rows of the grid points `kept`, in that order.
+  std::shared_ptr<const Constraint> at_grid_points(const std::vector<Eigen::Index>& kept) const override;
+
   const Eigen::MatrixXd& A() const { return A_; }
   const Eigen::MatrixXd& B() const { return B_; }
   const Eigen::MatrixXd& C() const { return C_; }

@@ -29,7 +29,9 @@ class TorqueLimits : public Constraint {
 
   const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
-  const std::shared_ptr<const RobotModel>& robot() const { return robot_; }
+  std::shared_ptr<const RobotModel> robot() const override { return robot_; }
+  /// Result::robot and tau_min/tau_max (rank 2: a problem's own torque limits, Constraint::report).
+  void report(Result& result, int& torque_rank) const override;
 
  private:
   std::shared_ptr<const RobotModel> robot_;

@@ -26,6 +26,10 @@ class VelocityLimits : public Constraint {
   std::string family() const override { return "velocity"; }
   /// vmin·scale, vmax·scale.
   std::shared_ptr<const Constraint> relaxed(double scale) const override;
+  /// These limits with `names`, if they have none (Constraint::with_joint_names).
+  std::shared_ptr<const Constraint> with_joint_names(const std::vector<std::string>& names) const override;
+  /// Order 1: |q̇| within [vmin, vmax] between grid points too (Constraint::joint_rate_limits).
+  JointRateLimits joint_rate_limits() const override { return {1, vmin_, vmax_}; }
 
   const Eigen::VectorXd& vmin() const { return vmin_; }
   const Eigen::VectorXd& vmax() const { return vmax_; }
