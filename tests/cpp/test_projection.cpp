@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "geometry/convex_hull.hpp"
 #include "lp/projection.hpp"
 #include "pathpace/pathpace.hpp"
 #include "test_fixtures.hpp"

@@ -11,6 +11,7 @@
 #include <Eigen/SVD>
 
 #include "base/validate.hpp"
+#include "geometry/convex_hull.hpp"
 #include "lp/projection.hpp"
 #include "pathpace/errors.hpp"
 

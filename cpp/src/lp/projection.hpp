@@ -38,8 +38,6 @@ inline constexpr int kBindingUnknown = INT_MIN;
 /// The stand-in bounds are never grown past this: the feasible sets' own box (Polygon2d's 1e15 sides).
 inline constexpr double kLargestStandIn = 1e15;
 inline bool binding_is_row(int code) { return code >= 0; }
-inline int binding_row(int code) { return code / 2; }
-inline bool binding_upper(int code) { return code % 2 == 1; }
 inline int binding_column(int code) { return -code - 1; }
 
 struct Projection {
@@ -120,9 +118,5 @@ class PolytopeProjector {
 /// One polytope, from a cold start.
 Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000,
                             double approximation = 0.0);
-
-/// Convex hull of points, counter-clockwise, collinear and duplicate points dropped (Andrew's monotone
-/// chain). `order` receives, for each hull vertex, its index in `points`.
-void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order);
 
 }  // namespace pathpace::detail
