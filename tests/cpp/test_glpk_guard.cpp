@@ -51,9 +51,9 @@ PolytopeLp wide_octahedron() {
 double diamond(double dx, double du) { return std::max(std::abs(dx), std::abs(du)); }
 double rectangle(double dx, double du) { return std::max(0.0, dx) + std::max(1e10 * du, 2e10 * du); }
 
-// A bystander LP with every kind of change GlpkLp copies: min -x0 - 2 x1 over x0 + x1 <= 1 (then
-// tightened to 0.8), x1 <= 0.5 (appended after the first solve), 0 <= x0 <= 0.7, 0 <= x1 <= 2.
-// Optimum: x = (0.3, 0.5), -1.3.
+// A bystander LP with every kind of change GlpkLp copies: min -x0 - 2 x1 over x0 + x1 <= 1, x1 <= 0.5
+// (appended after the first solve), 0 <= x0 <= 0.7, 0 <= x1 <= 2 (then x0 <= 0.4).
+// Optimum: x = (0.4, 0.5), -1.4.
 struct Bystander {
   GlpkLp lp;
   Bystander() {
@@ -65,7 +65,7 @@ struct Bystander {
     lp.set_objective({-1.0, -2.0});
     EXPECT_EQ(lp.solve(1e-10), GlpkLp::Outcome::Optimal);
     lp.append_row_upper({1}, {1.0}, 0.5);
-    lp.set_row_upper(0, 0.8);
+    lp.set_col_bounds(0, 0.0, 0.4);
     check();
   }
   void check() {
@@ -73,9 +73,9 @@ struct Bystander {
     std::vector<double> x;
     lp.column_values(x);
     ASSERT_EQ(x.size(), 2u);
-    EXPECT_NEAR(x[0], 0.3, 1e-12);
+    EXPECT_NEAR(x[0], 0.4, 1e-12);
     EXPECT_NEAR(x[1], 0.5, 1e-12);
-    EXPECT_NEAR(lp.lagrangian_bound({-1.0, -2.0}), -1.3, 1e-12);
+    EXPECT_NEAR(lp.lagrangian_bound({-1.0, -2.0}), -1.4, 1e-12);
   }
 };
 
@@ -121,8 +121,6 @@ TEST(GlpkGuard, AnErrorAtAnyCallOfAProjectionFailsItAndSparesTheOtherProblems) {
   for (const auto& c : cases) {
     Bystander other;
     PolytopeProjector warm, p;  // `warm` holds its warm-start problem throughout
-    // GLPK's LPs only: the dense simplex (from a grid point's second LP on) makes no GLPK call.
-    warm.dense = p.dense = false;
     const Projection first = warm.project(c.lp);
     ASSERT_EQ(first.outcome, Projection::Outcome::Polygon);
     if (c.lp.A.cols() >= 30) EXPECT_GT(first.ranged_certificates, 0);  // the ranging path is among the calls hit

@@ -51,12 +51,168 @@ void Polygon2d::assign(const Polygon2d& other) {
             vertices_[0].begin());
 }
 
+namespace {
+
+// One envelope of the lines ids[0..m) (y = P + Q x each) over [x_lo, x_hi]: the minimum of the upper
+// bounds (sign = 1) or the maximum of the lower bounds (sign = -1). Pieces in increasing x; a switch at
+// x' < x (rounding) happens at x.
+bool envelope(const double* P, const double* Q, const int* ids, std::size_t m, double sign, double x_lo, double x_hi,
+              EnvelopePiece* out, std::size_t& pieces) {
+  pieces = 0;
+  int cur = ids[0];
+  double best_v = sign * (P[cur] + Q[cur] * x_lo);
+  for (std::size_t t = 1; t < m; ++t) {
+    const int i = ids[t];
+    const double v = sign * (P[i] + Q[i] * x_lo);
+    // Ties: the one that stays extreme longer (smaller slope for the minimum, larger for the maximum).
+    if (v < best_v || (v == best_v && sign * Q[i] < sign * Q[cur])) {
+      cur = i;
+      best_v = v;
+    }
+  }
+  double x = x_lo;
+  for (std::size_t guard = 0; guard <= m; ++guard) {
+    // The next breakpoint: the nearest x' >= x where a line of steeper descent (ascent) takes over.
+    // Candidates are compared as fractions num/den (den > 0), one division for the winner only.
+    int next = -1;
+    double best_num = x_hi, best_den = 1.0;
+    for (std::size_t t = 0; t < m; ++t) {
+      const int j = ids[t];
+      double den = Q[cur] - Q[j];
+      if (!(sign * den > 0.0)) continue;  // j never overtakes cur to the right
+      double num = P[j] - P[cur];
+      if (den < 0.0) {
+        num = -num;
+        den = -den;
+      }
+      if (num < x * den) {  // behind x by rounding: it takes over at x
+        num = x;
+        den = 1.0;
+      }
+      const double lhs = num * best_den, rhs = best_num * den;
+      if (lhs < rhs || (lhs == rhs && next >= 0 && sign * Q[j] < sign * Q[next])) {
+        next = j;
+        best_num = num;
+        best_den = den;
+      }
+    }
+    const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
+    EnvelopePiece& pc = out[pieces++];  // member by member (see append_line)
+    pc.line = cur;
+    pc.x_end = next_x;
+    if (next < 0) return true;
+    cur = next;
+    x = next_x;
+  }
+  return false;  // cannot happen (slopes strictly monotone); be safe
+}
+
+// The envelopes' value at x, the hint the piece to start looking from (x only grows).
+double envelope_at(const double* P, const double* Q, const EnvelopePiece* pcs, std::size_t count, double x,
+                   std::size_t& hint) {
+  while (hint + 1 < count && pcs[hint].x_end < x) ++hint;
+  const int i = pcs[hint].line;
+  return P[i] + Q[i] * x;
+}
+
+// The x-range [xa, xb] where the upper envelope U lies above the lower one L: g(x) = U(x) - L(x) is
+// concave, so it is read off g at every breakpoint, merged in increasing x. False when it is empty (left
+// to clipping, for the certificate) or degenerate (touching envelopes, or rounding that broke concavity).
+bool positive_range(const double* P, const double* Q, const EnvelopePiece* upper, std::size_t n_upper,
+                    const EnvelopePiece* lower, std::size_t n_lower, double x_lo, double x_hi, double& xa,
+                    double& xb) {
+  std::size_t iu = 0, il = 0, hu = 0, hl = 0;
+  xa = xb = std::numeric_limits<double>::quiet_NaN();
+  double prev_x = x_lo, prev_g = 0.0;
+  bool first = true, inside = false, closed = false;
+  while (true) {
+    double x;
+    if (first) {
+      x = x_lo;
+    } else {
+      const double xu = iu < n_upper ? upper[iu].x_end : x_hi;
+      const double xl = il < n_lower ? lower[il].x_end : x_hi;
+      x = std::min(xu, xl);
+      if (x == xu) ++iu;
+      if (x == xl) ++il;
+    }
+    const double U = envelope_at(P, Q, upper, n_upper, x, hu), L = envelope_at(P, Q, lower, n_lower, x, hl);
+    const double g = U - L;
+    if (std::abs(g) <= 1e-9 * (std::abs(U) + std::abs(L)) + 1e-300) return false;  // touching: degenerate
+    if (first) {
+      if (g > 0.0) {
+        xa = x_lo;
+        inside = true;
+      }
+    } else if (!inside && g > 0.0) {
+      if (closed) return false;  // a second positive stretch: not concave, rounding trouble
+      // Entering between prev_x and x: where the active upper and lower lines cross.
+      xa = prev_x + (x - prev_x) * (-prev_g) / (g - prev_g);
+      inside = true;
+    } else if (inside && g < 0.0) {
+      xb = prev_x + (x - prev_x) * prev_g / (prev_g - g);
+      inside = false;
+      closed = true;
+    }
+    prev_x = x;
+    prev_g = g;
+    first = false;
+    if (x >= x_hi) break;
+  }
+  if (std::isnan(xa)) return false;  // empty: clip for the certificate
+  if (inside) xb = x_hi;
+  return xb - xa > 1e-12 * std::max(std::abs(xa), std::abs(xb)) + 1e-300;
+}
+
+}  // namespace
+
+// The stages are separate functions, each one loop; the hot ones (envelope, positive_range) take the
+// storage as plain pointers, because through the members every store below reloaded them.
 bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const Line* lines, std::size_t n,
                       bool edges_only) {
   empty_ = false;
-  // Index lists and pieces are written through counts into storage sized for every line: push_back on a
-  // member vector reloads and stores its end at every push (it may alias the stores), a store-forwarding
-  // chain through the whole pass.
+  reserve(n);
+  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input). The
+  // box's sides are members, not locals: a local copied into the edges is first spilled by scalar stores
+  // and then read back with 16-byte loads, which stalls on store forwarding.
+  side_[0] = {0.0, -1.0, -y_lo, kBoxYLow};
+  side_[1] = {0.0, 1.0, y_hi, kBoxYHigh};
+  side_[2] = {-1.0, 0.0, -x_lo, kBoxXLow};
+  side_[3] = {1.0, 0.0, x_hi, kBoxXHigh};
+  Sorted s;
+  if (!sort_lines(lines, n, x_lo, x_hi, s)) return false;
+  if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
+  const double* const P = p_.data();
+  const double* const Q = q_.data();
+  std::size_t n_upper = 0, n_lower = 0;
+  if (!envelope(P, Q, up_.data(), s.n_up, 1.0, x_lo, x_hi, upper_.data(), n_upper) ||
+      !envelope(P, Q, low_.data(), s.n_low, -1.0, x_lo, x_hi, lower_.data(), n_lower))
+    return false;
+  double xa, xb;
+  if (!positive_range(P, Q, upper_.data(), n_upper, lower_.data(), n_lower, x_lo, x_hi, xa, xb)) return false;
+  Chains c;
+  if (!collect_edges(lines, n, n_upper, n_lower, x_lo, x_hi, xa, xb, c)) return false;
+  if (edges_only && s.n_steep == 0) {
+    // intersect()'s test for parallel neighbours without its division and products.
+    const Line* e = edges_[1 - cur_].data();
+    for (std::size_t j = 0; j < c.count; ++j)
+      if (!independent(e[j], e[j + 1 == c.count ? 0 : j + 1])) return false;
+    cur_ = 1 - cur_;
+    m_ = c.count;
+    return true;
+  }
+  if (!vertices_of_edges(c)) return false;
+  for (std::size_t t = 0; t < s.n_steep; ++t) {
+    clip(line_at(lines, n, steep_[t]));
+    if (empty_) return false;  // left to clipping line by line, which gives the certificate
+  }
+  return true;
+}
+
+// Index lists and pieces are written through counts into storage sized for every line: push_back on a
+// member vector reloads and stores its end at every push (it may alias the stores), a store-forwarding
+// chain through the whole pass.
+void Polygon2d::reserve(std::size_t n) {
   if (up_.size() < n + 2) {
     up_.resize(n + 2);
     low_.resize(n + 2);
@@ -64,33 +220,27 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     upper_.resize(n + 3);
     lower_.resize(n + 3);
   }
-  std::size_t n_up = 0, n_low = 0, n_steep = 0;
-  // Line i is lines[i] for i < n, then the box's lower and upper sides (no copies of the input). The
-  // box's sides are members, not locals: a local copied into the edges is first spilled by scalar stores
-  // and then read back with 16-byte loads, which stalls on store forwarding.
-  const Line* box = side_;
-  side_[0] = {0.0, -1.0, -y_lo, kBoxYLow};
-  side_[1] = {0.0, 1.0, y_hi, kBoxYHigh};
-  Line& left = side_[2];
-  Line& right = side_[3];
-  left = {-1.0, 0.0, -x_lo, kBoxXLow};
-  right = {1.0, 0.0, x_hi, kBoxXHigh};
-  auto line_at = [&](int i) -> const Line& {
-    const std::size_t u = static_cast<std::size_t>(i);
-    return u < n ? lines[u] : box[u - n];
-  };
   if (p_.size() < n + 2) {
     p_.resize(n + 2);
     q_.resize(n + 2);
   }
+}
+
+// Every line (the box's sides included) sorted by what it bounds: x alone (b = 0, tightening the
+// x-range, side_[2] and side_[3] with it), y from above or below (y = P + Q x, into up_ or low_), or
+// nearly vertical (steep_). False: a line 0 <= c that fails (empty).
+bool Polygon2d::sort_lines(const Line* lines, std::size_t n, double& x_lo, double& x_hi, Sorted& s) {
+  Line& left = side_[2];
+  Line& right = side_[3];
   // Local copies of the storage pointers: through the members, every store below reloaded them.
   double* const P = p_.data();
   double* const Q = q_.data();
   int* const up = up_.data();
   int* const low = low_.data();
   int* const steep = steep_.data();
+  std::size_t n_up = 0, n_low = 0, n_steep = 0;
   for (std::size_t i = 0; i < n + 2; ++i) {
-    const Line& l = line_at(static_cast<int>(i));
+    const Line& l = line_at(lines, n, static_cast<int>(i));
     if (l.b == 0.0) {
       // A bound on x alone tightens the box (keeping its id, as clipping would).
       if (l.a > 0.0) {
@@ -121,111 +271,15 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
     if (l.b > 0.0) up[n_up++] = static_cast<int>(i);
     else low[n_low++] = static_cast<int>(i);
   }
-  if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
-  // One envelope over [x_lo, x_hi]: the minimum of the upper bounds (sign = 1) or the maximum of the
-  // lower bounds (sign = -1). Pieces in increasing x; a switch at x' < x (rounding) happens at x.
-  auto envelope = [&](const int* ids, std::size_t m, double sign, Piece* out, std::size_t& pieces) {
-    pieces = 0;
-    int cur = ids[0];
-    double best_v = sign * (P[cur] + Q[cur] * x_lo);
-    for (std::size_t t = 1; t < m; ++t) {
-      const int i = ids[t];
-      const double v = sign * (P[i] + Q[i] * x_lo);
-      // Ties: the one that stays extreme longer (smaller slope for the minimum, larger for the maximum).
-      if (v < best_v || (v == best_v && sign * Q[i] < sign * Q[cur])) {
-        cur = i;
-        best_v = v;
-      }
-    }
-    double x = x_lo;
-    for (std::size_t guard = 0; guard <= m; ++guard) {
-      // The next breakpoint: the nearest x' >= x where a line of steeper descent (ascent) takes over.
-      // Candidates are compared as fractions num/den (den > 0), one division for the winner only.
-      int next = -1;
-      double best_num = x_hi, best_den = 1.0;
-      for (std::size_t t = 0; t < m; ++t) {
-        const int j = ids[t];
-        double den = Q[cur] - Q[j];
-        if (!(sign * den > 0.0)) continue;  // j never overtakes cur to the right
-        double num = P[j] - P[cur];
-        if (den < 0.0) {
-          num = -num;
-          den = -den;
-        }
-        if (num < x * den) {  // behind x by rounding: it takes over at x
-          num = x;
-          den = 1.0;
-        }
-        const double lhs = num * best_den, rhs = best_num * den;
-        if (lhs < rhs || (lhs == rhs && next >= 0 && sign * Q[j] < sign * Q[next])) {
-          next = j;
-          best_num = num;
-          best_den = den;
-        }
-      }
-      const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
-      Piece& pc = out[pieces++];  // member by member (see append_line)
-      pc.line = cur;
-      pc.x_end = next_x;
-      if (next < 0) return true;
-      cur = next;
-      x = next_x;
-    }
-    return false;  // cannot happen (slopes strictly monotone); be safe
-  };
-  std::size_t n_upper = 0, n_lower = 0;
-  if (!envelope(up, n_up, 1.0, upper_.data(), n_upper) || !envelope(low, n_low, -1.0, lower_.data(), n_lower))
-    return false;
-  // g(x) = U(x) - L(x) is concave: evaluate it at every breakpoint to find where it is >= 0.
-  auto value = [&](const Piece* pcs, std::size_t count, double x, std::size_t& hint) {
-    while (hint + 1 < count && pcs[hint].x_end < x) ++hint;
-    const int i = pcs[hint].line;
-    return P[i] + Q[i] * x;
-  };
-  // The breakpoints, merged in increasing x.
-  std::size_t iu = 0, il = 0, hu = 0, hl = 0;
-  double xa = std::numeric_limits<double>::quiet_NaN(), xb = xa;
-  double prev_x = x_lo, prev_g = 0.0;
-  bool first = true, inside = false, closed = false;
-  while (true) {
-    double x;
-    if (first) {
-      x = x_lo;
-    } else {
-      const double xu = iu < n_upper ? upper_[iu].x_end : x_hi;
-      const double xl = il < n_lower ? lower_[il].x_end : x_hi;
-      x = std::min(xu, xl);
-      if (x == xu) ++iu;
-      if (x == xl) ++il;
-    }
-    const double U = value(upper_.data(), n_upper, x, hu), L = value(lower_.data(), n_lower, x, hl);
-    const double g = U - L;
-    if (std::abs(g) <= 1e-9 * (std::abs(U) + std::abs(L)) + 1e-300) return false;  // touching: degenerate
-    if (first) {
-      if (g > 0.0) {
-        xa = x_lo;
-        inside = true;
-      }
-    } else if (!inside && g > 0.0) {
-      if (closed) return false;  // a second positive stretch: not concave, rounding trouble
-      // Entering between prev_x and x: where the active upper and lower lines cross.
-      xa = prev_x + (x - prev_x) * (-prev_g) / (g - prev_g);
-      inside = true;
-    } else if (inside && g < 0.0) {
-      xb = prev_x + (x - prev_x) * prev_g / (prev_g - g);
-      inside = false;
-      closed = true;
-    }
-    prev_x = x;
-    prev_g = g;
-    first = false;
-    if (x >= x_hi) break;
-  }
-  if (std::isnan(xa)) return false;  // empty: clip for the certificate
-  if (inside) xb = x_hi;
-  if (!(xb - xa > 1e-12 * std::max(std::abs(xa), std::abs(xb)) + 1e-300)) return false;
-  // Edges counter-clockwise: lower pieces left to right, the right side if x_hi is reached, upper pieces
-  // right to left, the left side if x_lo is reached. Vertex j = edge j ∩ edge j+1 (Cramer, exact lines).
+  s = {n_up, n_low, n_steep};
+  return true;
+}
+
+// The edges over [xa, xb] into the other buffer (c says how many of each chain), counter-clockwise: lower pieces left
+// to right, the right side if x_hi is reached, upper pieces right to left, the left side if x_lo is
+// reached. False: fewer than three.
+bool Polygon2d::collect_edges(const Line* lines, std::size_t n, std::size_t n_upper, std::size_t n_lower, double x_lo,
+                              double x_hi, double xa, double xb, Chains& c) {
   const int nxt = 1 - cur_;
   const std::size_t cap = n_lower + n_upper + 2;
   if (edges_[nxt].size() < cap) {
@@ -235,38 +289,34 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   Line* e = edges_[nxt].data();
   std::size_t cnt = 0;
   const bool has_left = xa == x_lo, has_right = xb == x_hi;
-  auto overlaps = [&](const Piece* pcs, std::size_t k) {
+  auto overlaps = [&](const EnvelopePiece* pcs, std::size_t k) {
     const double start = k == 0 ? x_lo : pcs[k - 1].x_end;
     return pcs[k].x_end > xa && start < xb;
   };
   for (std::size_t k = 0; k < n_lower; ++k)
-    if (overlaps(lower_.data(), k)) e[cnt++] = line_at(lower_[k].line);
-  const std::size_t lower_edges = cnt;
-  if (has_right) e[cnt++] = right;
-  const std::size_t first_upper = cnt;
+    if (overlaps(lower_.data(), k)) e[cnt++] = line_at(lines, n, lower_[k].line);
+  c.lower = cnt;
+  if (has_right) e[cnt++] = side_[3];
+  c.first_upper = cnt;
   for (std::size_t k = n_upper; k-- > 0;)
-    if (overlaps(upper_.data(), k)) e[cnt++] = line_at(upper_[k].line);
-  const std::size_t upper_edges = cnt - first_upper;
-  if (has_left) e[cnt++] = left;
-  if (cnt < 3) return false;
-  if (edges_only && n_steep == 0) {
-    // intersect()'s test for parallel neighbours without its division and products.
-    for (std::size_t j = 0; j < cnt; ++j)
-      if (!independent(e[j], e[j + 1 == cnt ? 0 : j + 1])) return false;
-    cur_ = nxt;
-    m_ = cnt;
-    return true;
-  }
+    if (overlaps(upper_.data(), k)) e[cnt++] = line_at(lines, n, upper_[k].line);
+  c.upper = cnt - c.first_upper;
+  if (has_left) e[cnt++] = side_[2];
+  c.count = cnt;
+  return cnt >= 3;
+}
+
+// Vertex j = edge j ∩ edge j+1 of the collected edges (Cramer, exact lines); they become the polygon.
+bool Polygon2d::vertices_of_edges(const Chains& c) {
+  const int nxt = 1 - cur_;
+  const Line* e = edges_[nxt].data();
   Vertex* v = vertices_[nxt].data();
+  const std::size_t cnt = c.count;
   for (std::size_t j = 0; j < cnt; ++j)
     if (!intersect(e[j], e[j + 1 == cnt ? 0 : j + 1], v[j])) return false;
-  if (!chains_monotone(v, cnt, lower_edges, first_upper, upper_edges)) return false;
+  if (!chains_monotone(v, cnt, c.lower, c.first_upper, c.upper)) return false;
   cur_ = nxt;
   m_ = cnt;
-  for (std::size_t t = 0; t < n_steep; ++t) {
-    clip(line_at(steep[t]));
-    if (empty_) return false;  // left to clipping line by line, which gives the certificate
-  }
   return true;
 }
 

@@ -72,6 +72,12 @@ struct Vertex {
   double x = 0, y = 0;
 };
 
+/// A piece of an envelope built by Polygon2d::build: `line` is the extreme one up to `x_end`.
+struct EnvelopePiece {
+  int line;      // lines[line], or the box's lower (n) or upper (n + 1) side
+  double x_end;  // where the next piece takes over
+};
+
 /// A read-only view of a contiguous range (edges or vertices).
 template <typename T>
 struct View {
@@ -151,18 +157,31 @@ class Polygon2d {
                               std::size_t n_upper);
   static bool on_segment(const Vertex& v, const Vertex& p, const Vertex& q);  // within the box of p, q
   bool degenerate(std::size_t j) const;
+  // build()'s stages (see the .cpp).
+  struct Sorted {
+    std::size_t n_up, n_low, n_steep;  // lines bounding y from above, from below, nearly vertical
+  };
+  struct Chains {
+    std::size_t count, lower, first_upper, upper;  // edges; of the lower chain; where the upper starts, its count
+  };
+  void reserve(std::size_t n);
+  bool sort_lines(const Line* lines, std::size_t n, double& x_lo, double& x_hi, Sorted& s);
+  bool collect_edges(const Line* lines, std::size_t n, std::size_t n_upper, std::size_t n_lower, double x_lo,
+                     double x_hi, double xa, double xb, Chains& c);
+  bool vertices_of_edges(const Chains& c);
+  // Line i of build(): lines[i] for i < n, then the box's lower and upper sides.
+  const Line& line_at(const Line* lines, std::size_t n, int i) const {
+    const std::size_t u = static_cast<std::size_t>(i);
+    return u < n ? lines[u] : side_[u - n];
+  }
   void erase(std::size_t j);
 
   std::vector<Line> edges_[2];
   std::vector<Vertex> vertices_[2];
   std::vector<double> dist_;
-  struct Piece {
-    int line;        // lines[line], or the box's lower (n) or upper (n + 1) side
-    double x_end;    // where the next piece takes over
-  };
   std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
   std::vector<int> up_, low_, steep_;
-  std::vector<Piece> upper_, lower_;
+  std::vector<EnvelopePiece> upper_, lower_;
   Line side_[4];  // build(): the box's lower and upper sides, then the left and right x-bounds
   int cur_ = 0;
   std::size_t m_ = 0;

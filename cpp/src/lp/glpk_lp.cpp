@@ -59,9 +59,7 @@ void GlpkLp::reset(int cols) {
   col_hi_.assign(static_cast<size_t>(cols), kInf);
   obj_.assign(static_cast<size_t>(cols), 0.0);
   glpk_rows_ = 0;
-  dirty_rows_.clear();
   cols_dirty_ = obj_dirty_ = basis_pending_ = false;
-  iterations_ = 0;
 }
 
 int GlpkLp::add_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub) {
@@ -105,7 +103,6 @@ bool GlpkLp::rebuild() {
     // equilibration on top of that was seen to end a warm-started solve OPTIMAL with a row broken by 1 %.
   });
   glpk_rows_ = rows;
-  dirty_rows_.clear();
   cols_dirty_ = obj_dirty_ = false;
   return ok;
 }
@@ -117,11 +114,6 @@ void GlpkLp::append_row_upper(const std::vector<int>& idx, const std::vector<dou
 void GlpkLp::set_objective(const std::vector<double>& c) {
   std::copy(c.begin(), c.begin() + cols_, obj_.begin());
   obj_dirty_ = true;
-}
-
-void GlpkLp::set_row_upper(int row, double ub) {
-  row_ub_[static_cast<size_t>(row)] = ub;
-  if (row < glpk_rows_) dirty_rows_.push_back(row);
 }
 
 void GlpkLp::set_col_bounds(int col, double lo, double hi) {
@@ -157,17 +149,17 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
   prepare_changes();
   glp_prob* lp = lp_.get();
   const int rows = static_cast<int>(row_ub_.size()), cols = cols_, first_new = glpk_rows_;
-  const int entries = static_cast<int>(ar_.size()) - 1, dirty = static_cast<int>(dirty_rows_.size());
+  const int entries = static_cast<int>(ar_.size()) - 1;
   const int basis_rows = static_cast<int>(row_code_.size()), basis_cols = static_cast<int>(col_code_.size());
-  const int *ia = ia_.data(), *ja = ja_.data(), *row_begin = row_begin_.data(), *dirty_rows = dirty_rows_.data();
+  const int *ia = ia_.data(), *ja = ja_.data(), *row_begin = row_begin_.data();
   const int *row_code = row_code_.data(), *col_code = col_code_.data();
   const double *ar = ar_.data(), *ub = row_ub_.data(), *lo_c = col_lo_.data(), *hi_c = col_hi_.data(), *obj = obj_.data();
   double *x = x_.data(), *dual = row_dual_.data(), *act = activity_.data();
   const bool set_cols = cols_dirty_, set_obj = obj_dirty_, set_stats = basis_pending_, first = !basis_ready_;
-  int ret = 0, status = 0, iters_before = 0, iters_after = 0;
+  int ret = 0, status = 0;
   const bool ok = guarded([&] {
     // The changes since the last solve, in the order the caller made them in the SLP: new rows (basic, so
-    // that the current basis stays a basis), row and column bounds, objective, then a basis.
+    // that the current basis stays a basis), column bounds, objective, then a basis.
     if (rows > first_new) glp_add_rows(lp, rows - first_new);
     for (int r = first_new; r < rows; ++r) {
       const int begin = row_begin[r], end = r + 1 < rows ? row_begin[r + 1] : entries + 1;
@@ -175,7 +167,6 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
       glpk_set_bounds(lp, true, r + 1, -kInf, ub[r]);
       glp_set_row_stat(lp, r + 1, GLP_BS);
     }
-    for (int t = 0; t < dirty; ++t) glpk_set_bounds(lp, true, dirty_rows[t] + 1, -kInf, ub[dirty_rows[t]]);
     if (set_cols)
       for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, lo_c[j], hi_c[j]);
     if (set_obj)
@@ -205,7 +196,6 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
       for (int j = 0; j < cols; ++j) x[j] = glp_get_col_prim(lp, j + 1);
       return rows_hold(ia, ja, ar, entries, ub, rows, x, act, 10.0 * tol_bnd);
     };
-    iters_before = glp_get_it_cnt(lp);
     ret = glp_simplex(lp, &parm);
     if (ret != GLP_ETMLIM && (ret != 0 || glp_get_status(lp) != GLP_OPT)) {
       // The warm basis led astray (singular, or numerically lost): restart from the slack basis.
@@ -217,7 +207,6 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
       ret = glp_simplex(lp, &parm);
       if (ret == 0 && glp_get_status(lp) == GLP_OPT && !optimal_point_holds()) ret = -1;
     }
-    iters_after = glp_get_it_cnt(lp);
     status = glp_get_status(lp);
     for (int j = 0; j < cols; ++j) x[j] = glp_get_col_prim(lp, j + 1);
     for (int i = 0; i < rows; ++i) dual[i] = glp_get_row_dual(lp, i + 1);
@@ -228,10 +217,8 @@ GlpkLp::Outcome GlpkLp::solve(double tol_bnd, int time_limit_ms) {
     return Outcome::Failed;
   }
   glpk_rows_ = rows;
-  dirty_rows_.clear();
   cols_dirty_ = obj_dirty_ = false;
   basis_ready_ = true;
-  iterations_ += iters_after - iters_before;
   if (ret == GLP_ETMLIM) return Outcome::TimeLimit;
   if (ret != 0) return Outcome::Failed;
   if (status == GLP_OPT) return Outcome::Optimal;
@@ -246,7 +233,7 @@ double GlpkLp::lagrangian_bound(const std::vector<double>& cost) const {
   std::vector<double> lambda(rows + 1, 0.0), reduced(cost.begin(), cost.end());
   double bound = 0.0;
   for (size_t i = 0; i < rows && i < row_dual_.size(); ++i) {
-    // A row freed by set_row_upper(+inf) has dual 0; the others are <= ub with a dual <= 0.
+    // A row with ub = +inf is free (dual 0); the others are <= ub with a dual <= 0.
     const double l = std::isfinite(row_ub_[i]) ? std::max(0.0, -row_dual_[i]) : 0.0;
     lambda[i + 1] = l;
     if (l > 0.0) bound -= l * row_ub_[i];

@@ -34,8 +34,6 @@ class GlpkLp {
   void append_row_upper(const std::vector<int>& idx, const std::vector<double>& val, double ub);
 
   void set_objective(const std::vector<double>& c);
-  /// Row `row` <= ub; ub = +inf frees the row.
-  void set_row_upper(int row, double ub);
   /// lo <= x[col] <= hi (lo == hi fixes it). Bounds on columns cost the simplex nothing, where the same
   /// bounds as rows would add two rows per column to every basis factorisation.
   void set_col_bounds(int col, double lo, double hi);
@@ -56,7 +54,6 @@ class GlpkLp {
   /// c·x + λ·(A x - ub) (Lagrangian weak duality: valid for any λ >= 0). -inf if a column whose reduced
   /// cost pulls it that way is unbounded.
   double lagrangian_bound(const std::vector<double>& cost) const;
-  int simplex_iterations() const { return iterations_; }
 
  private:
   bool rebuild();           // the GLPK problem from the copy (after load(), or after a GLPK error freed it)
@@ -69,16 +66,14 @@ class GlpkLp {
   // (+inf: free), column bounds, objective.
   std::vector<int> ia_, ja_, row_begin_;
   std::vector<double> ar_, row_ub_, col_lo_, col_hi_, obj_;
-  // Changes since the last solve: rows [glpk_rows_, rows) not yet in GLPK (appended basic), rows whose
-  // bound changed, whether the column bounds / objective changed, a basis to install.
+  // Changes since the last solve: rows [glpk_rows_, rows) not yet in GLPK (appended basic), whether the
+  // column bounds / objective changed, a basis to install.
   int glpk_rows_ = 0;
-  std::vector<int> dirty_rows_;
   bool cols_dirty_ = false, obj_dirty_ = false, basis_pending_ = false;
   std::vector<Stat> basis_rows_, basis_cols_;
   // Scratch and results of solve() (plain arrays for the guarded call).
   std::vector<int> col_type_, row_code_, col_code_;
   std::vector<double> x_, row_dual_, activity_;
-  int iterations_ = 0;
 };
 
 }  // namespace pathpace::detail

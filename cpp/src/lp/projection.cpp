@@ -1,5 +1,6 @@
 #include "lp/projection.hpp"
 
+#include "geometry/convex_hull.hpp"
 #include "lp/glpk_util.hpp"
 
 #include <algorithm>
@@ -11,14 +12,6 @@
 #include <glpk.h>
 
 namespace pathpace::detail {
-
-namespace {
-
-double cross(const Vertex& o, const Vertex& a, const Vertex& b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
-}  // namespace
 
 // An optimal basis of eq. (19) stays optimal for every direction v in which its reduced costs keep their
 // signs; they are linear in v: d_j(v) = v_x A_j + v_u B_j over the nonbasic variables j (A_j = [j = x] +
@@ -32,41 +25,6 @@ struct PolytopeProjector::Ranging {
   std::vector<signed char> stat;   // GLP_NL, GLP_NU, GLP_NF, GLP_NS
   std::vector<double> A, B;
 };
-
-void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order) {
-  std::vector<int> idx(points.size());
-  for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
-  std::sort(idx.begin(), idx.end(), [&](int i, int j) {
-    const Vertex &p = points[static_cast<size_t>(i)], &q = points[static_cast<size_t>(j)];
-    return p.x < q.x || (p.x == q.x && p.y < q.y);
-  });
-  idx.erase(std::unique(idx.begin(), idx.end(),
-                        [&](int i, int j) {
-                          const Vertex &p = points[static_cast<size_t>(i)], &q = points[static_cast<size_t>(j)];
-                          return p.x == q.x && p.y == q.y;
-                        }),
-            idx.end());
-  order.clear();
-  if (idx.size() <= 2) {
-    order = idx;
-    return;
-  }
-  // Lower hull left to right, then upper hull right to left; a turn that is not strictly
-  // counter-clockwise drops the middle point.
-  std::vector<int> h(2 * idx.size());
-  size_t k = 0;
-  auto P = [&](int i) -> const Vertex& { return points[static_cast<size_t>(i)]; };
-  for (size_t i = 0; i < idx.size(); ++i) {
-    while (k >= 2 && cross(P(h[k - 2]), P(h[k - 1]), P(idx[i])) <= 0) --k;
-    h[k++] = idx[i];
-  }
-  for (size_t i = idx.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(P(h[k - 2]), P(h[k - 1]), P(idx[i])) <= 0) --k;
-    h[k++] = idx[i];
-  }
-  h.resize(k - 1);  // the last point is the first
-  order = std::move(h);
-}
 
 Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
   PolytopeProjector p;
@@ -169,545 +127,591 @@ int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, 
   return 1;
 }
 
-Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
-  Projection out;
-  // A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
-  auto glpk_error = [&out]() {
-    out.outcome = Projection::Outcome::Failed;
-    out.complete = false;
-    out.note = "GLPK error";
-    return out;
-  };
-  // The parameters first: a GLPK error there frees the problem before load() looks at it.
-  glp_smcp parm;
-  if (!simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm)) return glpk_error();
-  const int loaded = load(in);
-  if (loaded < 0) return glpk_error();
-  const bool warm = loaded == 1;
-  glp_prob* lp = lp_.get();
-  const int rows = rows_, cols = cols_;
+namespace {
 
-  // eq. (19): max v·(x, u) over the polytope; 1 optimal, 0 infeasible (confirmed exactly), -1 failed.
-  // The LP's columns 1 and 2 are x / sx and u / su: scaled only when the shadow lies far beyond the
-  // stand-in bounds (below), so that GLPK's unscaled simplex sees values of order one.
-  double sx = 1.0, su = 1.0;
-  // Warm starts across grid points (sec. IV.C): each LP starts from the final basis of the previous
-  // grid point's LP in the nearest direction, if one was within kNear radians, by the dual simplex. That
-  // basis is optimal for a nearby polytope and direction, so it is (nearly) dual feasible and a few dual
-  // pivots restore primal feasibility; from the basis of the LP just before (another direction) the
-  // primal simplex took ~30 pivots per LP on a 60-contact humanoid. Any start gives an optimum, so the
-  // polygon does not depend on it (a degenerate optimum may be another point of the same edge).
-  // Only for LPs of at least kRestoreColumns columns: a restored basis is refactorised (~ the cost of a
-  // few pivots), which made the 8-contact humanoid (66 columns, few pivots per LP) 5-15 % slower and
-  // the 60-contact one (482 columns, ~31 pivots per LP) 2.2x faster.
-  constexpr int kRestoreColumns = 200;
-  const bool same_shape = warm && !previous_.empty() && cols_ >= kRestoreColumns;
-  std::vector<char> nonempty_col(static_cast<size_t>(cols_), 0);
-  if (same_shape)
-    for (int j = 0; j < cols_; ++j) nonempty_col[static_cast<size_t>(j)] = (in.A.col(j).array() != 0.0).any();
-  constexpr double kNear = 0.35;
-  current_.clear();
-  glp_smcp dual = parm;
-  dual.meth = GLP_DUALP;
-  stat_.resize(static_cast<size_t>(rows + cols));
-  // The ranging of the last LP's optimal basis (empty when it is not computed: scaled columns).
-  Ranging last_range;
-  // From kRangingColumns columns on: below, an LP is a few pivots on a tiny basis and costs about what
-  // the two tableau rows do (and the rod of test_continuous, 6 columns, keeps its LP sequence).
-  constexpr int kRangingColumns = 30;
-  // The tableau rows of x and u (1-based over every variable, GLPK's numbering), read inside the LP's
-  // guarded call into these buffers sized here (glpk_guard.hpp's rule 1); the Ranging is built after it.
-  const int total = rows + cols;
-  tab_ind_.resize(static_cast<size_t>(total) + 1);
-  tab_val_.resize(static_cast<size_t>(total) + 1);
-  tab_x_.resize(static_cast<size_t>(total) + 1);
-  tab_u_.resize(static_cast<size_t>(total) + 1);
-  auto range_basis = [&](Ranging& rg, bool computed) {
-    rg = Ranging();
-    if (!computed) return;
-    for (int k = 1; k <= total; ++k) {
-      const signed char st = stat_[static_cast<size_t>(k - 1)];
-      if (st == GLP_BS) continue;
-      rg.var.push_back(k);
-      rg.stat.push_back(st);
-      rg.A.push_back(tab_x_[static_cast<size_t>(k)] + (k == rows + 1 ? 1.0 : 0.0));
-      rg.B.push_back(tab_u_[static_cast<size_t>(k)] + (k == rows + 2 ? 1.0 : 0.0));
-    }
+// Warm starts across grid points (sec. IV.C) only for LPs of at least this many columns: a restored
+// basis is refactorised (about the cost of a few pivots), which pays only where an LP takes many pivots.
+constexpr int kRestoreColumns = 200;
+// A previous grid point's basis is restored only if its LP's direction is within this many radians.
+constexpr double kNear = 0.35;
+// Ranging from this many columns on: below, an LP is a few pivots on a tiny basis and costs about what
+// the two tableau rows do.
+constexpr int kRangingColumns = 30;
+
+}  // namespace
+
+// One call of project(): the data its stages share. The stages: the initial triangle of directions (with
+// the stand-in bounds grown and the triangle started again when they hide the whole shadow), the
+// expansion of uncertified hull edges until each is certified, and the polygon's half-planes.
+class PolytopeProjector::Run {
+ public:
+  Run(PolytopeProjector& self, const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation)
+      : self_(self), in_(in), relative_tolerance_(relative_tolerance), max_lps_(max_lps), approximation_(approximation) {}
+  Projection project();
+
+ private:
+  // What a stage tells project(): go on, go back (grow the stand-in bounds and start the triangle again;
+  // the hull grew and its edges change), or stop (out_ is the result).
+  enum class Step { Ok, Again, Stop };
+  struct Pending {  // an uncertified direction: the outward normal of hull edge (from, to), its support value
+    int from, to;
+    double nx, nu, offset;
   };
-  // The dense simplex (dense_simplex.hpp) within the grid point: an LP starts from the optimal basis of
-  // the support point `start` (an edge's endpoint: primal feasible, nearly optimal along the edge's
-  // normal); GLPK solves the first LP of a point and any LP the dense simplex gives up on, and its basis
-  // is then taken over. Only on the LP's own unscaled bounds (not after the stand-in bounds grew).
-  const bool use_dense = dense && cols >= kRangingColumns;
-  if (use_dense) dense_.load(in);
-  // Per support point: its optimal basis (stat), factorised (head, inv) the first time an LP starts from it.
-  std::vector<DenseSimplex::State> states;
-  std::vector<Vertex> support;  // per support point: the (unit) direction of the LP that found it
-  DenseSimplex::State last_state;
-  bool last_dense = false;  // the last LP was solved by the dense simplex (binding() reads it)
-  bool bounds_grown = false;
-  auto dense_ok = [&] { return use_dense && sx == 1.0 && su == 1.0 && !bounds_grown; };
-  auto extremize = [&](double vx, double vu, Vertex& p, int start_point) -> int {  // also -2: a GLPK error
-    ++out.lp_solves;
-    const double angle = std::atan2(vu, vx);
-    last_dense = false;
-    last_state = DenseSimplex::State();
-    // Only from a support point whose direction is within kDenseAngle of this one: farther (a coarse
-    // polygon, projection_tolerance) the primal simplex from it takes many pivots, and GLPK's dual simplex
-    // from the previous grid point's basis in this direction (below) is the better start.
-    constexpr double kDenseAngle = 0.25;
-    DenseSimplex::State* origin = nullptr;
-    if (dense_ok() && start_point >= 0) {
-      const Vertex& w = support[static_cast<size_t>(start_point)];
-      DenseSimplex::State& st = states[static_cast<size_t>(start_point)];
-      if (w.x * vx + w.y * vu >= std::cos(kDenseAngle) && !st.stat.empty()) origin = &st;
-    }
-    if (origin && origin->head.empty()) {  // factorised on first use
-      if (dense_.set_basis(origin->stat.data())) *origin = dense_.state();
-      else origin->stat.clear(), origin = nullptr;
-    }
-    if (origin) {
-      dense_.restore(*origin);
-      if (dense_.maximize(vx, vu) == 1) {
-        ++out.dense_solves;
-        last_dense = true;
-        p = {dense_.x(), dense_.u()};
-        if (ranging) dense_.tableau_xu(tab_x_.data(), tab_u_.data());
-        last_state = dense_.take();  // moved, not copied (B^-1 is rows² doubles): the next LP restores
-        std::copy(last_state.stat.begin(), last_state.stat.end(), stat_.begin());
-        const bool record = cols >= kRestoreColumns;
-        range_basis(last_range, ranging);
-        if (record) current_.push_back({angle, stat_});
-        return 1;
-      }
-      ++out.dense_fallbacks;
-    }
-    const Basis* from = nullptr;
-    if (same_shape) {
-      double best = kNear;
-      for (const Basis& b : previous_) {
-        double d = std::abs(b.angle - angle);
-        d = std::min(d, 2.0 * M_PI - d);
-        if (d < best) best = d, from = &b;
-      }
-    }
-    if (from) {
-      // A basic column that is empty in this grid point's matrix (a coefficient rounded to zero) makes
-      // the basis singular, which GLPK's factorization was seen to meet with an assertion, not a status.
-      for (int j = 0; j < cols && from; ++j)
-        if (from->stat[static_cast<size_t>(rows + j)] == GLP_BS && !nonempty_col[static_cast<size_t>(j)]) from = nullptr;
-    }
-    const signed char* start = from ? from->stat.data() : nullptr;
-    const signed char* fallback = from ? (current_.empty() ? previous_.back() : current_.back()).stat.data() : nullptr;
-    const bool record = cols >= kRestoreColumns;  // no basis is restored below this size: none is recorded
-    // Ranging only on unscaled columns (its reduced costs are in the LP's own units).
-    const bool range = ranging && cols >= kRangingColumns && sx == 1.0 && su == 1.0;
-    signed char* stat = stat_.data();
-    int* tab_ind = tab_ind_.data();
-    double *tab_val = tab_val_.data(), *tab_x = tab_x_.data(), *tab_u = tab_u_.data();
+  bool start();
+  Step triangle();
+  Step grow_stand_in();
+  Step expand();
+  Step certify_pending();
+  void polygon();
+  int extremize(double vx, double vu, Vertex& p);
+  const Basis* warm_basis(double angle) const;
+  struct LpPoint {
     int st = -1;
     bool ranged = false;
     double px = 0.0, pu = 0.0;
-    const bool ok = guarded([&] {
-      glp_set_obj_coef(lp, 1, vx * sx);
-      glp_set_obj_coef(lp, 2, vu * su);
-      auto restore = [&](const signed char* b) {
-        for (int i = 0; i < rows; ++i) glp_set_row_stat(lp, i + 1, b[i]);
-        for (int j = 0; j < cols; ++j) glp_set_col_stat(lp, j + 1, b[rows + j]);
-      };
-      const glp_smcp* method = &parm;
-      if (start) {
-        restore(start);
-        // Dual feasible (to the simplex's tolerance): the dual simplex. Otherwise (a degenerate vertex whose
-        // reduced costs changed sign) back to the basis of the LP just before (primal feasible within a grid
-        // point) and the primal simplex: from the restored basis it was seen to take 300-400 pivots.
-        if (glp_warm_up(lp) == 0 && glp_get_dual_stat(lp) == GLP_FEAS) method = &dual;
-        else restore(fallback);
-      }
-      st = glpk_solve_robust(lp, *method, false);
-      if (st != GLP_OPT) return;
-      px = glp_get_col_prim(lp, 1);
-      pu = glp_get_col_prim(lp, 2);
-      if (!record && !range) return;
-      for (int i = 0; i < rows; ++i) stat[i] = static_cast<signed char>(glp_get_row_stat(lp, i + 1));
-      for (int j = 0; j < cols; ++j) stat[rows + j] = static_cast<signed char>(glp_get_col_stat(lp, j + 1));
-      if (!range || !glp_bf_exists(lp)) return;
-      // The tableau rows of x and u (zero where that column is nonbasic: its reduced cost is then v's own).
-      auto tab_row = [&](int col, double* out) {
-        for (int k = 0; k <= total; ++k) out[k] = 0.0;
-        if (stat[rows + col - 1] != GLP_BS) return;
-        const int len = glp_eval_tab_row(lp, rows + col, tab_ind, tab_val);
-        for (int t = 1; t <= len; ++t) out[tab_ind[t]] = tab_val[t];
-      };
-      tab_row(1, tab_x);
-      tab_row(2, tab_u);
-      ranged = true;
-    });
-    if (!ok) return -2;
-    if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
-    p = {sx * px, su * pu};
-    range_basis(last_range, ranged);
-    // GLPK's optimal basis, for the dense simplex's next LPs (stat_ is filled when range or record is).
-    if (dense_ok() && (record || range)) last_state.stat = stat_;
-    if (record) current_.push_back({angle, stat_});
-    return 1;
   };
+  void solve_lp(double vx, double vu, const signed char* start, const signed char* fallback, bool range, LpPoint& r);
+  void range_basis(bool computed);
+  void add_point(const Vertex& p, const Vertex& direction);
+  bool binding(int& code);
+  bool range_certifies(const Ranging& rg, double nx, double nu, int& code) const;
+  bool within_approximation(const Pending& d) const;
+  void directions();
+  void hull_changed();
+  double size_of() const;
+  bool is_stand_in(double b) const { return std::abs(b) >= stand_in_; }
+  bool capped(double b) const { return std::isfinite(b) && is_stand_in(b); }  // a bound the LPs see
+  bool real(const Vertex& p, bool along_x) const;
+  Step glpk_error();
 
-  std::vector<Vertex> points;  // every support point found
-  std::vector<Ranging> ranges;  // and its LP's ranging
+  PolytopeProjector& self_;
+  const PolytopeLp& in_;
+  const double relative_tolerance_;
+  const int max_lps_;
+  const double approximation_;
+  Projection out_;
+  glp_smcp parm_, dual_;
+  glp_prob* lp_ = nullptr;
+  int rows_ = 0, cols_ = 0, total_ = 0;
+  // eq. (19): max v·(x, u) over the polytope. The LP's columns 1 and 2 are x / sx and u / su: scaled only
+  // when the shadow lies far beyond the stand-in bounds (grow_stand_in), so that GLPK's unscaled simplex
+  // sees values of order one.
+  double sx_ = 1.0, su_ = 1.0;
+  bool same_shape_ = false;         // previous_ holds bases of this shape to warm-start from
+  bool record_ = false;             // this size keeps its bases for the next grid point (kRestoreColumns)
+  std::vector<char> nonempty_col_;  // per column: a nonzero in this grid point's matrix
+  Ranging last_range_;              // the ranging of the last LP's optimal basis (empty if not computed)
+  std::vector<Vertex> points_;      // every support point found
+  std::vector<Ranging> ranges_;     // and its LP's ranging
+  std::vector<Vertex> support_;     // and the (unit) direction of that LP
   // The stand-in bounds on x and u (those at least in.stand_in in magnitude): the shadow is that of the
-  // polytope without them, which they must not cut. Grown below when they hide all of it.
-  double xlo = in.col_lo[0], xhi = in.col_hi[0], ulo = in.col_lo[1], uhi = in.col_hi[1];
-  double stand_in = in.stand_in;
-  auto is_stand_in = [&](double b) { return std::abs(b) >= stand_in; };
-  auto capped = [&](double b) { return std::isfinite(b) && is_stand_in(b); };  // a bound the LPs see
-  // Initial directions: the vertices of an equilateral triangle (sec. IV.C). They positively span the
-  // plane, so a shadow whose three support points coincide is that point. An LP that fails here keeps
-  // the support points found so far (an inner set, reported incomplete).
-  for (int i = 0; i < 3; ++i) {
-    const double ang = 2.0 * M_PI * i / 3.0;
-    Vertex p;
-    const int r = extremize(std::cos(ang), std::sin(ang), p, static_cast<int>(points.size()) - 1);
-    ++out.by_cause.initial;
-    if (r == -2) return glpk_error();
-    if (r == 0 && i == 0 && (capped(xhi) || capped(ulo) || capped(uhi))) {
-      // Infeasible with the stand-in bounds: is it without them? A polytope whose shadow lies only beyond
-      // them (a grid point where b ~ 1e-8, so that s̈ ~ 1e10 would be needed) is not empty, and calling it
-      // empty contradicts solve()'s re-check on the full polytope. One feasibility LP without them; if
-      // feasible, the bounds grow past its point (x, u) and the projection starts again.
-      const double x_hi = capped(xhi) ? INFINITY : xhi, u_lo = capped(ulo) ? -INFINITY : ulo,
-                   u_hi = capped(uhi) ? INFINITY : uhi;
-      ++out.lp_solves;
-      ++out.by_cause.cap_growth;
-      int st = -1;
-      double fx = 0.0, fu = 0.0;
-      const bool ok = guarded([&] {
-        glp_set_obj_coef(lp, 1, 0.0);
-        glp_set_obj_coef(lp, 2, 0.0);
-        glpk_set_bounds(lp, false, 1, xlo, x_hi);
-        glpk_set_bounds(lp, false, 2, u_lo, u_hi);
-        // With GLPK's scaling, for this LP only: with b ~ 1e-8 against forces ~ 1e2 the unscaled simplex
-        // was seen to call such a polytope infeasible from both bases (exact arithmetic gets it right too,
-        // but costs ~30 ms per truly empty point). An infeasible answer is the projection's claim, which
-        // solve() re-checks in exact arithmetic before it reports it.
-        glp_scale_prob(lp, GLP_SF_AUTO);
-        glp_std_basis(lp);
-        st = glpk_solve_robust(lp, parm, false);
-        glp_unscale_prob(lp);
-        if (st != GLP_OPT) return;
-        fx = std::abs(glp_get_col_prim(lp, 1));
-        fu = std::abs(glp_get_col_prim(lp, 2));
-      });
-      if (!ok) return glpk_error();
-      if (st != GLP_OPT) {
-        out.outcome = st == GLP_NOFEAS ? Projection::Outcome::Empty : Projection::Outcome::Failed;
-        if (st != GLP_NOFEAS) out.note = "the LP solver did not finish (feasibility without the stand-in bounds)";
-        return out;
-      }
-      const double grown = std::pow(10.0, std::ceil(std::log10(std::max(fx, fu))) + 2.0);
-      if (!(grown <= kLargestStandIn) || !(grown > stand_in)) {
-        out.outcome = Projection::Outcome::Failed;
-        out.note = "the shadow lies beyond (x, u) = 1e15 (no polygon represents it)";
-        return out;
-      }
-      if (capped(xhi)) xhi = grown;
-      if (capped(ulo)) ulo = -grown;
-      if (capped(uhi)) uhi = grown;
-      stand_in = grown;
-      bounds_grown = true;
-      // A coordinate found beyond the old bounds is scaled to order one (its column times s, its bounds
-      // over s), so that GLPK's unscaled simplex sees values of order one. It does not make these LPs
-      // reliable (on Talos its optima still reached the grown bounds along u where HiGHS's did not):
-      // hence the polygon is reported inexact below.
-      auto scale_of = [&](double f) { return f > in.stand_in ? std::pow(10.0, std::round(std::log10(f))) : 1.0; };
-      sx = scale_of(fx);
-      su = scale_of(fu);
-      for (int j = 0; j < 2; ++j) {
-        const double sc = j == 0 ? sx : su;
-        if (sc == 1.0) continue;
-        ia_.assign(1, 0);
-        ar_.assign(1, 0.0);
-        for (Eigen::Index r = 0; r < in.A.rows(); ++r)
-          if (in.A(r, j) != 0.0) {
-            ia_.push_back(static_cast<int>(r) + 1);
-            ar_.push_back(in.A(r, j) * sc);
-          }
-        if (!guarded([&] { glp_set_mat_col(lp, j + 1, static_cast<int>(ar_.size()) - 1, ia_.data(), ar_.data()); }))
-          return glpk_error();
-      }
-      const bool bounds_set = guarded([&] {
-        glpk_set_bounds(lp, false, 1, xlo / sx, xhi / sx);
-        glpk_set_bounds(lp, false, 2, ulo / su, uhi / su);
-      });
-      if (!bounds_set) return glpk_error();
-      i = -1;  // again, from the feasible basis just found
-      continue;
-    }
-    if (r <= 0) {
-      if (!points.empty()) {  // an LP failed after a feasible one: keep what was found
-        out.complete = false;
-        out.note = "the LP solver did not finish (initial direction " + std::to_string(i) + ")";
-        break;
-      }
-      out.outcome = r == 0 ? Projection::Outcome::Empty : Projection::Outcome::Failed;
-      if (r < 0) out.note = "the LP solver did not finish (initial direction " + std::to_string(i) + ")";
-      return out;
-    }
-    points.push_back(p);
-    ranges.push_back(std::move(last_range));
-    support.push_back({std::cos(ang), std::sin(ang)});
-    states.push_back(std::move(last_state));
-  }
-  out.stand_in = stand_in;
+  // polytope without them, which they must not cut. Grown when they hide all of it.
+  double xlo_ = 0.0, xhi_ = 0.0, ulo_ = 0.0, uhi_ = 0.0, stand_in_ = 0.0;
+  // Certified directions, keyed by the hull edge (from, to) that produced them; (i, i) is the end
+  // direction beyond point i of a hull that is a segment. The value: what binds there (see binding()).
+  std::map<std::pair<int, int>, int> certified_;
+  Eigen::VectorXd row_norm_;
+  std::vector<int> hull_;
+  std::vector<Pending> pending_;
+  double tol_ = 0.0, approx_ = 0.0;
+};
+
+Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
+  return Run(*this, in, relative_tolerance, max_lps, approximation).project();
+}
+
+// A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
+PolytopeProjector::Run::Step PolytopeProjector::Run::glpk_error() {
+  out_.outcome = Projection::Outcome::Failed;
+  out_.complete = false;
+  out_.note = "GLPK error";
+  return Step::Stop;
+}
+
+Projection PolytopeProjector::Run::project() {
+  if (!start()) return out_;
+  Step s;
+  while ((s = triangle()) == Step::Again)
+    if (grow_stand_in() == Step::Stop) return out_;
+  if (s == Step::Stop) return out_;
+  out_.stand_in = stand_in_;
+  // An LP that failed in the triangle left an inner set, reported incomplete.
+  out_.complete = points_.size() == 3;
+  row_norm_ = in_.A.rowwise().norm();
+  if (expand() == Step::Stop) return out_;
   // A shadow found only beyond the stand-in bounds is not called exact: there b·u ~ 1e2 with b ~ 1e-8 (the
   // rounding residue of a path derivative), and the LPs' optima were seen to differ from HiGHS's by
   // orders of magnitude along u. What matters is that it is not empty (the status then comes from
   // reachability, which such an s̈ cannot satisfy, not from a false "no forces balance the robot").
-  const bool grown_bounds = stand_in != in.stand_in;
-  const bool initial_complete = points.size() == 3;
+  if (stand_in_ != in_.stand_in && out_.complete) {
+    out_.complete = false;
+    out_.note = "the shadow lies only beyond the stand-in bounds (ill-conditioned LPs there)";
+  }
+  polygon();
+  std::swap(self_.previous_, self_.current_);
+  return out_;
+}
 
-  // A vertex on a stand-in bound is not part of the polygon's extent.
-  auto real = [&](const Vertex& p, bool along_x) {
-    const double v = along_x ? p.x : p.y, lo = along_x ? xlo : ulo, hi = along_x ? xhi : uhi;
-    return !((v >= hi && is_stand_in(hi)) || (v <= lo && is_stand_in(lo)));
-  };
-  auto size_of = [&](const std::vector<int>& hull) {
-    double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY, mag = 0.0;
-    for (int i : hull) {
-      const Vertex& p = points[static_cast<size_t>(i)];
-      if (real(p, true)) xlo = std::min(xlo, p.x), xhi = std::max(xhi, p.x), mag = std::max(mag, std::abs(p.x));
-      if (real(p, false)) ylo = std::min(ylo, p.y), yhi = std::max(yhi, p.y), mag = std::max(mag, std::abs(p.y));
-    }
-    double size = 0.0;
-    if (xhi >= xlo) size = std::max(size, xhi - xlo);
-    if (yhi >= ylo) size = std::max(size, yhi - ylo);
-    // A polygon that is (nearly) a point still needs a floor above the LPs' rounding: a thousandth of
-    // its distance from the origin, or an absolute 1e-14 at the origin.
-    return std::max(size, 1e-3 * mag);
-  };
-  auto tolerance = [&](const std::vector<int>& hull) {
-    return std::max(relative_tolerance * size_of(hull), 1e-14);
-  };
-  // projection_tolerance: every LP optimum p found along v gives the outer half-plane v·z <= v·p of the
-  // shadow. Beyond an edge (a, b) with normal n, those of a and b (v_a before n before v_b, counter-
-  // clockwise) leave the triangle a, apex, b; in every direction d between v_a and v_b the shadow's
-  // support exceeds the hull's by at most d·(apex - a) (or - b) <= the apex's height above the edge.
-  // An edge whose apex lies within `approx` of it is final: the hull stays (an inner set, conservative).
-  double approx = 0.0;
-  auto within_approximation = [&](int from, int to, double nx, double nu, double offset) {
-    if (!(approx > 0.0) || from == to) return false;
-    const Vertex &da = support[static_cast<size_t>(from)], &db = support[static_cast<size_t>(to)];
-    const double det = da.x * db.y - da.y * db.x;
-    if (!(da.x * nu - da.y * nx > 0.0) || !(nx * db.y - nu * db.x > 0.0) || !(det > 0.0)) return false;
-    const Vertex &a = points[static_cast<size_t>(from)], &b = points[static_cast<size_t>(to)];
-    const double ra = da.x * a.x + da.y * a.y, rb = db.x * b.x + db.y * b.y;
-    const double px = (ra * db.y - rb * da.y) / det, pu = (da.x * rb - db.x * ra) / det;
-    return nx * px + nu * pu - offset <= approx;
-  };
+// Loads the problem and sizes every buffer the LPs' guarded calls write (glpk_guard.hpp's rule 1).
+bool PolytopeProjector::Run::start() {
+  // The parameters first: a GLPK error there frees the problem before load() looks at it.
+  if (!simplex_parameters(static_cast<int>(in_.A.rows()), static_cast<int>(in_.A.cols()), parm_)) {
+    glpk_error();
+    return false;
+  }
+  const int loaded = self_.load(in_);
+  if (loaded < 0) {
+    glpk_error();
+    return false;
+  }
+  lp_ = self_.lp_.get();
+  rows_ = self_.rows_;
+  cols_ = self_.cols_;
+  total_ = rows_ + cols_;
+  // Warm starts across grid points (sec. IV.C): each LP starts from the final basis of the previous grid
+  // point's LP in the nearest direction, if one was within kNear radians, by the dual simplex. That basis
+  // is optimal for a nearby polytope and direction, so it is (nearly) dual feasible and a few dual pivots
+  // restore primal feasibility, where the primal simplex from the basis of the LP just before (another
+  // direction) takes many. Any start gives an optimum, so the polygon does not depend on it (a
+  // degenerate optimum may be another point of the same edge).
+  same_shape_ = loaded == 1 && !self_.previous_.empty() && cols_ >= kRestoreColumns;
+  record_ = cols_ >= kRestoreColumns;  // no basis is restored below this size: none is recorded
+  nonempty_col_.assign(static_cast<size_t>(cols_), 0);
+  if (same_shape_)
+    for (int j = 0; j < cols_; ++j) nonempty_col_[static_cast<size_t>(j)] = (in_.A.col(j).array() != 0.0).any();
+  self_.current_.clear();
+  dual_ = parm_;
+  dual_.meth = GLP_DUALP;
+  self_.stat_.resize(static_cast<size_t>(total_));
+  // The tableau rows of x and u (1-based over every variable, GLPK's numbering).
+  for (auto* v : {&self_.tab_val_, &self_.tab_x_, &self_.tab_u_}) v->resize(static_cast<size_t>(total_) + 1);
+  self_.tab_ind_.resize(static_cast<size_t>(total_) + 1);
+  xlo_ = in_.col_lo[0], xhi_ = in_.col_hi[0], ulo_ = in_.col_lo[1], uhi_ = in_.col_hi[1];
+  stand_in_ = in_.stand_in;
+  return true;
+}
 
-  // Certified directions, keyed by the hull edge (from, to) that produced them; (i, i) is the end
-  // direction beyond point i of a hull that is a segment. The value: what binds there (see binding()).
-  std::map<std::pair<int, int>, int> certified;
-  // The constraint that holds the shadow at an edge: at the certifying LP's optimum, the inequality row or
-  // column bound with the largest dual (a row's dual per unit of its normalised row), with its side.
-  Eigen::VectorXd row_norm = in.A.rowwise().norm();
-  const double* norm = row_norm.data();
-  auto binding = [&](int& code) {  // false: a GLPK error
-    code = kBindingUnknown;
-    if (last_dense) {  // the same rule on the dense simplex's statuses and reduced costs
-      const std::vector<signed char>& st = last_state.stat;
-      double best = 0.0;
-      for (int k = 0; k < rows + cols; ++k) {
-        if (st[static_cast<size_t>(k)] == GLP_BS) continue;
-        if (k < rows && (st[static_cast<size_t>(k)] == GLP_NS || in.row_lo[k] == in.row_hi[k])) continue;
-        const double w = std::abs(dense_.reduced_cost(k)) * (k < rows ? norm[k] : 1.0);
-        if (w > best) best = w, code = k < rows ? 2 * k + (st[static_cast<size_t>(k)] == GLP_NU ? 1 : 0) : -(k - rows + 1);
-      }
-      return true;
-    }
-    return guarded([&] {
-      double best = 0.0;
-      for (int i = 0; i < rows; ++i) {
-        const int st = glp_get_row_stat(lp, i + 1);
-        // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
-        if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
-        const double w = std::abs(glp_get_row_dual(lp, i + 1)) * norm[i];
-        if (w > best) {
-          best = w;
-          code = 2 * i + (st == GLP_NU ? 1 : 0);
-        }
-      }
-      for (int j = 0; j < cols; ++j) {
-        if (glp_get_col_stat(lp, j + 1) == GLP_BS) continue;
-        const double w = std::abs(glp_get_col_dual(lp, j + 1));
-        if (w > best) {
-          best = w;
-          code = -(j + 1);
-        }
-      }
-    });
+// The basis to warm-start an LP along `angle` from: the previous grid point's in the nearest direction
+// within kNear, unless it would be singular here.
+const PolytopeProjector::Basis* PolytopeProjector::Run::warm_basis(double angle) const {
+  if (!same_shape_) return nullptr;
+  const Basis* from = nullptr;
+  double best = kNear;
+  for (const Basis& b : self_.previous_) {
+    double d = std::abs(b.angle - angle);
+    d = std::min(d, 2.0 * M_PI - d);
+    if (d < best) best = d, from = &b;
+  }
+  if (!from) return nullptr;
+  // A basic column that is empty in this grid point's matrix (a coefficient rounded to zero) makes
+  // the basis singular, which GLPK's factorization was seen to meet with an assertion, not a status.
+  for (int j = 0; j < cols_; ++j)
+    if (from->stat[static_cast<size_t>(rows_ + j)] == GLP_BS && !nonempty_col_[static_cast<size_t>(j)]) return nullptr;
+  return from;
+}
+
+// The LP along (vx, vu), inside a guarded call: from `start` by the dual simplex if that basis is dual
+// feasible, else from `fallback` (or the current basis) by the primal simplex; then, if kept or ranged,
+// the optimal basis into stat_, and if ranged the tableau rows of x and u into tab_x_, tab_u_.
+void PolytopeProjector::Run::solve_lp(double vx, double vu, const signed char* start, const signed char* fallback,
+                                      bool range, LpPoint& r) {
+  glp_set_obj_coef(lp_, 1, vx * sx_);
+  glp_set_obj_coef(lp_, 2, vu * su_);
+  auto restore = [&](const signed char* b) {
+    for (int i = 0; i < rows_; ++i) glp_set_row_stat(lp_, i + 1, b[i]);
+    for (int j = 0; j < cols_; ++j) glp_set_col_stat(lp_, j + 1, b[rows_ + j]);
   };
-  // Ranging's certificate (see Ranging): the basis of rg is optimal along (nx, nu), to 1e-11 in every
-  // reduced cost (GLPK stops at tol_dj = 1e-10); `code` is then what binding() would say there.
-  auto range_certifies = [&](const Ranging& rg, double nx, double nu, int& code) {
-    if (rg.var.empty()) return false;
-    constexpr double kEps = 1e-11;
-    for (size_t t = 0; t < rg.var.size(); ++t) {
-      const double d = nx * rg.A[t] + nu * rg.B[t];
-      const int st = rg.stat[t];
-      if ((st == GLP_NL && d > kEps) || (st == GLP_NU && d < -kEps) || (st == GLP_NF && std::abs(d) > kEps)) return false;
+  const glp_smcp* method = &parm_;
+  if (start) {
+    restore(start);
+    // Dual feasible (to the simplex's tolerance): the dual simplex. Otherwise (a degenerate vertex whose
+    // reduced costs changed sign) back to the basis of the LP just before (primal feasible within a grid
+    // point) and the primal simplex, which from the restored basis was seen to take hundreds of pivots.
+    if (glp_warm_up(lp_) == 0 && glp_get_dual_stat(lp_) == GLP_FEAS) method = &dual_;
+    else restore(fallback);
+  }
+  r.st = glpk_solve_robust(lp_, *method, false);
+  if (r.st != GLP_OPT) return;
+  r.px = glp_get_col_prim(lp_, 1);
+  r.pu = glp_get_col_prim(lp_, 2);
+  if (!record_ && !range) return;
+  signed char* stat = self_.stat_.data();
+  for (int i = 0; i < rows_; ++i) stat[i] = static_cast<signed char>(glp_get_row_stat(lp_, i + 1));
+  for (int j = 0; j < cols_; ++j) stat[rows_ + j] = static_cast<signed char>(glp_get_col_stat(lp_, j + 1));
+  if (!range || !glp_bf_exists(lp_)) return;
+  // The tableau rows of x and u (zero where that column is nonbasic: its reduced cost is then v's own).
+  int* tab_ind = self_.tab_ind_.data();
+  double* tab_val = self_.tab_val_.data();
+  auto tab_row = [&](int col, double* out) {
+    for (int k = 0; k <= total_; ++k) out[k] = 0.0;
+    if (stat[rows_ + col - 1] != GLP_BS) return;
+    const int len = glp_eval_tab_row(lp_, rows_ + col, tab_ind, tab_val);
+    for (int t = 1; t <= len; ++t) out[tab_ind[t]] = tab_val[t];
+  };
+  tab_row(1, self_.tab_x_.data());
+  tab_row(2, self_.tab_u_.data());
+  r.ranged = true;
+}
+
+// eq. (19) along (vx, vu): 1 optimal (p its (x, u)), 0 infeasible, -1 failed, -2 a GLPK error.
+int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p) {
+  ++out_.lp_solves;
+  const double angle = std::atan2(vu, vx);
+  const Basis* from = warm_basis(angle);
+  const signed char* start = from ? from->stat.data() : nullptr;
+  const signed char* fallback =
+      from ? (self_.current_.empty() ? self_.previous_.back() : self_.current_.back()).stat.data() : nullptr;
+  // Ranging only on unscaled columns (its reduced costs are in the LP's own units).
+  const bool range = self_.ranging && cols_ >= kRangingColumns && sx_ == 1.0 && su_ == 1.0;
+  LpPoint r;
+  if (!guarded([&] { solve_lp(vx, vu, start, fallback, range, r); })) return -2;
+  if (r.st != GLP_OPT) return r.st == GLP_NOFEAS ? 0 : -1;
+  p = {sx_ * r.px, su_ * r.pu};
+  range_basis(r.ranged);
+  if (record_) self_.current_.push_back({angle, self_.stat_});
+  return 1;
+}
+
+// last_range_ from the basis in stat_ and the tableau rows in tab_x_, tab_u_ (see Ranging).
+void PolytopeProjector::Run::range_basis(bool computed) {
+  Ranging& rg = last_range_;
+  rg = Ranging();
+  if (!computed) return;
+  for (int k = 1; k <= total_; ++k) {
+    const signed char st = self_.stat_[static_cast<size_t>(k - 1)];
+    if (st == GLP_BS) continue;
+    rg.var.push_back(k);
+    rg.stat.push_back(st);
+    rg.A.push_back(self_.tab_x_[static_cast<size_t>(k)] + (k == rows_ + 1 ? 1.0 : 0.0));
+    rg.B.push_back(self_.tab_u_[static_cast<size_t>(k)] + (k == rows_ + 2 ? 1.0 : 0.0));
+  }
+}
+
+void PolytopeProjector::Run::add_point(const Vertex& p, const Vertex& direction) {
+  points_.push_back(p);
+  ranges_.push_back(std::move(last_range_));
+  support_.push_back(direction);
+}
+
+// Initial directions: the vertices of an equilateral triangle (sec. IV.C). They positively span the
+// plane, so a shadow whose three support points coincide is that point. An LP that fails here keeps the
+// support points found so far (an inner set, reported incomplete). Again: the first LP is infeasible
+// with the stand-in bounds, which grow_stand_in() then looks beyond.
+PolytopeProjector::Run::Step PolytopeProjector::Run::triangle() {
+  for (int i = 0; i < 3; ++i) {
+    const double ang = 2.0 * M_PI * i / 3.0;
+    Vertex p;
+    const int r = extremize(std::cos(ang), std::sin(ang), p);
+    ++out_.by_cause.initial;
+    if (r == -2) return glpk_error();
+    if (r == 0 && i == 0 && (capped(xhi_) || capped(ulo_) || capped(uhi_))) return Step::Again;
+    if (r <= 0) {
+      const std::string note = "the LP solver did not finish (initial direction " + std::to_string(i) + ")";
+      if (!points_.empty()) {  // an LP failed after a feasible one: keep what was found
+        out_.note = note;
+        return Step::Ok;
+      }
+      out_.outcome = r == 0 ? Projection::Outcome::Empty : Projection::Outcome::Failed;
+      if (r < 0) out_.note = note;
+      return Step::Stop;
     }
-    code = kBindingUnknown;
+    add_point(p, {std::cos(ang), std::sin(ang)});
+  }
+  return Step::Ok;
+}
+
+// Infeasible with the stand-in bounds: is it without them? A polytope whose shadow lies only beyond them
+// (a grid point where b ~ 1e-8, so that s̈ ~ 1e10 would be needed) is not empty, and calling it empty
+// contradicts solve()'s re-check on the full polytope. One feasibility LP without them; if feasible, the
+// bounds grow past its point (x, u) and the triangle starts again, from the feasible basis found.
+PolytopeProjector::Run::Step PolytopeProjector::Run::grow_stand_in() {
+  const double x_hi = capped(xhi_) ? INFINITY : xhi_, u_lo = capped(ulo_) ? -INFINITY : ulo_,
+               u_hi = capped(uhi_) ? INFINITY : uhi_;
+  ++out_.lp_solves;
+  ++out_.by_cause.cap_growth;
+  int st = -1;
+  double fx = 0.0, fu = 0.0;
+  const bool ok = guarded([&] {
+    glp_set_obj_coef(lp_, 1, 0.0);
+    glp_set_obj_coef(lp_, 2, 0.0);
+    glpk_set_bounds(lp_, false, 1, xlo_, x_hi);
+    glpk_set_bounds(lp_, false, 2, u_lo, u_hi);
+    // With GLPK's scaling, for this LP only: with b ~ 1e-8 against forces ~ 1e2 the unscaled simplex was
+    // seen to call such a polytope infeasible from both bases. An infeasible answer is the projection's
+    // claim, which solve() re-checks in exact arithmetic before it reports it.
+    glp_scale_prob(lp_, GLP_SF_AUTO);
+    glp_std_basis(lp_);
+    st = glpk_solve_robust(lp_, parm_, false);
+    glp_unscale_prob(lp_);
+    if (st != GLP_OPT) return;
+    fx = std::abs(glp_get_col_prim(lp_, 1));
+    fu = std::abs(glp_get_col_prim(lp_, 2));
+  });
+  if (!ok) return glpk_error();
+  if (st != GLP_OPT) {
+    out_.outcome = st == GLP_NOFEAS ? Projection::Outcome::Empty : Projection::Outcome::Failed;
+    if (st != GLP_NOFEAS) out_.note = "the LP solver did not finish (feasibility without the stand-in bounds)";
+    return Step::Stop;
+  }
+  const double grown = std::pow(10.0, std::ceil(std::log10(std::max(fx, fu))) + 2.0);
+  if (!(grown <= kLargestStandIn) || !(grown > stand_in_)) {
+    out_.outcome = Projection::Outcome::Failed;
+    out_.note = "the shadow lies beyond (x, u) = 1e15 (no polygon represents it)";
+    return Step::Stop;
+  }
+  if (capped(xhi_)) xhi_ = grown;
+  if (capped(ulo_)) ulo_ = -grown;
+  if (capped(uhi_)) uhi_ = grown;
+  stand_in_ = grown;
+  // A coordinate found beyond the old bounds is scaled to order one (its column times s, its bounds over
+  // s). It does not make these LPs reliable (on Talos their optima still reached the grown bounds along u
+  // where HiGHS's did not): hence project() reports the polygon inexact.
+  auto scale_of = [&](double f) { return f > in_.stand_in ? std::pow(10.0, std::round(std::log10(f))) : 1.0; };
+  sx_ = scale_of(fx);
+  su_ = scale_of(fu);
+  std::vector<int>& ia = self_.ia_;
+  std::vector<double>& ar = self_.ar_;
+  for (int j = 0; j < 2; ++j) {
+    const double sc = j == 0 ? sx_ : su_;
+    if (sc == 1.0) continue;
+    ia.assign(1, 0);
+    ar.assign(1, 0.0);
+    for (Eigen::Index r = 0; r < in_.A.rows(); ++r)
+      if (in_.A(r, j) != 0.0) {
+        ia.push_back(static_cast<int>(r) + 1);
+        ar.push_back(in_.A(r, j) * sc);
+      }
+    if (!guarded([&] { glp_set_mat_col(lp_, j + 1, static_cast<int>(ar.size()) - 1, ia.data(), ar.data()); }))
+      return glpk_error();
+  }
+  const bool bounds_set = guarded([&] {
+    glpk_set_bounds(lp_, false, 1, xlo_ / sx_, xhi_ / sx_);
+    glpk_set_bounds(lp_, false, 2, ulo_ / su_, uhi_ / su_);
+  });
+  return bounds_set ? Step::Ok : glpk_error();
+}
+
+// A vertex on a stand-in bound is not part of the polygon's extent.
+bool PolytopeProjector::Run::real(const Vertex& p, bool along_x) const {
+  const double v = along_x ? p.x : p.y, lo = along_x ? xlo_ : ulo_, hi = along_x ? xhi_ : uhi_;
+  return !((v >= hi && is_stand_in(hi)) || (v <= lo && is_stand_in(lo)));
+}
+
+// The hull's size: the larger of its x and u extents, vertices on stand-in bounds left out.
+double PolytopeProjector::Run::size_of() const {
+  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY, mag = 0.0;
+  for (int i : hull_) {
+    const Vertex& p = points_[static_cast<size_t>(i)];
+    if (real(p, true)) xlo = std::min(xlo, p.x), xhi = std::max(xhi, p.x), mag = std::max(mag, std::abs(p.x));
+    if (real(p, false)) ylo = std::min(ylo, p.y), yhi = std::max(yhi, p.y), mag = std::max(mag, std::abs(p.y));
+  }
+  double size = 0.0;
+  if (xhi >= xlo) size = std::max(size, xhi - xlo);
+  if (yhi >= ylo) size = std::max(size, yhi - ylo);
+  // A polygon that is (nearly) a point still needs a floor above the LPs' rounding: a thousandth of its
+  // distance from the origin, or an absolute 1e-14 at the origin.
+  return std::max(size, 1e-3 * mag);
+}
+
+void PolytopeProjector::Run::hull_changed() {
+  convex_hull(points_, hull_);
+  const double size = size_of();
+  tol_ = std::max(relative_tolerance_ * size, 1e-14);
+  approx_ = approximation_ * size;
+}
+
+// projection_tolerance: every LP optimum p found along v gives the outer half-plane v·z <= v·p of the
+// shadow. Beyond an edge (a, b) with normal n, those of a and b (v_a before n before v_b, counter-
+// clockwise) leave the triangle a, apex, b; in every direction d between v_a and v_b the shadow's support
+// exceeds the hull's by at most d·(apex - a) (or - b) <= the apex's height above the edge. An edge whose
+// apex lies within `approx` of it is final: the hull stays (an inner set, conservative).
+bool PolytopeProjector::Run::within_approximation(const Pending& e) const {
+  if (!(approx_ > 0.0) || e.from == e.to) return false;
+  const Vertex &da = support_[static_cast<size_t>(e.from)], &db = support_[static_cast<size_t>(e.to)];
+  const double det = da.x * db.y - da.y * db.x;
+  if (!(da.x * e.nu - da.y * e.nx > 0.0) || !(e.nx * db.y - e.nu * db.x > 0.0) || !(det > 0.0)) return false;
+  const Vertex &a = points_[static_cast<size_t>(e.from)], &b = points_[static_cast<size_t>(e.to)];
+  const double ra = da.x * a.x + da.y * a.y, rb = db.x * b.x + db.y * b.y;
+  const double px = (ra * db.y - rb * da.y) / det, pu = (da.x * rb - db.x * ra) / det;
+  return e.nx * px + e.nu * pu - e.offset <= approx_;
+}
+
+// The constraint that holds the shadow at an edge: at the certifying LP's optimum, the inequality row or
+// column bound with the largest dual (a row's dual per unit of its normalised row), with its side.
+// False: a GLPK error.
+bool PolytopeProjector::Run::binding(int& code) {
+  code = kBindingUnknown;
+  const double* norm = row_norm_.data();
+  return guarded([&] {
     double best = 0.0;
-    for (size_t t = 0; t < rg.var.size(); ++t) {
-      const int k = rg.var[t];
-      const double d = std::abs(nx * rg.A[t] + nu * rg.B[t]);
-      if (k <= rows_) {
-        const int i = k - 1;
-        if (rg.stat[t] == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
-        if (d * row_norm[i] > best) best = d * row_norm[i], code = 2 * i + (rg.stat[t] == GLP_NU ? 1 : 0);
-      } else if (d > best) {
-        best = d;
-        code = -(k - rows_);
+    for (int i = 0; i < rows_; ++i) {
+      const int st = glp_get_row_stat(lp_, i + 1);
+      // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
+      if (st == GLP_BS || st == GLP_NS || in_.row_lo[i] == in_.row_hi[i]) continue;
+      const double w = std::abs(glp_get_row_dual(lp_, i + 1)) * norm[i];
+      if (w > best) {
+        best = w;
+        code = 2 * i + (st == GLP_NU ? 1 : 0);
       }
     }
-    return true;
-  };
-  std::vector<int> hull;
-  struct Pending {
-    int from, to;
-    double nx, nu, offset;
-  };
-  std::vector<Pending> pending;
-  auto directions = [&]() {
-    pending.clear();
-    const size_t h = hull.size();
-    auto add = [&](int from, int to, double nx, double nu) {
-      if (certified.count({from, to}) != 0) return;
-      const double len = std::hypot(nx, nu);
-      if (!(len > 0.0)) return;
-      nx /= len;
-      nu /= len;
-      // The hull's own support value in this direction: attained at the edge's ends (a convex hull).
-      const Vertex &a = points[static_cast<size_t>(from)], &b = points[static_cast<size_t>(to)];
-      pending.push_back({from, to, nx, nu, std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y)});
-    };
-    if (h == 1) return;  // three support points coincide: the shadow is that point
-    for (size_t e = 0; e < h; ++e) {
-      const int i = hull[e], j = hull[(e + 1) % h];
-      const Vertex &a = points[static_cast<size_t>(i)], &b = points[static_cast<size_t>(j)];
-      add(i, j, b.y - a.y, -(b.x - a.x));  // outward normal of a counter-clockwise edge
+    for (int j = 0; j < cols_; ++j) {
+      if (glp_get_col_stat(lp_, j + 1) == GLP_BS) continue;
+      const double w = std::abs(glp_get_col_dual(lp_, j + 1));
+      if (w > best) {
+        best = w;
+        code = -(j + 1);
+      }
     }
-    if (h == 2) {  // a segment: its two ends too
-      const Vertex &a = points[static_cast<size_t>(hull[0])], &b = points[static_cast<size_t>(hull[1])];
-      add(hull[0], hull[0], a.x - b.x, a.y - b.y);
-      add(hull[1], hull[1], b.x - a.x, b.y - a.y);
-    }
-  };
+  });
+}
 
-  convex_hull(points, hull);
-  out.complete = initial_complete;
-  double tol = tolerance(hull);
-  approx = approximation * size_of(hull);
-  while (out.complete) {
+// Ranging's certificate (see Ranging): the basis of rg is optimal along (nx, nu), to 1e-11 in every
+// reduced cost (GLPK stops at tol_dj = 1e-10); `code` is then what binding() would say there.
+bool PolytopeProjector::Run::range_certifies(const Ranging& rg, double nx, double nu, int& code) const {
+  if (rg.var.empty()) return false;
+  constexpr double kEps = 1e-11;
+  for (size_t t = 0; t < rg.var.size(); ++t) {
+    const double d = nx * rg.A[t] + nu * rg.B[t];
+    const int st = rg.stat[t];
+    if ((st == GLP_NL && d > kEps) || (st == GLP_NU && d < -kEps) || (st == GLP_NF && std::abs(d) > kEps)) return false;
+  }
+  code = kBindingUnknown;
+  double best = 0.0;
+  for (size_t t = 0; t < rg.var.size(); ++t) {
+    const int k = rg.var[t];
+    const double d = std::abs(nx * rg.A[t] + nu * rg.B[t]);
+    if (k <= rows_) {
+      const int i = k - 1;
+      if (rg.stat[t] == GLP_NS || in_.row_lo[i] == in_.row_hi[i]) continue;
+      if (d * row_norm_[i] > best) best = d * row_norm_[i], code = 2 * i + (rg.stat[t] == GLP_NU ? 1 : 0);
+    } else if (d > best) {
+      best = d;
+      code = -(k - rows_);
+    }
+  }
+  return true;
+}
+
+// The hull's uncertified directions: each edge's outward normal, and a segment's two ends.
+void PolytopeProjector::Run::directions() {
+  pending_.clear();
+  const size_t h = hull_.size();
+  auto add = [&](int from, int to, double nx, double nu) {
+    if (certified_.count({from, to}) != 0) return;
+    const double len = std::hypot(nx, nu);
+    if (!(len > 0.0)) return;
+    nx /= len;
+    nu /= len;
+    // The hull's own support value in this direction: attained at the edge's ends (a convex hull).
+    const Vertex &a = points_[static_cast<size_t>(from)], &b = points_[static_cast<size_t>(to)];
+    pending_.push_back({from, to, nx, nu, std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y)});
+  };
+  if (h == 1) return;  // three support points coincide: the shadow is that point
+  for (size_t e = 0; e < h; ++e) {
+    const int i = hull_[e], j = hull_[(e + 1) % h];
+    const Vertex &a = points_[static_cast<size_t>(i)], &b = points_[static_cast<size_t>(j)];
+    add(i, j, b.y - a.y, -(b.x - a.x));  // outward normal of a counter-clockwise edge
+  }
+  if (h == 2) {  // a segment: its two ends too
+    const Vertex &a = points_[static_cast<size_t>(hull_[0])], &b = points_[static_cast<size_t>(hull_[1])];
+    add(hull_[0], hull_[0], a.x - b.x, a.y - b.y);
+    add(hull_[1], hull_[1], b.x - a.x, b.y - a.y);
+  }
+}
+
+// Edge expansion: the hull's uncertified directions, recomputed whenever a new support point changes
+// the hull, until every edge is certified (or the projection is incomplete).
+PolytopeProjector::Run::Step PolytopeProjector::Run::expand() {
+  hull_changed();
+  while (out_.complete) {
     directions();
-    if (pending.empty()) break;
-    bool grew = false;
-    for (const Pending& d : pending) {
-      int code = kBindingUnknown;
-      if (range_certifies(ranges[static_cast<size_t>(d.from)], d.nx, d.nu, code) ||
-          range_certifies(ranges[static_cast<size_t>(d.to)], d.nx, d.nu, code)) {
-        ++out.ranged_certificates;
-        certified[{d.from, d.to}] = code;
-        continue;
-      }
-      if (within_approximation(d.from, d.to, d.nx, d.nu, d.offset)) {
-        ++out.approximate_edges;
-        certified[{d.from, d.to}] = kBindingUnknown;  // no LP along it: what binds there is not known
-        continue;
-      }
-      if (out.lp_solves >= max_lps) {
-        out.complete = false;
-        out.note = "LP budget (" + std::to_string(max_lps) + ") ran out with " + std::to_string(pending.size()) +
-                   " edges not certified";
-        break;
-      }
-      Vertex q;
-      // From the endpoint whose support direction is nearer the edge's normal.
-      const Vertex &sa = support[static_cast<size_t>(d.from)], &sb = support[static_cast<size_t>(d.to)];
-      const int start = sa.x * d.nx + sa.y * d.nu >= sb.x * d.nx + sb.y * d.nu ? d.from : d.to;
-      const int r = extremize(d.nx, d.nu, q, start);
-      if (r != 1) ++out.by_cause.vertex;
-      if (r == -2) return glpk_error();
-      if (r != 1) {
-        // The polytope was non-empty three LPs ago: an 'infeasible' here is a solver failure too.
-        out.complete = false;
-        out.note = "the LP solver did not finish after " + std::to_string(out.lp_solves) + " LPs";
-        break;
-      }
-      if (d.nx * q.x + d.nu * q.y <= d.offset + tol) {
-        ++out.by_cause.certificate;
-        int code = kBindingUnknown;
-        if (!binding(code)) return glpk_error();
-        certified[{d.from, d.to}] = code;  // nothing of the shadow beyond this edge
-      } else {
-        ++out.by_cause.vertex;
-        points.push_back(q);  // strictly outside the hull by more than the tolerance
-        ranges.push_back(std::move(last_range));
-        support.push_back({d.nx, d.nu});
-        states.push_back(std::move(last_state));
-        grew = true;
-        break;  // the hull changes: recompute it and its uncertified edges
-      }
-    }
-    if (!out.complete) break;
-    if (grew) {
-      convex_hull(points, hull);
-      tol = tolerance(hull);
-      approx = approximation * size_of(hull);
-    }
+    if (pending_.empty()) break;
+    const Step s = certify_pending();
+    if (s == Step::Stop) return s;
+    if (s == Step::Again) hull_changed();
   }
-  if (grown_bounds && out.complete) {
-    out.complete = false;
-    out.note = "the shadow lies only beyond the stand-in bounds (ill-conditioned LPs there)";
-  }
+  return Step::Ok;
+}
 
-  // The polygon: the hull's vertices and edges (an inner set, certified when complete).
-  out.tolerance = std::max(tol, approx);
-  for (int i : hull) out.vertices.push_back(points[static_cast<size_t>(i)]);
-  const size_t h = out.vertices.size();
+// Each pending direction in turn: certified by an endpoint's ranging, by the approximation, or by its LP
+// finding nothing beyond the edge. Again: the LP found a new support point (the hull changes).
+PolytopeProjector::Run::Step PolytopeProjector::Run::certify_pending() {
+  for (const Pending& d : pending_) {
+    int code = kBindingUnknown;
+    if (range_certifies(ranges_[static_cast<size_t>(d.from)], d.nx, d.nu, code) ||
+        range_certifies(ranges_[static_cast<size_t>(d.to)], d.nx, d.nu, code)) {
+      ++out_.ranged_certificates;
+      certified_[{d.from, d.to}] = code;
+      continue;
+    }
+    if (within_approximation(d)) {
+      ++out_.approximate_edges;
+      certified_[{d.from, d.to}] = kBindingUnknown;  // no LP along it: what binds there is not known
+      continue;
+    }
+    if (out_.lp_solves >= max_lps_) {
+      out_.complete = false;
+      out_.note = "LP budget (" + std::to_string(max_lps_) + ") ran out with " + std::to_string(pending_.size()) +
+                  " edges not certified";
+      return Step::Ok;
+    }
+    Vertex q;
+    const int r = extremize(d.nx, d.nu, q);
+    if (r != 1) ++out_.by_cause.vertex;
+    if (r == -2) return glpk_error();
+    if (r != 1) {
+      // The polytope was non-empty three LPs ago: an 'infeasible' here is a solver failure too.
+      out_.complete = false;
+      out_.note = "the LP solver did not finish after " + std::to_string(out_.lp_solves) + " LPs";
+      return Step::Ok;
+    }
+    if (d.nx * q.x + d.nu * q.y > d.offset + tol_) {  // strictly outside the hull by more than the tolerance
+      ++out_.by_cause.vertex;
+      add_point(q, {d.nx, d.nu});
+      return Step::Again;
+    }
+    ++out_.by_cause.certificate;
+    if (!binding(code)) return glpk_error();
+    certified_[{d.from, d.to}] = code;  // nothing of the shadow beyond this edge
+  }
+  return Step::Ok;
+}
+
+// The polygon: the hull's vertices and edges (an inner set, certified when complete).
+void PolytopeProjector::Run::polygon() {
+  out_.tolerance = std::max(tol_, approx_);
+  for (int i : hull_) out_.vertices.push_back(points_[static_cast<size_t>(i)]);
+  const size_t h = out_.vertices.size();
   auto push = [&](double nx, double nu, const Vertex& on, int from, int to) {
-    auto it = certified.find({from, to});
-    out.binding.push_back(it == certified.end() ? kBindingUnknown : it->second);
+    auto it = certified_.find({from, to});
+    out_.binding.push_back(it == certified_.end() ? kBindingUnknown : it->second);
     const double len = std::hypot(nx, nu);
     nx /= len;
     nu /= len;
     double c = nx * on.x + nu * on.y;
-    for (const Vertex& v : out.vertices) c = std::max(c, nx * v.x + nu * v.y);  // never cut a hull vertex
-    out.halfplanes.push_back({nx, nu, c, static_cast<int>(out.halfplanes.size())});
+    for (const Vertex& v : out_.vertices) c = std::max(c, nx * v.x + nu * v.y);  // never cut a hull vertex
+    out_.halfplanes.push_back({nx, nu, c, static_cast<int>(out_.halfplanes.size())});
   };
   if (h == 1) {
-    const Vertex& p = out.vertices[0];
+    const Vertex& p = out_.vertices[0];
     push(1, 0, p, -1, -1);
     push(0, 1, p, -1, -1);
     push(-1, 0, p, -1, -1);
     push(0, -1, p, -1, -1);
   } else if (h == 2) {  // a segment: its two sides and its two ends, counter-clockwise
-    const Vertex &a = out.vertices[0], &b = out.vertices[1];
-    const int i = hull[0], j = hull[1];
+    const Vertex &a = out_.vertices[0], &b = out_.vertices[1];
+    const int i = hull_[0], j = hull_[1];
     push(b.y - a.y, -(b.x - a.x), a, i, j);
     push(b.x - a.x, b.y - a.y, b, j, j);
     push(a.y - b.y, -(a.x - b.x), b, j, i);
     push(a.x - b.x, a.y - b.y, a, i, i);
   } else {
     for (size_t e = 0; e < h; ++e) {
-      const Vertex &a = out.vertices[e], &b = out.vertices[(e + 1) % h];
-      push(b.y - a.y, -(b.x - a.x), a, hull[e], hull[(e + 1) % h]);
+      const Vertex &a = out_.vertices[e], &b = out_.vertices[(e + 1) % h];
+      push(b.y - a.y, -(b.x - a.x), a, hull_[e], hull_[(e + 1) % h]);
     }
   }
-  out.outcome = Projection::Outcome::Polygon;
-  std::swap(previous_, current_);
-  return out;
+  out_.outcome = Projection::Outcome::Polygon;
 }
 
 }  // namespace pathpace::detail

@@ -16,7 +16,6 @@
 
 #include <Eigen/Core>
 
-#include "lp/dense_simplex.hpp"
 #include "lp/glpk_guard.hpp"
 #include "geometry/polygon2d.hpp"
 #include "pathpace/constraints/constraint.hpp"
@@ -39,8 +38,6 @@ inline constexpr int kBindingUnknown = INT_MIN;
 /// The stand-in bounds are never grown past this: the feasible sets' own box (Polygon2d's 1e15 sides).
 inline constexpr double kLargestStandIn = 1e15;
 inline bool binding_is_row(int code) { return code >= 0; }
-inline int binding_row(int code) { return code / 2; }
-inline bool binding_upper(int code) { return code % 2 == 1; }
 inline int binding_column(int code) { return -code - 1; }
 
 struct Projection {
@@ -63,8 +60,6 @@ struct Projection {
   LpCounts by_cause;
   int ranged_certificates = 0;  ///< edges certified by an endpoint's ranging instead of an LP
   int approximate_edges = 0;    ///< edges final by `approximation` (no LP; binding unknown)
-  int dense_solves = 0;         ///< LPs solved (and certified) by the dense simplex, not GLPK
-  int dense_fallbacks = 0;      ///< LPs the dense simplex gave up on (then solved by GLPK)
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
@@ -110,6 +105,7 @@ class PolytopeProjector {
   };
   std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
   struct Ranging;
+  class Run;
   std::vector<int> tab_ind_;  // glp_eval_tab_row scratch
   std::vector<double> tab_val_;
   std::vector<double> tab_x_, tab_u_;  // the tableau rows of x and u, over every variable (1-based)
@@ -117,21 +113,10 @@ class PolytopeProjector {
   /// Certify an edge without its LP when an endpoint's optimal basis is also optimal along the edge's
   /// normal (see Ranging in the .cpp). On by default; off for tests that compare both.
   bool ranging = true;
-  /// Solve the LPs after a grid point's first with the dense simplex (GLPK the fallback). Off by
-  /// default: on the corpus of test_projection_corpus.py one grid point of a Talos wall with 32-edge
-  /// cones came out 2e-6 of its size outside the exact shadow (cause not found yet).
-  bool dense = false;
-
- private:
-  DenseSimplex dense_;
 };
 
 /// One polytope, from a cold start.
 Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000,
                             double approximation = 0.0);
-
-/// Convex hull of points, counter-clockwise, collinear and duplicate points dropped (Andrew's monotone
-/// chain). `order` receives, for each hull vertex, its index in `points`.
-void convex_hull(const std::vector<Vertex>& points, std::vector<int>& order);
 
 }  // namespace pathpace::detail

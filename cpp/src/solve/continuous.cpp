@@ -5,8 +5,10 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "geometry/interval_bounds.hpp"
+#include "solve/brent.hpp"
 #include "base/validate.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 
@@ -121,418 +123,442 @@ double second_difference(double la, double va, double lb, double vb, double lc, 
   return 2.0 * ((vc - vb) / (lc - lb) - (vb - va) / (lb - la)) / (lc - la);
 }
 
+
+// One audit_and_cut call: the data its stages share. Per constraint (audit_constraint): the intervals
+// whose speeds changed, their samples (contact slices in one batch), the path-wide concavity bound, the
+// brackets it does not clear, their peaks (maximize_batch), and the cuts there.
+class Auditor {
+ public:
+  Auditor(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
+          const std::vector<std::shared_ptr<const Constraint>>& constraints, const std::vector<ConstraintRows>& grid_rows,
+          const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra, AuditMemory& memory)
+      : path_(path), s_(s), theta_(theta), constraints_(constraints), grid_rows_(grid_rows), row_offset_(row_offset),
+        points_(points), tolerance_(tolerance), extra_(extra), memory_(memory), N_(s.size() - 1) {}
+  Audit run();
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  void size_memory();
+  void audit_constraint(size_t ci);
+  PathSamples samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const;
+  double u_of(Eigen::Index k) const { return (theta_[k + 1] - theta_[k]) / (2.0 * (s_[k + 1] - s_[k])); }
+  double x_of(Eigen::Index k, double l) const { return (1.0 - l) * theta_[k] + l * theta_[k + 1]; }
+  double worst_row(const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) const;
+  void violations(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& kk,
+                  const std::vector<double>& ll, std::vector<double>& f);
+  void coarse_rows(size_t ci);
+  std::vector<Eigen::Index> intervals_to_audit(size_t ci);
+  void contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo, std::vector<size_t>& first,
+                     std::vector<double>& f);
+  void contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
+                       const std::vector<Eigen::Index>& todo, std::vector<double>& f);
+  void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
+                        const std::vector<size_t>& first, const std::vector<double>& fc);
+  double path_curvature(const std::vector<Eigen::Index>& todo) const;
+  double K_of(Eigen::Index k, double curvature) const {
+    const double h = s_[k + 1] - s_[k];
+    return 4.0 * curvature * h * h;
+  }
+  void brackets(const std::vector<Eigen::Index>& todo, double curvature, std::vector<PeakBracket>& cand,
+                std::vector<Eigen::Index>& at) const;
+  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at);
+
+  const Path& path_;
+  const Eigen::VectorXd& s_;
+  const Eigen::VectorXd& theta_;
+  const std::vector<std::shared_ptr<const Constraint>>& constraints_;
+  const std::vector<ConstraintRows>& grid_rows_;
+  const std::vector<int>& row_offset_;
+  const int points_;
+  const double tolerance_;
+  IntervalExtra& extra_;
+  AuditMemory& memory_;
+  const Eigen::Index N_;
+  Audit audit_;
+  std::vector<double> lam_;            // the Chebyshev points in λ
+  std::vector<Eigen::Index> ks_;       // a batch of samples: interval ks_[i] at λ ls_[i]
+  std::vector<double> ls_;
+  std::vector<std::vector<double>> Ls_, Vs_;  // [interval to audit]: its samples, sorted and merged
+};
+
+Audit Auditor::run() {
+  std::vector<size_t> which;
+  for (size_t i = 0; i < constraints_.size(); ++i)
+    if (constraints_[i]->joint_rate_limits().order == 0) which.push_back(i);
+  if (which.empty() || points_ < 1) return audit_;
+  // Coarse pass at Chebyshev points of each interval: dense near the ends, where a row that is tight at
+  // the grid point with a slope into the interval peaks.
+  lam_.resize(static_cast<size_t>(points_));
+  for (int m = 0; m < points_; ++m) lam_[static_cast<size_t>(m)] = 0.5 * (1.0 - std::cos(M_PI * (m + 1.0) / (points_ + 1.0)));
+  audit_.worst = -kInf;
+  size_memory();
+  for (size_t ci : which) audit_constraint(ci);
+  if (!std::isfinite(audit_.worst)) audit_.worst = 0.0;
+  return audit_;
+}
+
+void Auditor::size_memory() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const size_t n = constraints_.size();
+  if (memory_.theta0.size() != n) {
+    memory_.theta0.assign(n, std::vector<double>(static_cast<size_t>(N_), nan));
+    memory_.theta1 = memory_.theta0;
+    memory_.worst = memory_.theta0;
+  }
+  if (memory_.coarse.size() != n) {
+    memory_.coarse.assign(n, ConstraintRows());
+    memory_.cut_points.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
+  }
+  if (memory_.slices.size() != n) memory_.slices.assign(n, {});
+}
+
+// Per interval and constraint, the violation at λ is the largest relative violation over the
+// constraint's rows there (a contact polygon's rows differ from one point to the next, so rows are not
+// followed one by one); its peak is found, and every row broken at the peak becomes a cut.
+void Auditor::audit_constraint(size_t ci) {
+  const Constraint* contact = constraints_[ci]->projected() ? constraints_[ci].get() : nullptr;
+  if (!contact) coarse_rows(ci);
+  const std::vector<Eigen::Index> todo = intervals_to_audit(ci);
+  std::vector<double> fc;
+  std::vector<size_t> first(todo.size() + 1, 0);
+  if (contact) contact_batch(*contact, ci, todo, first, fc);
+  sample_intervals(ci, contact, todo, first, fc);
+  const double curvature = path_curvature(todo);
+  std::vector<PeakBracket> cand;
+  std::vector<Eigen::Index> at;  // per bracket: its interval
+  brackets(todo, curvature, cand, at);
+  if (cand.empty()) return;
+  // The peak between two samples (solve/brent.hpp), every bracket's evaluations in one batch per step. A
+  // bracket is settled early when the bound of bump_bound, from its three points, shows no violation.
+  maximize_batch(
+      cand,
+      [&](const std::vector<size_t>& which, const std::vector<double>& xs, std::vector<double>& f) {
+        ks_.clear();
+        for (size_t i : which) ks_.push_back(at[i]);
+        violations(ci, contact, ks_, xs, f);
+      },
+      [&](size_t i, const PeakBracket& c) {
+        if (!std::isfinite(c.fa) || !std::isfinite(c.fc)) return false;
+        const double K =
+            std::max(K_of(at[i], curvature), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
+        return c.best() <= tolerance_ && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance_ &&
+               bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance_;
+      });
+  cut(ci, cand, at);
+}
+
+PathSamples Auditor::samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const {
+  PathSamples ps;
+  ps.s.resize(static_cast<Eigen::Index>(ks.size()));
+  for (size_t i = 0; i < ks.size(); ++i) ps.s[static_cast<Eigen::Index>(i)] = s_[ks[i]] + (s_[ks[i] + 1] - s_[ks[i]]) * ls[i];
+  path_.evaluate(ps.s, ps.q, ps.dq, ps.ddq);
+  return ps;
+}
+
+double Auditor::worst_row(const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) const {
+  double w = -kInf;
+  for (Eigen::Index j = 0; j < rr.rows(); ++j)
+    w = std::max(w, violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)));
+  return w;
+}
+
+// The violation at (interval kk[i], λ ll[i]) under θ. A contact constraint is asked only whether the
+// timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, no
+// projection); its violation is x's relative distance beyond the slice. Any other constraint gives its
+// rows (cheap: no LPs).
+void Auditor::violations(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& kk,
+                         const std::vector<double>& ll, std::vector<double>& f) {
+  f.resize(kk.size());
+  if (kk.empty()) return;
+  const PathSamples ps = samples_at(kk, ll);
+  if (contact) {
+    Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), lo, hi;
+    for (size_t i = 0; i < kk.size(); ++i) u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
+    audit_.lps += contact->slice(ps, u, lo, hi);
+    for (size_t i = 0; i < kk.size(); ++i)
+      f[i] = slice_violation(x_of(kk[i], ll[i]), lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
+    return;
+  }
+  const ConstraintRows rr = constraints_[ci]->evaluate(ps);
+  for (size_t i = 0; i < kk.size(); ++i) f[i] = worst_row(rr, static_cast<Eigen::Index>(i), ll[i], kk[i]);
+}
+
+// The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (not for a
+// contact constraint, whose polygons are not projected there).
+void Auditor::coarse_rows(size_t ci) {
+  if (memory_.coarse[ci].a.rows() == N_ * points_) return;
+  ks_.clear();
+  ls_.clear();
+  for (Eigen::Index k = 0; k < N_; ++k)
+    for (int m = 0; m < points_; ++m) {
+      ks_.push_back(k);
+      ls_.push_back(lam_[static_cast<size_t>(m)]);
+    }
+  memory_.coarse[ci] = constraints_[ci]->evaluate(samples_at(ks_, ls_));
+}
+
+// The intervals to audit: those whose speeds differ from the ones they were audited at (the same speeds
+// have the same violation, counted from the memory).
+std::vector<Eigen::Index> Auditor::intervals_to_audit(size_t ci) {
+  const auto& t0 = memory_.theta0[ci];
+  const auto& t1 = memory_.theta1[ci];
+  std::vector<Eigen::Index> todo;
+  for (Eigen::Index k = 0; k < N_; ++k) {
+    const size_t kk = static_cast<size_t>(k);
+    if (t0[kk] == theta_[k] && t1[kk] == theta_[k + 1]) {
+      audit_.worst = std::max(audit_.worst, memory_.worst[ci][kk]);
+      continue;
+    }
+    todo.push_back(k);
+  }
+  return todo;
+}
+
+// A contact constraint's samples, all in one batch (one warm-started LP sequence): the Chebyshev points
+// and the earlier cut points of every interval to audit, into (ks_, ls_), interval todo[t]'s from
+// first[t] to first[t + 1]; f their violations.
+void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo,
+                            std::vector<size_t>& first, std::vector<double>& f) {
+  ks_.clear();
+  ls_.clear();
+  for (size_t t = 0; t < todo.size(); ++t) {
+    const Eigen::Index k = todo[t];
+    first[t] = ks_.size();
+    for (int m = 0; m < points_; ++m) {
+      ks_.push_back(k);
+      ls_.push_back(lam_[static_cast<size_t>(m)]);
+    }
+    for (const AuditMemory::Point& pt : memory_.cut_points[ci][static_cast<size_t>(k)]) {
+      ks_.push_back(k);
+      ls_.push_back(pt.lam);
+    }
+  }
+  first[todo.size()] = ks_.size();
+  contact_samples(cc, ci, first, todo, f);
+}
+
+// A contact constraint's samples (ks_[i], ls_[i]) of the intervals todo[t] (samples first[t] ..
+// first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slices from an
+// earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
+// slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
+// slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
+void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
+                              const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
+  const std::vector<Eigen::Index>& kk = ks_;
+  const std::vector<double>& ll = ls_;
+  const int pts = points_;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto& memo = memory_.slices[ci];
+  if (memo.size() != static_cast<size_t>(N_ * pts)) memo.assign(static_cast<size_t>(N_ * pts), {});
+  const double cap = cc.projection_cap();
+  f.assign(kk.size(), nan);
+  std::vector<Eigen::Index> bk;
+  std::vector<double> bl, bu;
+  std::vector<size_t> main_of;  // per sample asked: its index in kk
+  std::vector<int> role;        // 1: the sample itself; 0, 2: u - δ, u + δ of a Chebyshev point
+  for (size_t t = 0; t < todo.size(); ++t)
+    for (size_t i = first[t]; i < first[t + 1]; ++i) {
+      const Eigen::Index k = kk[i];
+      const double u = u_of(k), x = x_of(k, ll[i]);
+      const bool cheb = i - first[t] < static_cast<size_t>(pts);
+      if (cheb) {
+        const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + (i - first[t])];
+        if (M.valid && M.u[0] <= u && u <= M.u[2]) {
+          const int j = u <= M.u[1] ? 0 : 1;
+          const double w = M.u[j + 1] > M.u[j] ? (u - M.u[j]) / (M.u[j + 1] - M.u[j]) : 0.0;
+          const double hi = (1.0 - w) * M.hi[j] + w * M.hi[j + 1], lo = (1.0 - w) * M.lo[j] + w * M.lo[j + 1];
+          const double v = slice_violation(x, lo, hi >= cap * (1.0 - 1e-9) ? kInf : hi);
+          if (v <= 0.0) {
+            f[i] = v;
+            ++audit_.reused;
+            continue;
+          }
+        }
+      }
+      const double delta = 1e-4 * (std::abs(u) + (theta_[k] + theta_[k + 1]) / (2.0 * (s_[k + 1] - s_[k])));
+      for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
+        bk.push_back(k);
+        bl.push_back(ll[i]);
+        bu.push_back(u + (r - 1) * delta);
+        main_of.push_back(i);
+        role.push_back(r);
+      }
+    }
+  if (bk.empty()) return;
+  const PathSamples ps = samples_at(bk, bl);
+  Eigen::VectorXd lo, hi;
+  audit_.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), static_cast<Eigen::Index>(bu.size())), lo, hi);
+  // The memory of each Chebyshev point asked: valid only if all three slices are non-empty.
+  for (size_t q = 0; q < bk.size(); ++q) {
+    const size_t i = main_of[q];
+    const Eigen::Index e = static_cast<Eigen::Index>(q);
+    if (role[q] == 1) f[i] = slice_violation(x_of(bk[q], bl[q]), lo[e], hi[e]);
+  }
+  for (size_t q = 0; q + 2 < bk.size(); ++q) {
+    if (role[q] != 0) continue;
+    size_t t = 0;
+    while (first[t + 1] <= main_of[q]) ++t;
+    AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + (main_of[q] - first[t])];
+    M.valid = true;
+    for (int r = 0; r < 3; ++r) {
+      const Eigen::Index e = static_cast<Eigen::Index>(q + static_cast<size_t>(r));
+      M.u[r] = bu[q + static_cast<size_t>(r)];
+      M.lo[r] = lo[e];
+      M.hi[r] = std::min(hi[e], cap);
+      if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) M.valid = false;
+    }
+  }
+}
+
+
+// Each interval's samples: both grid points (the grid's own rows), the Chebyshev points, and the points
+// where the interval was cut before (the timing is tight there, and a violation next to one would lie
+// between the Chebyshev points); sorted and merged into Ls_, Vs_, their worst kept in the memory.
+void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
+                               const std::vector<size_t>& first, const std::vector<double>& fc) {
+  const ConstraintRows& cr = memory_.coarse[ci];
+  const ConstraintRows& grid = grid_rows_[ci];
+  std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
+  Ls_.assign(todo.size(), {});
+  Vs_.assign(todo.size(), {});
+  for (size_t t = 0; t < todo.size(); ++t) {
+    const Eigen::Index k = todo[t];
+    const size_t kk = static_cast<size_t>(k);
+    sample.clear();
+    if (contact) {
+      // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP.
+      sample.emplace_back(0.0, row_slice_violation(grid, k, x_of(k, 0.0), u_of(k)));
+      sample.emplace_back(1.0, row_slice_violation(grid, k + 1, x_of(k, 1.0), u_of(k)));
+      for (size_t i = first[t]; i < first[t + 1]; ++i) sample.emplace_back(ls_[i], fc[i]);
+    } else {
+      sample.emplace_back(0.0, worst_row(grid, k, 0.0, k));
+      sample.emplace_back(1.0, worst_row(grid, k + 1, 1.0, k));
+      for (int m = 0; m < points_; ++m)
+        sample.emplace_back(lam_[static_cast<size_t>(m)], worst_row(cr, k * points_ + m, lam_[static_cast<size_t>(m)], k));
+      for (const AuditMemory::Point& pt : memory_.cut_points[ci][kk]) {
+        double w = -kInf;
+        for (Eigen::Index j = 0; j < pt.a.size(); ++j)
+          w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta_[k], theta_[k + 1], u_of(k)));
+        sample.emplace_back(pt.lam, w);
+      }
+    }
+    std::sort(sample.begin(), sample.end());
+    std::vector<double>& L = Ls_[t];
+    std::vector<double>& V = Vs_[t];
+    for (const auto& [l, v] : sample) {
+      if (!L.empty() && l - L.back() <= 1e-6) {
+        V.back() = std::max(V.back(), v);
+        continue;
+      }
+      L.push_back(l);
+      V.push_back(v);
+    }
+    double worst = -kInf;
+    for (double v : V) worst = std::max(worst, v);
+    memory_.theta0[ci][kk] = theta_[k];
+    memory_.theta1[ci][kk] = theta_[k + 1];
+    memory_.worst[ci][kk] = worst;
+    audit_.worst = std::max(audit_.worst, worst);
+  }
+}
+
+// Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
+// K τ (h - τ) / 2 where v'' >= -K. K is not known in closed form (a polygon's edges move with s), so the
+// screen assumes (docs/method.md, "Limits between grid points") that v's concavity in s is at most 4
+// times the largest that the second divided differences of the samples show anywhere on the path in
+// this round (in λ: that times Δs_k², K_of). A path-wide bound, not each interval's own neighbours: one
+// interval whose samples happen to lie on a line (a rounding-level change of its polygons can make them
+// so) does not switch its screen off. Returns the largest -v''(s) seen.
+double Auditor::path_curvature(const std::vector<Eigen::Index>& todo) const {
+  double curvature = 0.0;
+  for (size_t t = 0; t < todo.size(); ++t) {
+    const std::vector<double>& L = Ls_[t];
+    const std::vector<double>& V = Vs_[t];
+    const double h = s_[todo[t] + 1] - s_[todo[t]];
+    for (size_t j = 1; j + 1 < L.size(); ++j) {
+      if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) continue;
+      // Samples closer than 1 % of the interval amplify the rows' rounding into a curvature.
+      if (L[j] - L[j - 1] < 0.01 || L[j + 1] - L[j] < 0.01) continue;
+      curvature = std::max(curvature, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]) / (h * h));
+    }
+  }
+  return curvature;
+}
+
+// A bracket between every two neighbouring samples whose bump bound does not clear the tolerance; at[i]
+// its interval.
+void Auditor::brackets(const std::vector<Eigen::Index>& todo, double curvature, std::vector<PeakBracket>& cand,
+                       std::vector<Eigen::Index>& at) const {
+  for (size_t t = 0; t < todo.size(); ++t) {
+    const Eigen::Index k = todo[t];
+    const std::vector<double>& L = Ls_[t];
+    const std::vector<double>& V = Vs_[t];
+    const double K = K_of(k, curvature);
+    for (size_t i = 0; i + 1 < L.size(); ++i) {
+      const double va = V[i], vb = V[i + 1];
+      if (va == -kInf && vb == -kInf) continue;
+      if (std::isfinite(va) && std::isfinite(vb) && bump_bound(L[i], va, L[i + 1], vb, K) <= tolerance_) continue;
+      cand.push_back(golden_bracket(L[i], va, L[i + 1], vb));
+      at.push_back(k);
+    }
+  }
+}
+
+// One cut per interval and round, at its largest violation (cuts at several points of one interval in
+// one round are near-parallel rows that can leave the LPs ill-conditioned): every row broken at the peak,
+// as a row of the interval (exact, see the header), labelled as the problem's own row of that name (the
+// constraint's first row if it has none). For a contact constraint this is the only projection of the
+// audit: one polygon per cut.
+void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at) {
+  ks_.clear();
+  ls_.clear();
+  std::vector<size_t> cuts;
+  std::map<Eigen::Index, size_t> best_of;
+  for (size_t i = 0; i < cand.size(); ++i) {
+    auto it = best_of.emplace(at[i], i).first;
+    if (cand[i].best() > cand[it->second].best()) it->second = i;
+  }
+  for (size_t i = 0; i < cand.size(); ++i) {
+    const double best = cand[i].best();
+    double& remembered = memory_.worst[ci][static_cast<size_t>(at[i])];
+    audit_.worst = std::max(audit_.worst, best);
+    remembered = std::max(remembered, best);
+    if (best_of[at[i]] != i) continue;
+    if (best > tolerance_) {
+      cuts.push_back(i);
+      ks_.push_back(at[i]);
+      ls_.push_back(cand[i].at());
+    }
+  }
+  if (cuts.empty()) return;
+  const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
+  audit_.projections += static_cast<int>(cuts.size());
+  std::map<std::string, int> named;
+  const ConstraintRows& grid = grid_rows_[ci];
+  for (size_t j = 0; j < grid.labels.size(); ++j) named.emplace(grid.labels[j], static_cast<int>(j));
+  for (size_t q = 0; q < cuts.size(); ++q) {
+    const Eigen::Index k = at[cuts[q]];
+    const double l = ls_[q], h = s_[k + 1] - s_[k];
+    const Eigen::Index r = static_cast<Eigen::Index>(q);
+    memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose()});
+    for (Eigen::Index j = 0; j < rr.rows(); ++j) {
+      if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)) <= tolerance_) continue;
+      const double a = rr.a(r, j), b = rr.b(r, j);
+      const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
+      extra_.rows[static_cast<size_t>(k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
+                                                     row_offset_[ci] + (id == named.end() ? 0 : id->second)});
+      ++audit_.cuts;
+    }
+  }
+}
+
 }  // namespace
 
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,
                     const std::vector<ConstraintRows>& grid_rows, const std::vector<int>& row_offset, int points,
                     double tolerance, IntervalExtra& extra, AuditMemory& memory) {
-  Audit audit;
-  const Eigen::Index N = s.size() - 1;
-  const double inf = std::numeric_limits<double>::infinity();
-  std::vector<size_t> which;
-  for (size_t i = 0; i < constraints.size(); ++i)
-    if (constraints[i]->joint_rate_limits().order == 0) which.push_back(i);
-  if (which.empty() || points < 1) return audit;
-  // Coarse pass at Chebyshev points of each interval: dense near the ends, where a row that is tight at
-  // the grid point with a slope into the interval peaks.
-  std::vector<double> lam(static_cast<size_t>(points));
-  for (int m = 0; m < points; ++m) lam[static_cast<size_t>(m)] = 0.5 * (1.0 - std::cos(M_PI * (m + 1.0) / (points + 1.0)));
-  auto samples_at = [&](const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) {
-    PathSamples ps;
-    ps.s.resize(static_cast<Eigen::Index>(ks.size()));
-    for (size_t i = 0; i < ks.size(); ++i) ps.s[static_cast<Eigen::Index>(i)] = s[ks[i]] + (s[ks[i] + 1] - s[ks[i]]) * ls[i];
-    path.evaluate(ps.s, ps.q, ps.dq, ps.ddq);
-    return ps;
-  };
-  std::vector<Eigen::Index> ks;
-  std::vector<double> ls;
-  audit.worst = -inf;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (memory.theta0.size() != constraints.size()) {
-    memory.theta0.assign(constraints.size(), std::vector<double>(static_cast<size_t>(N), nan));
-    memory.theta1 = memory.theta0;
-    memory.worst = memory.theta0;
-  }
-  auto u_of = [&](Eigen::Index k) { return (theta[k + 1] - theta[k]) / (2.0 * (s[k + 1] - s[k])); };
-  auto x_of = [&](Eigen::Index k, double l) { return (1.0 - l) * theta[k] + l * theta[k + 1]; };
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  // Per interval and constraint, the violation at λ is the largest relative violation over the
-  // constraint's rows there (a contact polygon's rows differ from one point to the next, so rows are
-  // not followed one by one); its peak is found, and every row broken at the peak becomes a cut.
-  struct Candidate {
-    Eigen::Index k;
-    double a, b, c, fa, fb, fc;  // a < b < c: b the best interior point so far (its violation fb)
-    double step = 0.0, step_before = 0.0;  // the last two steps (Brent's safeguard on parabolic steps)
-    bool done = false;
-    double best() const { return std::max({fa, fb, fc}); }
-    double at() const { return fb >= fa && fb >= fc ? b : (fa >= fc ? a : c); }
-  };
-  auto worst_row = [&](const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) {
-    double w = -inf;
-    for (Eigen::Index j = 0; j < rr.rows(); ++j)
-      w = std::max(w, violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[k], theta[k + 1], u_of(k)));
-    return w;
-  };
-  std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
-  std::vector<std::vector<double>> Ls, Vs;      // [interval]: the samples, sorted and merged
-  if (memory.coarse.size() != constraints.size()) {
-    memory.coarse.assign(constraints.size(), ConstraintRows());
-    memory.cut_points.assign(constraints.size(), std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N)));
-  }
-  if (memory.slices.size() != constraints.size()) memory.slices.assign(constraints.size(), {});
-  // A contact constraint's samples (ks[i], ls[i]) of the intervals todo[t] (samples first[t] ..
-  // first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slices from an
-  // earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
-  // slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
-  // slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
-  auto contact_samples = [&](const Constraint& cc, size_t ci, int pts, const std::vector<Eigen::Index>& kk,
-                             const std::vector<double>& ll, const std::vector<size_t>& first,
-                             const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
-    auto& memo = memory.slices[ci];
-    if (memo.size() != static_cast<size_t>(N * pts)) memo.assign(static_cast<size_t>(N * pts), {});
-    const double cap = cc.projection_cap();
-    f.assign(kk.size(), nan);
-    std::vector<Eigen::Index> bk;
-    std::vector<double> bl, bu;
-    std::vector<size_t> main_of;  // per sample asked: its index in kk
-    std::vector<int> role;        // 1: the sample itself; 0, 2: u - δ, u + δ of a Chebyshev point
-    for (size_t t = 0; t < todo.size(); ++t)
-      for (size_t i = first[t]; i < first[t + 1]; ++i) {
-        const Eigen::Index k = kk[i];
-        const double u = u_of(k), x = x_of(k, ll[i]);
-        const bool cheb = i - first[t] < static_cast<size_t>(pts);
-        if (cheb) {
-          const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + (i - first[t])];
-          if (M.valid && M.u[0] <= u && u <= M.u[2]) {
-            const int j = u <= M.u[1] ? 0 : 1;
-            const double w = M.u[j + 1] > M.u[j] ? (u - M.u[j]) / (M.u[j + 1] - M.u[j]) : 0.0;
-            const double hi = (1.0 - w) * M.hi[j] + w * M.hi[j + 1], lo = (1.0 - w) * M.lo[j] + w * M.lo[j + 1];
-            const double v = slice_violation(x, lo, hi >= cap * (1.0 - 1e-9) ? inf : hi);
-            if (v <= 0.0) {
-              f[i] = v;
-              ++audit.reused;
-              continue;
-            }
-          }
-        }
-        const double delta = 1e-4 * (std::abs(u) + (theta[k] + theta[k + 1]) / (2.0 * (s[k + 1] - s[k])));
-        for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
-          bk.push_back(k);
-          bl.push_back(ll[i]);
-          bu.push_back(u + (r - 1) * delta);
-          main_of.push_back(i);
-          role.push_back(r);
-        }
-      }
-    if (bk.empty()) return;
-    const PathSamples ps = samples_at(bk, bl);
-    Eigen::VectorXd lo, hi;
-    audit.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), static_cast<Eigen::Index>(bu.size())), lo, hi);
-    // The memory of each Chebyshev point asked: valid only if all three slices are non-empty.
-    for (size_t q = 0; q < bk.size(); ++q) {
-      const size_t i = main_of[q];
-      const Eigen::Index e = static_cast<Eigen::Index>(q);
-      if (role[q] == 1) f[i] = slice_violation(x_of(bk[q], bl[q]), lo[e], hi[e]);
-    }
-    for (size_t q = 0; q + 2 < bk.size(); ++q) {
-      if (role[q] != 0) continue;
-      size_t t = 0;
-      while (first[t + 1] <= main_of[q]) ++t;
-      AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + (main_of[q] - first[t])];
-      M.valid = true;
-      for (int r = 0; r < 3; ++r) {
-        const Eigen::Index e = static_cast<Eigen::Index>(q + static_cast<size_t>(r));
-        M.u[r] = bu[q + static_cast<size_t>(r)];
-        M.lo[r] = lo[e];
-        M.hi[r] = std::min(hi[e], cap);
-        if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) M.valid = false;
-      }
-    }
-  };
-  for (size_t ci : which) {
-    const Constraint* contact = constraints[ci]->projected() ? constraints[ci].get() : nullptr;
-    // The violation at (interval ks[i], λ ls[i]) under θ. A contact constraint is asked only whether the
-    // timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, no
-    // projection); its violation is x's relative distance beyond the slice. Any other constraint gives
-    // its rows (cheap: no LPs).
-    auto violations = [&](const std::vector<Eigen::Index>& kk, const std::vector<double>& ll, std::vector<double>& f) {
-      f.resize(kk.size());
-      if (kk.empty()) return;
-      const PathSamples ps = samples_at(kk, ll);
-      if (contact) {
-        Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), lo, hi;
-        for (size_t i = 0; i < kk.size(); ++i) u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
-        audit.lps += contact->slice(ps, u, lo, hi);
-        for (size_t i = 0; i < kk.size(); ++i)
-          f[i] = slice_violation(x_of(kk[i], ll[i]), lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
-        return;
-      }
-      const ConstraintRows rr = constraints[ci]->evaluate(ps);
-      for (size_t i = 0; i < kk.size(); ++i) f[i] = worst_row(rr, static_cast<Eigen::Index>(i), ll[i], kk[i]);
-    };
-    // The rows at the Chebyshev points do not depend on the timing: evaluated once per solve (not for
-    // a contact constraint, whose polygons are not projected there).
-    if (!contact && memory.coarse[ci].a.rows() != N * points) {
-      ks.clear();
-      ls.clear();
-      for (Eigen::Index k = 0; k < N; ++k)
-        for (int m = 0; m < points; ++m) {
-          ks.push_back(k);
-          ls.push_back(lam[static_cast<size_t>(m)]);
-        }
-      memory.coarse[ci] = constraints[ci]->evaluate(samples_at(ks, ls));
-    }
-    const ConstraintRows& cr = memory.coarse[ci];
-    auto& t0 = memory.theta0[ci];
-    auto& t1 = memory.theta1[ci];
-    auto& remembered = memory.worst[ci];
-    // The intervals to audit: those whose speeds differ from the ones they were audited at (the same
-    // speeds have the same violation).
-    std::vector<Eigen::Index> todo;
-    for (Eigen::Index k = 0; k < N; ++k) {
-      const size_t kk = static_cast<size_t>(k);
-      if (t0[kk] == theta[k] && t1[kk] == theta[k + 1]) {
-        audit.worst = std::max(audit.worst, remembered[kk]);
-        continue;
-      }
-      todo.push_back(k);
-    }
-    // A contact constraint's samples, all in one batch (one warm-started LP sequence): both grid
-    // points, the Chebyshev points and the earlier cut points of every interval to audit.
-    std::vector<double> fc;
-    std::vector<size_t> first(todo.size() + 1, 0);
-    if (contact) {
-      ks.clear();
-      ls.clear();
-      for (size_t t = 0; t < todo.size(); ++t) {
-        const Eigen::Index k = todo[t];
-        first[t] = ks.size();
-        for (int m = 0; m < points; ++m) {
-          ks.push_back(k);
-          ls.push_back(lam[static_cast<size_t>(m)]);
-        }
-        for (const AuditMemory::Point& pt : memory.cut_points[ci][static_cast<size_t>(k)]) {
-          ks.push_back(k);
-          ls.push_back(pt.lam);
-        }
-      }
-      first[todo.size()] = ks.size();
-      contact_samples(*contact, ci, points, ks, ls, first, todo, fc);
-    }
-    Ls.assign(todo.size(), {});
-    Vs.assign(todo.size(), {});
-    for (size_t t = 0; t < todo.size(); ++t) {
-      const Eigen::Index k = todo[t];
-      const size_t kk = static_cast<size_t>(k);
-      // Samples: both grid points (the grid's own rows), the Chebyshev points, and the points where the
-      // interval was cut before (the timing is tight there, and a violation next to one would lie
-      // between the Chebyshev points).
-      sample.clear();
-      if (contact) {
-        // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP.
-        sample.emplace_back(0.0, row_slice_violation(grid_rows[ci], k, x_of(k, 0.0), u_of(k)));
-        sample.emplace_back(1.0, row_slice_violation(grid_rows[ci], k + 1, x_of(k, 1.0), u_of(k)));
-        for (size_t i = first[t]; i < first[t + 1]; ++i) sample.emplace_back(ls[i], fc[i]);
-      } else {
-        sample.emplace_back(0.0, worst_row(grid_rows[ci], k, 0.0, k));
-        sample.emplace_back(1.0, worst_row(grid_rows[ci], k + 1, 1.0, k));
-        for (int m = 0; m < points; ++m)
-          sample.emplace_back(lam[static_cast<size_t>(m)], worst_row(cr, k * points + m, lam[static_cast<size_t>(m)], k));
-        for (const AuditMemory::Point& pt : memory.cut_points[ci][kk]) {
-          double w = -inf;
-          for (Eigen::Index j = 0; j < pt.a.size(); ++j)
-            w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta[k], theta[k + 1], u_of(k)));
-          sample.emplace_back(pt.lam, w);
-        }
-      }
-      std::sort(sample.begin(), sample.end());
-      std::vector<double>& L = Ls[t];
-      std::vector<double>& V = Vs[t];
-      for (const auto& [l, v] : sample) {
-        if (!L.empty() && l - L.back() <= 1e-6) {
-          V.back() = std::max(V.back(), v);
-          continue;
-        }
-        L.push_back(l);
-        V.push_back(v);
-      }
-      double worst = -inf;
-      for (double v : V) worst = std::max(worst, v);
-      t0[kk] = theta[k];
-      t1[kk] = theta[k + 1];
-      remembered[kk] = worst;
-      audit.worst = std::max(audit.worst, worst);
-    }
-    // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
-    // K τ (h - τ) / 2 where v'' >= -K. K is not known in closed form (a polygon's edges move with s), so
-    // the screen assumes (docs/method.md, "Limits between grid points") that v's concavity in s is at
-    // most 4 times the largest that the second divided differences of the samples show anywhere on
-    // the path in this round (in λ: that times Δs_k²). A path-wide bound, not each interval's own
-    // neighbours: one interval whose samples happen to lie on a line (a rounding-level change of its
-    // polygons can make them so) does not switch its screen off.
-    double curvature = 0.0;  // the largest -v''(s) seen
-    for (size_t t = 0; t < todo.size(); ++t) {
-      const std::vector<double>& L = Ls[t];
-      const std::vector<double>& V = Vs[t];
-      const double h = s[todo[t] + 1] - s[todo[t]];
-      for (size_t j = 1; j + 1 < L.size(); ++j) {
-        if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) continue;
-        // Samples closer than 1 % of the interval amplify the rows' rounding into a curvature.
-        if (L[j] - L[j - 1] < 0.01 || L[j + 1] - L[j] < 0.01) continue;
-        curvature = std::max(curvature, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]) / (h * h));
-      }
-    }
-    auto K_of = [&](Eigen::Index k) {
-      const double h = s[k + 1] - s[k];
-      return 4.0 * curvature * h * h;
-    };
-    std::vector<Candidate> cand;
-    for (size_t t = 0; t < todo.size(); ++t) {
-      const Eigen::Index k = todo[t];
-      const std::vector<double>& L = Ls[t];
-      const std::vector<double>& V = Vs[t];
-      const double K = K_of(k);
-      for (size_t i = 0; i + 1 < L.size(); ++i) {
-        const double va = V[i], vb = V[i + 1];
-        if (va == -inf && vb == -inf) continue;
-        if (std::isfinite(va) && std::isfinite(vb) && bump_bound(L[i], va, L[i + 1], vb, K) <= tolerance) continue;
-        const double b = vb > va ? L[i] + g * (L[i + 1] - L[i]) : L[i + 1] - g * (L[i + 1] - L[i]);
-        cand.push_back({k, L[i], b, L[i + 1], va, 0.0, vb, L[i + 1] - L[i], L[i + 1] - L[i]});
-      }
-    }
-    if (cand.empty()) continue;
-    // The peak between the two samples: successive parabolic interpolation through the best point and
-    // its two neighbours, with golden-section steps where a parabola does not apply or does not shrink
-    // the bracket fast enough (Brent's rule), all candidates evaluated in one batch per step. A candidate
-    // is settled early when the bound above, from its three points, shows no violation.
-    auto eval = [&](const std::vector<size_t>& which_cand, const std::vector<double>& at_lam, std::vector<double>& f) {
-      ks.clear();
-      for (size_t i : which_cand) ks.push_back(cand[i].k);
-      violations(ks, at_lam, f);
-    };
-    std::vector<size_t> active;
-    std::vector<double> x, f;
-    for (size_t i = 0; i < cand.size(); ++i) {
-      active.push_back(i);
-      x.push_back(cand[i].b);
-    }
-    eval(active, x, f);
-    for (size_t q = 0; q < active.size(); ++q) cand[active[q]].fb = f[q];
-    for (int it = 0; it < 30; ++it) {
-      active.clear();
-      x.clear();
-      for (size_t i = 0; i < cand.size(); ++i) {
-        Candidate& c = cand[i];
-        if (c.done) continue;
-        const double tol = 1e-9 + 1e-7 * (c.c - c.a);
-        if (c.c - c.a <= 1e-7 || !std::isfinite(c.fb)) {
-          c.done = true;
-          continue;
-        }
-        if (std::isfinite(c.fa) && std::isfinite(c.fc)) {
-          const double K = std::max(K_of(c.k), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
-          if (c.best() <= tolerance && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance &&
-              bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance) {
-            c.done = true;
-            continue;
-          }
-        }
-        double next;
-        bool parabolic = false;
-        if (c.fb >= c.fa && c.fb >= c.fc) {
-          const double p = (c.b - c.a) * (c.fb - c.fc), q = (c.b - c.c) * (c.fb - c.fa);
-          const double den = 2.0 * (p - q);
-          if (den != 0.0) {
-            const double d = -((c.b - c.a) * p - (c.b - c.c) * q) / den;
-            if (std::abs(d) < 0.5 * std::abs(c.step_before) && c.b + d > c.a + tol && c.b + d < c.c - tol) {
-              next = std::abs(d) < tol ? c.b + (d < 0 ? -tol : tol) : c.b + d;
-              parabolic = true;
-            }
-          }
-          if (!parabolic) next = c.b - c.a > c.c - c.b ? c.b - (1.0 - g) * (c.b - c.a) : c.b + (1.0 - g) * (c.c - c.b);
-        } else if (c.fa >= c.fc) {  // v falls from a: the peak is nearer a
-          next = c.a + (1.0 - g) * (c.b - c.a);
-        } else {
-          next = c.c - (1.0 - g) * (c.c - c.b);
-        }
-        c.step_before = c.step;
-        c.step = next - c.b;
-        if (!parabolic) c.step_before = c.c - c.a;  // a golden step re-opens the safeguard
-        active.push_back(i);
-        x.push_back(next);
-      }
-      if (active.empty()) break;
-      eval(active, x, f);
-      for (size_t q = 0; q < active.size(); ++q) {
-        Candidate& c = cand[active[q]];
-        const double xq = x[q], fq = f[q];
-        if (fq >= c.fb) {
-          if (xq < c.b) {
-            c.c = c.b;
-            c.fc = c.fb;
-          } else {
-            c.a = c.b;
-            c.fa = c.fb;
-          }
-          c.b = xq;
-          c.fb = fq;
-        } else if (xq < c.b) {
-          c.a = xq;
-          c.fa = fq;
-        } else {
-          c.c = xq;
-          c.fc = fq;
-        }
-      }
-    }
-    ks.clear();
-    ls.clear();
-    std::vector<size_t> cut;
-    // One cut per interval and round, at its largest violation (cuts at several points of one interval
-    // in one round are near-parallel rows that can leave the LPs ill-conditioned).
-    std::map<Eigen::Index, size_t> best_of;
-    for (size_t i = 0; i < cand.size(); ++i) {
-      auto it = best_of.emplace(cand[i].k, i).first;
-      if (cand[i].best() > cand[it->second].best()) it->second = i;
-    }
-    for (size_t i = 0; i < cand.size(); ++i) {
-      const Candidate& c = cand[i];
-      const double best = c.best();
-      audit.worst = std::max(audit.worst, best);
-      memory.worst[ci][static_cast<size_t>(c.k)] = std::max(memory.worst[ci][static_cast<size_t>(c.k)], best);
-      if (best_of[c.k] != i) continue;
-      if (best > tolerance) {
-        cut.push_back(i);
-        ks.push_back(c.k);
-        ls.push_back(c.at());
-      }
-    }
-    if (cut.empty()) continue;
-    // The cuts: every row broken at the peak, as a row of the interval (exact, see the header), labelled
-    // as the problem's own row of that name (the constraint's first row if it has none). For a contact
-    // constraint this is the only projection of the audit: one polygon per cut.
-    const ConstraintRows rr = constraints[ci]->evaluate(samples_at(ks, ls));
-    audit.projections += static_cast<int>(cut.size());
-    std::map<std::string, int> named;
-    for (size_t j = 0; j < grid_rows[ci].labels.size(); ++j) named.emplace(grid_rows[ci].labels[j], static_cast<int>(j));
-    for (size_t q = 0; q < cut.size(); ++q) {
-      const Candidate& c = cand[cut[q]];
-      const double l = ls[q], h = s[c.k + 1] - s[c.k];
-      const Eigen::Index r = static_cast<Eigen::Index>(q);
-      memory.cut_points[ci][static_cast<size_t>(c.k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose()});
-      for (Eigen::Index j = 0; j < rr.rows(); ++j) {
-        if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta[c.k], theta[c.k + 1], u_of(c.k)) <= tolerance) continue;
-        const double a = rr.a(r, j), b = rr.b(r, j);
-        const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
-        extra.rows[static_cast<size_t>(c.k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
-                                                        row_offset[ci] + (id == named.end() ? 0 : id->second)});
-        ++audit.cuts;
-      }
-    }
-  }
-  if (!std::isfinite(audit.worst)) audit.worst = 0.0;
-  return audit;
+  return Auditor(path, s, theta, constraints, grid_rows, row_offset, points, tolerance, extra, memory).run();
 }
 
 }  // namespace pathpace::detail

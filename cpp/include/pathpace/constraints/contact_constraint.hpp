@@ -192,6 +192,8 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   // every_point_row: a per-point row even where min_normal_force is 0 (the force distribution's margin
   // counts each point's normal force).
   LpLayout full_layout(bool every_point_row) const;
+  // The exact reduction of the contacts into reduced_ (the constructor's last step; see contact_lp.cpp).
+  void reduce_contacts();
   // The projection LP's fixed part for `layout`: bounds, minimum-normal-force rows; `extra` more rows
   // (zero, free) after them.
   void lp_structure(const LpLayout& layout, int extra, detail::PolytopeLp& lp) const;
