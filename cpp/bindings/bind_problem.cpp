@@ -313,11 +313,8 @@ ProblemSettings settings_from_state(py::handle h) {
 }  // namespace
 
 void bind_constraints(py::module_& m) {
-  py::class_<Constraint, std::shared_ptr<Constraint>>(m, "Constraint",
-                                                      "Base of all constraints: half-planes a·x + b·u <= c per grid point.")
-      .def_property_readonly("name", &Constraint::name);
-
-  py::class_<VelocityLimits, Constraint, std::shared_ptr<VelocityLimits>>(m, "VelocityLimits")
+  // Constraint itself: bind_constraint_base.cpp (a Python subclass's trampoline; one holder for the hierarchy).
+  py::class_<VelocityLimits, Constraint, py::smart_holder>(m, "VelocityLimits")
       .def(py::init([](py::handle vmin, py::handle vmax, py::handle joint_names) {
              return std::make_shared<VelocityLimits>(to_vector(vmin, "vmin"), to_vector(vmax, "vmax"),
                                                      to_string_list(joint_names, "joint_names", true));
@@ -333,7 +330,7 @@ void bind_constraints(py::module_& m) {
                                                                 t[2].cast<std::vector<std::string>>());
                       }));
 
-  py::class_<AccelerationLimits, Constraint, std::shared_ptr<AccelerationLimits>>(m, "AccelerationLimits")
+  py::class_<AccelerationLimits, Constraint, py::smart_holder>(m, "AccelerationLimits")
       .def(py::init([](py::handle amin, py::handle amax, py::handle joint_names) {
              return std::make_shared<AccelerationLimits>(to_vector(amin, "amin"), to_vector(amax, "amax"),
                                                          to_string_list(joint_names, "joint_names", true));
@@ -349,7 +346,7 @@ void bind_constraints(py::module_& m) {
                                                                     t[2].cast<std::vector<std::string>>());
                       }));
 
-  py::class_<LinearConstraint, Constraint, std::shared_ptr<LinearConstraint>>(m, "LinearConstraint")
+  py::class_<LinearConstraint, Constraint, py::smart_holder>(m, "LinearConstraint")
       .def(py::init([](py::handle A, py::handle B, py::handle C, py::handle lo, py::handle hi, py::handle label) {
              return std::make_shared<LinearConstraint>(rows_arg(A, "A"), rows_arg(B, "B"), rows_arg(C, "C"),
                                                        rows_arg(lo, "lo"), rows_arg(hi, "hi"), to_string_arg(label, "label"));

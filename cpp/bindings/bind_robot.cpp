@@ -211,7 +211,7 @@ void bind_robot(py::module_& m) {
         return s + ">";
       });
 
-  py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits")
+  py::class_<TorqueLimits, Constraint, py::smart_holder>(m, "TorqueLimits")
       .def(py::init([](py::handle robot, py::object tau_min, py::object tau_max, py::handle scale, py::handle margin) {
              auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
              Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
@@ -296,7 +296,7 @@ void bind_robot(py::module_& m) {
       }, "index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the later "
          "phase at a switch); -1 without phases. forces has max contacts over the phases rows, NaN beyond a phase's own");
 
-  py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>(m, "ContactConstraint")
+  py::class_<ContactConstraint, Constraint, py::smart_holder>(m, "ContactConstraint")
       .def(py::init([](py::handle robot, py::handle contacts, py::handle cone_edges, py::handle friction_margin,
                        py::handle min_normal_force, py::handle torque_scale, py::handle torque_margin, py::handle tau_min,
                        py::handle tau_max, py::handle min_link_normal_force, py::handle max_lps, py::handle cone_offset,

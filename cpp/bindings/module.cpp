@@ -14,7 +14,8 @@ namespace py = pybind11;
 
 namespace pathpace::python {
 void bind_paths(py::module_& m);
-void bind_constraints(py::module_& m);  // the Constraint base: before any derived constraint
+void bind_constraint_base(py::module_& m);  // Constraint, PathSamples, ConstraintRows: before any derived constraint
+void bind_constraints(py::module_& m);
 void bind_robot(py::module_& m);
 void bind_problem(py::module_& m);
 void add_docstrings(py::module_& m);  // bind_docs.cpp: after every binding
@@ -52,6 +53,7 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<pathpace::InvalidInput>(m, "InvalidInputError",
                                                  py::make_tuple(error, py::handle(PyExc_ValueError)));
   pathpace::python::bind_paths(m);
+  pathpace::python::bind_constraint_base(m);
   pathpace::python::bind_constraints(m);
   pathpace::python::bind_robot(m);
   pathpace::python::bind_problem(m);
