@@ -14,10 +14,15 @@
 #include <vector>
 
 #include "pathpace/pathpace.hpp"
+#include "hand_box.hpp"
 #include "test_util.hpp"
 
 using namespace pathpace;
 using test::error_of;
+using test::hand_on_box;
+using test::load;
+using test::push_then_brake;
+using test::together;
 
 namespace {
 
@@ -126,27 +131,6 @@ double speed_only_duration(const Eigen::VectorXd& s, const Eigen::VectorXd& v, c
   return test::duration_of(s.tail(n) - s.head(n), x);
 }
 
-std::shared_ptr<RobotModel> load(const std::string& name) {
-  return std::make_shared<RobotModel>(RobotModel::from_urdf_file(std::string(PATHPACE_TEST_DATA_DIR) + "/" + name));
-}
-
-// hand_box.urdf: a hand pushes a box, then brakes it; x = s for both on s in [0, 2] (test_contact_phases.cpp).
-Contact hand_on_box(double nx) {
-  Contact c;
-  c.link = "box";
-  c.other_link = "hand";
-  c.normal = Eigen::Vector3d(nx, 0, 0);
-  return c;
-}
-std::shared_ptr<Path> together() {
-  const Eigen::VectorXd s = Eigen::VectorXd::LinSpaced(3, 0.0, 2.0);
-  Eigen::MatrixXd q(3, 2);
-  q << s, s;
-  return std::make_shared<CubicSplinePath>(q, s);
-}
-std::vector<ContactPhase> push_then_brake() {
-  return {{0.0, 1.0, {hand_on_box(1.0)}, std::nullopt}, {1.0, 2.0, {hand_on_box(-1.0)}, std::nullopt}};
-}
 // The hand's force within ±4 N, the box's joint unactuated: a = 4 N / 2 kg = 2 while pushing or braking.
 std::pair<Eigen::Vector2d, Eigen::Vector2d> hand_force(const RobotModel& robot, Eigen::Index& hand) {
   const auto& names = robot.joint_names();
