@@ -18,11 +18,7 @@
 #include "test_util.hpp"
 
 using namespace pathpace;
-using test::error_of;
-using test::hand_on_box;
-using test::load;
-using test::push_then_brake;
-using test::together;
+using namespace pathpace::test;  // error_of, duration_of, ClosedFormPath, the hand-and-box helpers
 
 namespace {
 
@@ -131,15 +127,19 @@ double speed_only_duration(const Eigen::VectorXd& s, const Eigen::VectorXd& v, c
   return test::duration_of(s.tail(n) - s.head(n), x);
 }
 
-// The hand's force within ±4 N, the box's joint unactuated: a = 4 N / 2 kg = 2 while pushing or braking.
-std::pair<Eigen::Vector2d, Eigen::Vector2d> hand_force(const RobotModel& robot, Eigen::Index& hand) {
-  const auto& names = robot.joint_names();
-  hand = std::find(names.begin(), names.end(), "hand_x") - names.begin();
+// hand_box.urdf with the hand's force within ±4 N, the box's joint unactuated (a = 4 N / 2 kg = 2 while pushing or
+// braking), and a speed cap v² g(s)² = 2 + 0.5 min(s, 2 - s): rising while pushing, falling while braking, slower
+// than 2a = 4.
+struct HandBoxCase {
+  std::shared_ptr<RobotModel> robot = load("hand_box.urdf");
+  Eigen::Index hand = std::find(robot->joint_names().begin(), robot->joint_names().end(), "hand_x") -
+                      robot->joint_names().begin();
   Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();
-  lo[hand] = -4.0;
-  hi[hand] = 4.0;
-  return {lo, hi};
-}
+  Eigen::Vector2d v = Eigen::Vector2d::Constant(std::sqrt(2.0));
+  Profile g = [](double s) { return std::sqrt((2.0 + 0.5 * std::min(s, 2.0 - s)) / 2.0); };
+  HandBoxCase() { lo[hand] = -4.0, hi[hand] = 4.0; }
+  double cap(double s) const { return std::pow(v[0] * g(s), 2); }
+};
 
 // Push-then-brake under |s̈| <= a, s̈ >= 0 while pushing, <= 0 while braking, and x <= cap(s): the largest
 // profile is min(2as, 2a(2 - s), cap(s)) when cap rises (falls) no faster than 2a on the push (brake) stretch,
@@ -232,38 +232,33 @@ TEST(ConstraintHooks, ATestFamilyComposesWithTorqueLimits) {
 // family stays a constraint of its own, the result shows robot, torque limits and phases, and T is the closed
 // form of push-then-brake under the speed cap, above the T without it.
 TEST(ConstraintHooks, ATestFamilyComposesWithContactPhasesAndTorque) {
-  auto robot = load("hand_box.urdf");
-  Eigen::Index hand = 0;
-  const auto [lo, hi] = hand_force(*robot, hand);
-  // v² = 2 + 0.5 min(s, 2 - s): rising while pushing, falling while braking, slower than 2a = 4.
-  const Profile g = [](double s) { return std::sqrt((2.0 + 0.5 * std::min(s, 2.0 - s)) / 2.0); };
-  const Eigen::Vector2d v(std::sqrt(2.0), std::sqrt(2.0));
+  const HandBoxCase hb;
   for (bool speed_first : {true, false}) {
     TimeScalingProblem prob(together(), 20), without(together(), 20);
-    if (speed_first) prob.add_constraint(std::make_shared<SpeedProfile>(v, g));
-    prob.add_contact_phases(robot, push_then_brake());
-    prob.add_constraint(std::make_shared<TorqueLimits>(robot, lo, hi));
-    if (!speed_first) prob.add_constraint(std::make_shared<SpeedProfile>(v, g));
-    without.add_contact_phases(robot, push_then_brake());
-    without.add_constraint(std::make_shared<TorqueLimits>(robot, lo, hi));
+    if (speed_first) prob.add_constraint(std::make_shared<SpeedProfile>(hb.v, hb.g));
+    prob.add_contact_phases(hb.robot, push_then_brake());
+    prob.add_constraint(std::make_shared<TorqueLimits>(hb.robot, hb.lo, hb.hi));
+    if (!speed_first) prob.add_constraint(std::make_shared<SpeedProfile>(hb.v, hb.g));
+    without.add_contact_phases(hb.robot, push_then_brake());
+    without.add_constraint(std::make_shared<TorqueLimits>(hb.robot, hb.lo, hb.hi));
     ASSERT_EQ(prob.constraints().size(), 3u) << speed_first;
     int phases = 0, speeds = 0;
     for (const auto& c : prob.constraints()) {
       if (auto contact = std::dynamic_pointer_cast<const ContactConstraint>(c)) {
         ++phases;
-        EXPECT_EQ(contact->tau_max()[hand], 4.0);
+        EXPECT_EQ(contact->tau_max()[hb.hand], 4.0);
       }
       speeds += c->name() == "speed profile";
     }
     EXPECT_EQ(phases, 2);
     EXPECT_EQ(speeds, 1);
     const Result r = solved(prob), r0 = solved(without);
-    EXPECT_EQ(r.robot, robot);
+    EXPECT_EQ(r.robot, hb.robot);
     ASSERT_EQ(r.tau_max.size(), 2);
-    EXPECT_EQ(r.tau_max[hand], 4.0);
+    EXPECT_EQ(r.tau_max[hb.hand], 4.0);
     EXPECT_TRUE(r.contacts);
     EXPECT_EQ(r.contact_phases.size(), 2u);
-    const auto cap = [&](double s) { return std::pow(v[0] * g(s), 2); };
+    const auto cap = [&](double s) { return hb.cap(s); };
     EXPECT_NEAR(r.duration, push_brake_capped(prob.grid(), 10, 2.0, cap), 1e-9) << speed_first;
     EXPECT_NEAR(r0.duration, push_brake_capped(prob.grid(), 10, 2.0, [](double) { return INFINITY; }), 1e-9);
     EXPECT_GT(r.duration, r0.duration * (1 + 1e-3));
@@ -273,24 +268,20 @@ TEST(ConstraintHooks, ATestFamilyComposesWithContactPhasesAndTorque) {
 // (b) A switch off the grid is inserted, and the family is evaluated again on the new grid (its cap at the
 // inserted s = 1 is in the closed form); the same family given per grid point refuses the insertion.
 TEST(ConstraintHooks, AContactSwitchReevaluatesTheFamilyAndIsRefusedByRowsPerGridPoint) {
-  auto robot = load("hand_box.urdf");
-  Eigen::Index hand = 0;
-  const auto [lo, hi] = hand_force(*robot, hand);
-  const Profile g = [](double s) { return std::sqrt((2.0 + 0.5 * std::min(s, 2.0 - s)) / 2.0); };
-  const Eigen::Vector2d v(std::sqrt(2.0), std::sqrt(2.0));
+  const HandBoxCase hb;
   TimeScalingProblem prob(together(), 7);  // grid points at multiples of 2/7: 1 is not one
-  prob.add_constraint(std::make_shared<SpeedProfile>(v, g));
-  prob.add_constraint(std::make_shared<TorqueLimits>(robot, lo, hi));
-  prob.add_contact_phases(robot, push_then_brake());
+  prob.add_constraint(std::make_shared<SpeedProfile>(hb.v, hb.g));
+  prob.add_constraint(std::make_shared<TorqueLimits>(hb.robot, hb.lo, hb.hi));
+  prob.add_contact_phases(hb.robot, push_then_brake());
   ASSERT_EQ(prob.intervals(), 8);
   ASSERT_EQ(prob.grid()[4], 1.0);
   const Result r = solved(prob);
-  const auto cap = [&](double s) { return std::pow(v[0] * g(s), 2); };
+  const auto cap = [&](double s) { return hb.cap(s); };
   EXPECT_NEAR(r.duration, push_brake_capped(prob.grid(), 4, 2.0, cap), 1e-9);
 
   TimeScalingProblem table(together(), 7);
-  table.add_constraint(std::make_shared<SpeedTable>(SpeedProfile(v, g).evaluate(table.samples())));
-  EXPECT_EQ(error_of([&] { table.add_contact_phases(robot, push_then_brake()); }),
+  table.add_constraint(std::make_shared<SpeedTable>(SpeedProfile(hb.v, hb.g).evaluate(table.samples())));
+  EXPECT_EQ(error_of([&] { table.add_contact_phases(hb.robot, push_then_brake()); }),
             "phases[1].s_begin = 1 is not a grid point (nearest: grid[4] = 1.14285714286) and the problem has a "
             "constraint given per grid point ('speed table') that cannot be evaluated on a new grid: add the contact "
             "phases first, or use a grid with a point at every switch");
@@ -333,14 +324,12 @@ TEST(ConstraintHooks, RestartCarriesTheFamilyAndRowsPerGridPointNeedAGridPoint) 
 
 // (d) A subclass of TorqueLimits defined here still joins every contact phase, added before or after them.
 TEST(ConstraintHooks, ASubclassOfTorqueLimitsMergesIntoContacts) {
-  auto robot = load("hand_box.urdf");
-  Eigen::Index hand = 0;
-  const auto [lo, hi] = hand_force(*robot, hand);
-  auto named = std::make_shared<NamedTorque>(robot, lo, hi);
+  const HandBoxCase hb;
+  auto named = std::make_shared<NamedTorque>(hb.robot, hb.lo, hb.hi);
   TimeScalingProblem before(together(), 20), after(together(), 20);
   before.add_constraint(named);
-  before.add_contact_phases(robot, push_then_brake());
-  after.add_contact_phases(robot, push_then_brake());
+  before.add_contact_phases(hb.robot, push_then_brake());
+  after.add_contact_phases(hb.robot, push_then_brake());
   after.add_constraint(named);
   for (const TimeScalingProblem* prob : {&before, &after}) {
     const auto& cs = prob->constraints();
@@ -348,17 +337,17 @@ TEST(ConstraintHooks, ASubclassOfTorqueLimitsMergesIntoContacts) {
     const auto first = std::dynamic_pointer_cast<const ContactConstraint>(cs[0]);
     const auto second = std::dynamic_pointer_cast<const ContactConstraint>(cs[1]);
     ASSERT_TRUE(first && second);
-    EXPECT_EQ(first->tau_max()[hand], 4.0);
-    EXPECT_EQ(second->tau_min()[hand], -4.0);
+    EXPECT_EQ(first->tau_max()[hb.hand], 4.0);
+    EXPECT_EQ(second->tau_min()[hb.hand], -4.0);
     EXPECT_NEAR(solved(*prob).duration, push_brake_capped(prob->grid(), 10, 2.0, [](double) { return INFINITY; }), 1e-9);
   }
   // A single contact constraint (add_constraint) takes it too.
   TimeScalingProblem one(together(), 20);
-  auto push = std::make_shared<ContactConstraint>(robot, std::vector<Contact>{hand_on_box(1.0)});
+  auto push = std::make_shared<ContactConstraint>(hb.robot, std::vector<Contact>{hand_on_box(1.0)});
   one.add_constraint(push);
-  one.add_constraint(std::make_shared<NamedTorque>(robot, lo, hi));
+  one.add_constraint(std::make_shared<NamedTorque>(hb.robot, hb.lo, hb.hi));
   ASSERT_EQ(one.constraints().size(), 1u);
-  EXPECT_EQ(std::dynamic_pointer_cast<const ContactConstraint>(one.constraints()[0])->tau_max()[hand], 4.0);
+  EXPECT_EQ(std::dynamic_pointer_cast<const ContactConstraint>(one.constraints()[0])->tau_max()[hb.hand], 4.0);
 }
 
 // (e) relaxation() scales the family by its family() and relaxed(): ṡ0 = 3 x the bound at s = 0 needs the
