@@ -23,7 +23,7 @@ template <typename Limits>
 void bind_joint_limits(py::module_& m, const char* name, const char* doc, const char* lo_name, const char* hi_name,
                        const Eigen::VectorXd& (Limits::*lo)() const, const Eigen::VectorXd& (Limits::*hi)() const,
                        const char* lo_doc, const char* hi_doc, const char* names_doc) {
-  py::class_<Limits, Constraint, std::shared_ptr<Limits>>(m, name, doc)
+  py::class_<Limits, Constraint, py::smart_holder>(m, name, doc)
       .def(py::init([lo_name, hi_name](py::handle a, py::handle b, py::handle joint_names) {
              return std::make_shared<Limits>(to_vector(a, lo_name), to_vector(b, hi_name),
                                              to_string_list(joint_names, "joint_names", true));
@@ -41,7 +41,7 @@ void bind_joint_limits(py::module_& m, const char* name, const char* doc, const 
 }
 
 void bind_linear_constraint(py::module_& m) {
-  py::class_<LinearConstraint, Constraint, std::shared_ptr<LinearConstraint>>(m, "LinearConstraint", doc::LinearConstraint)
+  py::class_<LinearConstraint, Constraint, py::smart_holder>(m, "LinearConstraint", doc::LinearConstraint)
       .def(py::init([](py::handle A, py::handle B, py::handle C, py::handle lo, py::handle hi, py::handle label) {
              return std::make_shared<LinearConstraint>(to_rows(A, "A"), to_rows(B, "B"), to_rows(C, "C"),
                                                        to_rows(lo, "lo"), to_rows(hi, "hi"), to_string_arg(label, "label"));
@@ -59,8 +59,7 @@ void bind_linear_constraint(py::module_& m) {
 }  // namespace
 
 void bind_constraints(py::module_& m) {
-  py::class_<Constraint, std::shared_ptr<Constraint>>(m, "Constraint", doc::Constraint)
-      .def_property_readonly("name", &Constraint::name, doc::Constraint_name);
+  // Constraint itself: bind_constraint_base.cpp (the trampoline a Python subclass needs).
   bind_joint_limits<VelocityLimits>(m, "VelocityLimits", doc::VelocityLimits, "vmin", "vmax", &VelocityLimits::vmin,
                                     &VelocityLimits::vmax, doc::VelocityLimits_vmin, doc::VelocityLimits_vmax,
                                     doc::VelocityLimits_joint_names);
@@ -71,7 +70,7 @@ void bind_constraints(py::module_& m) {
 }
 
 void bind_torque_limits(py::module_& m) {
-  py::class_<TorqueLimits, Constraint, std::shared_ptr<TorqueLimits>>(m, "TorqueLimits", doc::TorqueLimits)
+  py::class_<TorqueLimits, Constraint, py::smart_holder>(m, "TorqueLimits", doc::TorqueLimits)
       .def(py::init([](py::handle robot, py::object tau_min, py::object tau_max, py::handle scale, py::handle margin) {
              auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
              Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");

@@ -83,7 +83,7 @@ void bind_contact_forces(py::module_& m) {
       }, doc::ContactForces_phase);
 }
 
-using ContactClass = py::class_<ContactConstraint, Constraint, std::shared_ptr<ContactConstraint>>;
+using ContactClass = py::class_<ContactConstraint, Constraint, py::smart_holder>;
 
 // Rebuilt from the robot, contacts, options and the stored limits (which include torque_scale and
 // torque_margin, so those are 1 and 0 in the copy).

@@ -16,7 +16,8 @@ namespace py = pybind11;
 namespace pathpace::python {
 // In this order: a class is bound before the signatures that name it (pybind11 writes its Python name).
 void bind_paths(py::module_& m);
-void bind_constraints(py::module_& m);  // the Constraint base: before any derived constraint
+void bind_constraint_base(py::module_& m);  // Constraint, PathSamples, ConstraintRows: before any derived constraint
+void bind_constraints(py::module_& m);
 void bind_robot(py::module_& m);
 void bind_torque_limits(py::module_& m);  // bind_constraints.cpp
 void bind_contacts(py::module_& m);
@@ -60,6 +61,7 @@ PYBIND11_MODULE(_core, m) {
   error.attr("__doc__") = pathpace::python::doc::Error;
   invalid.attr("__doc__") = pathpace::python::doc::InvalidInputError;
   pathpace::python::bind_paths(m);
+  pathpace::python::bind_constraint_base(m);
   pathpace::python::bind_constraints(m);
   pathpace::python::bind_robot(m);
   pathpace::python::bind_torque_limits(m);

@@ -157,17 +157,131 @@ class SampledPath(PiecewisePolynomialPath):
     def samples(self) -> Array:
         """ndarray (m,)"""
 
+class PathSamples:
+    """The path at the grid points, as Constraint.evaluate reads it (read-only).
+
+    Attributes
+    ----------
+    s : ndarray (N+1,)
+        The grid.
+    q, dq, ddq : ndarray (N+1, n)
+        p, p', p'' at s.
+    dof : int
+        n.
+    """
+    @property
+    def s(self) -> Array:
+        """ndarray (N+1,): The grid."""
+    @property
+    def q(self) -> Array:
+        """ndarray (N+1, n): p, p', p'' at s."""
+    @property
+    def dq(self) -> Array:
+        """ndarray (N+1, n): p, p', p'' at s."""
+    @property
+    def ddq(self) -> Array:
+        """ndarray (N+1, n): p, p', p'' at s."""
+    @property
+    def dof(self) -> int:
+        """int: n."""
+    def __len__(self) -> int: ...
+
+class ConstraintRows:
+    """Half-planes a·x + b·u <= c (x = ṡ², u = s̈) at every grid point: what Constraint.evaluate returns.
+
+    Parameters
+    ----------
+    a, b, c : array_like (N+1, r), or (N+1,) for one row
+        c = inf: the row is inactive at that grid point.
+    labels : list of str
+        One name per row, for infeasibility reports and Result.binding.
+
+    Attributes
+    ----------
+    a, b, c : ndarray (N+1, r)
+        The rows.
+    labels : list of str
+        Their names.
+    rows : int
+        r.
+    """
+    def __init__(self, a: ArrayLike, b: ArrayLike, c: ArrayLike, labels: list[str]) -> None: ...
+    @property
+    def a(self) -> Array:
+        """ndarray (N+1, r): The rows."""
+    @property
+    def b(self) -> Array:
+        """ndarray (N+1, r): The rows."""
+    @property
+    def c(self) -> Array:
+        """ndarray (N+1, r): The rows."""
+    @property
+    def labels(self) -> list[str]:
+        """list of str: Their names."""
+    @property
+    def rows(self) -> int:
+        """int: r."""
+
 class Constraint:
     """Base of all constraints: half-planes a·x + b·u <= c per grid point, x = ṡ², u = s̈ (eq. 9).
+
+    A family of your own subclasses it in Python: give `name` and `evaluate(samples)` (returning
+    ConstraintRows), and optionally `family`/`relaxed` (relaxation explains infeasibility with it),
+    `per_grid_point`/`at_grid_points` (rows given per grid point only) and `with_joint_names`. It composes
+    with torque limits, contacts, restarts and pickling (define `__reduce__`); evaluate may be called from
+    any thread, with the GIL taken for it.
 
     Attributes
     ----------
     name : str
         Used in infeasibility reports.
     """
+    def __init__(self) -> None: ...
     @property
     def name(self) -> str:
         """str: Used in infeasibility reports."""
+    def evaluate(self, samples: PathSamples) -> ConstraintRows:
+        """The rows at every grid point of samples.
+
+        Parameters
+        ----------
+        samples : PathSamples
+            The path at the grid points.
+
+        Returns
+        -------
+        ConstraintRows
+        """
+    def family(self) -> str:
+        """The family of limits relaxation() scales ("velocity", "torque", ...); "" for none."""
+    def relaxed(self, scale: float) -> Constraint | None:
+        """The constraint with its limits widened by scale >= 1 about zero, or None if it has no such scale.
+
+        Parameters
+        ----------
+        scale : float
+            >= 1; the feasible set must grow with it.
+        """
+    def per_grid_point(self) -> bool:
+        """True if the rows are data given per grid point, with no value between grid points: the grid then
+        gains no point (contact switches) and a restart begins at a grid point.
+        """
+    def at_grid_points(self, kept: list[int]) -> Constraint:
+        """A per_grid_point() constraint's rows at the old grid points `kept` (the new grid of a restart).
+
+        Parameters
+        ----------
+        kept : list of int
+            Old grid indices, in order.
+        """
+    def with_joint_names(self, names: list[str]) -> Constraint | None:
+        """The constraint labelled with the problem's joint names, or None if its labels do not come from them.
+
+        Parameters
+        ----------
+        names : list of str
+            One per path coordinate.
+        """
 
 class VelocityLimits(Constraint):
     """Joint velocity limits vmin <= p'(s) ṡ <= vmax (eq. 13, as the bound on ṡ² of eq. 16).

@@ -10,36 +10,17 @@
 #include <string>
 
 #include "pathpace/pathpace.hpp"
+#include "hand_box.hpp"
 #include "test_util.hpp"
 
 using namespace pathpace;
 using test::error_of;
+using test::hand_on_box;
+using test::load;
+using test::push_then_brake;
+using test::together;
 
 namespace {
-
-std::shared_ptr<RobotModel> load(const std::string& name) {
-  return std::make_shared<RobotModel>(RobotModel::from_urdf_file(std::string(PATHPACE_TEST_DATA_DIR) + "/" + name));
-}
-
-Contact hand_on_box(double nx) {
-  Contact c;
-  c.link = "box";
-  c.other_link = "hand";
-  c.normal = Eigen::Vector3d(nx, 0, 0);  // +1: the hand behind the box pushes it, -1: in front, brakes it
-  return c;
-}
-
-// Hand and box together, x = s on s in [0, 2].
-std::shared_ptr<Path> together(int knots = 3) {
-  const Eigen::VectorXd s = Eigen::VectorXd::LinSpaced(knots, 0.0, 2.0);
-  Eigen::MatrixXd q(knots, 2);
-  q << s, s;
-  return std::make_shared<CubicSplinePath>(q, s);
-}
-
-std::vector<ContactPhase> push_then_brake(double split = 1.0) {
-  return {{0.0, split, {hand_on_box(1.0)}, std::nullopt}, {split, 2.0, {hand_on_box(-1.0)}, std::nullopt}};
-}
 
 // The discrete optimum of push-then-brake (a = F / (m_hand + m_box) = 5): θ = 2as up to the grid point before the
 // switch, constant over the two intervals at the switch (there both stances hold: s̈ >= 0 and s̈ <= 0),
