@@ -40,8 +40,9 @@ struct RobotModelOptions {
 ///
 /// Mimic joints (URDF <mimic>, e.g. the second finger of a gripper) have a body but no coordinate:
 /// q_mimic = multiplier · q_joint + offset, as in pinocchio. q, q̇, q̈ and τ are then over the other
-/// joints only (nq is less than the number of bodies); the mimic joint's torque acts on its joint scaled by the
-/// multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not used.
+/// joints only (nq is less than the number of bodies); the mimic joint's torque acts on its joint scaled
+/// by the multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not
+/// used.
 class RobotModel {
  public:
   enum class JointType { Revolute, Prismatic };
