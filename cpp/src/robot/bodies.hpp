@@ -58,7 +58,6 @@ struct RobotScratch {
 
 /// The one door from cpp/src/robot into the private parts of RobotModel and RobotWorkspace.
 struct RobotInternals {
-  static const RobotTree& tree(const RobotModel& model) { return *model.tree_; }
   static const std::vector<Body>& bodies(const RobotModel& model) { return model.tree_->bodies; }
   static const MimicMap* mimic(const RobotModel& model) { return model.mimic_.get(); }
   static RobotScratch& scratch(RobotWorkspace& ws) { return *ws.scratch_; }
