@@ -200,6 +200,44 @@ TEST(RobotModel, TorqueCoefficientsReproduceInverseDynamicsOnEveryJointKind) {
   }
 }
 
+TEST(RobotWorkspace, CopiedMovedAndAssignedWorkspacesComputeAsAFreshOne) {
+  // The buffers sit behind a pointer (robot/bodies.hpp): a copy must own buffers of its own, a move must
+  // carry them, and each must give what a fresh workspace gives, in the RNEA and in the torque sweep.
+  const RobotModel r = RobotModel::from_urdf_string(kArm);
+  const Eigen::VectorXd q = Eigen::Vector3d(0.3, -0.7, 0.1), qd = Eigen::Vector3d(1.1, 0.4, -0.2),
+                        qdd = Eigen::Vector3d(-0.5, 0.9, 0.3);
+  auto results = [&](RobotWorkspace& ws) {
+    Eigen::VectorXd tau(3), a(3), b(3), c(3);
+    r.inverse_dynamics(ws, q, qd, qdd, true, tau);
+    r.path_torque_coefficients(ws, q, qd, qdd, a, b, c);
+    Eigen::MatrixXd out(3, 4);
+    out << tau, a, b, c;
+    return out;
+  };
+  RobotWorkspace fresh(r);
+  const Eigen::MatrixXd expected = results(fresh);
+  RobotWorkspace copy(fresh);
+  EXPECT_EQ(results(copy), expected);
+  EXPECT_EQ(results(fresh), expected);
+  RobotWorkspace moved(std::move(copy));
+  EXPECT_EQ(results(moved), expected);
+  RobotWorkspace assigned(RobotModel::from_urdf_string(kPendulum));  // sized for another model
+  assigned = moved;
+  EXPECT_EQ(results(assigned), expected);
+  RobotWorkspace move_assigned(RobotModel::from_urdf_string(kPendulum));
+  move_assigned = std::move(assigned);
+  EXPECT_EQ(results(move_assigned), expected);
+}
+
+TEST(RobotModel, DefaultConstructedModelIsEmpty) {
+  const RobotModel r;
+  EXPECT_EQ(r.nq(), 0);
+  EXPECT_TRUE(r.link_names().empty());
+  EXPECT_EQ(r.mass(), 0.0);
+  EXPECT_TRUE(r.mimic_joints().empty());
+  EXPECT_EQ(r.inverse_dynamics(Eigen::VectorXd(0), Eigen::VectorXd(0), Eigen::VectorXd(0)).size(), 0);
+}
+
 TEST(RobotModel, BatchTorqueCoefficientsEqualOneSampleAtATime) {
   // kArm: coordinate-axis revolute joints and a tilted prismatic one; the same tree with a tilted
   // revolute axis (the general rotation in each lane). Every lane width this CPU runs (SSE2, AVX2 + FMA,

@@ -14,6 +14,12 @@ namespace pathpace {
 
 class RobotWorkspace;
 
+namespace detail {
+struct RobotTree;       // the bodies and the link map (cpp/src/robot/bodies.hpp, never installed)
+struct MimicMap;        // mimic joints' coordinate map (cpp/src/robot/bodies.hpp)
+struct RobotInternals;  // how cpp/src/robot's algorithms reach both (cpp/src/robot/bodies.hpp)
+}  // namespace detail
+
 /// Options of RobotModel::from_urdf_file / from_urdf_string.
 struct RobotModelOptions {
   /// Six virtual joints in front of the root link: translations along world x, y, z, then rotations
@@ -34,11 +40,15 @@ struct RobotModelOptions {
 ///
 /// Mimic joints (URDF <mimic>, e.g. the second finger of a gripper) have a body but no coordinate:
 /// q_mimic = multiplier · q_joint + offset, as in pinocchio. q, q̇, q̈ and τ are then over the other
-/// joints only (nq < bodies().size()); the mimic joint's torque acts on its joint scaled by the
-/// multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not used.
+/// joints only (nq is less than the number of bodies); the mimic joint's torque acts on its joint scaled
+/// by the multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not
+/// used.
 class RobotModel {
  public:
   enum class JointType { Revolute, Prismatic };
+
+  /// An empty model (no bodies, nq = 0); models come from the factories below.
+  RobotModel();
 
   static RobotModel from_urdf_file(const std::string& path, const RobotModelOptions& options = {});
   static RobotModel from_urdf_string(const std::string& xml, const RobotModelOptions& options = {});
@@ -137,7 +147,7 @@ class RobotModel {
   /// placement in that body's frame. Throws InvalidInput for an unknown name.
   int body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const;
 
-  /// World poses of every body at q (size nq; one pass), for callers that need several frames or
+  /// World poses of every body at q (one pass), for callers that need several frames or
   /// Jacobians at the same configuration; no argument checks.
   void body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const;
   /// Adds `sign` times the world-frame linear Jacobian of the world point `p` moving with body `body`
@@ -146,32 +156,19 @@ class RobotModel {
   void add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p, double sign,
                           Eigen::Ref<Eigen::MatrixXd> J) const;
 
-  // Internal structure, read by RobotWorkspace users (dynamics of the contact issue).
-  struct Body {
-    int parent = -1;            // body index, -1 for the world
-    JointType type = JointType::Revolute;
-    Eigen::Vector3d axis;       // joint axis in the joint (= body) frame
-    int axis_index = -1;        // u if axis is the coordinate axis e_u exactly (most URDF joints), else -1
-    Eigen::Matrix3d E_tree;     // Featherstone: parent coordinates -> joint frame, rotation
-    Eigen::Vector3d r_tree;     //   and origin of the joint frame in parent coordinates
-    Eigen::Matrix<double, 6, 6> inertia;  // spatial inertia in body coordinates (angular first)
-  };
-  const std::vector<Body>& bodies() const { return bodies_; }
-
  private:
-  friend class RobotWorkspace;
+  friend struct detail::RobotInternals;
   void check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char* name) const;
   // After loading with one coordinate per body: make the mimic bodies follow their joints.
   void remove_mimic_coordinates(const std::vector<MimicJoint>& mimics);
   std::string name_;
-  std::vector<Body> bodies_;
+  // Immutable once built, so copies share it (and the model stays safe to share across threads).
+  std::shared_ptr<const detail::RobotTree> tree_;
   std::vector<std::string> joint_names_, link_names_;
-  std::map<std::string, std::pair<int, Eigen::Isometry3d>> links_;  // link -> (body, placement in body)
   Eigen::VectorXd q_lo_, q_hi_, v_max_, effort_;
   Eigen::Vector3d gravity_;
   std::shared_ptr<const Source> source_;
-  struct MimicMap;  // robot_model.cpp: body -> coordinate map and the one-coordinate-per-body model
-  std::shared_ptr<const MimicMap> mimic_;
+  std::shared_ptr<const detail::MimicMap> mimic_;  // null without mimic joints
   std::vector<std::string> frozen_mimics_;
 };
 

@@ -2,27 +2,31 @@
 /// @file robot_workspace.hpp
 /// Scratch space for RobotModel's algorithms: one per thread, reused across calls (pinocchio's Data).
 
-#include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/StdVector>
+#include <memory>
 
 namespace pathpace {
 
 class RobotModel;
 
+namespace detail {
+struct RobotScratch;    // the buffers themselves (cpp/src/robot/bodies.hpp, never installed)
+struct RobotInternals;  // cpp/src/robot/bodies.hpp
+}  // namespace detail
+
+/// Made for one model (pass the workspace to that model's calls); a copy has buffers of its own. Not for
+/// two threads at once: the model is shared, each thread holds its own workspace.
 class RobotWorkspace {
  public:
   explicit RobotWorkspace(const RobotModel& model);
+  RobotWorkspace(const RobotWorkspace& other);
+  RobotWorkspace(RobotWorkspace&& other) noexcept;
+  RobotWorkspace& operator=(const RobotWorkspace& other);
+  RobotWorkspace& operator=(RobotWorkspace&& other) noexcept;
+  ~RobotWorkspace();
 
-  using Vector6 = Eigen::Matrix<double, 6, 1>;
-  std::vector<Eigen::Matrix3d> E;   // body i: rotation parent -> body coordinates
-  std::vector<Eigen::Vector3d> r;   // body i: its origin in parent coordinates
-  std::vector<Vector6> v, a, f;     // spatial velocity, acceleration, force (body coordinates)
-  std::vector<Vector6> S;           // joint motion subspace
-  std::vector<unsigned char> abc_buffer;  // path_torque_coefficients' per-body scratch (see robot_model.cpp)
-  Eigen::VectorXd tmp;              // nq scratch
-  Eigen::VectorXd zero;             // nq zeros
+ private:
+  friend struct detail::RobotInternals;
+  std::unique_ptr<detail::RobotScratch> scratch_;
 };
 
 }  // namespace pathpace

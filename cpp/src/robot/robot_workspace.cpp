@@ -1,19 +1,29 @@
 #include "pathpace/robot_workspace.hpp"
 
-#include "pathpace/robot_model.hpp"
+#include "robot/bodies.hpp"
 
 namespace pathpace {
 
-RobotWorkspace::RobotWorkspace(const RobotModel& model) {
-  const size_t nb = model.bodies().size();
-  E.resize(nb);
-  r.resize(nb);
-  v.resize(nb);
-  a.resize(nb);
-  f.resize(nb);
-  S.resize(nb);
-  tmp.setZero(model.nq());
-  zero.setZero(model.nq());
+RobotWorkspace::RobotWorkspace(const RobotModel& model) : scratch_(std::make_unique<detail::RobotScratch>()) {
+  const size_t nb = detail::RobotInternals::bodies(model).size();
+  scratch_->E.resize(nb);
+  scratch_->r.resize(nb);
+  scratch_->v.resize(nb);
+  scratch_->a.resize(nb);
+  scratch_->f.resize(nb);
+  scratch_->S.resize(nb);
+  scratch_->qd.setZero(model.nq());
 }
+
+// A moved-from workspace (scratch_ null) copies as one; a model call with it is undefined.
+RobotWorkspace::RobotWorkspace(const RobotWorkspace& other)
+    : scratch_(other.scratch_ ? std::make_unique<detail::RobotScratch>(*other.scratch_) : nullptr) {}
+RobotWorkspace::RobotWorkspace(RobotWorkspace&& other) noexcept = default;
+RobotWorkspace& RobotWorkspace::operator=(const RobotWorkspace& other) {
+  if (this != &other) scratch_ = other.scratch_ ? std::make_unique<detail::RobotScratch>(*other.scratch_) : nullptr;
+  return *this;
+}
+RobotWorkspace& RobotWorkspace::operator=(RobotWorkspace&& other) noexcept = default;
+RobotWorkspace::~RobotWorkspace() = default;
 
 }  // namespace pathpace

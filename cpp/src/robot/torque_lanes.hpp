@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the SIMD variants of RobotModel::path_torque_coefficients_batch (robot_model.cpp), exposed
+// Internal: the SIMD variants of RobotModel::path_torque_coefficients_batch (torque_lanes.cpp), exposed
 // so that tests can compare them on one machine.
 
 #include <Eigen/Core>

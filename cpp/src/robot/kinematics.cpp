@@ -1,0 +1,121 @@
+// Kinematics of a RobotModel: link lookup, body placements, frame placements, point Jacobians (the
+// contact constraints' J of eq. 17) and the centre of mass.
+#include <vector>
+
+#include "base/validate.hpp"
+#include "robot/bodies.hpp"
+
+namespace pathpace {
+
+namespace {
+
+using detail::Body;
+
+// Mass and first moment m·c of a spatial inertia in Featherstone's layout (angular first):
+// I = [[Ī + m c× c×ᵀ, m c×], [m c×ᵀ, m 1]], so the lower-left block is m c×ᵀ = -m c×.
+void mass_and_moment(const Eigen::Matrix<double, 6, 6>& I, double& m, Eigen::Vector3d& mc) {
+  m = I(3, 3);
+  const Eigen::Matrix3d mcx = I.block<3, 3>(0, 3);  // m c×
+  mc = Eigen::Vector3d(mcx(2, 1), mcx(0, 2), mcx(1, 0));
+}
+
+}  // namespace
+
+int RobotModel::body_of_link(const std::string& link, Eigen::Isometry3d& in_body) const {
+  auto it = tree_->links.find(link);
+  if (it == tree_->links.end()) detail::fail("link '" + link + "' is not a link of robot '" + name_ + "'");
+  in_body = it->second.second;
+  return it->second.first;
+}
+
+void RobotModel::body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T) const {
+  // Every Jacobian and drift computation reads q[i] for each body: a shorter q was a heap overread.
+  check_q(q, "q");
+  if (mimic_) {
+    mimic_->bodies_model->body_placements(mimic_->E * q + mimic_->o, T);
+    return;
+  }
+  const std::vector<Body>& bodies = tree_->bodies;
+  T.resize(bodies.size());
+  for (size_t i = 0; i < T.size(); ++i) {
+    const Body& b = bodies[i];
+    Eigen::Isometry3d tree = Eigen::Isometry3d::Identity();
+    tree.linear() = b.E_tree.transpose();
+    tree.translation() = b.r_tree;
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    const double qi = q[static_cast<Eigen::Index>(i)];
+    if (b.type == JointType::Revolute) motion.linear() = Eigen::AngleAxisd(qi, b.axis).toRotationMatrix();
+    else motion.translation() = b.axis * qi;
+    T[i] = (b.parent >= 0 ? T[static_cast<size_t>(b.parent)] : Eigen::Isometry3d::Identity()) * tree * motion;
+  }
+}
+
+void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p,
+                                    double sign, Eigen::Ref<Eigen::MatrixXd> J) const {
+  if (mimic_) {  // chain rule: a mimic body's column goes to its joint's, times the multiplier
+    Eigen::MatrixXd Jb = Eigen::MatrixXd::Zero(3, static_cast<Eigen::Index>(tree_->bodies.size()));
+    mimic_->bodies_model->add_point_jacobian(T, body, p, sign, Jb);
+    J.noalias() += Jb * mimic_->E;
+    return;
+  }
+  const std::vector<Body>& bodies = tree_->bodies;
+  for (int i = body; i >= 0; i = bodies[static_cast<size_t>(i)].parent) {
+    const Body& b = bodies[static_cast<size_t>(i)];
+    // The joint frame is the body frame: its axis is fixed in the body, its origin is the body origin.
+    const Eigen::Vector3d z = T[static_cast<size_t>(i)].linear() * b.axis;
+    if (b.type == JointType::Revolute) J.col(i) += sign * z.cross(p - T[static_cast<size_t>(i)].translation());
+    else J.col(i) += sign * z;
+  }
+}
+
+Eigen::Matrix4d RobotModel::frame_placement(const Eigen::VectorXd& q, const std::string& link) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  Eigen::Isometry3d in_body;
+  const int body = body_of_link(link, in_body);
+  std::vector<Eigen::Isometry3d> T;
+  body_placements(q, T);
+  return ((body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity()) * in_body).matrix();
+}
+
+Eigen::MatrixXd RobotModel::point_jacobian(const Eigen::VectorXd& q, const std::string& link,
+                                           const Eigen::Vector3d& point) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  detail::require_finite("point", point);
+  Eigen::Isometry3d in_body;
+  const int body = body_of_link(link, in_body);
+  std::vector<Eigen::Isometry3d> T;
+  body_placements(q, T);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, nq());
+  if (body < 0) return J;
+  add_point_jacobian(T, body, T[static_cast<size_t>(body)] * (in_body * point), 1.0, J);
+  return J;
+}
+
+double RobotModel::mass() const {
+  double total = 0.0;
+  for (const Body& b : tree_->bodies) total += b.inertia(3, 3);
+  return total;
+}
+
+Eigen::Vector3d RobotModel::center_of_mass(const Eigen::VectorXd& q) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  std::vector<Eigen::Isometry3d> T;
+  body_placements(q, T);
+  double total = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  const std::vector<Body>& bodies = tree_->bodies;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    double m;
+    Eigen::Vector3d mc;
+    mass_and_moment(bodies[i].inertia, m, mc);
+    total += m;
+    moment += m * T[i].translation() + T[i].linear() * mc;  // m · (world position of the body's com)
+  }
+  if (!(total > 0.0)) detail::fail("robot '" + name_ + "' has no moving mass: its centre of mass is undefined");
+  return moment / total;
+}
+
+}  // namespace pathpace
