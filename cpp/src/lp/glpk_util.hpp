@@ -27,4 +27,9 @@ void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vec
 /// GLP_NOFEAS, or -1 when the solver did not finish.
 int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation = true);
 
+/// The simplex parameters of the projection's LPs (rows x cols): no scaling or presolve, an iteration cap,
+/// tight bound and reduced-cost tolerances (projector_lp.cpp says why). False after a GLPK error (parm is
+/// then not set).
+bool projection_simplex_parameters(int rows, int cols, glp_smcp& parm);
+
 }  // namespace pathpace::detail

@@ -31,102 +31,6 @@ Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int
   return p.project(in, relative_tolerance, max_lps, approximation);
 }
 
-PolytopeProjector::~PolytopeProjector() = default;
-
-int PolytopeProjector::load(const PolytopeLp& in) {
-  const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
-  // A problem freed by a GLPK error (get() == nullptr) is created again, cold.
-  const bool warm = lp_.get() != nullptr && rows == rows_ && cols == cols_;
-  if (!warm) {
-    rows_ = cols_ = -1;
-    if (!lp_.create()) return -1;
-  }
-  dense_triplets(in.A, ia_, ja_, ar_);
-  glp_prob* lp = lp_.get();
-  const bool ok = guarded([&] {
-    if (!warm) {
-      glp_set_obj_dir(lp, GLP_MAX);
-      if (rows > 0) glp_add_rows(lp, rows);
-      if (cols > 0) glp_add_cols(lp, cols);
-    }
-    for (int i = 0; i < rows; ++i) glpk_set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
-    for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
-    glpk_load_triplets(lp, ia_, ja_, ar_);
-    // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
-    if (!warm) glp_adv_basis(lp, 0);
-  });
-  if (!ok) return -1;
-  rows_ = rows;
-  cols_ = cols;
-  return warm ? 1 : 0;
-}
-
-namespace {
-
-// False after a GLPK error (parm is then not set).
-bool simplex_parameters(int rows, int cols, glp_smcp& parm) {
-  if (!guarded([&] { glp_init_smcp(&parm); })) return false;  // it only fills the struct, but it is GLPK
-  parm.msg_lev = GLP_MSG_OFF;
-  // No scaling, no presolve: GLPK's automatic scaling was seen to make the primal simplex declare small,
-  // plainly feasible projection LPs infeasible (rows of torque balance next to stand-in bounds of 1e6).
-  parm.presolve = GLP_OFF;
-  // Never a hang: a cycling simplex ends as a failure, and is retried (glpk_solve_robust). A warm
-  // solve takes a few dozen pivots, a cold one at most a few times rows + cols.
-  parm.it_lim = 10 * (rows + cols) + 100;
-  // GLPK's default bound tolerance (1e-7, relative to each bound) lets an optimum lie outside the
-  // polytope by more than the 1e-9 of the polygon's size that the projection certifies, and hides
-  // vertices of short edges; these small dense LPs solve as reliably at 1e-10.
-  parm.tol_bnd = 1e-10;
-  parm.tol_dj = 1e-10;
-  return true;
-}
-
-}  // namespace
-
-int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
-  glp_smcp parm;
-  if (!simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) || load(in) < 0) return -1;
-  glp_prob* lp = lp_.get();
-  int st = -1;
-  const bool ok = guarded([&] {
-    if (fix) {
-      glpk_set_bounds(lp, false, 1, fix[0], fix[0]);
-      glpk_set_bounds(lp, false, 2, fix[1], fix[1]);
-    }
-    glp_set_obj_coef(lp, 1, 0.0);
-    glp_set_obj_coef(lp, 2, 0.0);
-    st = glpk_solve_robust(lp, parm);
-    if (fix) {  // the next projection reloads the bounds anyway; restore them for a warm feasible() too
-      glpk_set_bounds(lp, false, 1, in.col_lo[0], in.col_hi[0]);
-      glpk_set_bounds(lp, false, 2, in.col_lo[1], in.col_hi[1]);
-    }
-  });
-  if (!ok) return -1;
-  return st == GLP_OPT ? 1 : st == GLP_NOFEAS ? 0 : -1;
-}
-
-int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z) {
-  glp_smcp parm;
-  if (!simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) || load(in) < 0) return -2;
-  glp_prob* lp = lp_.get();
-  const int cols = cols_;
-  z_.resize(static_cast<size_t>(cols));
-  double* zp = z_.data();
-  const double* cp = c.data();
-  int st = -1;
-  const bool ok = guarded([&] {
-    for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, cp[j]);
-    st = glpk_solve_robust(lp, parm);
-    if (st == GLP_OPT)
-      for (int j = 0; j < cols; ++j) zp[j] = glp_get_col_prim(lp, j + 1);
-    for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, 0.0);  // project() sets only x's and u's
-  });
-  if (!ok) return -2;
-  if (st != GLP_OPT) return st == GLP_NOFEAS ? 0 : -1;
-  z = Eigen::Map<const Eigen::VectorXd>(z_.data(), cols);
-  return 1;
-}
-
 namespace {
 
 // Warm starts across grid points (sec. IV.C) only for LPs of at least this many columns: a restored
@@ -255,7 +159,7 @@ Projection PolytopeProjector::Run::project() {
 // Loads the problem and sizes every buffer the LPs' guarded calls write (glpk_guard.hpp's rule 1).
 bool PolytopeProjector::Run::start() {
   // The parameters first: a GLPK error there frees the problem before load() looks at it.
-  if (!simplex_parameters(static_cast<int>(in_.A.rows()), static_cast<int>(in_.A.cols()), parm_)) {
+  if (!projection_simplex_parameters(static_cast<int>(in_.A.rows()), static_cast<int>(in_.A.cols()), parm_)) {
     glpk_error();
     return false;
   }
