@@ -30,8 +30,8 @@ namespace {
 
 // Every problem and solve allocates and frees a few hundred kB to a few MB of arrays (samples, rows,
 // per-interval polygons). glibc hands freed memory at the top of the heap back to the OS as soon as
-// more than 128 kB is free there, so the next solve page-faults all of it in again: measured on a
-// Panda path at N = 1000, that was 40-45 % of the time of a solve. The Python module therefore asks
+// more than 128 kB is free there, so the next solve page-faults all of it in again, a large part of a
+// fast solve's time (bench/README.md). The Python module therefore asks
 // glibc to keep up to 64 MiB of freed heap in the process and to serve allocations below 8 MiB from
 // the heap. This is process-wide (it helps every library in the process alike); set
 // PATHPACE_NO_MALLOC_TUNING=1 in the environment before importing pathpace to keep glibc's defaults.

@@ -22,8 +22,8 @@ void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vec
 /// The simplex from the current basis (a warm start); if it stalls or fails, again from the slack basis;
 /// if that still does not end optimal, in exact rational arithmetic, which also confirms an
 /// infeasibility (a claim about the robot, so it is checked exactly). Without exact_confirmation an
-/// infeasibility found from both bases is returned as is (exact arithmetic costs ~0.1 s on a humanoid's
-/// LP; the projection's emptiness claims are re-checked exactly by solve()). Returns GLP_OPT,
+/// infeasibility found from both bases is returned as is (exact arithmetic costs many simplex solves on a
+/// humanoid's LP; the projection's emptiness claims are re-checked exactly by solve()). Returns GLP_OPT,
 /// GLP_NOFEAS, or -1 when the solver did not finish.
 int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation = true);
 
