@@ -11,6 +11,7 @@
 #include "test_fixtures.hpp"
 
 using namespace pathpace;
+using test::box_options;
 using test::corners;
 using test::lifter_with_box;
 
@@ -37,8 +38,7 @@ TEST(Contact, BoxCarriedByFrictionHasTheBangBangOptimum) {
   const PathSamples ps = slide_together(40);
   auto path = std::make_shared<SampledPath>(ps.s, ps.q, ps.dq, ps.ddq);
   TimeScalingProblem prob(path, ps.s);
-  ContactOptions opt;
-  opt.cone_edges = 4;
+  ContactOptions opt = box_options();
   auto contact = std::make_shared<ContactConstraint>(model, corners(0.5), opt);
   EXPECT_LT(contact->max_drift(ps), 1e-14);
   prob.add_constraint(contact);
@@ -68,8 +68,7 @@ TEST(Contact, WrenchesAndCentreOfPressureOfTheCarriedBox) {
   auto model = lifter_with_box();
   const PathSamples ps = slide_together(20);
   TimeScalingProblem prob(std::make_shared<SampledPath>(ps.s, ps.q, ps.dq, ps.ddq), ps.s);
-  ContactOptions opt;
-  opt.cone_edges = 4;
+  ContactOptions opt = box_options();
   prob.add_constraint(std::make_shared<ContactConstraint>(model, corners(0.5), opt));
   const Result res = prob.solve();
   ASSERT_EQ(res.status, Status::Optimal);
@@ -100,8 +99,7 @@ TEST(Contact, ForceDistributionReportsMissingForces) {
   // The box at rest on the platform, asked to accelerate at 2 g sideways: friction cannot, and the
   // margin says by how much (negative); with no contact at all the LP has no solution.
   auto model = lifter_with_box();
-  ContactOptions opt;
-  opt.cone_edges = 4;
+  ContactOptions opt = box_options();
   ContactConstraint c(model, corners(0.5), opt);
   Eigen::MatrixXd q = Eigen::MatrixXd::Zero(2, 7), qd = q, qdd = q;
   qdd(0, 0) = qdd(0, 1) = 0.2 * 9.81;

@@ -11,6 +11,7 @@
 #include "test_fixtures.hpp"
 
 using namespace pathpace;
+using test::box_options;
 using test::corners;
 using test::lifter_with_box;
 
@@ -53,9 +54,7 @@ void row_slice(const ConstraintRows& r, Eigen::Index p, double u, double& lo, do
 
 TEST(ContactSlice, EqualsTheProjectedPolygonsSlice) {
   auto model = lifter_with_box();
-  ContactOptions opt;
-  opt.cone_edges = 4;
-  opt.min_normal_force = 0.5;
+  ContactOptions opt = box_options(0.5);
   const ContactConstraint c(model, corners(0.5), opt);
   const PathSamples ps = lifter_samples(7);
   const ConstraintRows rows = c.evaluate(ps);

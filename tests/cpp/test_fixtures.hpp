@@ -64,6 +64,14 @@ inline std::shared_ptr<RobotModel> lifter_with_box() {
   return std::make_shared<RobotModel>(RobotModel::combine({lifter, box}));
 }
 
+// The contact options of the box on the platform in most tests: 4-edge pyramids, a minimum normal force (N).
+inline ContactOptions box_options(double min_normal_force = 0.0) {
+  ContactOptions opt;
+  opt.cone_edges = 4;
+  opt.min_normal_force = min_normal_force;
+  return opt;
+}
+
 // The box's four bottom corners on the platform, friction mu.
 inline std::vector<Contact> corners(double mu) {
   std::vector<Contact> out;

@@ -22,6 +22,7 @@ using detail::GlpkLp;
 using detail::Projection;
 using detail::PolytopeLp;
 using detail::PolytopeProjector;
+using test::box_options;
 using test::corners;
 using test::lifter_with_box;
 using test::beyond_stand_in;
@@ -175,9 +176,7 @@ TEST(GlpkGuard, AnErrorInTheFeasibilityAndMaximisationLpsIsAStatus) {
 
 TEST(GlpkGuard, AnErrorInTheForceDistributionThrowsAndTheNextOneWorks) {
   auto model = lifter_with_box();
-  ContactOptions opt;
-  opt.cone_edges = 4;
-  opt.min_normal_force = 1.0;
+  ContactOptions opt = box_options(1.0);
   const ContactConstraint c(model, corners(0.5), opt);
   Eigen::MatrixXd q = Eigen::MatrixXd::Zero(3, 7), qd = q, qdd = q;
   qdd(1, 0) = qdd(1, 1) = 0.2 * 9.81;
@@ -235,8 +234,7 @@ TEST(GlpkGuard, AContactProjectionRecoversFromAnErrorAtAGridPoint) {
   // ContactConstraint::evaluate retries a failed grid point from a cold start: with one GLPK error
   // anywhere in it, the polygons are those of a run without.
   auto model = lifter_with_box();
-  ContactOptions opt;
-  opt.cone_edges = 4;
+  ContactOptions opt = box_options();
   const ContactConstraint c(model, corners(0.5), opt);
   PathSamples ps;
   ps.s = Eigen::VectorXd::LinSpaced(4, 0.0, 1.0);

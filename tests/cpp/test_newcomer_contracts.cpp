@@ -11,6 +11,7 @@
 #include "test_fixtures.hpp"
 
 using namespace pathpace;
+using test::box_options;
 using test::corners;
 using test::lifter_with_box;
 
@@ -42,8 +43,7 @@ std::string error_of(const std::function<void()>& f) {
 
 TEST(ContactDrift, NamesTheContactWhereAndHowFar) {
   auto model = lifter_with_box();
-  ContactOptions opt;
-  opt.cone_edges = 4;
+  ContactOptions opt = box_options();
   const ContactConstraint c(model, corners(0.5), opt);
   TimeScalingProblem prob(sliding_box_path(0.05), 20);
   // Every corner slides by 5 cm (to rounding, which picks one of the four), farthest at the end (s = 1).
@@ -66,8 +66,7 @@ TEST(ContactDrift, NamesTheContactWhereAndHowFar) {
 
 TEST(ContactDrift, AddContactsRefusesOrRecordsAndTheResultSaysSo) {
   auto model = lifter_with_box();
-  ContactOptions opt;
-  opt.cone_edges = 4;
+  ContactOptions opt = box_options();
   auto c = std::make_shared<ContactConstraint>(model, corners(0.5), opt);
   TimeScalingProblem prob(sliding_box_path(0.05), 20);
   EXPECT_THROW(prob.add_contacts(c), InvalidInput);  // default: 1e-6 m, Auto

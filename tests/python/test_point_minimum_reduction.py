@@ -72,6 +72,19 @@ def _check_forces(res, cons, k, margins):
         assert np.all(np.cos(p) * t1 + np.sin(p) * t2 <= mu * np.cos(np.pi / k) * (normal - off) + 1e-6)
 
 
+def _exact_with_forces(h, path, cons, c, opts, min_normal_force):
+    """The problem on 6 intervals with these contacts: every polygon equals the unreduced projection to
+    EXACT of its size (none empty, at least 5 compared), and the polygons' vertices have forces that keep
+    the per-point minimum."""
+    prob = pp.TimeScalingProblem(path, grid=6)
+    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
+    worst, compared, empty = cc.compare(h, prob, cons, opts, dirs=cc.directions(32))
+    assert empty == 0 and compared >= 5
+    assert worst <= EXACT
+    _vertices_have_forces(prob, c, 2, min_normal_force)
+    return prob
+
+
 @pytest.mark.parametrize("robot,kind,k,margins", [
     ("talos", "lean", 4, {"min_normal_force": 1.5}),
     ("talos", "lean", 8, {"friction_margin": 0.5, "min_normal_force": 0.33}),
@@ -89,12 +102,7 @@ def test_dense_soles_with_a_per_point_minimum_reduce_exactly(robot, kind, k, mar
     c = pp.ContactConstraint(h.robot, cons, **opts)
     assert sorted(c.projected_contacts) == _sole_corners(h, cons) and len(c.projected_contacts) == 8
     assert c.section_contacts == list(range(len(cons)))
-    prob = pp.TimeScalingProblem(path, grid=6)
-    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
-    worst, compared, empty = cc.compare(h, prob, cons, opts, dirs=cc.directions(32))
-    assert empty == 0 and compared >= 5
-    assert worst <= EXACT
-    _vertices_have_forces(prob, c, 2, margins["min_normal_force"])
+    prob = _exact_with_forces(h, path, cons, c, opts, margins["min_normal_force"])
     res = prob.solve()
     assert res.ok, res.message
     _check_forces(res, cons, k, margins)
@@ -133,12 +141,7 @@ def test_random_soles_reduce_to_their_hull_plus_every_point_section(seed, k, mar
         hull += sorted(25 * side + int(v) for v in ConvexHull(pts).vertices)
     assert sorted(c.projected_contacts) == hull
     assert c.section_contacts == list(range(50))
-    prob = pp.TimeScalingProblem(path, grid=6)
-    prob.add_contacts(h.robot, cons, drift_tolerance=1e-4, **opts)
-    worst, compared, empty = cc.compare(h, prob, cons, opts, dirs=cc.directions(32))
-    assert empty == 0 and compared >= 5
-    assert worst <= EXACT
-    _vertices_have_forces(prob, c, 2, margins["min_normal_force"])
+    _exact_with_forces(h, path, cons, c, opts, margins["min_normal_force"])
 
 
 @pytest.mark.parametrize("k", [3, 5])
