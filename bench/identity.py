@@ -41,7 +41,7 @@ import sweep  # noqa: E402
 def record(res) -> dict:
     sdot = np.ascontiguousarray(np.asarray(res.sdot, float))
     row = dict(status=res.status.name, T=float(res.duration).hex(),
-               theta=hashlib.sha256(sdot.tobytes()).hexdigest()[:16])
+               sdot_hash=hashlib.sha256(sdot.tobytes()).hexdigest()[:16])
     if not res.ok:
         row["index"] = int(res.infeasible_index)
         row["label"] = ",".join(res.binding_constraints)
@@ -110,6 +110,17 @@ def extra_rows():
     yield "extra/phases/talos-margins", record(prob.solve())
 
 
+VERDICT = ("status", "T", "index", "label", "relaxation")  # what must be identical
+
+
+def verdict(row: dict) -> dict:
+    return {f: row.get(f) for f in VERDICT}
+
+
+def sdot_hash(row: dict):
+    return row.get("sdot_hash", row.get("theta"))  # baselines written before the key's rename call it "theta"
+
+
 def main():
     ap = argparse.ArgumentParser()
     g = ap.add_mutually_exclusive_group(required=True)
@@ -128,14 +139,13 @@ def main():
         print(f"{len(rows)} rows written to {args.write}")
         return 0
     before = json.loads(args.compare.read_text())
-    differ = [k for k in rows if k in before and {f: before[k].get(f) for f in ("status", "T", "index", "label", "relaxation")}
-              != {f: rows[k].get(f) for f in ("status", "T", "index", "label", "relaxation")}]
-    theta = [k for k in rows if k in before and before[k]["theta"] != rows[k]["theta"]]
+    differ = [k for k in rows if k in before and verdict(before[k]) != verdict(rows[k])]
+    sdot = [k for k in rows if k in before and sdot_hash(before[k]) != sdot_hash(rows[k])]
     missing = [k for k in before if k not in rows] if not args.quick else []
-    print(f"{len(rows)} rows: {len(differ)} differ in T/status, {len(theta)} in ṡ bytes, {len(missing)} missing")
+    print(f"{len(rows)} rows: {len(differ)} differ in T/status, {len(sdot)} in ṡ bytes, {len(missing)} missing")
     for k in differ[:20]:
         print("  DIFFER", k, before[k], rows[k])
-    for k in theta[:5]:
+    for k in sdot[:5]:
         print("  sdot", k)
     return 1 if differ or missing else 0
 
