@@ -229,6 +229,51 @@ TEST(RobotWorkspace, CopiedMovedAndAssignedWorkspacesComputeAsAFreshOne) {
   EXPECT_EQ(results(move_assigned), expected);
 }
 
+TEST(RobotWorkspace, AMovedFromOrMismatchedWorkspaceThrowsInsteadOfReadingOutOfBounds) {
+  const RobotModel arm = RobotModel::from_urdf_string(kArm);
+  const Eigen::VectorXd q = Eigen::Vector3d(0.3, -0.7, 0.1);
+  Eigen::VectorXd tau(3), a(3), b(3), c(3);
+  RobotWorkspace ws(arm);
+  RobotWorkspace taken(std::move(ws));
+  // NOLINTNEXTLINE(bugprone-use-after-move): a moved-from workspace is what is tested
+  EXPECT_EQ(test::error_of([&] { arm.inverse_dynamics(ws, q, q, q, true, tau); }), "workspace: it was moved from; make one with RobotWorkspace(model)");
+  EXPECT_EQ(test::error_of([&] { arm.path_torque_coefficients(ws, q, q, q, a, b, c); }), "workspace: it was moved from; make one with RobotWorkspace(model)");
+  RobotWorkspace other(RobotModel::from_urdf_string(kPendulum));
+  EXPECT_EQ(test::error_of([&] { arm.inverse_dynamics(other, q, q, q, true, tau); }), "workspace: made for a model with 1 bodies, robot 'arm' has 3; make one with RobotWorkspace(model)");
+  EXPECT_EQ(test::error_of([&] { arm.path_torque_coefficients(other, q, q, q, a, b, c); }), "workspace: made for a model with 1 bodies, robot 'arm' has 3; make one with RobotWorkspace(model)");
+  arm.inverse_dynamics(taken, q, q, q, true, tau);  // the moved-to workspace computes
+  EXPECT_TRUE(tau.allFinite());
+}
+
+TEST(RobotModel, AMovedModelCarriesEverythingAndLeavesTheEmptyModel) {
+  const RobotModel original = RobotModel::from_urdf_string(kArm);
+  const Eigen::VectorXd q = Eigen::Vector3d(0.3, -0.7, 0.1), qd = Eigen::Vector3d(1.1, 0.4, -0.2);
+  auto same_as_original = [&](const RobotModel& m) {
+    EXPECT_EQ(m.name(), original.name());
+    EXPECT_EQ(m.joint_names(), original.joint_names());
+    EXPECT_EQ(m.link_names(), original.link_names());
+    EXPECT_EQ(m.velocity_limits(), original.velocity_limits());
+    EXPECT_EQ(m.effort_limits(), original.effort_limits());
+    EXPECT_EQ(m.source().urdf, original.source().urdf);
+    EXPECT_EQ(m.inverse_dynamics(q, qd, q), original.inverse_dynamics(q, qd, q));
+  };
+  auto is_empty = [](const RobotModel& m) {
+    EXPECT_EQ(m.nq(), 0);
+    EXPECT_TRUE(m.link_names().empty());
+    EXPECT_EQ(m.inverse_dynamics(Eigen::VectorXd(0), Eigen::VectorXd(0), Eigen::VectorXd(0)).size(), 0);
+    EXPECT_EQ(RobotModel::rebuild(m.source()).nq(), 0);
+  };
+  RobotModel source = original;
+  RobotModel moved(std::move(source));
+  same_as_original(moved);
+  is_empty(source);  // NOLINT(bugprone-use-after-move): what a moved-from model is, is the contract
+  RobotModel assigned = RobotModel::from_urdf_string(kPendulum);
+  assigned = std::move(moved);
+  same_as_original(assigned);
+  is_empty(moved);  // NOLINT(bugprone-use-after-move)
+  is_empty(RobotModel::rebuild(RobotModel().source()));
+}
+
 TEST(RobotModel, DefaultConstructedModelIsEmpty) {
   const RobotModel r;
   EXPECT_EQ(r.nq(), 0);

@@ -49,6 +49,13 @@ class RobotModel {
 
   /// An empty model (no bodies, nq = 0); models come from the factories below.
   RobotModel();
+  /// Copies share the immutable tree. A moved-from model is the empty model, so every call on it stays
+  /// defined.
+  RobotModel(const RobotModel&) = default;
+  RobotModel& operator=(const RobotModel&) = default;
+  RobotModel(RobotModel&& other) noexcept;
+  RobotModel& operator=(RobotModel&& other) noexcept;
+  ~RobotModel() = default;
 
   static RobotModel from_urdf_file(const std::string& path, const RobotModelOptions& options = {});
   static RobotModel from_urdf_string(const std::string& xml, const RobotModelOptions& options = {});
@@ -159,6 +166,7 @@ class RobotModel {
  private:
   friend struct detail::RobotInternals;
   void check_q(const Eigen::Ref<const Eigen::VectorXd>& v, const char* name) const;
+  void swap(RobotModel& other) noexcept;  // every member: keep it in step with the list below
   // After loading with one coordinate per body: make the mimic bodies follow their joints.
   void remove_mimic_coordinates(const std::vector<MimicJoint>& mimics);
   std::string name_;

@@ -60,7 +60,9 @@ struct RobotScratch {
 struct RobotInternals {
   static const std::vector<Body>& bodies(const RobotModel& model) { return model.tree_->bodies; }
   static const MimicMap* mimic(const RobotModel& model) { return model.mimic_.get(); }
-  static RobotScratch& scratch(RobotWorkspace& ws) { return *ws.scratch_; }
+  /// The workspace's buffers, checked against the model they are used with: a moved-from workspace, or one
+  /// made for a model with another number of bodies, would otherwise be read out of bounds.
+  static RobotScratch& scratch(RobotWorkspace& ws, const RobotModel& model);
 };
 
 }  // namespace pathpace::detail

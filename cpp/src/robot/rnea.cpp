@@ -89,7 +89,7 @@ void RobotModel::inverse_dynamics(RobotWorkspace& workspace, const Eigen::Ref<co
     tau.noalias() = mm.E.transpose() * tau_bodies;
     return;
   }
-  RobotScratch& ws = detail::RobotInternals::scratch(workspace);
+  RobotScratch& ws = detail::RobotInternals::scratch(workspace, *this);
   joint_transforms(tree_->bodies, ws, q);
   ws.qd = qd;
   rnea_pass(tree_->bodies, ws, &ws.qd, qdd, with_gravity ? &gravity_ : nullptr, tau);

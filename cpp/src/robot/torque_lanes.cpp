@@ -238,7 +238,7 @@ void path_torque_coefficients_into(const RobotModel& robot, RobotWorkspace& ws, 
   if (lanes < 1 || lanes > torque_lanes_supported() || (lanes & (lanes - 1)) != 0)
     fail("lanes = " + std::to_string(lanes) + " must be a power of 2 <= " + std::to_string(torque_lanes_supported()));
   const std::vector<Body>& bodies = RobotInternals::bodies(robot);
-  RobotScratch& scratch = RobotInternals::scratch(ws);
+  RobotScratch& scratch = RobotInternals::scratch(ws, robot);
   if (robot.mimic_joints().empty()) {
     switch (lanes) {
 #if defined(PATHPACE_WIDE_LANES)
@@ -321,7 +321,7 @@ void RobotModel::path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<c
   }
   const std::vector<detail::Body>& bodies = tree_->bodies;
   const size_t nb = bodies.size();
-  AbcBody<double>* S = abc_bodies<double>(detail::RobotInternals::scratch(ws), nb);
+  AbcBody<double>* S = abc_bodies<double>(detail::RobotInternals::scratch(ws, *this), nb);
   for (size_t i = 0; i < nb; ++i) detail::joint_transform(bodies[i], q[static_cast<Eigen::Index>(i)], S[i].E, S[i].r);
   detail::abc_sweep<double>(bodies, S, dq.data(), ddq.data(), gravity_, a.data(), b.data(), c.data());
 }
