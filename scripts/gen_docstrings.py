@@ -341,16 +341,21 @@ def doxygen(name: str, entries: dict[str, str], declaration: str) -> list[str]:
         out[0] = "@brief " + out[0]
     tail: list[str] = []
     by_name = {n: k for k in commands if k.startswith("@param ") for n in k.split()[1].split(",")}
+    documented: list[tuple[str, list[str]]] = []  # (first name, lines)
     for names, desc in params:
         key = next((by_name[n] for n in names if by_name.get(n) in commands), None)
         if key:
-            tail += commands.pop(key)
+            documented.append((names[0], commands.pop(key)))
         elif not any(n in by_name for n in names):
-            tail += command(f"@param {','.join(names)}", desc)
+            documented.append((names[0], command(f"@param {','.join(names)}", desc)))
     for key in [k for k in commands if k.startswith("@param")]:  # the C++ section's own, if declared here
         lines_of = commands.pop(key)
-        if set(key.split()[1].split(",")) & declared:
-            tail += lines_of
+        names = [n for n in key.split()[1].split(",") if n in declared]
+        if names:
+            documented.append((names[0], lines_of))
+    position = {n: i for i, n in reversed(list(enumerate(re.findall(r"[A-Za-z_]\w*", declaration))))}
+    for _, lines_of in sorted(documented, key=lambda d: position.get(d[0], len(position))):
+        tail += lines_of
     if member == "__init__":
         commands = {}
     if re.search(r"\bvoid\s+\w+\s*\(", declaration):
@@ -373,16 +378,27 @@ WIDTH = 120  # of a header line
 
 
 def wrap(block: list[str], width: int) -> list[str]:
-    """Lines longer than width broken at spaces (a command's continuation indented)."""
-    out = []
-    for line in block:
-        if len(line) <= width:
-            out.append(line)
+    """Lines longer than width broken at a space, the rest carried into the paragraph's next line (a
+    command's continuation indented)."""
+    out = list(block)
+    i = 0
+    while i < len(out):
+        line = out[i]
+        cut = line.rfind(" ", 0, width + 1)
+        if len(line) <= width or cut <= len(line) - len(line.lstrip()):
+            i += 1
             continue
-        lead = re.match(r"\s*", line).group(0)
+        head, rest = line[:cut], line[cut + 1:]
+        lead = " " * (len(line) - len(line.lstrip()))
         more = lead + ("  " if line.lstrip().startswith("@") else "")
-        out += textwrap.wrap(line, width, initial_indent="", subsequent_indent=more, break_long_words=False,
-                             break_on_hyphens=False)
+        follows = i + 1 < len(out) and out[i + 1].strip() and not out[i + 1].lstrip().startswith("@") \
+            and out[i + 1].startswith(more) and not out[i + 1].startswith(more + " ")
+        out[i] = head
+        if follows:
+            out[i + 1] = more + rest + " " + out[i + 1][len(more):]
+        else:
+            out.insert(i + 1, more + rest)
+        i += 1
     return out
 
 

@@ -1251,7 +1251,9 @@ class Trajectory:
         """
 
 class Result:
-    """What a solve returns. ``bool(result)`` is ``result.ok``.
+    """What a solve returns.
+
+    ``bool(result)`` is ``result.ok``.
 
     Attributes
     ----------
@@ -1637,7 +1639,7 @@ class TimeScalingProblem:
     def relaxation(self, max_scale: float = 1e3, tolerance: float = 1e-3, guarantee: str = "grid") -> dict[str, float]:
         """Smallest uniform relaxation of each constraint family that makes the problem feasible.
 
-        Returns a dict family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family
+        Returns a dict (C++: std::map) family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family
         together when there are several): the family's limit intervals widened by that factor about zero, the
         others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor;
         inf if `max_scale` is not enough (e.g. velocity limits cannot fix what acceleration limits forbid).

@@ -30,11 +30,11 @@ class CubicSplinePath : public PiecewisePolynomialPath {
  public:
   // docstrings.txt @@ CubicSplinePath.__init__
   /// @param waypoints (K, n): K >= 2 waypoints in rad (or m), one per row.
+  /// @param spacing How the knots are placed on [s_begin, s_end] (KnotSpacing).
   /// @param boundary scipy's bc_type: p''' continuous at the second and second-last knots; p'' = 0 at the ends; or
   ///   given end slopes p' (zero when no derivative is given, scipy's "clamped").
-  /// @param start_derivative,end_derivative (n,): p'(s_begin), p'(s_end) for `boundary='clamped'`.
   /// @param s_begin,s_end Domain for 'uniform' and 'chord' knots.
-  /// @param spacing How the knots are placed on [s_begin, s_end] (KnotSpacing).
+  /// @param start_derivative,end_derivative (n,): p'(s_begin), p'(s_end) for `boundary='clamped'`.
   CubicSplinePath(const Eigen::MatrixXd& waypoints, KnotSpacing spacing = KnotSpacing::Uniform,
                   SplineBoundary boundary = SplineBoundary::NotAKnot, double s_begin = 0.0, double s_end = 1.0,
                   const Eigen::VectorXd& start_derivative = Eigen::VectorXd(),

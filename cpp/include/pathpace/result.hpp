@@ -82,7 +82,7 @@ struct SolverStats {
 };
 
 // docstrings.txt @@ Result
-/// @brief What a solve returns. `bool(result)` is `result.ok`.
+/// @brief What a solve returns.
 class Result {
  public:
   // docstrings.txt @@ Result.status

@@ -130,8 +130,8 @@ class RobotModel {
   ///
   /// At one s; path_torque_coefficients_batch takes many.
   ///
-  /// @param q,dq,ddq p, p', p'' at one s, each (nq,).
   /// @param ws Scratch space of this model (one per thread).
+  /// @param q,dq,ddq p, p', p'' at one s, each (nq,).
   /// @param a,b,c Receive a, b, c, each (nq,).
   void path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                                 const Eigen::Ref<const Eigen::VectorXd>& dq, const Eigen::Ref<const Eigen::VectorXd>& ddq,

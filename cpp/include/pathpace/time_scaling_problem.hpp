@@ -136,10 +136,10 @@ class TimeScalingProblem {
   /// drift_tolerance (m) and `drift`, as add_contacts.
   ///
   /// @param phases Each a ContactPhase: s_begin, s_end, its contacts and, optionally, its own options.
-  /// @param tau_min,tau_max As in ContactConstraint, for every phase.
-  /// @param drift_tolerance,drift As in `add_contacts`, for each phase's contacts on that phase's stretch.
-  /// @param impact_tolerance Relative tolerance of the no-impact rule (default 1e-6).
   /// @param options The margins of every phase without options of its own (ContactOptions).
+  /// @param tau_min,tau_max As in ContactConstraint, for every phase.
+  /// @param impact_tolerance Relative tolerance of the no-impact rule (default 1e-6).
+  /// @param drift_tolerance,drift As in `add_contacts`, for each phase's contacts on that phase's stretch.
   /// @return The drifts it let through, as add_contacts.
   std::vector<ContactDrift> add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
                           const ContactOptions& options = ContactOptions(), const Eigen::VectorXd& tau_min = Eigen::VectorXd(),
@@ -245,8 +245,8 @@ class TimeScalingProblem {
   // docstrings.txt @@ TimeScalingProblem.relaxation
   /// @brief Smallest uniform relaxation of each constraint family that makes the problem feasible.
   ///
-  /// Returns a dict family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family
-  /// together when there are several): the family's limit intervals widened by that factor about zero, the
+  /// Returns a dict (C++: std::map) family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every
+  /// family together when there are several): the family's limit intervals widened by that factor about zero, the
   /// others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor;
   /// inf if `max_scale` is not enough (e.g. velocity limits cannot fix what acceleration limits forbid).
   /// 1.0 for every family of a feasible problem.

@@ -154,8 +154,7 @@ class Trajectory {
   ///
   /// @param dt Period in s; T is appended when it is not a multiple of dt.
   /// @param max_memory Bytes (> 0): a dt that would need more (t, q, q̇, q̈ and the path's own p, p', p'' while
-  ///   evaluating)
-  ///   is an InvalidInput saying how much, before anything is allocated (a dt meant in ms but given in
+  ///   evaluating) is an InvalidInput saying how much, before anything is allocated (a dt meant in ms but given in
   ///   s would otherwise fill the memory).
   /// @param spline As resample's: the samples of time_spline() instead of the exact timing.
   /// @return t (m,) in s and q, q̇, q̈ (m, n) (Samples).

@@ -21,8 +21,7 @@ class AccelerationLimits : public Constraint {
   // docstrings.txt @@ AccelerationLimits.__init__
   /// @param amin,amax (n,): rad/s² (or m/s²); amin <= amax, ±inf for none; no NaN.
   /// @param joint_names One per joint: they name the joints in row labels and messages ("acceleration panda_joint2
-  ///   upper";
-  ///   default "acceleration joint 1 upper").
+  ///   upper"; default "acceleration joint 1 upper").
   AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax, std::vector<std::string> joint_names = {});
 
   std::string name() const override { return "acceleration limits"; }

@@ -21,8 +21,7 @@ class VelocityLimits : public Constraint {
   // docstrings.txt @@ VelocityLimits.__init__
   /// @param vmin,vmax (n,): rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none; no NaN.
   /// @param joint_names One per joint: they name the joints in row labels and messages ("velocity panda_joint2";
-  ///   default
-  ///   "velocity joint 1").
+  ///   default "velocity joint 1").
   VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax, std::vector<std::string> joint_names = {});
 
   std::string name() const override { return "velocity limits"; }
