@@ -473,29 +473,33 @@ class Contact:
     Attributes
     ----------
     link : str
+        The link that touches.
     point : ndarray (3,)
         m, link frame.
     normal : ndarray (3,)
+        Into `link`: world coordinates for a world contact, other_link's frame otherwise.
     friction : float
+        Coulomb coefficient μ.
     other_link : str or None
+        The other body of a robot–robot contact; None (C++: empty): the world.
     """
     def __init__(self, link: str, point: ArrayLike = (0.0, 0.0, 0.0), normal: ArrayLike = (0.0, 0.0, 1.0),
                  friction: float = 0.5, other_link: str | None = None) -> None: ...
     @property
     def other_link(self) -> str | None:
-        """str or None"""
+        """str or None: The other body of a robot–robot contact; None (C++: empty): the world."""
     @property
     def link(self) -> str:
-        """str"""
+        """str: The link that touches."""
     @property
     def point(self) -> Array:
         """ndarray (3,): m, link frame."""
     @property
     def normal(self) -> Array:
-        """ndarray (3,)"""
+        """ndarray (3,): Into `link`: world coordinates for a world contact, other_link's frame otherwise."""
     @property
     def friction(self) -> float:
-        """float"""
+        """float: Coulomb coefficient μ."""
 
 class ContactConstraint(Constraint):
     """Torque limits with frictional contact forces (eq. 17-18), projected onto (ṡ², s̈).

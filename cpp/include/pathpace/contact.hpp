@@ -17,13 +17,21 @@ namespace pathpace {
 /// `other_link`'s frame for a robot–robot contact (it turns with that link). The other side feels the
 /// opposite force at the same point. The normal is normalised on use (zero is rejected).
 struct Contact {
+  // docstrings.txt @@ Contact.link
+  /// The link that touches.
   std::string link;
   // docstrings.txt @@ Contact.point
   /// (3,): m, link frame.
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  // docstrings.txt @@ Contact.normal
+  /// (3,): Into `link`: world coordinates for a world contact, other_link's frame otherwise.
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  // docstrings.txt @@ Contact.friction
+  /// Coulomb coefficient μ.
   double friction = 0.5;
-  std::string other_link;  ///< empty: the world
+  // docstrings.txt @@ Contact.other_link
+  /// The other body of a robot–robot contact; None (C++: empty): the world.
+  std::string other_link;
 };
 
 }  // namespace pathpace

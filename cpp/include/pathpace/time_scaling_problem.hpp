@@ -67,6 +67,9 @@ struct ProblemSettings {
 /// or modified (one add_* / set_* at a time), never both. A call that would overlap the other kind in
 /// another thread raises Error at once instead of waiting (a program that does this has a race it
 /// should know about): "add_contacts: this TimeScalingProblem is being solved in another thread; ...".
+///
+/// Adding constraints mutates the problem; solve() and feasible_set() are const and keep their scratch
+/// space local.
 class TimeScalingProblem {
  public:
   /// Holds a problem for reading or modifying while it lives (see "Threads" above); every const method
