@@ -293,30 +293,30 @@ def identifiers(declaration: str) -> set[str]:
     return set(re.findall(r"[A-Za-z_]\w*", declaration))
 
 
-def doxygen(name: str, entries: dict[str, str], declaration: str) -> list[str]:
-    """The `///` lines (without the slashes) for the declaration under marker `name`."""
+def attribute_block(name: str, entries: dict[str, str]) -> list[str]:
+    """The C++ doc of member Class.name: its item's description in the class's Attributes."""
     cls, _, member = name.partition(".")
-    if member and member != "__init__" and name not in entries:  # an item of the class's Attributes
-        doc = one_side(entries[cls], "", PYTHON)
-        for names, typ, desc in attribute_items(cls, doc):
-            if member in [n.strip() for n in names.split(",")]:
-                if not desc:
-                    raise SystemExit(f"{SOURCE.name}: {cls}'s attribute {member} has only a type: nothing for C++")
-                return rst_to_doxygen(with_shape(typ, desc)).splitlines()
-        raise SystemExit(f"marker '{name}': no entry of that name in {SOURCE.name}")
-    doc = one_side(entries[cls if member == "__init__" else name], "", PYTHON)
+    for names, typ, desc in attribute_items(cls, one_side(entries[cls], "", PYTHON)):
+        if member in [n.strip() for n in names.split(",")]:
+            if not desc:
+                raise SystemExit(f"{SOURCE.name}: {cls}'s attribute {member} has only a type: nothing for C++")
+            return rst_to_doxygen(with_shape(typ, desc)).splitlines()
+    raise SystemExit(f"marker '{name}': no entry of that name in {SOURCE.name}")
+
+
+def read_sections(doc: str, is_type: bool, declared: set[str]):
+    """An entry's C++ view: (description lines, [(names, @param text)], [@return texts],
+    [(exception, text)], the C++ section's commands)."""
     lines = doc.splitlines()
     marks = headings(lines) + [len(lines)]
     text, params, returns, throws = list(lines[: marks[0]]), [], [], []
     commands: dict[str, list[str]] = {}
-    declared = identifiers(declaration)
-    is_type = re.match(r"\s*(class|struct|enum)\b", declaration) is not None
     for start, end in zip(marks, marks[1:]):
         title, body = lines[start], lines[start + 2: end]
         if title == CPP:
             commands, prose = cpp_commands(body)
             text += [""] + prose
-            if is_type:  # a class's parameters are its constructor's
+            if is_type:  # a class's parameters are its constructors'
                 commands = {k: v for k, v in commands.items() if not k.startswith("@param")}
         elif title in ("Parameters", "Attributes"):
             found, prose = items(body)
@@ -327,19 +327,18 @@ def doxygen(name: str, entries: dict[str, str], declaration: str) -> list[str]:
                     if kept and desc:
                         params.append((kept, with_shape(typ, desc)))
         elif title == "Returns":
-            for _, typ, desc in items(body, returns=True)[0]:
-                returns.append(desc or typ)
+            returns += [desc or typ for _, typ, desc in items(body, returns=True)[0]]
         elif title == "Raises":
-            for exc, _, desc in items(body)[0]:
-                throws.append((EXCEPTIONS.get(exc, exc), desc))
+            throws += [(EXCEPTIONS.get(exc, exc), desc) for exc, _, desc in items(body)[0]]
         else:
             text += ["", f"{title}:"] + body
-    if member == "__init__":
-        text = []
-    out = paragraphs(text)
-    if out:
-        out[0] = "@brief " + out[0]
-    tail: list[str] = []
+    return text, params, returns, throws, commands
+
+
+def param_lines(params, commands: dict[str, list[str]], declaration: str) -> list[str]:
+    """@param lines in the declaration's order: the C++ section's where it has one for a name (it
+    replaces the generated one), then its own for other parameters the declaration has."""
+    declared = identifiers(declaration)
     by_name = {n: k for k in commands if k.startswith("@param ") for n in k.split()[1].split(",")}
     documented: list[tuple[str, list[str]]] = []  # (first name, lines)
     for names, desc in params:
@@ -348,24 +347,37 @@ def doxygen(name: str, entries: dict[str, str], declaration: str) -> list[str]:
             documented.append((names[0], commands.pop(key)))
         elif not any(n in by_name for n in names):
             documented.append((names[0], command(f"@param {','.join(names)}", desc)))
-    for key in [k for k in commands if k.startswith("@param")]:  # the C++ section's own, if declared here
+    for key in [k for k in commands if k.startswith("@param")]:
         lines_of = commands.pop(key)
         names = [n for n in key.split()[1].split(",") if n in declared]
         if names:
             documented.append((names[0], lines_of))
     position = {n: i for i, n in reversed(list(enumerate(re.findall(r"[A-Za-z_]\w*", declaration))))}
-    for _, lines_of in sorted(documented, key=lambda d: position.get(d[0], len(position))):
-        tail += lines_of
+    return [line for _, lines_of in sorted(documented, key=lambda d: position.get(d[0], len(position)))
+            for line in lines_of]
+
+
+def doxygen(name: str, entries: dict[str, str], declaration: str) -> list[str]:
+    """The `///` lines (without the slashes) for the declaration under marker `name`."""
+    cls, _, member = name.partition(".")
+    if member and member != "__init__" and name not in entries:
+        return attribute_block(name, entries)
+    is_type = re.match(r"\s*(class|struct|enum)\b", declaration) is not None
+    text, params, returns, throws, commands = read_sections(
+        one_side(entries[cls if member == "__init__" else name], "", PYTHON), is_type, identifiers(declaration))
+    out = [] if member == "__init__" else paragraphs(text)  # a constructor: its parameters only
+    if out:
+        out[0] = "@brief " + out[0]
+    tail = param_lines(params, commands, declaration)
     if member == "__init__":
         commands = {}
     if re.search(r"\bvoid\s+\w+\s*\(", declaration):
         returns = []
     for desc in returns:
         tail += commands.pop("@return") if "@return" in commands else command("@return", desc)
-    tail += commands.pop("@return", [])
     for exc, desc in throws:
         tail += commands.pop(f"@throws {exc}") if f"@throws {exc}" in commands else command(f"@throws {exc}", desc)
-    tail += [line for k in list(commands) for line in commands.pop(k)]
+    tail += [line for k in list(commands) for line in commands.pop(k)]  # the C++ section's other commands
     if out and tail:
         out.append("")
     out += tail
