@@ -134,20 +134,31 @@ void bind_constraint_base(py::module_& m) {
   py::class_<Constraint, PyConstraint, py::smart_holder>(m, "Constraint", doc::Constraint)
       .def(py::init<>())
       .def_property_readonly("name", &Constraint::name, doc::Constraint_name)
-      .def("evaluate", &Constraint::evaluate, "samples"_a, doc::Constraint_evaluate)
+      .def("evaluate",
+           [](const Constraint& c, py::handle samples) {
+             if (!py::isinstance<PathSamples>(samples)) type_error("samples", "a pathpace.PathSamples", samples);
+             return c.evaluate(samples.cast<const PathSamples&>());
+           },
+           "samples"_a, doc::Constraint_evaluate)
       .def("family", &Constraint::family, doc::Constraint_family)
       .def("relaxed",
-           [](const Constraint& c, double scale) { return std::const_pointer_cast<Constraint>(c.relaxed(scale)); },
+           [](const Constraint& c, py::handle scale) {
+             return std::const_pointer_cast<Constraint>(c.relaxed(to_double(scale, "scale")));
+           },
            "scale"_a, doc::Constraint_relaxed)
       .def("per_grid_point", &Constraint::per_grid_point, doc::Constraint_per_grid_point)
       .def("at_grid_points",
-           [](const Constraint& c, const std::vector<Eigen::Index>& kept) {
+           [](const Constraint& c, py::handle kept_arg) {
+             std::vector<Eigen::Index> kept;
+             for (const py::object& k : to_items(kept_arg, "kept", "a list of int"))
+               kept.push_back(static_cast<Eigen::Index>(to_int(k, "kept[" + std::to_string(kept.size()) + "]", 0,
+                                                               std::numeric_limits<Eigen::Index>::max())));
              return std::const_pointer_cast<Constraint>(c.at_grid_points(kept));
            },
            "kept"_a, doc::Constraint_at_grid_points)
       .def("with_joint_names",
-           [](const Constraint& c, const std::vector<std::string>& names) {
-             return std::const_pointer_cast<Constraint>(c.with_joint_names(names));
+           [](const Constraint& c, py::handle names) {
+             return std::const_pointer_cast<Constraint>(c.with_joint_names(to_string_list(names, "names")));
            },
            "names"_a, doc::Constraint_with_joint_names);
 }

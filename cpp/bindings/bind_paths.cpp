@@ -173,10 +173,12 @@ void bind_paths(py::module_& m) {
   bind_piecewise_polynomial_path(m);
   bind_cubic_spline_path(m);
   bind_sampled_path(m);
-  m.def("auto_grid", [](std::shared_ptr<Path> path, double tolerance, int min_intervals, int max_intervals) {
-    if (!path) throw InvalidInput("path must be a pathpace Path, not None");
+  m.def("auto_grid", [](py::handle path_arg, py::handle tolerance, py::handle min_intervals, py::handle max_intervals) {
+    const auto path = to_object<Path>(path_arg, "path", "Path");
+    const double tol = to_double(tolerance, "tolerance");
+    const int lo = to_int32(min_intervals, "min_intervals"), hi = to_int32(max_intervals, "max_intervals");
     py::gil_scoped_release release;
-    return auto_grid(*path, tolerance, min_intervals, max_intervals);
+    return auto_grid(*path, tol, lo, hi);
   }, "path"_a, "tolerance"_a = 1e-3, "min_intervals"_a = 16, "max_intervals"_a = 1000000, doc::auto_grid);
 }
 

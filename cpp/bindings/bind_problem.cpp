@@ -109,8 +109,9 @@ void bind_feasible_set(py::module_& m) {
       });
 }
 
-std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object grid, double grid_tolerance) {
+std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object grid, py::handle tolerance_arg) {
   auto path = to_object<Path>(path_arg, "path", "Path");
+  const double grid_tolerance = to_double(tolerance_arg, "grid_tolerance");
   if (py::isinstance<py::str>(grid)) {
     const std::string g = grid.cast<std::string>();
     if (g != "auto") throw InvalidInput("grid = '" + g + "' must be 'auto', an int or an array of s");
@@ -310,10 +311,11 @@ void bind_problem_solve(ProblemClass& cls) {
        const long long i = to_int(k, "k", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
        return p.feasible_set(static_cast<Eigen::Index>(i));
      }, "k"_a, doc::TimeScalingProblem_feasible_set)
-      .def("relaxation", [](const TimeScalingProblem& p, double max_scale, double tolerance, const std::string& guarantee) {
-        const Guarantee g = parse_guarantee(guarantee);
+      .def("relaxation", [](const TimeScalingProblem& p, py::handle max_scale, py::handle tolerance, py::handle guarantee) {
+        const double m = to_double(max_scale, "max_scale"), t = to_double(tolerance, "tolerance");
+        const Guarantee g = parse_guarantee(to_string_arg(guarantee, "guarantee"));
         py::gil_scoped_release release;
-        return p.relaxation(max_scale, tolerance, g);
+        return p.relaxation(m, t, g);
       }, "max_scale"_a = 1e3, "tolerance"_a = 1e-3, "guarantee"_a = "grid", doc::TimeScalingProblem_relaxation)
       .def("restarted", [](const TimeScalingProblem& p, py::handle s0, py::handle sdot0) {
         const double a = to_double(s0, "s0"), b = to_double(sdot0, "sdot0");

@@ -93,7 +93,8 @@ void bind_trajectory_timing(TrajectoryClass& cls) {
       .def("evaluate", [](const Trajectory& tr, py::handle t) {
         return py::make_tuple(at_times(tr, t, 0), at_times(tr, t, 1), at_times(tr, t, 2));
       }, "t"_a, doc::Trajectory_evaluate)
-      .def("__call__", [](const Trajectory& tr, py::handle t, int order) {
+      .def("__call__", [](const Trajectory& tr, py::handle t, py::handle order_arg) {
+        const int order = to_int32(order_arg, "order");
         if (order < 0 || order > 2) throw InvalidInput("order = " + std::to_string(order) + " must be 0, 1 or 2");
         return at_times(tr, t, order);
       }, "t"_a, "order"_a = 0, doc::Trajectory_call_)

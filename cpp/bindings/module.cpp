@@ -24,7 +24,6 @@ void bind_contacts(py::module_& m);
 void bind_trajectory(py::module_& m);
 void bind_result(py::module_& m);
 void bind_problem(py::module_& m);
-void name_argument_errors(py::module_& m);  // argument_errors.cpp: last, over every bound function
 
 namespace {
 
@@ -69,6 +68,5 @@ PYBIND11_MODULE(_core, m) {
   pathpace::python::bind_trajectory(m);
   pathpace::python::bind_result(m);
   pathpace::python::bind_problem(m);
-  pathpace::python::name_argument_errors(m);
   m.attr("malloc_tuned") = pathpace::python::tune_malloc();
 }

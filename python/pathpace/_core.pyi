@@ -14,34 +14,44 @@ Array = NDArray[np.float64]
 malloc_tuned: bool
 
 class Error(RuntimeError):
-    """Every error pathpace raises (a RuntimeError); e.g. Result.trajectory() without a timing, or a problem
-    modified while another thread solves it.
+    """Base of every error pathpace raises; e.g. Result.trajectory() without a timing, or a problem modified
+    while another thread solves it. Infeasible problems are not errors: they are a Result status.
+
+    A RuntimeError.
     """
 class InvalidInputError(Error, ValueError):
-    """Bad input (also a ValueError): the message names the argument, index, value and what was expected."""
+    """Bad input: the message names the argument, index, value and what was expected.
+
+    A wrong shape, a NaN, a limit of the wrong sign, an unknown link name...: e.g. "vmax[3] = -2 must be > 0".
+
+    Also a ValueError.
+    """
 
 class Path:
     """A geometric path q = p(s) for s in [s_begin, s_end] (abstract).
 
     Joint coordinates q are in rad (revolute) or m (prismatic); s is dimensionless, so p' = dq/ds and
-    p'' = d²q/ds² are in rad (or m) per unit s.
+    p'' = d²q/ds² are in rad (or m) per unit s. Implementations are immutable after construction and safe
+    to evaluate from several threads at once.
 
     Attributes
     ----------
     dof : int
-        Number of coordinates n.
-    s_begin, s_end : float
-        The parameter's range.
+        Number of coordinates n of q.
+    s_begin : float
+        First value of s.
+    s_end : float
+        Last value of s.
     """
     @property
     def dof(self) -> int:
-        """int: Number of coordinates n."""
+        """int: Number of coordinates n of q."""
     @property
     def s_begin(self) -> float:
-        """float: The parameter's range."""
+        """float: First value of s."""
     @property
     def s_end(self) -> float:
-        """float: The parameter's range."""
+        """float: Last value of s."""
     def q(self, s: float | ArrayLike) -> Array:
         """p(s).
 
@@ -65,7 +75,8 @@ class Path:
 class PiecewisePolynomialPath(Path):
     """Polynomial pieces between breakpoints.
 
-    On [b_i, b_{i+1}], p(s) = Σ_j coefficients[i, j, :] (s - b_i)**j (lowest degree first).
+    On [b_i, b_{i+1}], p(s) = Σ_j coefficients[i, j, :] (s - b_i)**j (lowest degree first). The domain
+    is [breakpoints[0], breakpoints[M]]; s outside it is clamped.
 
     Parameters
     ----------
@@ -106,9 +117,11 @@ class CubicSplinePath(PiecewisePolynomialPath):
     knots : ndarray (K,)
     waypoints : ndarray (K, n)
     boundary : str
-        'not-a-knot', 'natural' or 'clamped'.
-    start_derivative, end_derivative : ndarray (n,) or None
-        p'(s_begin), p'(s_end) of a clamped spline.
+        The end conditions, scipy's bc_type: 'not-a-knot', 'natural' or 'clamped'.
+    start_derivative : ndarray (n,) or None
+        p'(s_begin) of a clamped spline; None (in C++ empty) for the other boundaries.
+    end_derivative : ndarray (n,) or None
+        p'(s_end) of a clamped spline; None (in C++ empty) for the other boundaries.
     """
     def __init__(
         self,
@@ -128,18 +141,19 @@ class CubicSplinePath(PiecewisePolynomialPath):
         """ndarray (K, n)"""
     @property
     def boundary(self) -> str:
-        """str: 'not-a-knot', 'natural' or 'clamped'."""
+        """str: The end conditions, scipy's bc_type: 'not-a-knot', 'natural' or 'clamped'."""
     @property
     def start_derivative(self) -> Array | None:
-        """ndarray (n,) or None: p'(s_begin), p'(s_end) of a clamped spline."""
+        """ndarray (n,) or None: p'(s_begin) of a clamped spline; None (in C++ empty) for the other boundaries."""
     @property
     def end_derivative(self) -> Array | None:
-        """ndarray (n,) or None: p'(s_begin), p'(s_end) of a clamped spline."""
+        """ndarray (n,) or None: p'(s_end) of a clamped spline; None (in C++ empty) for the other boundaries."""
 
 class SampledPath(PiecewisePolynomialPath):
     """A path known at samples: q, q', q'' given at each s (e.g. from another planner).
 
-    Between samples, the quintic Hermite interpolant: C², and exact at every sample.
+    Between samples, the quintic Hermite interpolant: C², and exact at every sample, so a grid on the
+    samples sees exactly the data given and a trajectory evaluated in between is smooth.
 
     Parameters
     ----------
@@ -160,27 +174,33 @@ class SampledPath(PiecewisePolynomialPath):
 class PathSamples:
     """The path at the grid points, as Constraint.evaluate reads it (read-only).
 
+    Computed once per problem, read by every constraint. Row k of q, dq, ddq belongs to s[k].
+
     Attributes
     ----------
     s : ndarray (N+1,)
-        The grid.
-    q, dq, ddq : ndarray (N+1, n)
-        p, p', p'' at s.
+        The grid s_0 < ... < s_N.
+    q : ndarray (N+1, n)
+        p at s.
+    dq : ndarray (N+1, n)
+        p' at s.
+    ddq : ndarray (N+1, n)
+        p'' at s.
     dof : int
         n.
     """
     @property
     def s(self) -> Array:
-        """ndarray (N+1,): The grid."""
+        """ndarray (N+1,): The grid s_0 < ... < s_N."""
     @property
     def q(self) -> Array:
-        """ndarray (N+1, n): p, p', p'' at s."""
+        """ndarray (N+1, n): p at s."""
     @property
     def dq(self) -> Array:
-        """ndarray (N+1, n): p, p', p'' at s."""
+        """ndarray (N+1, n): p' at s."""
     @property
     def ddq(self) -> Array:
-        """ndarray (N+1, n): p, p', p'' at s."""
+        """ndarray (N+1, n): p'' at s."""
     @property
     def dof(self) -> int:
         """int: n."""
@@ -188,6 +208,10 @@ class PathSamples:
 
 class ConstraintRows:
     """Half-planes a·x + b·u <= c (x = ṡ², u = s̈) at every grid point: what Constraint.evaluate returns.
+
+    Row j at grid point k reads a(k, j)·x + b(k, j)·u <= c(k, j). A row with c = +inf is inactive at that
+    grid point (a limit that is absent, or padding when the number of half-planes varies along the path).
+    labels[j] names row j for infeasibility reports, e.g. "acceleration joint 3 upper".
 
     Parameters
     ----------
@@ -198,32 +222,39 @@ class ConstraintRows:
 
     Attributes
     ----------
-    a, b, c : ndarray (N+1, r)
-        The rows.
+    a : ndarray (N+1, r)
+        Coefficients of x.
+    b : ndarray (N+1, r)
+        Coefficients of u.
+    c : ndarray (N+1, r)
+        Right-hand sides; +inf: inactive.
     labels : list of str
-        Their names.
+        r names, one per row.
     rows : int
         r.
     """
     def __init__(self, a: ArrayLike, b: ArrayLike, c: ArrayLike, labels: list[str]) -> None: ...
     @property
     def a(self) -> Array:
-        """ndarray (N+1, r): The rows."""
+        """ndarray (N+1, r): Coefficients of x."""
     @property
     def b(self) -> Array:
-        """ndarray (N+1, r): The rows."""
+        """ndarray (N+1, r): Coefficients of u."""
     @property
     def c(self) -> Array:
-        """ndarray (N+1, r): The rows."""
+        """ndarray (N+1, r): Right-hand sides; +inf: inactive."""
     @property
     def labels(self) -> list[str]:
-        """list of str: Their names."""
+        """list of str: r names, one per row."""
     @property
     def rows(self) -> int:
         """int: r."""
 
 class Constraint:
     """Base of all constraints: half-planes a·x + b·u <= c per grid point, x = ṡ², u = s̈ (eq. 9).
+
+    Implementations are immutable after construction, so one instance can serve several problems and
+    threads; evaluate keeps its scratch space local.
 
     A family of your own subclasses it in Python: give `name` and `evaluate(samples)` (returning
     ConstraintRows), and optionally `family`/`relaxed` (relaxation explains infeasibility with it),
@@ -234,12 +265,12 @@ class Constraint:
     Attributes
     ----------
     name : str
-        Used in infeasibility reports.
+        A short name for messages and infeasibility reports, e.g. "velocity limits".
     """
     def __init__(self) -> None: ...
     @property
     def name(self) -> str:
-        """str: Used in infeasibility reports."""
+        """str: A short name for messages and infeasibility reports, e.g. "velocity limits"."""
     def evaluate(self, samples: PathSamples) -> ConstraintRows:
         """The rows at every grid point of samples.
 
@@ -251,11 +282,25 @@ class Constraint:
         Returns
         -------
         ConstraintRows
+            The half-planes.
+
+        Raises
+        ------
+        InvalidInputError
+            When the constraint does not fit the path (e.g. a dimension mismatch), naming what does not fit.
         """
     def family(self) -> str:
-        """The family of limits relaxation() scales ("velocity", "torque", ...); "" for none."""
+        """The family of limits relaxation() scales ("velocity", "acceleration", "torque", ...); "" for none.
+
+        Used when an infeasible problem is explained (see TimeScalingProblem.relaxation); a constraint of no
+        family is not relaxed.
+        """
     def relaxed(self, scale: float) -> Constraint | None:
-        """The constraint with its limits widened by scale >= 1 about zero, or None if it has no such scale.
+        """The constraint with its limits widened by scale >= 1 about zero, or None (C++: nullptr) if it has no
+        such scale.
+
+        A bound l <= 0 becomes scale·l, a bound l > 0 becomes l / scale, likewise for upper bounds, so that the
+        feasible set grows monotonically with the scale.
 
         Parameters
         ----------
@@ -263,19 +308,25 @@ class Constraint:
             >= 1; the feasible set must grow with it.
         """
     def per_grid_point(self) -> bool:
-        """True if the rows are data given per grid point, with no value between grid points: the grid then
-        gains no point (contact switches) and a restart begins at a grid point.
+        """True if the rows are data given per grid point, with no value between grid points (LinearConstraint):
+        the grid then gains no point (contact switches) and a restart begins at a grid point.
         """
     def at_grid_points(self, kept: list[int]) -> Constraint:
         """A per_grid_point() constraint's rows at the old grid points `kept` (the new grid of a restart).
 
+        Any other constraint is evaluated again on the new grid and is never asked.
+
         Parameters
         ----------
         kept : list of int
-            Old grid indices, in order.
+            Old grid indices, in order, each >= 0.
         """
     def with_joint_names(self, names: list[str]) -> Constraint | None:
-        """The constraint labelled with the problem's joint names, or None if its labels do not come from them.
+        """The constraint labelled with the problem's joint names, or None (C++: nullptr) if its labels do not
+        come from them.
+
+        For one that takes its labels from them and has none yet (limits added before set_joint_names). Only
+        its labels may differ: the problem keeps its rows.
 
         Parameters
         ----------
@@ -286,12 +337,16 @@ class Constraint:
 class VelocityLimits(Constraint):
     """Joint velocity limits vmin <= p'(s) ṡ <= vmax (eq. 13, as the bound on ṡ² of eq. 16).
 
+    Since ṡ >= 0, joint j bounds x = ṡ² by (vmax_j / p'_j)² where p'_j > 0 and by (vmin_j / p'_j)² where
+    p'_j < 0; a joint with p'_j = 0 imposes nothing. One row per joint, a = 1, b = 0 (a pure bound on x).
+
     Parameters
     ----------
     vmin, vmax : array_like (n,)
-        rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none.
+        rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none; no NaN.
     joint_names : list of str, optional
-        Name the joints in row labels and messages ("velocity panda_joint2"; default "velocity joint 1").
+        One per joint: they name the joints in row labels and messages ("velocity panda_joint2"; default
+        "velocity joint 1").
 
     Attributes
     ----------
@@ -312,12 +367,16 @@ class VelocityLimits(Constraint):
 class AccelerationLimits(Constraint):
     """Joint acceleration limits amin <= p''ṡ² + p's̈ <= amax (eq. 14).
 
+    Two rows per joint, p''_j x + p'_j u <= amax_j and -p''_j x - p'_j u <= -amin_j; infinite limits give
+    inactive rows.
+
     Parameters
     ----------
     amin, amax : array_like (n,)
-        rad/s² (or m/s²); amin <= amax, ±inf for none.
+        rad/s² (or m/s²); amin <= amax, ±inf for none; no NaN.
     joint_names : list of str, optional
-        Name the joints in row labels and messages ("acceleration panda_joint2 upper").
+        One per joint: they name the joints in row labels and messages ("acceleration panda_joint2 upper";
+        default "acceleration joint 1 upper").
 
     Attributes
     ----------
@@ -338,6 +397,10 @@ class AccelerationLimits(Constraint):
 class LinearConstraint(Constraint):
     """lo <= A·x + B·u + C <= hi at every grid point (x = ṡ², u = s̈).
 
+    Given on the problem's grid: row k holds the r coefficients at s_k. This is how torques from any
+    dynamics source and user-defined Cartesian limits enter. lo may be -inf and hi +inf (one-sided); lo ==
+    hi makes an equality.
+
     Parameters
     ----------
     A, B, C, lo, hi : array_like (N+1, r) (or (N+1,) for one row)
@@ -350,11 +413,16 @@ class LinearConstraint(Constraint):
 class TorqueLimits(Constraint):
     """Joint torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15), by our RNEA.
 
+    At each grid point τ = a·x + b·u + c (RobotModel.path_torque_coefficients); two rows per joint,
+    a x + b u <= τ_max - c and -a x - b u <= c - τ_min. The limits are scaled by `scale` and shrunk by
+    `margin` on each side: the safety margins of sec. V.D. A joint with τ_min = τ_max = 0 (a floating base)
+    gives an equality pair: without contact forces such a path can generally not be timed.
+
     Parameters
     ----------
     robot : RobotModel
     tau_min, tau_max : array_like (nq,), optional
-        N·m (N for prismatic joints); default ∓ the URDF effort.
+        N·m (N for prismatic joints); default (None; C++: empty) ∓ the URDF effort.
     scale : float
         Multiplies the limits (sec. V.D's safety margin).
     margin : float
@@ -384,6 +452,11 @@ class Contact:
     """A point contact with Coulomb friction: a point fixed in a link (link coordinates) touching the world, or
     `other_link` when given.
 
+    Robot–robot: two links of one model, e.g. a hand on a free object. `normal` points into `link`, the
+    direction in which the other side can push it: in world coordinates for a world contact, in
+    `other_link`'s frame for a robot–robot contact (it turns with that link). The other side feels the
+    opposite force at the same point. The normal is normalised on use (zero is rejected).
+
     Parameters
     ----------
     link : str
@@ -400,34 +473,56 @@ class Contact:
     Attributes
     ----------
     link : str
+        The link that touches.
     point : ndarray (3,)
         m, link frame.
     normal : ndarray (3,)
+        Into `link`: world coordinates for a world contact, other_link's frame otherwise.
     friction : float
+        Coulomb coefficient μ.
     other_link : str or None
+        The other body of a robot–robot contact; None (C++: empty): the world.
     """
     def __init__(self, link: str, point: ArrayLike = (0.0, 0.0, 0.0), normal: ArrayLike = (0.0, 0.0, 1.0),
                  friction: float = 0.5, other_link: str | None = None) -> None: ...
     @property
     def other_link(self) -> str | None:
-        """str or None"""
+        """str or None: The other body of a robot–robot contact; None (C++: empty): the world."""
     @property
     def link(self) -> str:
-        """str"""
+        """str: The link that touches."""
     @property
     def point(self) -> Array:
         """ndarray (3,): m, link frame."""
     @property
     def normal(self) -> Array:
-        """ndarray (3,)"""
+        """ndarray (3,): Into `link`: world coordinates for a world contact, other_link's frame otherwise."""
     @property
     def friction(self) -> float:
-        """float"""
+        """float: Coulomb coefficient μ."""
 
 class ContactConstraint(Constraint):
     """Torque limits with frictional contact forces (eq. 17-18), projected onto (ṡ², s̈).
 
-    Includes the torque limits: do not add TorqueLimits to the same problem.
+    Includes the torque limits: do not add TorqueLimits to the same problem (TimeScalingProblem merges
+    TorqueLimits of the same robot into it: both limits hold, the tighter side of each is kept).
+
+    At grid point k: τ = a x + b u + c - Σ_i J_iᵀ f_i (J_i the contact point's Jacobian on `link`, minus
+    the same world point's Jacobian on `other_link` for a robot–robot contact) with τ_min <= τ <= τ_max
+    (τ_min = τ_max = 0 for an unactuated floating base), f_i = Σ_e λ_ie g_ie with λ >= 0 (the cone's
+    generators g_ie = n_i + μ (cos φ_e t1 + sin φ_e t2), so that n·f_i = Σ_e λ_ie), and Σ_e λ_ie >=
+    min_normal_force. The polygon's edges become this constraint's half-planes (a varying number per
+    point; inactive padding).
+
+    The polygon is the convex hull of LP optima with every edge certified by its own LP (sec. IV.C), so
+    it is exact to 1e-9 of its size. Points of one link with one normal and one μ that lie in a plane
+    (a flat sole) span the same wrench cone as the vertices of their convex hull (a force at a convex
+    combination of points is that combination of forces at the points), so only those vertices' cones
+    enter the LPs: an exact reduction (the per-link minimum is kept exactly, as the sum of normal forces
+    does not change). A per-point min_normal_force d splits each point's force into its part on the
+    cone's cross-section at n·f = d (a regular k-gon around d·n) plus a force in the cone; the cone parts
+    reduce to the hull vertices as before, and for an even k each point's cross-section part is d·n (a
+    constant) plus k/2 bounded weights (the k-gon is a zonotope): exact, with no per-point rows.
 
     Parameters
     ----------
@@ -453,10 +548,13 @@ class ContactConstraint(Constraint):
     tau_min, tau_max : ndarray (nq,)
         After scale and margin (and any merged TorqueLimits).
     projected_contacts : list of int
-        Indices of the contacts whose cone weights enter the projection LPs (flat groups: hull vertices).
+        Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull
+        vertices of each flat group.
     section_contacts : list of int
         Indices of the contacts whose per-point minimum enters the projection LPs as k/2 bounded tangential
-        weights (min_normal_force > cone_offset, even cone_edges, reduced flat groups).
+        weights, the tangential part of their force on the cone's cross-section at the minimum
+        (min_normal_force > cone_offset, even cone_edges: every point of a reduced flat group); empty
+        otherwise.
     active_begin, active_end : float
         The phase's stretch of s (-inf, inf: the whole path; see TimeScalingProblem.add_contact_phases).
     label : str
@@ -489,11 +587,15 @@ class ContactConstraint(Constraint):
         """ndarray (nq,): After scale and margin (and any merged TorqueLimits)."""
     @property
     def projected_contacts(self) -> list[int]:
-        """list of int: Indices of the contacts whose cone weights enter the projection LPs (flat groups: hull vertices)."""
+        """list of int: Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull
+        vertices of each flat group.
+        """
     @property
     def section_contacts(self) -> list[int]:
         """list of int: Indices of the contacts whose per-point minimum enters the projection LPs as k/2 bounded tangential
-        weights (min_normal_force > cone_offset, even cone_edges, reduced flat groups).
+        weights, the tangential part of their force on the cone's cross-section at the minimum
+        (min_normal_force > cone_offset, even cone_edges: every point of a reduced flat group); empty
+        otherwise.
         """
     @property
     def contacts(self) -> list[Contact]:
@@ -516,6 +618,10 @@ class ContactConstraint(Constraint):
         """
     def max_drift(self, path: Path, s: ArrayLike) -> tuple[float, int]:
         """How far contact points move along a path (they should not).
+
+        The largest distance a contact point moves (0 for a path that keeps every contact in place): in the
+        world for a world contact, relative to `other_link` for a robot–robot contact, over the samples where
+        the constraint is active (a phase: its own stretch).
 
         Parameters
         ----------
@@ -544,6 +650,16 @@ class ContactConstraint(Constraint):
 
 class ContactForces:
     """Force-distribution LP results at samples.
+
+    At each state (q, q̇, q̈), the most robust distribution: the one that maximises the margin
+      δ = min( min_ie λ_ie , min_i (n_i·f_i - min_normal_force) , min_l (Σ_{i on l} n_i·f_i - min_link_normal_force) )
+    in N, over the cone weights λ (f_i = Σ_e λ_ie g_ie, n_i·g_ie = 1), subject to the torque limits (after
+    torque_scale and torque_margin; equalities for unactuated joints). The per-link term (l over the links
+    that carry contacts) counts only when min_link_normal_force > 0. The rows are those of the projection
+    (the same polytope at this state), so δ >= 0 means the motion is realisable with every margin the
+    solve used: friction cones of μ (1 - friction_margin), both minimum normal forces, the torque limits;
+    δ < 0 means it needs forces that do not exist (pulling, outside a cone, below a minimum) — by δ
+    newtons.
 
     Attributes
     ----------
@@ -582,6 +698,17 @@ class ContactForces:
 class ContactWrenches:
     """Per-link totals of a contact-force distribution (``Trajectory.contact_wrenches``).
 
+    At each sample, for every link that carries contacts (on either side of a contact: `link`, or
+    `other_link` of a robot–robot contact, which receives the opposite force), in first-appearance order
+    over the contacts (and phases): the force Σ_i F_i (world frame, N); its moment Σ_i (p_i - o) × F_i about
+    the link's origin o (world axes, N·m: what a sole's force/torque sensor at o would read, in world
+    axes); the normal force Σ_i n_i·F_i with n_i the contact's normal into the link (N); the centre of
+    pressure Σ_i (n_i·F_i) p_i / Σ_i n_i·F_i (world frame, m: the point of the contact plane where the
+    normal forces' resultant acts, the zero-moment point of a flat sole; NaN where the link's contacts do
+    not share one normal or push with no normal force). A link whose phase does not hold it at a sample has
+    zero force and NaN centre of pressure there; a sample whose distribution is infeasible is NaN
+    throughout.
+
     Attributes
     ----------
     links : list of str
@@ -614,7 +741,14 @@ class ContactWrenches:
 class RobotModel:
     """A rigid-body tree from a URDF (immutable, shareable across threads).
 
-    Joint coordinates are in rad (revolute) or m (prismatic); fixed joints are merged into their parent.
+    Joint coordinates are in rad (revolute) or m (prismatic). One body per movable joint (fixed joints
+    merged into their parent, inertias combined), in depth-first order from the root with children in
+    urdfdom's order, which is also pinocchio's.
+
+    Mimic joints (URDF <mimic>, e.g. the second finger of a gripper) have a body but no coordinate:
+    q_mimic = multiplier · q_joint + offset, as in pinocchio. q, q̇, q̈ and τ are then over the other joints
+    only (nq is less than the number of bodies); the mimic joint's torque acts on its joint scaled by the
+    multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not used.
 
     Attributes
     ----------
@@ -630,13 +764,15 @@ class RobotModel:
     gravity_vector : ndarray (3,)
         m/s² in the world frame.
     mass : float
-        kg, of the moving bodies.
+        kg, of the moving bodies (the weight of center_of_mass).
     mimic_joints : list of (str, str, float, float)
         URDF mimic joints (name, joint, multiplier, offset): q_name = multiplier · q_joint + offset, as in
         pinocchio. They have no coordinate in q; their torque acts on their joint, times the multiplier.
     frozen_mimic_joints : list of str
-        Mimic joints locked without their joint: frozen at their value while their joint moves (the
-        relation dropped, as in a model reduced on them alone); lock their joint to keep it.
+        Mimic joints locked without their joint (locked_joints): frozen at their value while their joint
+        moves, the relation dropped (as in a model reduced on them alone, e.g. pinocchio's
+        buildReducedModel); lock their joint to keep it. A mimic locked with its joint at values that break
+        the relation is an InvalidInputError.
     joint_units : list of str
         The unit of each coordinate q[j]: 'rad' (revolute) or 'm' (prismatic; a floating base's x, y, z).
     """
@@ -644,7 +780,8 @@ class RobotModel:
     def combine(parts: list[RobotModel], name: str = "") -> RobotModel:
         """One model of several independent trees (robots and free objects, sec. III.b); q concatenates the parts'.
 
-        Link names must be unique; a joint name shared by parts becomes '<part>/<joint>'.
+        Link names must be unique across the parts (contacts refer to links); a joint name shared by parts
+        becomes '<part>/<joint>' (e.g. the floating_* coordinates of two floating parts). Gravity must agree.
 
         Parameters
         ----------
@@ -655,7 +792,8 @@ class RobotModel:
     @staticmethod
     def free_object(name: str, mass: float, com: ArrayLike = (0.0, 0.0, 0.0), inertia: ArrayLike = ...,
                     gravity: ArrayLike = (0.0, 0.0, -9.81)) -> RobotModel:
-        """A free rigid body: one link `name` with six floating coordinates (x, y, z, rz, ry, rx) and zero effort.
+        """A free rigid body (sec. III.b): one link `name` with six floating coordinates (x, y, z, rz, ry, rx, as
+        a floating base's) and zero effort.
 
         Parameters
         ----------
@@ -665,7 +803,7 @@ class RobotModel:
         com : array_like (3,)
             Centre of mass in the link frame, m.
         inertia : array_like (3, 3)
-            About the centre of mass `com`, in the link frame, kg·m².
+            About the centre of mass `com`, in the link frame, kg·m²; symmetric positive semi-definite.
         gravity : array_like (3,)
             m/s², world frame.
         """
@@ -734,7 +872,7 @@ class RobotModel:
     def gravity_vector(self) -> Array:
         """ndarray (3,): m/s² in the world frame."""
     def inverse_dynamics(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> Array:
-        """τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA.
+        """τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA (the recursive Newton-Euler algorithm).
 
         Parameters
         ----------
@@ -763,7 +901,7 @@ class RobotModel:
             In the link frame, m.
         """
     def path_torque_coefficients(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike) -> tuple[Array, Array, Array]:
-        """Eq. (12): τ = a ṡ² + b s̈ + c along a path, at each row.
+        """Eq. (12): τ = a ṡ² + b s̈ + c along a path, at each row (q = p(s)).
 
         Parameters
         ----------
@@ -786,7 +924,8 @@ class RobotModel:
         Returns
         -------
         ndarray (3,)
-            World coordinates in m. Links fixed to the world are not counted (as pinocchio's centerOfMass).
+            World coordinates in m. Links fixed to the world (a fixed base's root link) do not move and are not
+            counted (as pinocchio's centerOfMass).
         """
     @property
     def mimic_joints(self) -> list[tuple[str, str, float, float]]:
@@ -795,15 +934,17 @@ class RobotModel:
         """
     @property
     def frozen_mimic_joints(self) -> list[str]:
-        """list of str: Mimic joints locked without their joint: frozen at their value while their joint moves (the
-        relation dropped, as in a model reduced on them alone); lock their joint to keep it.
+        """list of str: Mimic joints locked without their joint (locked_joints): frozen at their value while their joint
+        moves, the relation dropped (as in a model reduced on them alone, e.g. pinocchio's
+        buildReducedModel); lock their joint to keep it. A mimic locked with its joint at values that break
+        the relation is an InvalidInputError.
         """
     @property
     def joint_units(self) -> list[str]:
         """list of str: The unit of each coordinate q[j]: 'rad' (revolute) or 'm' (prismatic; a floating base's x, y, z)."""
     @property
     def mass(self) -> float:
-        """float: kg, of the moving bodies."""
+        """float: kg, of the moving bodies (the weight of center_of_mass)."""
 
 class Status(Enum):
     """How a solve ended: OPTIMAL, INFEASIBLE, ITERATION_LIMIT, NUMERICAL_ERROR, UNBOUNDED or TIME_LIMIT (see
@@ -819,23 +960,32 @@ class Status(Enum):
 class FeasibleSet:
     """The pruned feasible polygon of (x, u) = (ṡ², s̈) at one grid point.
 
+    The set {(x, u) : a_i x + b_i u <= c_i, x_min <= x <= x_max} at grid point `index`, reduced to its
+    supporting half-planes (the redundant ones pruned, sec. IV.A).
+
     Attributes
     ----------
     index : int
     s : float
     halfplanes : ndarray (r, 3)
-        Rows [a, b, c] of a·x + b·u <= c.
+        Supporting half-planes, rows [a, b, c] of a·x + b·u <= c. Bounds on x alone (b = 0) are folded into
+        x_min / x_max and not repeated here.
     labels : list of str
         The constraint row behind each half-plane.
-    x_min, x_max : float
-        Range of ṡ² (1/s²).
+    x_min : float
+        Lower bound on ṡ² (1/s²): 0 unless a constraint raises it.
+    x_max : float
+        Upper bound on ṡ² (1/s²): eq. (16) and any other bound on x alone.
     x_max_label : str
-        What sets x_max.
+        The constraint row giving x_max ('' if none).
     vertices : ndarray (v, 2)
-        Counter-clockwise vertices (x, u).
+        Counter-clockwise vertices (x, u). An unbounded set (e.g. velocity limits only: u is free) is shown
+        cut at 1e15 times the problem's typical ṡ² and s̈ (those the solve is scaled by), with bounded =
+        False.
     empty, bounded : bool
     exact : bool
-        False where the contact polygon is only an inner approximation.
+        False where a projected constraint (contacts) is only an inner approximation at this grid point:
+        its LP solver failed or its LP budget ran out, and the polygon is the hull found so far.
     """
     @property
     def index(self) -> int:
@@ -845,22 +995,27 @@ class FeasibleSet:
         """float"""
     @property
     def halfplanes(self) -> Array:
-        """ndarray (r, 3): Rows [a, b, c] of a·x + b·u <= c."""
+        """ndarray (r, 3): Supporting half-planes, rows [a, b, c] of a·x + b·u <= c. Bounds on x alone (b = 0) are folded into
+        x_min / x_max and not repeated here.
+        """
     @property
     def labels(self) -> list[str]:
         """list of str: The constraint row behind each half-plane."""
     @property
     def x_min(self) -> float:
-        """float: Range of ṡ² (1/s²)."""
+        """float: Lower bound on ṡ² (1/s²): 0 unless a constraint raises it."""
     @property
     def x_max(self) -> float:
-        """float: Range of ṡ² (1/s²)."""
+        """float: Upper bound on ṡ² (1/s²): eq. (16) and any other bound on x alone."""
     @property
     def x_max_label(self) -> str:
-        """str: What sets x_max."""
+        """str: The constraint row giving x_max ('' if none)."""
     @property
     def vertices(self) -> Array:
-        """ndarray (v, 2): Counter-clockwise vertices (x, u)."""
+        """ndarray (v, 2): Counter-clockwise vertices (x, u). An unbounded set (e.g. velocity limits only: u is free) is shown
+        cut at 1e15 times the problem's typical ṡ² and s̈ (those the solve is scaled by), with bounded =
+        False.
+        """
     @property
     def empty(self) -> bool:
         """bool"""
@@ -869,9 +1024,13 @@ class FeasibleSet:
         """bool"""
     @property
     def exact(self) -> bool:
-        """bool: False where the contact polygon is only an inner approximation."""
+        """bool: False where a projected constraint (contacts) is only an inner approximation at this grid point:
+        its LP solver failed or its LP budget ran out, and the polygon is the hull found so far.
+        """
     def contains(self, x: float, u: float, tol: float = 1e-9) -> bool:
-        """Whether (x, u) = (ṡ², s̈) satisfies every half-plane to within tol (absolute)."""
+        """Whether (x, u) = (ṡ², s̈) satisfies every half-plane to within tol, relative to the row's own terms
+        (max(1, |a x|, |b u|, |c|); the bounds on x relative to max(1, |x|)). Non-finite points are outside.
+        """
 
 class Trajectory:
     """The timed path: q(t) = p(s(t)) with s(t) piecewise quadratic through the grid (eq. 24).
@@ -890,11 +1049,13 @@ class Trajectory:
         T in s.
     times : ndarray (N+1,)
         t_k of the grid points, s.
-    grid, sdot_grid : ndarray (N+1,)
-        s and ṡ (1/s) at the grid points.
+    grid : ndarray (N+1,)
+        s at the grid points, s_0..s_N.
+    sdot_grid : ndarray (N+1,)
+        ṡ at the grid points, 1/s.
     path : Path
     robot : RobotModel or None
-        The robot whose torque limits or contacts shaped it.
+        The robot whose torque limits or contacts shaped it; None (C++: null) if none did.
     contacts : ContactConstraint or None
     contact_phases : list of ContactConstraint
         The ContactConstraint of each phase (add_contact_phases), in order of s; [] without phases.
@@ -907,14 +1068,16 @@ class Trajectory:
 
         With contact phases (``add_contact_phases``) each t uses the contacts of its phase, the later one at a
         switch time; ``.phase`` gives the phase of each t and ``forces`` has as many rows as the largest phase
-        has contacts (NaN beyond a phase's own).
+        has contacts (NaN beyond a phase's own). Raises Error if no contact constraint shaped the trajectory.
 
         Returns
         -------
         ContactForces
         """
     def contact_wrenches(self, t: float | ArrayLike) -> ContactWrenches:
-        """Per-link wrenches and centres of pressure of ``contact_forces(t)``.
+        """Per-link wrenches and centres of pressure of ``contact_forces(t)``: what a controller or a balance check
+        reads (the centre of pressure inside each sole). Raises Error if no contact constraint shaped the
+        trajectory.
 
         For every link on either side of a contact (first appearance over the contacts and phases): the total
         force (world frame, N), its moment about the link's origin (world axes, N·m), the sum of the normal
@@ -932,7 +1095,11 @@ class Trajectory:
         The links are ``contact_wrenches(t).links``; NaN where a link does not push.
         """
     def contact_phase(self, t: float | ArrayLike) -> Any:
-        """Index into contact_phases of the phase at each t (the later one at a switch); -1 without phases."""
+        """Index into contact_phases of the phase at each t (the later one at a switch); -1 without phases.
+
+        The phase whose [active_begin, active_end] holds s(t); at a switch the later one, the contacts that hold
+        after it.
+        """
     @property
     def contact_phases(self) -> list[ContactConstraint]:
         """list of ContactConstraint: The ContactConstraint of each phase (add_contact_phases), in order of s; [] without phases."""
@@ -947,22 +1114,25 @@ class Trajectory:
         """ndarray (N+1,): t_k of the grid points, s."""
     @property
     def grid(self) -> Array:
-        """ndarray (N+1,): s and ṡ (1/s) at the grid points."""
+        """ndarray (N+1,): s at the grid points, s_0..s_N."""
     @property
     def sdot_grid(self) -> Array:
-        """ndarray (N+1,): s and ṡ (1/s) at the grid points."""
+        """ndarray (N+1,): ṡ at the grid points, 1/s."""
     @property
     def path(self) -> Path:
         """Path"""
     def s(self, t: float | ArrayLike) -> tuple[Any, Any, Any]:
-        """(s, ṡ, s̈) at t: floats for a scalar t, arrays (m,) otherwise; ṡ in 1/s, s̈ in 1/s²."""
+        """(s, ṡ, s̈) at t: floats for a scalar t, arrays (m,) otherwise; ṡ in 1/s, s̈ in 1/s².
+
+        t is clamped to [0, T]; s̈ is that of the interval to the right of t (to the left at t = T).
+        """
     def q(self, t: float | ArrayLike) -> Array:
         """q(t), rad (m).
 
         Parameters
         ----------
         t : float or array_like (m,)
-            s, clamped to [0, duration].
+            Times in s, clamped to [0, duration].
 
         Returns
         -------
@@ -974,7 +1144,7 @@ class Trajectory:
     def qdd(self, t: float | ArrayLike) -> Array:
         """q̈(t) = p''(s) ṡ² + p'(s) s̈ (eq. 11), rad/s²; s̈ of the interval to the right of t."""
     def evaluate(self, t: float | ArrayLike) -> tuple[Array, Array, Array]:
-        """(q, q̇, q̈) at t; shapes as ``q``."""
+        """(q, q̇ = p'ṡ, q̈ = p''ṡ² + p's̈) at t; shapes as ``q``."""
     def sample(self, dt: float, max_memory: float = 1e9) -> dict[str, Array]:
         """Uniform resampling.
 
@@ -983,8 +1153,9 @@ class Trajectory:
         dt : float
             Period in s; T is appended when it is not a multiple of dt.
         max_memory : float
-            Bytes: a dt that would need more (t, q, q̇, q̈ and the path's own p, p', p'' while evaluating) is an
-            InvalidInputError saying how much, before anything is allocated.
+            Bytes (> 0): a dt that would need more (t, q, q̇, q̈ and the path's own p, p', p'' while evaluating)
+            is an InvalidInputError saying how much, before anything is allocated (a dt meant in ms but given in
+            s would otherwise fill the memory).
 
         Returns
         -------
@@ -992,14 +1163,14 @@ class Trajectory:
             ``t`` (m,) in s, ``q``, ``qd``, ``qdd`` (m, n).
         """
     def sample_times(self, dt: float) -> Array:
-        """The times 0, dt, 2 dt, ... (and T) of ``sample``, in s."""
+        """The times 0, dt, 2 dt, ... of ``sample``, in s, with T appended when it is not a multiple of dt."""
     def torques(self, t: float | ArrayLike, robot: RobotModel | None = None) -> Array:
-        """τ(t) by inverse dynamics along the timing.
+        """τ(t) = RNEA(q, q̇, q̈) along the timing, so that usage can be plotted against the limits.
 
         Parameters
         ----------
         t : float or array_like (m,)
-            s.
+            Times in s.
         robot : RobotModel, optional
             Default: the robot whose limits shaped the trajectory.
 
@@ -1031,10 +1202,14 @@ class Trajectory:
             Parameter t in s (knots = ``times``), through q(t_k) = p(s_k), clamped to q̇ = p'(s) ṡ at both ends;
             its ``q``, ``dq``, ``ddq`` are q(t), q̇(t), q̈(t) with q̈ continuous. Between grid points it departs
             from the exact timing by O(Δt⁴), so check it against the limits.
+
+        For controllers that interpolate between points: unlike the exact timing, its q̈ is continuous, and its
+        q̇, q̈ may exceed the limits by a little between grid points; check it with the problem's limits before
+        sending it to a robot.
         """
     @property
     def robot(self) -> RobotModel | None:
-        """RobotModel or None: The robot whose torque limits or contacts shaped it."""
+        """RobotModel or None: The robot whose torque limits or contacts shaped it; None (C++: null) if none did."""
     def to_joint_trajectory(self, dt: float | None = None, joint_names: list[str] | None = None,
                             robot: RobotModel | None = None, spline: bool = False) -> dict[str, Any]:
         """The trajectory as a ``trajectory_msgs/JointTrajectory``-shaped dict, ready for ``json.dumps``.
@@ -1080,7 +1255,9 @@ class Trajectory:
         """
 
 class Result:
-    """What a solve returns. ``bool(result)`` is ``result.ok``.
+    """What a solve returns.
+
+    ``bool(result)`` is ``result.ok``.
 
     Attributes
     ----------
@@ -1095,14 +1272,20 @@ class Result:
         contacts (``contact_drift``), which contacts move.
     contact_drift : list of dict
         Contacts that the path moves although they should hold (drift='warn', or 'auto' within 10x
-        drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message.
+        drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message. The contact forces
+        of this timing assume they stay; message says so too.
     tau_min, tau_max : ndarray (nq,) or None
-        The torque limits the solve held (after scale and margin; the problem's TorqueLimits, else its contact
-        constraint's), None without torque limits.
+        The torque limits the solve held (N·m or N, after scale and margin; the problem's TorqueLimits, else
+        its (last) contact constraint's), None (C++: empty) without torque limits: what a plot "against the
+        limits" shows.
     duration : float
         T in s (nan without a timing).
-    s, sdot, times : ndarray (N+1,)
-        Grid, ṡ (1/s) and t (s) at the grid points.
+    s : ndarray (N+1,)
+        The grid s_0..s_N.
+    sdot : ndarray (N+1,)
+        ṡ_k at the grid points, 1/s.
+    times : ndarray (N+1,)
+        t_k at the grid points, s; t_0 = 0.
     sddot : ndarray (N,)
         s̈ on each interval, 1/s².
     infeasible_index : int
@@ -1114,11 +1297,14 @@ class Result:
         slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
         (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
     relaxation : dict of str to float
-        For an INFEASIBLE result: family -> smallest scale of that family's limits that makes the problem
-        feasible, e.g. {'torque': 1.18, 'velocity': inf} (see TimeScalingProblem.relaxation).
+        For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
+        that makes the problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see
+        TimeScalingProblem.relaxation).
     binding : list of str
-        For a timed result: per interval (N entries) the label of the constraint that binds there, '' where
-        none does, typically the interval of a switch (to colour a phase-plane plot by the active limit).
+        For a timed result: per interval (N entries) the label of the constraint that binds there (the row
+        with the least relative slack at the solution, if below 1e-6), '' where none does: typically the
+        interval of a bang-bang switch, whose end speeds are set by its neighbours' limits (to colour a
+        phase-plane plot by the active limit).
     """
     @property
     def status(self) -> Status:
@@ -1136,13 +1322,13 @@ class Result:
         """float: T in s (nan without a timing)."""
     @property
     def s(self) -> Array:
-        """ndarray (N+1,): Grid, ṡ (1/s) and t (s) at the grid points."""
+        """ndarray (N+1,): The grid s_0..s_N."""
     @property
     def sdot(self) -> Array:
-        """ndarray (N+1,): Grid, ṡ (1/s) and t (s) at the grid points."""
+        """ndarray (N+1,): ṡ_k at the grid points, 1/s."""
     @property
     def times(self) -> Array:
-        """ndarray (N+1,): Grid, ṡ (1/s) and t (s) at the grid points."""
+        """ndarray (N+1,): t_k at the grid points, s; t_0 = 0."""
     @property
     def sddot(self) -> Array:
         """ndarray (N,): s̈ on each interval, 1/s²."""
@@ -1160,13 +1346,16 @@ class Result:
         """list of str: The constraint rows that bind there."""
     @property
     def relaxation(self) -> dict[str, float]:
-        """dict of str to float: For an INFEASIBLE result: family -> smallest scale of that family's limits that makes the problem
-        feasible, e.g. {'torque': 1.18, 'velocity': inf} (see TimeScalingProblem.relaxation).
+        """dict of str to float: For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
+        that makes the problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see
+        TimeScalingProblem.relaxation).
         """
     @property
     def binding(self) -> list[str]:
-        """list of str: For a timed result: per interval (N entries) the label of the constraint that binds there, '' where
-        none does, typically the interval of a switch (to colour a phase-plane plot by the active limit).
+        """list of str: For a timed result: per interval (N entries) the label of the constraint that binds there (the row
+        with the least relative slack at the solution, if below 1e-6), '' where none does: typically the
+        interval of a bang-bang switch, whose end speeds are set by its neighbours' limits (to colour a
+        phase-plane plot by the active limit).
         """
     @property
     def stats(self) -> dict[str, Any]:
@@ -1176,17 +1365,20 @@ class Result:
     @property
     def contact_drift(self) -> list[dict[str, Any]]:
         """list of dict: Contacts that the path moves although they should hold (drift='warn', or 'auto' within 10x
-        drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message.
+        drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message. The contact forces
+        of this timing assume they stay; message says so too.
         """
     @property
     def tau_min(self) -> Array | None:
-        """ndarray (nq,) or None: The torque limits the solve held (after scale and margin; the problem's TorqueLimits, else its contact
-        constraint's), None without torque limits.
+        """ndarray (nq,) or None: The torque limits the solve held (N·m or N, after scale and margin; the problem's TorqueLimits, else
+        its (last) contact constraint's), None (C++: empty) without torque limits: what a plot "against the
+        limits" shows.
         """
     @property
     def tau_max(self) -> Array | None:
-        """ndarray (nq,) or None: The torque limits the solve held (after scale and margin; the problem's TorqueLimits, else its contact
-        constraint's), None without torque limits.
+        """ndarray (nq,) or None: The torque limits the solve held (N·m or N, after scale and margin; the problem's TorqueLimits, else
+        its (last) contact constraint's), None (C++: empty) without torque limits: what a plot "against the
+        limits" shows.
         """
     def trajectory(self) -> Trajectory:
         """The timed trajectory (Trajectory); raises pathpace.Error when there is no timing."""
@@ -1198,7 +1390,14 @@ class TimeScalingProblem:
 
     Minimises T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) (eq. 25, 27) over the speeds at the grid points, with every
     constraint enforced at every grid point with the s̈ of the interval on each side (eq. 26). Build once,
-    then ``solve`` (it releases the GIL; a built problem may be solved from several threads).
+    then ``solve``: a built problem may be solved from several threads.
+
+    Threads: a problem is either read (any number of solve, feasible_set, relaxation, restarted at once)
+    or modified (one add_* / set_* at a time), never both. A call that would overlap the other kind in
+    another thread raises Error at once instead of waiting (a program that does this has a race it
+    should know about): "add_contacts: this TimeScalingProblem is being solved in another thread; ...".
+
+    solve releases the GIL.
 
     Parameters
     ----------
@@ -1216,14 +1415,16 @@ class TimeScalingProblem:
     intervals : int
     path : Path
     constraints : list of Constraint
-    sdot_begin, sdot_end : float
-        Boundary speeds in 1/s.
+    sdot_begin : float
+        ṡ at s_begin in 1/s (set_boundary_speeds).
+    sdot_end : float
+        ṡ at s_end in 1/s (set_boundary_speeds).
     joint_names : list of str
         See ``set_joint_names``.
     """
     def __init__(self, path: Path, grid: int | str | ArrayLike = 100, grid_tolerance: float = 1e-3) -> None: ...
     def add_velocity_limits(self, vmin: ArrayLike, vmax: ArrayLike) -> None:
-        """Joint velocity limits (eq. 13).
+        """Joint velocity limits (eq. 13); see VelocityLimits.
 
         Parameters
         ----------
@@ -1231,7 +1432,7 @@ class TimeScalingProblem:
             rad/s (m/s); vmin <= 0 <= vmax, ±inf for none.
         """
     def add_acceleration_limits(self, amin: ArrayLike, amax: ArrayLike) -> None:
-        """Joint acceleration limits (eq. 14).
+        """Joint acceleration limits (eq. 14); see AccelerationLimits.
 
         Parameters
         ----------
@@ -1383,13 +1584,14 @@ class TimeScalingProblem:
         Parameters
         ----------
         sdot_begin, sdot_end : float
-            1/s, >= 0 (default 0: rest to rest). For joint velocities use ``set_boundary_velocities``.
+            1/s, >= 0 and finite (default 0: rest to rest). For joint velocities use
+            ``set_boundary_velocities``.
         """
     def set_joint_names(self, names: list[str]) -> None:
         """Names of the path's coordinates for the labels and messages of velocity and acceleration limits.
 
-        Set automatically from the robot of add_torque_limits / add_contacts when it has one joint per
-        coordinate.
+        Names the limits added before as well as after. Set automatically from the robot of the first
+        add_torque_limits / add_contacts whose robot has one joint per coordinate.
         """
     def set_zero_boundary_accelerations(self, at_begin: bool = True, at_end: bool = True) -> None:
         """sddot = 0 at s_begin and/or s_end (q̈ = p'' ṡ² there: no jump of q̈ from or to a cruise).
@@ -1420,10 +1622,10 @@ class TimeScalingProblem:
         """
     @property
     def sdot_begin(self) -> float:
-        """float: Boundary speeds in 1/s."""
+        """float: ṡ at s_begin in 1/s (set_boundary_speeds)."""
     @property
     def sdot_end(self) -> float:
-        """float: Boundary speeds in 1/s."""
+        """float: ṡ at s_end in 1/s (set_boundary_speeds)."""
     @property
     def grid(self) -> Array:
         """ndarray (N+1,)"""
@@ -1441,18 +1643,29 @@ class TimeScalingProblem:
     def relaxation(self, max_scale: float = 1e3, tolerance: float = 1e-3, guarantee: str = "grid") -> dict[str, float]:
         """Smallest uniform relaxation of each constraint family that makes the problem feasible.
 
-        Returns a dict family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family
+        Returns a dict (C++: std::map) family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every family
         together when there are several): the family's limit intervals widened by that factor about zero, the
         others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor;
-        inf if `max_scale` is not enough. 1.0 for every family of a feasible problem.
+        inf if `max_scale` is not enough (e.g. velocity limits cannot fix what acceleration limits forbid).
+        1.0 for every family of a feasible problem.
+
+        Each family is Constraint.family(); the scale is found by bisection on a geometric scale (the returned
+        scale is feasible, scale / (1 + tolerance) is not), feasibility decided by the reachability analysis
+        (O(N) per trial, no SLP). With guarantee = 'continuous', feasibility counts the rows that hold velocity
+        and acceleration limits between grid points (not the audit's cuts, which depend on the solution: a
+        lower bound then).
         """
     def restarted(self, s0: float, sdot0: float) -> TimeScalingProblem:
         """The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0).
 
         The path's tail [s0, s_end] on the grid points beyond s0, the same constraints and every setting
         pickling keeps (end speed, sddot = 0 at the end, joint names; sddot = 0 at the start only when
-        s0 = s_begin). A LinearConstraint keeps its rows at the kept grid points (s0 must then be a grid point).
-        Its result starts at q = p(s0), qd = p'(s0)*sdot0 (no jump); its times count from the restart.
+        s0 = s_begin: inside the path the restart continues a running trajectory, whose sddot there is free),
+        with boundary speeds (sdot0, sdot_end). s0 itself becomes the first grid point; a grid point closer to
+        s0 than 1e-9 of the interval is dropped. A LinearConstraint keeps its rows at the kept grid points (s0
+        must then be a grid point: InvalidInputError naming s0 and the nearest grid point otherwise). Its result
+        starts at q = p(s0), qd = p'(s0)*sdot0 (no jump in position or velocity); its times count from the
+        restart (t = 0 at s0).
         """
     def solve(
         self,
@@ -1468,7 +1681,7 @@ class TimeScalingProblem:
         max_audit_rounds: int = 30,
         time_limit: float = 60.0,
     ) -> Result:
-        """Solves the problem (the GIL is released meanwhile).
+        """Solves the problem.
 
         Parameters
         ----------
@@ -1504,6 +1717,8 @@ class TimeScalingProblem:
         constraint bounds raises InvalidInputError naming its s-range: it would be crossed in zero time; remove
         it from the path.
 
+        The GIL is released meanwhile.
+
         Returns
         -------
         Result
@@ -1515,6 +1730,14 @@ def auto_grid(path: Path, tolerance: float = 1e-3, min_intervals: int = 16, max_
 
     Every interval is halved until p, p' and p'' deviate from their chords at its midpoint by at most
     `tolerance` times their scale over the path (largest coordinate range, largest |p'_j|, largest |p''_j|);
-    starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial path.
-    Returns the grid points s_0..s_N (the N used is len - 1). InvalidInputError past `max_intervals`.
+    starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial path (so
+    no interval straddles a kink of p''). Returns the grid points s_0..s_N (the N used is len - 1).
+    InvalidInputError past `max_intervals`, or for a bad argument.
+
+    The constraints of eq. (26) hold at the grid points; between them q̇ = p'(s)ṡ and q̈ = p''(s)ṡ² + p'(s)s̈
+    follow p, p', p'' (eq. 10-11). Deviation from the chord (the linear interpolation between an interval's
+    ends) is what the grid cannot see, so the limits' excursions between grid points and the discretisation
+    error of T shrink with it (both O(Δs²) for smooth pieces). The excursions also depend on the speed
+    profile, so the tolerance bounds the geometry, not the limits' excursions (bench/README.md has them
+    measured). For limits that hold between grid points by construction, see solve's guarantee option.
     """

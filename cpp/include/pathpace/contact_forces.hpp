@@ -8,8 +8,10 @@
 
 namespace pathpace {
 
-/// The contact forces at one state (q, q̇, q̈), chosen as the most robust distribution: the one that
-/// maximises the margin
+// docstrings.txt @@ ContactForces
+/// @brief Force-distribution LP results at samples.
+///
+/// At each state (q, q̇, q̈), the most robust distribution: the one that maximises the margin
 ///   δ = min( min_ie λ_ie , min_i (n_i·f_i - min_normal_force) , min_l (Σ_{i on l} n_i·f_i - min_link_normal_force) )
 /// in N, over the cone weights λ (f_i = Σ_e λ_ie g_ie, n_i·g_ie = 1), subject to the torque limits (after
 /// torque_scale and torque_margin; equalities for unactuated joints). The per-link term (l over the links
@@ -18,6 +20,8 @@ namespace pathpace {
 /// solve used: friction cones of μ (1 - friction_margin), both minimum normal forces, the torque limits;
 /// δ < 0 means it needs forces that do not exist (pulling, outside a cone, below a minimum) — by δ
 /// newtons.
+///
+/// One state per ContactForces (the Python class holds arrays over the samples).
 struct ContactForces {
   /// False when no forces at all, of any sign, meet the torque limits and the unactuated equalities.
   bool feasible = false;

@@ -22,15 +22,29 @@ enum class SplineBoundary {
   Clamped,   ///< p' given at both ends; zero slopes when no derivative is given (scipy's "clamped")
 };
 
-/// A cubic spline is a piecewise polynomial path whose pieces are computed from the waypoints.
+// docstrings.txt @@ CubicSplinePath
+/// @brief A C² cubic spline through waypoints, as scipy.interpolate.CubicSpline.
+///
+/// A piecewise polynomial path whose pieces are computed from the waypoints.
 class CubicSplinePath : public PiecewisePolynomialPath {
  public:
-  /// waypoints (K, n), K >= 2, knots placed by `spacing` on [s_begin, s_end].
+  // docstrings.txt @@ CubicSplinePath.__init__
+  /// @param waypoints (K, n): K >= 2 waypoints in rad (or m), one per row.
+  /// @param spacing How the knots are placed on [s_begin, s_end] (KnotSpacing).
+  /// @param boundary scipy's bc_type: p''' continuous at the second and second-last knots; p'' = 0 at the ends; or
+  ///   given end slopes p' (zero when no derivative is given, scipy's "clamped").
+  /// @param s_begin,s_end Domain for 'uniform' and 'chord' knots.
+  /// @param start_derivative,end_derivative (n,): p'(s_begin), p'(s_end) for `boundary='clamped'`.
   CubicSplinePath(const Eigen::MatrixXd& waypoints, KnotSpacing spacing = KnotSpacing::Uniform,
                   SplineBoundary boundary = SplineBoundary::NotAKnot, double s_begin = 0.0, double s_end = 1.0,
                   const Eigen::VectorXd& start_derivative = Eigen::VectorXd(),
                   const Eigen::VectorXd& end_derivative = Eigen::VectorXd());
-  /// Explicit knots (K, strictly increasing); the domain is [knots[0], knots[K-1]].
+  // docstrings.txt @@ CubicSplinePath.__init__
+  /// @param waypoints (K, n): K >= 2 waypoints in rad (or m), one per row.
+  /// @param knots K strictly increasing knots; the domain is [knots[0], knots[K-1]].
+  /// @param boundary scipy's bc_type: p''' continuous at the second and second-last knots; p'' = 0 at the ends; or
+  ///   given end slopes p' (zero when no derivative is given, scipy's "clamped").
+  /// @param start_derivative,end_derivative (n,): p'(s_begin), p'(s_end) for `boundary='clamped'`.
   CubicSplinePath(const Eigen::MatrixXd& waypoints, const Eigen::VectorXd& knots,
                   SplineBoundary boundary = SplineBoundary::NotAKnot,
                   const Eigen::VectorXd& start_derivative = Eigen::VectorXd(),
@@ -38,9 +52,14 @@ class CubicSplinePath : public PiecewisePolynomialPath {
 
   const Eigen::VectorXd& knots() const { return breakpoints(); }
   const Eigen::MatrixXd& waypoints() const { return waypoints_; }
+  // docstrings.txt @@ CubicSplinePath.boundary
+  /// The end conditions, scipy's bc_type: 'not-a-knot', 'natural' or 'clamped'.
   SplineBoundary boundary() const { return boundary_; }
-  /// p'(s_begin) and p'(s_end) of a clamped spline (empty for the other boundaries).
+  // docstrings.txt @@ CubicSplinePath.start_derivative
+  /// (n,): p'(s_begin) of a clamped spline; None (in C++ empty) for the other boundaries.
   const Eigen::VectorXd& start_derivative() const { return start_derivative_; }
+  // docstrings.txt @@ CubicSplinePath.end_derivative
+  /// (n,): p'(s_end) of a clamped spline; None (in C++ empty) for the other boundaries.
   const Eigen::VectorXd& end_derivative() const { return end_derivative_; }
 
  private:

@@ -6,19 +6,31 @@
 
 namespace pathpace {
 
-/// A geometric path in joint space. Implementations are immutable after construction and
-/// safe to evaluate from several threads at once.
+// docstrings.txt @@ Path
+/// @brief A geometric path q = p(s) for s in [s_begin, s_end] (abstract).
+///
+/// Joint coordinates q are in rad (revolute) or m (prismatic); s is dimensionless, so p' = dq/ds and
+/// p'' = d²q/ds² are in rad (or m) per unit s. Implementations are immutable after construction and safe
+/// to evaluate from several threads at once.
 class Path {
  public:
   virtual ~Path() = default;
 
+  // docstrings.txt @@ Path.dof
   /// Number of coordinates n of q.
   virtual int dof() const = 0;
+  // docstrings.txt @@ Path.s_begin
+  /// First value of s.
   virtual double s_begin() const = 0;
+  // docstrings.txt @@ Path.s_end
+  /// Last value of s.
   virtual double s_end() const = 0;
 
-  /// Evaluates p(s), p'(s), p''(s) at one s. s outside [s_begin, s_end] is clamped.
-  /// Each output must have size dof().
+  // docstrings.txt @@ Path.evaluate
+  /// @brief (p(s), p'(s), p''(s)) at once; shapes as in `q`.
+  ///
+  /// Into q, dq, ddq at one s (each of size dof()); s outside [s_begin, s_end] is clamped. The overload for
+  /// a vector s fills matrices of shape (len(s), dof()).
   virtual void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
                         Eigen::Ref<Eigen::VectorXd> ddq) const = 0;
 
@@ -27,11 +39,21 @@ class Path {
   virtual void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
                 Eigen::MatrixXd& ddq) const;
 
-  /// p(s) at each s: shape (len(s), dof()).
+  // docstrings.txt @@ Path.q
+  /// @brief p(s).
+  ///
+  /// @param s (m,): Path parameter, clamped to [s_begin, s_end].
+  /// @return (len(s), dof()): row i is p(s[i]).
   Eigen::MatrixXd q(const Eigen::Ref<const Eigen::VectorXd>& s) const;
-  /// p'(s) at each s: shape (len(s), dof()).
+  // docstrings.txt @@ Path.dq
+  /// @brief p'(s) = dq/ds: (n,) for a scalar s, (m, n) for an array.
+  ///
+  /// @return (len(s), dof()): row i is p'(s[i]).
   Eigen::MatrixXd dq(const Eigen::Ref<const Eigen::VectorXd>& s) const;
-  /// p''(s) at each s: shape (len(s), dof()).
+  // docstrings.txt @@ Path.ddq
+  /// @brief p''(s) = d²q/ds²: (n,) for a scalar s, (m, n) for an array.
+  ///
+  /// @return (len(s), dof()): row i is p''(s[i]).
   Eigen::MatrixXd ddq(const Eigen::Ref<const Eigen::VectorXd>& s) const;
 };
 

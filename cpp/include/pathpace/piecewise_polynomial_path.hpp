@@ -10,11 +10,17 @@
 
 namespace pathpace {
 
-/// On [s_i, s_{i+1}], p(s) = Σ_j coefficients[i](j, :) (s - s_i)^j (lowest degree first).
-/// The path's domain is [breakpoints[0], breakpoints[M]]; s outside it is clamped.
+// docstrings.txt @@ PiecewisePolynomialPath
+/// @brief Polynomial pieces between breakpoints.
+///
+/// On [b_i, b_{i+1}], p(s) = Σ_j coefficients[i, j, :] (s - b_i)**j (lowest degree first). The domain
+/// is [breakpoints[0], breakpoints[M]]; s outside it is clamped.
 class PiecewisePolynomialPath : public Path {
  public:
-  /// breakpoints: M+1 strictly increasing; coefficients: M matrices of shape (d+1, n), all alike.
+  // docstrings.txt @@ PiecewisePolynomialPath.__init__
+  /// @param breakpoints (M+1,): Strictly increasing.
+  /// @param coefficients M matrices of shape (degree + 1, n), all alike: coefficients[i](j, :) multiplies
+  ///   (s - breakpoints[i])^j on piece i.
   PiecewisePolynomialPath(Eigen::VectorXd breakpoints, std::vector<Eigen::MatrixXd> coefficients);
 
   int dof() const override { return dof_; }

@@ -20,6 +20,9 @@ class Trajectory;
 class RobotModel;
 class ContactConstraint;
 
+// docstrings.txt @@ Status
+/// @brief How a solve ended: OPTIMAL, INFEASIBLE, ITERATION_LIMIT, NUMERICAL_ERROR, UNBOUNDED or TIME_LIMIT (see
+/// Result.status).
 enum class Status {
   Optimal,         ///< the optimum of the discretised problem (eq. 26-27)
   Infeasible,      ///< no timing satisfies the constraints; see Result::infeasibility
@@ -78,24 +81,49 @@ struct SolverStats {
   int audit_reused = 0;  ///< contact samples settled by the slices of an earlier round (no LP)
 };
 
+// docstrings.txt @@ Result
+/// @brief What a solve returns.
 class Result {
  public:
+  // docstrings.txt @@ Result.status
+  /// OPTIMAL, INFEASIBLE (see infeasible_*), ITERATION_LIMIT (feasible, maybe not optimal),
+  /// TIME_LIMIT (`time_limit` reached: feasible, stats['gap'] bounds its distance to the optimum),
+  /// NUMERICAL_ERROR (the LP solver failed) or UNBOUNDED (nothing bounds the speed).
   Status status = Status::NumericalError;
+  // docstrings.txt @@ Result.message
+  /// Why a solve failed, with grid index, s and binding constraint; for a timing whose path moves its
+  /// contacts (`contact_drift`), which contacts move.
   std::string message;
-  double duration = std::numeric_limits<double>::quiet_NaN();  ///< T
-  Eigen::VectorXd s;      ///< grid s_0..s_N
-  Eigen::VectorXd sdot;   ///< ṡ_k (N+1)
-  Eigen::VectorXd times;  ///< t_k (N+1), t_0 = 0
-  Eigen::VectorXd sddot;  ///< s̈ on interval k (N)
+  // docstrings.txt @@ Result.duration
+  /// T in s (nan without a timing).
+  double duration = std::numeric_limits<double>::quiet_NaN();
+  // docstrings.txt @@ Result.s
+  /// (N+1,): The grid s_0..s_N.
+  Eigen::VectorXd s;
+  // docstrings.txt @@ Result.sdot
+  /// (N+1,): ṡ_k at the grid points, 1/s.
+  Eigen::VectorXd sdot;
+  // docstrings.txt @@ Result.times
+  /// (N+1,): t_k at the grid points, s; t_0 = 0.
+  Eigen::VectorXd times;
+  // docstrings.txt @@ Result.sddot
+  /// (N,): s̈ on each interval, 1/s².
+  Eigen::VectorXd sddot;
   Infeasibility infeasibility;
-  /// For an Infeasible result (when SolverOptions::explain): the smallest scale of each constraint
-  /// family's limits that makes the problem feasible, e.g. {"torque": 1.18, "velocity": inf}; see
-  /// TimeScalingProblem::relaxation.
+  // docstrings.txt @@ Result.relaxation
+  /// For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
+  /// that makes the problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see
+  /// TimeScalingProblem.relaxation).
   std::map<std::string, double> relaxation;
-  /// For a timed result: per interval k (N entries), the label of the constraint that binds on it
-  /// (the row with the least relative slack at the solution, if below 1e-6), "" if none does: typically
-  /// the interval of a bang-bang switch, whose end speeds are set by its neighbours' limits.
+  // docstrings.txt @@ Result.binding
+  /// For a timed result: per interval (N entries) the label of the constraint that binds there (the row
+  /// with the least relative slack at the solution, if below 1e-6), '' where none does: typically the
+  /// interval of a bang-bang switch, whose end speeds are set by its neighbours' limits (to colour a
+  /// phase-plane plot by the active limit).
   BindingLabels binding;
+  // docstrings.txt @@ Result.stats
+  /// slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
+  /// (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any
@@ -104,18 +132,24 @@ class Result {
   /// in order of s; empty without phases. Trajectory::contact_forces then uses the phase at each time
   /// (and only it: a contact constraint of the whole path added besides the phases is not in its LP).
   std::vector<std::shared_ptr<const ContactConstraint>> contact_phases;
-  /// Contacts that the path moves although they should hold (TimeScalingProblem::add_contacts with
-  /// DriftPolicy::Warn or Auto): the contact forces of this timing assume they stay; message says so too.
+  // docstrings.txt @@ Result.contact_drift
+  /// Contacts that the path moves although they should hold (drift='warn', or 'auto' within 10x
+  /// drift_tolerance): constraint, contact, link, s, drift (m), tolerance (m), message. The contact forces
+  /// of this timing assume they stay; message says so too.
   std::vector<ContactDrift> contact_drift;
-  /// The torque limits this solve held (N·m or N, after scale and margin): the problem's TorqueLimits, or
-  /// those of its (last) contact constraint; empty without torque limits. What a plot "against the limits" shows.
+  // docstrings.txt @@ Result.tau_min Result.tau_max
+  /// (nq,): The torque limits the solve held (N·m or N, after scale and margin; the problem's TorqueLimits, else
+  /// its (last) contact constraint's), None (C++: empty) without torque limits: what a plot "against the
+  /// limits" shows.
   Eigen::VectorXd tau_min, tau_max;
 
-  /// True for Optimal (and for IterationLimit and TimeLimit, whose timing is feasible).
+  // docstrings.txt @@ Result.ok
+  /// True for OPTIMAL, ITERATION_LIMIT and TIME_LIMIT (a feasible timing).
   bool ok() const {
     return status == Status::Optimal || status == Status::IterationLimit || status == Status::TimeLimit;
   }
-  /// The timed trajectory; throws pathpace::Error if there is no timing (e.g. infeasible).
+  // docstrings.txt @@ Result.trajectory
+  /// @brief The timed trajectory (Trajectory); raises pathpace.Error when there is no timing.
   Trajectory trajectory() const;
 };
 

@@ -34,15 +34,20 @@ struct RobotModelOptions {
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
 };
 
-/// The kinematic tree: one body per movable joint (fixed joints merged into their parent, inertias
-/// combined), in depth-first order from the root with children in urdfdom's order, which is also
-/// pinocchio's. Immutable and shareable across threads; scratch space lives in RobotWorkspace.
+// docstrings.txt @@ RobotModel
+/// @brief A rigid-body tree from a URDF (immutable, shareable across threads).
+///
+/// Joint coordinates are in rad (revolute) or m (prismatic). One body per movable joint (fixed joints
+/// merged into their parent, inertias combined), in depth-first order from the root with children in
+/// urdfdom's order, which is also pinocchio's.
 ///
 /// Mimic joints (URDF <mimic>, e.g. the second finger of a gripper) have a body but no coordinate:
-/// q_mimic = multiplier · q_joint + offset, as in pinocchio. q, q̇, q̈ and τ are then over the other
-/// joints only (nq is less than the number of bodies); the mimic joint's torque acts on its joint scaled
-/// by the multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not
-/// used.
+/// q_mimic = multiplier · q_joint + offset, as in pinocchio. q, q̇, q̈ and τ are then over the other joints
+/// only (nq is less than the number of bodies); the mimic joint's torque acts on its joint scaled by the
+/// multiplier (τ = Eᵀ τ_bodies by virtual work, E = ∂q_bodies/∂q), and its own effort limit is not used.
+///
+/// Scratch space lives in RobotWorkspace (one per thread). gravity() and gravity_vector() are the same:
+/// gravity_vector is Python's name (where gravity(q) is the torque vector), usable in both.
 class RobotModel {
  public:
   enum class JointType { Revolute, Prismatic };
@@ -57,18 +62,37 @@ class RobotModel {
   RobotModel& operator=(RobotModel&& other) noexcept;
   ~RobotModel() = default;
 
+  // docstrings.txt @@ RobotModel.from_urdf
+  /// @brief Loads a URDF file.
+  ///
+  /// @param options floating_base, locked_joints and gravity (RobotModelOptions).
+  /// @return RobotModel
+  /// @throws InvalidInput Unreadable file, invalid URDF, unknown locked joint.
   static RobotModel from_urdf_file(const std::string& path, const RobotModelOptions& options = {});
+  // docstrings.txt @@ RobotModel.from_urdf_string
+  /// @brief As `from_urdf`, from the URDF's XML text.
+  ///
+  /// @param xml The URDF's XML text.
+  /// @param options As from_urdf_file's.
   static RobotModel from_urdf_string(const std::string& xml, const RobotModelOptions& options = {});
 
-  /// One model of several independent trees (robots and free objects, sec. III.b): q is the parts'
-  /// coordinates in order. Link names must be unique across the parts (contacts refer to links); a
-  /// joint name that occurs in more than one part is qualified as "<part name>/<joint>" (e.g. the
-  /// floating_* coordinates of two floating parts). Gravity must agree.
+  // docstrings.txt @@ RobotModel.combine
+  /// @brief One model of several independent trees (robots and free objects, sec. III.b); q concatenates the parts'.
+  ///
+  /// Link names must be unique across the parts (contacts refer to links); a joint name shared by parts
+  /// becomes '<part>/<joint>' (e.g. the floating_* coordinates of two floating parts). Gravity must agree.
+  ///
+  /// @param name The combined model's name.
   static RobotModel combine(const std::vector<RobotModel>& parts, const std::string& name = "");
 
-  /// A free rigid body (sec. III.b): one link `name` with six floating coordinates (see
-  /// RobotModelOptions::floating_base) and zero effort. `com` and `inertia` (about the centre of mass,
-  /// symmetric positive semi-definite) are in the link frame.
+  // docstrings.txt @@ RobotModel.free_object
+  /// @brief A free rigid body (sec. III.b): one link `name` with six floating coordinates (x, y, z, rz, ry, rx, as
+  /// a floating base's) and zero effort.
+  ///
+  /// @param mass kg.
+  /// @param com (3,): Centre of mass in the link frame, m.
+  /// @param inertia (3, 3): About the centre of mass `com`, in the link frame, kg·m²; symmetric positive semi-definite.
+  /// @param gravity (3,): m/s², world frame.
   static RobotModel free_object(const std::string& name, double mass, const Eigen::Vector3d& com = Eigen::Vector3d::Zero(),
                                 const Eigen::Matrix3d& inertia = Eigen::Matrix3d::Zero(),
                                 const Eigen::Vector3d& gravity = Eigen::Vector3d(0.0, 0.0, -9.81));
@@ -79,22 +103,43 @@ class RobotModel {
   const std::vector<std::string>& link_names() const { return link_names_; }
   const Eigen::VectorXd& lower_position_limits() const { return q_lo_; }
   const Eigen::VectorXd& upper_position_limits() const { return q_hi_; }
+  // docstrings.txt @@ RobotModel.velocity_limits
+  /// (nq,): URDF velocity limits, rad/s (m/s).
   const Eigen::VectorXd& velocity_limits() const { return v_max_; }
+  // docstrings.txt @@ RobotModel.effort_limits
+  /// (nq,): URDF effort limits, N·m (N).
   const Eigen::VectorXd& effort_limits() const { return effort_; }
+  // docstrings.txt @@ RobotModel.gravity_vector
+  /// (3,): m/s² in the world frame.
   const Eigen::Vector3d& gravity() const { return gravity_; }
-  /// The same as gravity(): Python's name (where gravity(q) is the torque vector), usable in both.
+  // docstrings.txt @@ RobotModel.gravity_vector
+  /// (3,): m/s² in the world frame.
   const Eigen::Vector3d& gravity_vector() const { return gravity_; }
 
-  /// τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by the recursive Newton-Euler algorithm.
+  // docstrings.txt @@ RobotModel.inverse_dynamics
+  /// @brief τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA (the recursive Newton-Euler algorithm).
+  ///
+  /// @param q,qd,qdd (nq,): rad, rad/s, rad/s² (m, m/s, m/s² for prismatic joints).
+  /// @return N·m (N).
   Eigen::VectorXd inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) const;
   void inverse_dynamics(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                         const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::Ref<const Eigen::VectorXd>& qdd,
                         bool with_gravity, Eigen::Ref<Eigen::VectorXd> tau) const;
+  // docstrings.txt @@ RobotModel.mass_matrix
+  /// @brief M(q), (nq, nq), in kg·m² (kg for prismatic coordinates).
   Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q) const;
+  // docstrings.txt @@ RobotModel.gravity
+  /// @brief g(q): the joint torques that hold the robot still at q, (nq,) in N·m.
   Eigen::VectorXd gravity_torques(const Eigen::VectorXd& q) const;
 
-  /// The torque coefficients of eq. (12) on a path: τ = a·ṡ² + b·s̈ + c with a = M p'' + C(q, p') p',
-  /// b = M p', c = g(q), at q = p(s).
+  // docstrings.txt @@ RobotModel.path_torque_coefficients
+  /// @brief Eq. (12): τ = a ṡ² + b s̈ + c along a path, at each row (q = p(s)).
+  ///
+  /// At one s; path_torque_coefficients_batch takes many.
+  ///
+  /// @param ws Scratch space of this model (one per thread).
+  /// @param q,dq,ddq p, p', p'' at one s, each (nq,).
+  /// @param a,b,c Receive a, b, c, each (nq,).
   void path_torque_coefficients(RobotWorkspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                                 const Eigen::Ref<const Eigen::VectorXd>& dq, const Eigen::Ref<const Eigen::VectorXd>& ddq,
                                 Eigen::Ref<Eigen::VectorXd> a, Eigen::Ref<Eigen::VectorXd> b,
@@ -107,10 +152,15 @@ class RobotModel {
                                       const Eigen::MatrixXd& ddq, Eigen::MatrixXd& a, Eigen::MatrixXd& b,
                                       Eigen::MatrixXd& c) const;
 
-  /// Centre of mass of the whole model at q, in world coordinates (m). Links fixed to the world (a
-  /// fixed base's root link) do not move and are not counted, as in pinocchio's centerOfMass.
+  // docstrings.txt @@ RobotModel.center_of_mass
+  /// @brief Centre of mass of the moving bodies at q.
+  ///
+  /// @param q (nq,): Joint positions (rad or m).
+  /// @return World coordinates in m. Links fixed to the world (a fixed base's root link) do not move and are not
+  ///   counted (as pinocchio's centerOfMass).
   Eigen::Vector3d center_of_mass(const Eigen::VectorXd& q) const;
-  /// Total mass of the moving bodies (kg), the weight of center_of_mass().
+  // docstrings.txt @@ RobotModel.mass
+  /// kg, of the moving bodies (the weight of center_of_mass).
   double mass() const;
 
   /// How this model was built, so that an identical one can be built elsewhere (Python pickling,
@@ -130,9 +180,13 @@ class RobotModel {
   const Source& source() const { return *source_; }
   static RobotModel rebuild(const Source& source);
 
-  /// World placement of a link's frame (4x4 homogeneous).
+  // docstrings.txt @@ RobotModel.frame_placement
+  /// @brief World placement of a link's frame at q: a 4x4 homogeneous matrix (translation in m).
   Eigen::Matrix4d frame_placement(const Eigen::VectorXd& q, const std::string& link) const;
-  /// World-frame linear Jacobian (3 x nq) of a point fixed in a link (coordinates in the link frame).
+  // docstrings.txt @@ RobotModel.point_jacobian
+  /// @brief World-frame linear Jacobian (3, nq) of a point fixed in a link.
+  ///
+  /// @param point (3,): In the link frame, m.
   Eigen::MatrixXd point_jacobian(const Eigen::VectorXd& q, const std::string& link, const Eigen::Vector3d& point) const;
 
   /// A mimic joint: q[name] = multiplier · q[joint] + offset.
@@ -140,11 +194,15 @@ class RobotModel {
     std::string name, joint;
     double multiplier = 1.0, offset = 0.0;
   };
+  // docstrings.txt @@ RobotModel.mimic_joints
+  /// URDF mimic joints (name, joint, multiplier, offset): q_name = multiplier · q_joint + offset, as in
+  /// pinocchio. They have no coordinate in q; their torque acts on their joint, times the multiplier.
   const std::vector<MimicJoint>& mimic_joints() const;
-  /// Mimic joints locked without their joint (RobotModelOptions::locked_joints): each is frozen at its
-  /// value while its joint moves, its relation dropped (as a model reduced on that joint alone, e.g.
-  /// pinocchio's buildReducedModel). Locking its joint instead keeps the relation. A mimic locked with its
-  /// joint at values that break the relation is an InvalidInput.
+  // docstrings.txt @@ RobotModel.frozen_mimic_joints
+  /// Mimic joints locked without their joint (locked_joints): frozen at their value while their joint
+  /// moves, the relation dropped (as in a model reduced on them alone, e.g. pinocchio's
+  /// buildReducedModel); lock their joint to keep it. A mimic locked with its joint at values that break
+  /// the relation is an InvalidInput.
   const std::vector<std::string>& frozen_mimic_joints() const { return frozen_mimics_; }
   /// The kind of each coordinate q[j] (nq entries): Revolute (rad) or Prismatic (m); a floating base's
   /// x, y, z are prismatic, its rotations revolute.

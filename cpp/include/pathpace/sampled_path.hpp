@@ -9,12 +9,16 @@
 
 namespace pathpace {
 
-/// Between samples, the quintic Hermite interpolant: it reproduces the given q, q', q'' exactly at every
-/// sample and is C2, so a grid on the samples sees exactly the data given and a trajectory evaluated
-/// in between is smooth.
+// docstrings.txt @@ SampledPath
+/// @brief A path known at samples: q, q', q'' given at each s (e.g. from another planner).
+///
+/// Between samples, the quintic Hermite interpolant: C², and exact at every sample, so a grid on the
+/// samples sees exactly the data given and a trajectory evaluated in between is smooth.
 class SampledPath : public PiecewisePolynomialPath {
  public:
-  /// s (m >= 2, strictly increasing); q, dq, ddq of shape (m, n).
+  // docstrings.txt @@ SampledPath.__init__
+  /// @param s (m,): Strictly increasing, m >= 2.
+  /// @param q,dq,ddq (m, n): p, p', p'' at the samples.
   SampledPath(const Eigen::VectorXd& s, const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq);
 
   const Eigen::VectorXd& samples() const { return breakpoints(); }

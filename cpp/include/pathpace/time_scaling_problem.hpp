@@ -56,17 +56,20 @@ struct ProblemSettings {
   }
 };
 
-/// Minimise T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) (eq. 25, 27) over the speeds at the grid points subject to
-/// every constraint's half-planes at every grid point, on both sides of each grid point (eq. 26:
-/// s̈ of interval k at s_k and of interval k-1 at s_k).
+// docstrings.txt @@ TimeScalingProblem
+/// @brief Time-optimal timing of a path under constraints (sec. V).
 ///
-/// Adding constraints mutates the problem; solve() and feasible_set() are const and keep their scratch
-/// space local, so one problem may be solved from several threads once it is built.
+/// Minimises T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) (eq. 25, 27) over the speeds at the grid points, with every
+/// constraint enforced at every grid point with the s̈ of the interval on each side (eq. 26). Build once,
+/// then `solve`: a built problem may be solved from several threads.
 ///
 /// Threads: a problem is either read (any number of solve, feasible_set, relaxation, restarted at once)
 /// or modified (one add_* / set_* at a time), never both. A call that would overlap the other kind in
-/// another thread throws Error at once instead of waiting (a program that does this has a race it
+/// another thread raises Error at once instead of waiting (a program that does this has a race it
 /// should know about): "add_contacts: this TimeScalingProblem is being solved in another thread; ...".
+///
+/// Adding constraints mutates the problem; solve() and feasible_set() are const and keep their scratch
+/// space local.
 class TimeScalingProblem {
  public:
   /// Holds a problem for reading or modifying while it lives (see "Threads" above); every const method
@@ -86,53 +89,81 @@ class TimeScalingProblem {
     Kind kind_;
   };
 
-  /// N uniform intervals over [s_begin, s_end] of the path (N >= 1).
+  // docstrings.txt @@ TimeScalingProblem.__init__
+  /// @param intervals N >= 1 uniform intervals over [s_begin, s_end] of the path.
   TimeScalingProblem(std::shared_ptr<const Path> path, int intervals);
-  /// A strictly increasing grid; its ends must be the path's s_begin and s_end (to 1e-12 relative).
+  // docstrings.txt @@ TimeScalingProblem.__init__
+  /// @param grid A strictly increasing grid; its ends must be the path's s_begin and s_end (to 1e-12 relative).
   TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::VectorXd grid);
 
-  /// See VelocityLimits.
+  // docstrings.txt @@ TimeScalingProblem.add_velocity_limits
+  /// @brief Joint velocity limits (eq. 13); see VelocityLimits.
+  ///
+  /// @param vmin,vmax (n,): rad/s (m/s); vmin <= 0 <= vmax, ±inf for none.
   void add_velocity_limits(const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax);
-  /// See AccelerationLimits.
+  // docstrings.txt @@ TimeScalingProblem.add_acceleration_limits
+  /// @brief Joint acceleration limits (eq. 14); see AccelerationLimits.
+  ///
+  /// @param amin,amax (n,): rad/s² (m/s²); amin <= amax.
   void add_acceleration_limits(const Eigen::VectorXd& amin, const Eigen::VectorXd& amax);
-  /// lo <= A·x + B·u + C <= hi at each grid point; arrays of shape (N+1, r). See LinearConstraint.
+  // docstrings.txt @@ TimeScalingProblem.add_linear_constraint
+  /// @brief lo <= A·ṡ² + B·s̈ + C <= hi per grid point; arrays (N+1, r). See LinearConstraint.
   void add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                              const Eigen::MatrixXd& lo, const Eigen::MatrixXd& hi,
                              const std::string& label = "linear");
-  /// Any constraint; its rows are evaluated now, so errors surface here.
+  // docstrings.txt @@ TimeScalingProblem.add_constraint
+  /// @brief Adds any Constraint; its rows are evaluated now, so errors surface here.
   void add_constraint(std::shared_ptr<const Constraint> constraint);
 
-  /// A path whose contacts change: phase i holds its contacts (a ContactConstraint, eq. 17-18) on the grid
-  /// points of [s_begin, s_end], both ends included, so at a switch both adjacent stances hold. Phases
-  /// must be contiguous (phases[i].s_begin = phases[i-1].s_end), cover [s_begin, s_end] of the path and
-  /// have s_begin < s_end; errors name the phase index and value. A switch that is not a grid point is
-  /// inserted into the grid (one more interval; the constraints already added are evaluated again) unless
-  /// it lies within 1e-9 of the path's length of a grid point, which then becomes the switch. A constraint
-  /// whose rows are given per grid point (add_linear_constraint) cannot be re-evaluated: then a switch off
-  /// the grid is an InvalidInput naming the switch and the nearest grid point.
+  // docstrings.txt @@ TimeScalingProblem.add_contact_phases
+  /// @brief Contacts that change along the path: one contact set per phase.
   ///
-  /// No impact: a contact of phase i (i >= 1) that phase i-1 does not have (same link, other_link and
-  /// point to 1e-9 m) is made at the switch; if its point still moves along its normal as it arrives,
-  /// |n·c'| > impact_tolerance · (the point's largest speed |c'| over the grid), with c' = J p' taken just
-  /// before the switch (at s - 1e-9 of the path's length: the approach, which a path with a kink there
-  /// can have), then ṡ = 0 at the switch (a row ṡ² <= 0 labelled "phases[i]: no impact: ..."). Breaking a
-  /// contact needs nothing. The grid point at a switch takes p', p'' from the path's own evaluate there.
+  /// Phase i holds its contacts (a ContactConstraint with torque limits, eq. 17-18) on the grid points of
+  /// [s_begin, s_end], both ends included: at a switch both adjacent stances hold. Phases must be contiguous,
+  /// cover the path and have s_begin < s_end (errors name the phase). A switch that is not a grid point is
+  /// inserted into the grid (one more interval; constraints already added are re-evaluated; a switch within
+  /// 1e-9 of the path's length of a grid point snaps to it); with an `add_linear_constraint` (rows per grid
+  /// point) a switch off the grid is an InvalidInput naming the nearest grid point. TorqueLimits of the
+  /// robot are merged into every phase. Row labels and `Result.binding` name the phase ("phases[1]: ...").
   ///
-  /// Each phase is one ContactConstraint with active_begin/active_end set (label "phases[i]", which prefixes
-  /// its row labels, so Result::binding and messages name the phase); TorqueLimits of the same robot are
-  /// merged into every phase. tau_min / tau_max as in ContactConstraint.
+  /// No impact: a contact that phase i has and phase i-1 has not is made at the switch; if its point arrives
+  /// moving along its normal (|n·c'| > impact_tolerance × the point's largest |c'| on the grid, c' = J p' just
+  /// before the switch), ṡ = 0 there (row "phases[i]: no impact: ..."). Breaking contact needs nothing.
   ///
-  /// Each phase must keep its contacts in place on its own stretch: check_contact_drift with
-  /// drift_tolerance (m) and `drift`, as add_contacts; returns the drifts it let through likewise.
+  /// Phases are contiguous when phases[i].s_begin = phases[i-1].s_end; errors name the phase index and value.
+  /// A contact is new at a switch when phase i-1 has none with the same link, other_link and point (to
+  /// 1e-9 m); its c' is taken at s - 1e-9 of the path's length (the approach, which a path with a kink there
+  /// can have). The grid point at a switch takes p', p'' from the path's own evaluate there. Each phase is
+  /// one ContactConstraint with active_begin/active_end set and label "phases[i]", which prefixes its row
+  /// labels. Each phase must keep its contacts in place on its own stretch: check_contact_drift with
+  /// drift_tolerance (m) and `drift`, as add_contacts.
+  ///
+  /// @param phases Each a ContactPhase: s_begin, s_end, its contacts and, optionally, its own options.
+  /// @param options The margins of every phase without options of its own (ContactOptions).
+  /// @param tau_min,tau_max As in ContactConstraint, for every phase.
+  /// @param impact_tolerance Relative tolerance of the no-impact rule (default 1e-6).
+  /// @param drift_tolerance,drift As in `add_contacts`, for each phase's contacts on that phase's stretch.
+  /// @return The drifts it let through, as add_contacts.
   std::vector<ContactDrift> add_contact_phases(std::shared_ptr<const RobotModel> robot, const std::vector<ContactPhase>& phases,
                           const ContactOptions& options = ContactOptions(), const Eigen::VectorXd& tau_min = Eigen::VectorXd(),
                           const Eigen::VectorXd& tau_max = Eigen::VectorXd(), double impact_tolerance = 1e-6,
                           double drift_tolerance = 1e-6, DriftPolicy drift = DriftPolicy::Auto);
-  /// add_constraint for contacts, after checking that the path keeps them in place (check_contact_drift:
-  /// an InvalidInput under DriftPolicy::Error, or Auto beyond 10 x drift_tolerance); a drift that is
-  /// timed anyway is kept in contact_drift() and reported by every Result (Result::contact_drift).
-  /// Returns the drifts this call let through (empty, or the one of these contacts): what a caller warns
-  /// about (the Python module as a UserWarning each).
+  // docstrings.txt @@ TimeScalingProblem.add_contacts
+  /// @brief Torque limits with frictional contact forces (eq. 17-18), projected to (ṡ², s̈) per grid point
+  /// (sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP); see
+  /// ContactConstraint. add_torque_limits on the same robot, before or after, merges into this one projection
+  /// (both limits hold).
+  ///
+  /// add_constraint for contacts, after checking that the path keeps them in place (check_contact_drift); a
+  /// drift that is timed anyway is kept in contact_drift() and reported by every Result (Result::contact_drift).
+  ///
+  /// @param contacts The ContactConstraint (robot, contacts, options, torque limits).
+  /// @param drift_tolerance m: how far a contact point may move along the path (it should not: eq. 17-18 hold it in
+  ///   place).
+  /// @param drift DriftPolicy: Warn times it anyway; Error throws InvalidInput naming the contact, s and the
+  ///   drift; Auto warns up to 10 x drift_tolerance and throws beyond.
+  /// @return The drifts this call let through (empty, or the one of these contacts): what a caller warns
+  ///   about (the Python module as a UserWarning each).
   std::vector<ContactDrift> add_contacts(std::shared_ptr<const ContactConstraint> contacts, double drift_tolerance = 1e-6,
                     DriftPolicy drift = DriftPolicy::Auto);
   /// The contacts that add_contacts / add_contact_phases let through although they move (DriftPolicy::Warn
@@ -143,26 +174,48 @@ class TimeScalingProblem {
     contact_drift_ = std::move(drift);
   }
 
-  /// Names of the path's coordinates, used in the row labels and messages of the velocity and
-  /// acceleration limits (those added before as well as after). Set automatically from the robot of the
-  /// first torque or contact constraint whose robot has one joint per path coordinate.
+  // docstrings.txt @@ TimeScalingProblem.set_joint_names
+  /// @brief Names of the path's coordinates for the labels and messages of velocity and acceleration limits.
+  ///
+  /// Names the limits added before as well as after. Set automatically from the robot of the first
+  /// add_torque_limits / add_contacts whose robot has one joint per coordinate.
   void set_joint_names(std::vector<std::string> names);
+  // docstrings.txt @@ TimeScalingProblem.joint_names
+  /// See `set_joint_names`.
   const std::vector<std::string>& joint_names() const { return joint_names_; }
 
-  /// ṡ at s_begin and s_end (default 0, rest to rest). Must be >= 0 and finite.
+  // docstrings.txt @@ TimeScalingProblem.set_boundary_speeds
+  /// @brief ṡ at s_begin and s_end.
+  ///
+  /// @param sdot_begin,sdot_end 1/s, >= 0 and finite (default 0: rest to rest). For joint velocities use
+  ///   `set_boundary_velocities`.
   void set_boundary_speeds(double sdot_begin, double sdot_end);
-  /// s̈ = 0 at s_begin and/or s_end on request: then q̈ = p''ṡ² there (eq. 11), no jump of q̈ from or to a
-  /// cruise. With s̈ constant on each interval (eq. 24) this holds on the whole first (last) interval, so it
-  /// needs a nonzero boundary speed at that end: solve() raises InvalidInput for a start or stop at rest.
+  // docstrings.txt @@ TimeScalingProblem.set_zero_boundary_accelerations
+  /// @brief sddot = 0 at s_begin and/or s_end (q̈ = p'' ṡ² there: no jump of q̈ from or to a cruise).
+  ///
+  /// With sddot constant per interval (eq. 24) it holds on the whole first/last interval, so the boundary
+  /// speed there must be > 0 (set_boundary_speeds); solve() raises InvalidInput otherwise.
+  ///
+  /// @param at_begin,at_end Whether at s_begin, at s_end.
   void set_zero_boundary_accelerations(bool at_begin, bool at_end);
   bool zero_sddot_begin() const { return zero_sddot_begin_; }
   bool zero_sddot_end() const { return zero_sddot_end_; }
-  /// The boundary speeds from joint velocities q̇ at s_begin and s_end (rad/s or m/s): q̇ = p'(s) ṡ
-  /// (eq. 10), so q̇ must be a non-negative multiple of the path tangent p'; ṡ = p'·q̇ / |p'|². Throws
-  /// InvalidInput naming the joint where q̇ is not parallel to p' (relative tolerance `tolerance`).
+  // docstrings.txt @@ TimeScalingProblem.set_boundary_velocities
+  /// @brief Boundary conditions as joint velocities q̇ (rad/s or m/s) at s_begin and s_end.
+  ///
+  /// q̇ = p'(s) ṡ (eq. 10): each must be a non-negative multiple of the path tangent p'; the speeds
+  /// ṡ = p'·q̇ / |p'|² are then set as by `set_boundary_speeds`.
+  ///
+  /// @param qd_begin,qd_end (n,): Joint velocities at the ends.
+  /// @param tolerance Allowed |q̇ - p' ṡ|∞ relative to |q̇|.
+  /// @throws InvalidInput Naming the joint index where q̇ is not along p'.
   void set_boundary_velocities(const Eigen::VectorXd& qd_begin, const Eigen::VectorXd& qd_end,
                                double tolerance = 1e-6);
+  // docstrings.txt @@ TimeScalingProblem.sdot_begin
+  /// ṡ at s_begin in 1/s (set_boundary_speeds).
   double sdot_begin() const { return sdot_begin_; }
+  // docstrings.txt @@ TimeScalingProblem.sdot_end
+  /// ṡ at s_end in 1/s (set_boundary_speeds).
   double sdot_end() const { return sdot_end_; }
   /// Every setting at once (pickling); set_settings applies each through its own setter (and checks).
   ProblemSettings settings() const;
@@ -174,33 +227,56 @@ class TimeScalingProblem {
   const PathSamples& samples() const { return samples_; }
   const std::vector<std::shared_ptr<const Constraint>>& constraints() const { return constraints_; }
 
-  /// The pruned feasible polygon at grid index k (0 <= k <= N).
+  // docstrings.txt @@ TimeScalingProblem.feasible_set
+  /// @brief The pruned feasible polygon at grid index k (0 <= k <= N): a FeasibleSet.
   FeasibleSet feasible_set(Eigen::Index k) const;
 
+  // docstrings.txt @@ TimeScalingProblem.solve
+  /// @brief Solves the problem.
+  ///
+  /// `max_iterations` bounds the SLP iterations per window, `time_limit` the whole solve: either ends
+  /// with the best feasible timing found (ITERATION_LIMIT / TIME_LIMIT, stats["gap"] is its certified bound).
+  /// UNBOUNDED means that nothing bounds the speed at a grid point where the path moves (the ends, whose
+  /// speeds are given, never count). A stationary piece of path (p'(s) = 0 on a stretch of the grid) that no
+  /// constraint bounds raises InvalidInput naming its s-range: it would be crossed in zero time; remove
+  /// it from the path.
+  ///
+  /// @param options method, max_iterations, tolerance and the rest (SolverOptions), checked here, once.
+  /// @return Never raises for an infeasible problem: see `status` and `message`.
   Result solve(const SolverOptions& options = SolverOptions()) const;
 
-  /// Why an infeasible problem is infeasible, as the smallest uniform relaxation that fixes it: for
-  /// each constraint family (Constraint::family(): "velocity", "acceleration", "torque", ...) the
-  /// smallest scale >= 1 of that family's limit intervals (Constraint::relaxed, the others unchanged)
-  /// that makes the problem feasible, found by bisection on a geometric scale to `rel_tolerance`
-  /// (the returned scale is feasible, scale / (1 + rel_tolerance) is not); +inf if even `max_scale`
-  /// is not enough (e.g. velocity limits cannot fix what acceleration limits forbid). With two or more
-  /// families, "all" scales every family together. A feasible problem gives 1 for each family.
-  /// Feasibility is decided by the reachability analysis (O(N) per trial, no SLP).
-  /// With guarantee = Continuous, feasibility counts the rows that hold velocity and acceleration limits
-  /// between grid points (not the audit's cuts, which depend on the solution: a lower bound then).
+  // docstrings.txt @@ TimeScalingProblem.relaxation
+  /// @brief Smallest uniform relaxation of each constraint family that makes the problem feasible.
+  ///
+  /// Returns a dict (C++: std::map) family -> scale >= 1 ('velocity', 'acceleration', 'torque', and 'all' = every
+  /// family together when there are several): the family's limit intervals widened by that factor about zero, the
+  /// others unchanged, give a feasible problem; within `tolerance` (relative) of the smallest such factor;
+  /// inf if `max_scale` is not enough (e.g. velocity limits cannot fix what acceleration limits forbid).
+  /// 1.0 for every family of a feasible problem.
+  ///
+  /// Each family is Constraint.family(); the scale is found by bisection on a geometric scale (the returned
+  /// scale is feasible, scale / (1 + tolerance) is not), feasibility decided by the reachability analysis
+  /// (O(N) per trial, no SLP). With guarantee = 'continuous', feasibility counts the rows that hold velocity
+  /// and acceleration limits between grid points (not the audit's cuts, which depend on the solution: a
+  /// lower bound then).
+  ///
+  /// @param max_scale The largest scale tried.
+  /// @param rel_tolerance The relative tolerance of the bisection.
+  /// @param guarantee As SolverOptions::guarantee.
   std::map<std::string, double> relaxation(double max_scale = 1e3, double rel_tolerance = 1e-3,
                                            Guarantee guarantee = Guarantee::Grid) const;
 
-  /// The problem that continues a running trajectory from s0 at speed sdot0 (>= 0): the path from s0
-  /// to s_end, the grid points beyond s0 (s0 itself becomes the first one; a grid point closer to s0
-  /// than 1e-9 of the interval is dropped), the same constraints and every setting (ProblemSettings),
-  /// with boundary speeds (sdot0, sdot_end). Its solution starts at q = p(s0), q̇ = p'(s0)·sdot0: the
-  /// continuation has no jump in position or velocity. Times in its result count from the restart (t = 0
-  /// at s0). s̈ = 0 at the start (set_zero_boundary_accelerations) is kept for a restart at s_begin only:
-  /// inside the path the restart continues a running trajectory, whose s̈ there is free.
-  /// A LinearConstraint (rows given per grid point) keeps the rows of the grid points the restart keeps;
-  /// s0 must then be a grid point (InvalidInput naming s0 and the nearest grid point otherwise).
+  // docstrings.txt @@ TimeScalingProblem.restarted
+  /// @brief The problem that continues a running trajectory from path parameter s0 at speed sdot0 (>= 0).
+  ///
+  /// The path's tail [s0, s_end] on the grid points beyond s0, the same constraints and every setting
+  /// pickling keeps (end speed, sddot = 0 at the end, joint names; sddot = 0 at the start only when
+  /// s0 = s_begin: inside the path the restart continues a running trajectory, whose sddot there is free),
+  /// with boundary speeds (sdot0, sdot_end). s0 itself becomes the first grid point; a grid point closer to
+  /// s0 than 1e-9 of the interval is dropped. A LinearConstraint keeps its rows at the kept grid points (s0
+  /// must then be a grid point: InvalidInput naming s0 and the nearest grid point otherwise). Its result
+  /// starts at q = p(s0), qd = p'(s0)*sdot0 (no jump in position or velocity); its times count from the
+  /// restart (t = 0 at s0).
   TimeScalingProblem restarted(double s0, double sdot0) const;
 
   /// "feasible with torque limits x 1.18 or acceleration limits x 1.4" for a relaxation() map.

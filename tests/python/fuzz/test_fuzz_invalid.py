@@ -88,7 +88,7 @@ ENTRY_POINTS = {
     "load_waypoints_csv": (io.load_waypoints_csv, dict(path=str(DATA / "waypoints_2x1.csv"))),
     "VelocityLimits": (pp.VelocityLimits, dict(vmin=[-1.0], vmax=[1.0], joint_names=["a"])),
     "AccelerationLimits": (pp.AccelerationLimits, dict(amin=[-1.0], amax=[1.0], joint_names=["a"])),
-    # Parameters that pybind11 converts itself (typed, not py::handle): their errors come from argument_errors.cpp.
+    # Parameters once typed (pybind11 converted them), now py::handle converted by convert.hpp, which names them.
     "auto_grid": (pp.auto_grid, dict(path=LINE, tolerance=1e-2, min_intervals=4, max_intervals=1000)),
     "relaxation": (PROBLEM.relaxation, dict(max_scale=1e3, tolerance=1e-3, guarantee="grid")),
     "restarted": (PROBLEM.restarted, dict(s0=0.5, sdot0=0.1)),

@@ -11,13 +11,17 @@
 
 namespace pathpace {
 
-/// Asymmetric joint acceleration limits: two rows per joint, p''_j x + p'_j u <= a_U,j and
-/// -p''_j x - p'_j u <= -a_L,j. Infinite limits give inactive rows.
+// docstrings.txt @@ AccelerationLimits
+/// @brief Joint acceleration limits amin <= p''ṡ² + p's̈ <= amax (eq. 14).
+///
+/// Two rows per joint, p''_j x + p'_j u <= amax_j and -p''_j x - p'_j u <= -amin_j; infinite limits give
+/// inactive rows.
 class AccelerationLimits : public Constraint {
  public:
-  /// amin[j] <= amax[j]; amin[j] may be -inf, amax[j] +inf. No NaN.
-  /// joint_names (optional, one per joint) name the joints in row labels and messages
-  /// ("acceleration panda_joint2 upper"); without them, "acceleration joint 1 upper".
+  // docstrings.txt @@ AccelerationLimits.__init__
+  /// @param amin,amax (n,): rad/s² (or m/s²); amin <= amax, ±inf for none; no NaN.
+  /// @param joint_names One per joint: they name the joints in row labels and messages ("acceleration panda_joint2
+  ///   upper"; default "acceleration joint 1 upper").
   AccelerationLimits(Eigen::VectorXd amin, Eigen::VectorXd amax, std::vector<std::string> joint_names = {});
 
   std::string name() const override { return "acceleration limits"; }

@@ -29,18 +29,27 @@ struct LpCounts {
   }
 };
 
-/// Half-planes of one constraint at every grid point. Row j at grid point k reads
-///   a(k, j)·x + b(k, j)·u <= c(k, j).
-/// A row with c = +inf is inactive at that grid point (a limit that is absent, or padding when the
-/// number of half-planes varies along the path). labels[j] names row j for infeasibility reports,
-/// e.g. "acceleration joint 3 upper".
+// docstrings.txt @@ ConstraintRows
+/// @brief Half-planes a·x + b·u <= c (x = ṡ², u = s̈) at every grid point: what Constraint.evaluate returns.
+///
+/// Row j at grid point k reads a(k, j)·x + b(k, j)·u <= c(k, j). A row with c = +inf is inactive at that
+/// grid point (a limit that is absent, or padding when the number of half-planes varies along the path).
+/// labels[j] names row j for infeasibility reports, e.g. "acceleration joint 3 upper".
 struct ConstraintRows {
   /// Row-major: the r rows of one grid point are contiguous, as the per-point polygons read them.
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  Matrix a;  ///< (N+1, r)
-  Matrix b;  ///< (N+1, r)
-  Matrix c;  ///< (N+1, r)
-  std::vector<std::string> labels;  ///< r names
+  // docstrings.txt @@ ConstraintRows.a
+  /// (N+1, r): Coefficients of x.
+  Matrix a;
+  // docstrings.txt @@ ConstraintRows.b
+  /// (N+1, r): Coefficients of u.
+  Matrix b;
+  // docstrings.txt @@ ConstraintRows.c
+  /// (N+1, r): Right-hand sides; +inf: inactive.
+  Matrix c;
+  // docstrings.txt @@ ConstraintRows.labels
+  /// r names, one per row.
+  std::vector<std::string> labels;
   /// Grid points where the rows are only an inner approximation of the constraint (a projection whose
   /// LP failed or ran out of budget, sec. IV.C); empty when they are exact.
   std::vector<Eigen::Index> inexact_points;
@@ -67,6 +76,8 @@ struct ConstraintRows {
     c.resize(points, rows);
     labels.assign(static_cast<size_t>(rows), std::string());
   }
+  // docstrings.txt @@ ConstraintRows.rows
+  /// r.
   Eigen::Index rows() const { return a.cols(); }
 };
 
@@ -86,8 +97,11 @@ struct PointCheck {
   int rest_feasible = -1;
 };
 
-/// Interface of every constraint. Implementations are immutable after construction, so one instance
-/// can serve several problems and threads; evaluate() keeps its scratch space local.
+// docstrings.txt @@ Constraint
+/// @brief Base of all constraints: half-planes a·x + b·u <= c per grid point, x = ṡ², u = s̈ (eq. 9).
+///
+/// Implementations are immutable after construction, so one instance can serve several problems and
+/// threads; evaluate keeps its scratch space local.
 ///
 /// Besides its rows, a constraint tells the problem what the problem needs to know of it through the hooks
 /// below (merging, renaming, grid changes, the continuous guarantee, what a Result shows). Their defaults fit
@@ -97,21 +111,34 @@ class Constraint {
  public:
   virtual ~Constraint() = default;
 
-  /// A short name for messages, e.g. "velocity limits".
+  // docstrings.txt @@ Constraint.name
+  /// A short name for messages and infeasibility reports, e.g. "velocity limits".
   virtual std::string name() const = 0;
 
-  /// The half-planes at every grid point of `samples`. Throws InvalidInput when the constraint does
-  /// not fit the path (e.g. a dimension mismatch), naming what does not fit.
+  // docstrings.txt @@ Constraint.evaluate
+  /// @brief The rows at every grid point of samples.
+  ///
+  /// @param samples The path at the grid points.
+  /// @return The half-planes.
+  /// @throws InvalidInput When the constraint does not fit the path (e.g. a dimension mismatch), naming what does not
+  ///   fit.
   virtual ConstraintRows evaluate(const PathSamples& samples) const = 0;
 
-  /// The family of limits a uniform relaxation scales when an infeasible problem is explained
-  /// ("velocity", "acceleration", "torque", ...; see TimeScalingProblem::relaxation). Empty: the
-  /// constraint is not relaxed.
+  // docstrings.txt @@ Constraint.family
+  /// @brief The family of limits relaxation() scales ("velocity", "acceleration", "torque", ...); "" for none.
+  ///
+  /// Used when an infeasible problem is explained (see TimeScalingProblem.relaxation); a constraint of no
+  /// family is not relaxed.
   virtual std::string family() const { return {}; }
 
-  /// The same constraint with its limit intervals widened by `scale` >= 1 about zero (a bound l <= 0
-  /// becomes scale·l, a bound l > 0 becomes l / scale, likewise for upper bounds), so that the
-  /// feasible set grows monotonically with the scale; nullptr if the constraint has no such scale.
+  // docstrings.txt @@ Constraint.relaxed
+  /// @brief The constraint with its limits widened by scale >= 1 about zero, or None (C++: nullptr) if it has no
+  /// such scale.
+  ///
+  /// A bound l <= 0 becomes scale·l, a bound l > 0 becomes l / scale, likewise for upper bounds, so that the
+  /// feasible set grows monotonically with the scale.
+  ///
+  /// @param scale >= 1; the feasible set must grow with it.
   virtual std::shared_ptr<const Constraint> relaxed(double /*scale*/) const { return nullptr; }
 
   /// Every family this constraint takes part in (a contact constraint holds torque limits and friction).
@@ -137,18 +164,28 @@ class Constraint {
   /// This constraint with `other`'s limits joined (only called when can_absorb(other)).
   virtual std::shared_ptr<const Constraint> absorb(const Constraint& other) const;
 
-  /// The same constraint labelled with the problem's joint names, for one that takes its labels from them
-  /// and has none yet (limits added before TimeScalingProblem::set_joint_names); nullptr otherwise. Only its
-  /// labels may differ: the problem keeps its rows.
+  // docstrings.txt @@ Constraint.with_joint_names
+  /// @brief The constraint labelled with the problem's joint names, or None (C++: nullptr) if its labels do not
+  /// come from them.
+  ///
+  /// For one that takes its labels from them and has none yet (limits added before set_joint_names). Only
+  /// its labels may differ: the problem keeps its rows.
+  ///
+  /// @param names One per path coordinate.
   virtual std::shared_ptr<const Constraint> with_joint_names(const std::vector<std::string>& /*names*/) const {
     return nullptr;
   }
 
-  /// True if the rows are data given per grid point, with no value between grid points (LinearConstraint):
-  /// the grid may then gain no point (a contact switch) and a restart must begin at a grid point.
+  // docstrings.txt @@ Constraint.per_grid_point
+  /// @brief True if the rows are data given per grid point, with no value between grid points (LinearConstraint):
+  /// the grid then gains no point (contact switches) and a restart begins at a grid point.
   virtual bool per_grid_point() const { return false; }
-  /// For a per_grid_point() constraint: its rows at the old grid's points `kept` (the new grid of a restart,
-  /// every index >= 0). Any other constraint is evaluated again on the new grid and is never asked.
+  // docstrings.txt @@ Constraint.at_grid_points
+  /// @brief A per_grid_point() constraint's rows at the old grid points `kept` (the new grid of a restart).
+  ///
+  /// Any other constraint is evaluated again on the new grid and is never asked.
+  ///
+  /// @param kept Old grid indices, in order, each >= 0.
   virtual std::shared_ptr<const Constraint> at_grid_points(const std::vector<Eigen::Index>& kept) const;
 
   /// The joint limits guarantee = continuous bounds between grid points by construction (JointRateLimits).

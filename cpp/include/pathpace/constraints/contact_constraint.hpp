@@ -64,13 +64,18 @@ struct ContactOptions {
   std::string rest_at_begin;
 };
 
+// docstrings.txt @@ ContactConstraint
+/// @brief Torque limits with frictional contact forces (eq. 17-18), projected onto (ṡ², s̈).
+///
+/// Includes the torque limits: do not add TorqueLimits to the same problem (TimeScalingProblem merges
+/// TorqueLimits of the same robot into it: both limits hold, the tighter side of each is kept).
+///
 /// At grid point k: τ = a x + b u + c - Σ_i J_iᵀ f_i (J_i the contact point's Jacobian on `link`, minus
-/// the same world point's Jacobian on `other_link` for a robot–robot contact) with τ_L <= τ <= τ_U (τ_L = τ_U = 0 for an
-/// unactuated floating base), f_i = Σ_e λ_ie g_ie with λ >= 0 (the cone's generators g_ie = n_i +
-/// μ (cos φ_e t1 + sin φ_e t2), so that n·f_i = Σ_e λ_ie), and Σ_e λ_ie >= min_normal_force. The
-/// polygon's edges become this constraint's half-planes (a varying number per point; inactive padding).
-/// The torque limits are part of this constraint; TimeScalingProblem merges TorqueLimits of the same
-/// robot into it (both limits hold: the tighter side of each is kept).
+/// the same world point's Jacobian on `other_link` for a robot–robot contact) with τ_min <= τ <= τ_max
+/// (τ_min = τ_max = 0 for an unactuated floating base), f_i = Σ_e λ_ie g_ie with λ >= 0 (the cone's
+/// generators g_ie = n_i + μ (cos φ_e t1 + sin φ_e t2), so that n·f_i = Σ_e λ_ie), and Σ_e λ_ie >=
+/// min_normal_force. The polygon's edges become this constraint's half-planes (a varying number per
+/// point; inactive padding).
 ///
 /// The polygon is the convex hull of LP optima with every edge certified by its own LP (sec. IV.C), so
 /// it is exact to 1e-9 of its size. Points of one link with one normal and one μ that lie in a plane
@@ -83,6 +88,10 @@ struct ContactOptions {
 /// constant) plus k/2 bounded weights (the k-gon is a zonotope): exact, with no per-point rows.
 class ContactConstraint : public Constraint, public std::enable_shared_from_this<ContactConstraint> {
  public:
+  // docstrings.txt @@ ContactConstraint.__init__
+  /// @param options cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin and the rest
+  ///   (ContactOptions).
+  /// @param tau_min,tau_max (nq,): default (empty) ∓ the URDF effort limits.
   ContactConstraint(std::shared_ptr<const RobotModel> robot, std::vector<Contact> contacts,
                     const ContactOptions& options = {}, Eigen::VectorXd tau_min = Eigen::VectorXd(),
                     Eigen::VectorXd tau_max = Eigen::VectorXd());
@@ -94,10 +103,17 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   std::shared_ptr<const Constraint> relaxed(const std::string& family, double scale) const override;
   ConstraintRows evaluate(const PathSamples& samples) const override;
 
-  /// The largest distance a contact point moves along the path's samples (0 for a path that keeps
-  /// every contact in place): in the world for a world contact, relative to `other_link` for a
-  /// robot–robot contact, over the samples where the constraint is active (a phase: its own stretch).
-  /// `contact` receives the index of the worst one, `at_s` the s where it is farthest.
+  // docstrings.txt @@ ContactConstraint.max_drift
+  /// @brief How far contact points move along a path (they should not).
+  ///
+  /// The largest distance a contact point moves (0 for a path that keeps every contact in place): in the
+  /// world for a world contact, relative to `other_link` for a robot–robot contact, over the samples where
+  /// the constraint is active (a phase: its own stretch).
+  ///
+  /// @param samples The path at the samples where to look.
+  /// @param contact Receives the index of the worst contact.
+  /// @param at_s Receives the s where it is farthest.
+  /// @return The largest distance, m.
   double max_drift(const PathSamples& samples, int* contact = nullptr, double* at_s = nullptr) const;
 
   /// True if s lies in [active_begin, active_end] (to 1e-12 relative): the rows hold there.
@@ -109,8 +125,12 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// A contact made with normal(k, i) != 0 hits its surface (see add_contact_phases).
   void point_velocities(const PathSamples& samples, Eigen::MatrixXd& normal, Eigen::MatrixXd& speed) const;
 
-  /// The force-distribution LP at each row of (q, q̇, q̈) (each (samples, nq)): the most robust contact
-  /// forces and their margin (see ContactForces). This is how a timing is audited between grid points.
+  // docstrings.txt @@ ContactConstraint.force_distribution
+  /// @brief The most robust contact forces at each configuration: the force-distribution LP at each row of q, qd,
+  /// qdd (how a timing is audited between grid points).
+  ///
+  /// @param q,qd,qdd (samples, nq): Positions (rad, m), velocities (per s), accelerations (per s²).
+  /// @return One ContactForces per row.
   std::vector<ContactForces> force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
                                                 const Eigen::MatrixXd& qdd) const;
 
@@ -125,7 +145,11 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// Result::robot, contacts, contact_phases (a phase of add_contact_phases) and, unless the problem has
   /// torque limits of its own, tau_min/tau_max (rank 1, Constraint::report).
   void report(Result& result, int& torque_rank) const override;
-  const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
+  // docstrings.txt @@ ContactConstraint.tau_min
+  /// (nq,): After scale and margin (and any merged TorqueLimits).
+  const Eigen::VectorXd& tau_min() const { return tau_min_; }
+  // docstrings.txt @@ ContactConstraint.tau_max
+  /// (nq,): After scale and margin (and any merged TorqueLimits).
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
 
   /// This constraint with torque limits tightened to [max(tau_min, lo), min(tau_max, hi)] (e.g. from a
@@ -151,12 +175,15 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
             Eigen::VectorXd& x_hi) const override;
 
-  /// Indices of the contacts whose forces enter the projection LPs (all of them, or the convex-hull
-  /// vertices of each flat group, see above).
+  // docstrings.txt @@ ContactConstraint.projected_contacts
+  /// Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull
+  /// vertices of each flat group.
   const std::vector<int>& projected_contacts() const { return reduced_.cone; }
-  /// Indices of the contacts whose per-point minimum enters the projection LPs as the tangential part of
-  /// their force on the cone's cross-section at the minimum (even cone_edges, min_normal_force >
-  /// cone_offset: every point of a reduced flat group; see above). Empty otherwise.
+  // docstrings.txt @@ ContactConstraint.section_contacts
+  /// Indices of the contacts whose per-point minimum enters the projection LPs as k/2 bounded tangential
+  /// weights, the tangential part of their force on the cone's cross-section at the minimum
+  /// (min_normal_force > cone_offset, even cone_edges: every point of a reduced flat group); empty
+  /// otherwise.
   const std::vector<int>& section_contacts() const { return reduced_.section; }
 
   const std::vector<Contact>& contacts() const { return contacts_; }

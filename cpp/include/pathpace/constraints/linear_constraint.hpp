@@ -10,11 +10,17 @@
 
 namespace pathpace {
 
-/// Generic linear constraint, given on the problem's grid as arrays of shape (N+1, r): row k holds the
-/// r coefficients at s_k. This is how torques from any dynamics source and user-defined Cartesian limits
-/// enter. lo may be -inf and hi +inf (one-sided); lo == hi makes an equality.
+// docstrings.txt @@ LinearConstraint
+/// @brief lo <= A·x + B·u + C <= hi at every grid point (x = ṡ², u = s̈).
+///
+/// Given on the problem's grid: row k holds the r coefficients at s_k. This is how torques from any
+/// dynamics source and user-defined Cartesian limits enter. lo may be -inf and hi +inf (one-sided); lo ==
+/// hi makes an equality.
 class LinearConstraint : public Constraint {
  public:
+  // docstrings.txt @@ LinearConstraint.__init__
+  /// @param A,B,C,lo,hi (N+1, r): Row k holds the coefficients at grid point s_k; lo may be -inf and hi +inf.
+  /// @param label Names the rows in infeasibility reports.
   LinearConstraint(Eigen::MatrixXd A, Eigen::MatrixXd B, Eigen::MatrixXd C, Eigen::MatrixXd lo,
                    Eigen::MatrixXd hi, std::string label = "linear");
 

@@ -11,13 +11,19 @@
 
 namespace pathpace {
 
-/// At each grid point τ = a·x + b·u + c (RobotModel::path_torque_coefficients); two rows per joint,
-/// a x + b u <= τ_U - c and -a x - b u <= c - τ_L. The limits are scale·[τ_L, τ_U] shrunk by `margin`
-/// newton-metres on each side: the safety margins of sec. V.D. A joint with τ_L = τ_U = 0 (a floating
-/// base) gives an equality pair: without contact forces such a path can generally not be timed.
+// docstrings.txt @@ TorqueLimits
+/// @brief Joint torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15), by our RNEA.
+///
+/// At each grid point τ = a·x + b·u + c (RobotModel.path_torque_coefficients); two rows per joint,
+/// a x + b u <= τ_max - c and -a x - b u <= c - τ_min. The limits are scaled by `scale` and shrunk by
+/// `margin` on each side: the safety margins of sec. V.D. A joint with τ_min = τ_max = 0 (a floating base)
+/// gives an equality pair: without contact forces such a path can generally not be timed.
 class TorqueLimits : public Constraint {
  public:
-  /// tau_min / tau_max of size nq; empty means ∓ the URDF effort limits.
+  // docstrings.txt @@ TorqueLimits.__init__
+  /// @param tau_min,tau_max (nq,): N·m (N for prismatic joints); default (None; C++: empty) ∓ the URDF effort.
+  /// @param scale Multiplies the limits (sec. V.D's safety margin).
+  /// @param margin N·m subtracted from each side after scaling.
   TorqueLimits(std::shared_ptr<const RobotModel> robot, Eigen::VectorXd tau_min = Eigen::VectorXd(),
                Eigen::VectorXd tau_max = Eigen::VectorXd(), double scale = 1.0, double margin = 0.0);
 
@@ -27,7 +33,11 @@ class TorqueLimits : public Constraint {
   /// [tau_min, tau_max] (after scale and margin) widened by `scale` about zero (Constraint::relaxed).
   std::shared_ptr<const Constraint> relaxed(double scale) const override;
 
-  const Eigen::VectorXd& tau_min() const { return tau_min_; }  ///< after scale and margin
+  // docstrings.txt @@ TorqueLimits.tau_min
+  /// (nq,): After scale and margin.
+  const Eigen::VectorXd& tau_min() const { return tau_min_; }
+  // docstrings.txt @@ TorqueLimits.tau_max
+  /// (nq,): After scale and margin.
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
   std::shared_ptr<const RobotModel> robot() const override { return robot_; }
   /// Result::robot and tau_min/tau_max (rank 2: a problem's own torque limits, Constraint::report).

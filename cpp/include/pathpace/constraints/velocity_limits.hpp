@@ -11,14 +11,17 @@
 
 namespace pathpace {
 
-/// Asymmetric joint velocity limits. Since ṡ >= 0, joint j bounds x = ṡ² by (v_U,j / p'_j)² where
-/// p'_j > 0 and by (v_L,j / p'_j)² where p'_j < 0; a joint with p'_j = 0 imposes nothing.
-/// One row per joint, a = 1, b = 0 (a pure bound on x).
+// docstrings.txt @@ VelocityLimits
+/// @brief Joint velocity limits vmin <= p'(s) ṡ <= vmax (eq. 13, as the bound on ṡ² of eq. 16).
+///
+/// Since ṡ >= 0, joint j bounds x = ṡ² by (vmax_j / p'_j)² where p'_j > 0 and by (vmin_j / p'_j)² where
+/// p'_j < 0; a joint with p'_j = 0 imposes nothing. One row per joint, a = 1, b = 0 (a pure bound on x).
 class VelocityLimits : public Constraint {
  public:
-  /// vmin[j] <= 0 <= vmax[j]; vmin[j] may be -inf and vmax[j] +inf (no limit). No NaN.
-  /// joint_names (optional, one per joint) name the joints in row labels and messages
-  /// ("velocity panda_joint2"); without them, "velocity joint 1".
+  // docstrings.txt @@ VelocityLimits.__init__
+  /// @param vmin,vmax (n,): rad/s (or m/s); vmin <= 0 <= vmax, ±inf for none; no NaN.
+  /// @param joint_names One per joint: they name the joints in row labels and messages ("velocity panda_joint2";
+  ///   default "velocity joint 1").
   VelocityLimits(Eigen::VectorXd vmin, Eigen::VectorXd vmax, std::vector<std::string> joint_names = {});
 
   std::string name() const override { return "velocity limits"; }
