@@ -6,6 +6,8 @@
 
 namespace pathpace {
 
+class PiecewisePolynomialPath;
+
 /// A geometric path in joint space. Implementations are immutable after construction and
 /// safe to evaluate from several threads at once.
 class Path {
@@ -26,6 +28,11 @@ class Path {
   /// The default calls the single-point evaluate; paths can do better.
   virtual void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
                 Eigen::MatrixXd& ddq) const;
+
+  /// The path as polynomial pieces when it is one (CubicSplinePath, SampledPath, ...), else nullptr. What needs
+  /// the pieces asks this, never the concrete type: exact bounds between grid points (guarantee = continuous),
+  /// breakpoints in the automatic grid, the exact tail of a restart.
+  virtual const PiecewisePolynomialPath* polynomial() const { return nullptr; }
 
   /// p(s) at each s: shape (len(s), dof()).
   Eigen::MatrixXd q(const Eigen::Ref<const Eigen::VectorXd>& s) const;

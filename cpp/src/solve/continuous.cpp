@@ -32,7 +32,7 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   bool any = false;
   for (const auto& c : constraints) any = any || c->joint_rate_limits().order != 0;
   if (!any) return;
-  const auto* pp = dynamic_cast<const PiecewisePolynomialPath*>(&path);
+  const PiecewisePolynomialPath* pp = path.polynomial();
   if (!pp)
     fail("guarantee = 'continuous' bounds velocity and acceleration between grid points on piecewise-polynomial "
          "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath); this path is not one");
