@@ -107,13 +107,13 @@ def from_bspline(spline: Any, name: str = "path") -> PiecewisePolynomialPath:
     if bad.size:
         i, d = bad[0]
         raise InvalidInputError(f"{name}.c[{i}, {d}] = {float(c.reshape(c.shape[0], -1)[i, d])!r} must be finite")
-    columns = c.reshape(c.shape[0], -1).astype(float)
-    pieces = [PPoly.from_spline(BSpline(t, columns[:, d], k, extrapolate=True)) for d in range(columns.shape[1])]
-    coeffs = np.stack([p.c for p in pieces], axis=2)  # (k + 1, len(t) - 1, n), highest degree first
-    lo, hi = t[k], t[len(t) - k - 1]
+    lo, hi = float(t[k]), float(t[len(t) - k - 1])
     keep = (t[:-1] >= lo) & (t[1:] <= hi) & (t[1:] > t[:-1])
     if not keep.any():
         raise InvalidInputError(f"{name} has an empty base interval [t[k], t[-k-1]] = [{lo!r}, {hi!r}]")
+    columns = c.reshape(c.shape[0], -1).astype(float)
+    pieces = [PPoly.from_spline(BSpline(t, columns[:, d], k, extrapolate=True)) for d in range(columns.shape[1])]
+    coeffs = np.stack([p.c for p in pieces], axis=2)  # (k + 1, len(t) - 1, n), highest degree first
     x = np.append(t[:-1][keep], t[1:][keep][-1])
     _check_breakpoints(x, f"{name}.t")
     return PiecewisePolynomialPath(x, np.ascontiguousarray(coeffs[::-1, keep, :].transpose(1, 0, 2)))

@@ -363,6 +363,18 @@ def test_the_continuous_guarantee_needs_polynomial_pieces():
 # -- validation: every branch names the argument and the value ----------------------------------------------
 
 
+class NoTuple(pp.Path):
+    dof, s_begin, s_end = 1, 0.0, 1.0
+
+    def evaluate(self, s):
+        return np.zeros((len(s), 3))
+
+
+class TwoItems(NoTuple):
+    def evaluate(self, s):
+        return np.zeros((len(s), 1)), np.zeros((len(s), 1))
+
+
 def n_values(s, shapes=((None, 3), (None, 3), (None, 3)), bad=None):
     out = [np.zeros((len(s) if m is None else m, n)) for m, n in shapes]
     if bad is not None and len(s) > 3:  # the grid's batch, not the two values that tell the dof
@@ -399,7 +411,17 @@ def n_values(s, shapes=((None, 3), (None, 3), (None, 3)), bad=None):
      pp.InvalidInputError, r"CallbackPath.evaluate\(s\)\[2\] \(ddq\)\[3, 1\] = nan at s = 0.75 must be finite"),
     (lambda: pp.as_path(lambda s: (np.zeros((len(s), 2)), np.zeros((len(s), 2)), [[1, "a"]] * len(s)))(0.5),
      TypeError, r"CallbackPath.evaluate\(s\)\[2\] \(ddq\)\[0, 1\] must be a number, got str"),
+    (lambda: pp.as_path(si.PPoly.construct_fast(np.ones((2, 2)), np.array([0.0, np.nan, 1.0]))), pp.InvalidInputError,
+     r"path.x\[1\] = nan must be finite"),
+    (lambda: pp.as_path(si.PPoly.construct_fast(np.ones((2, 2)), np.array([0.5, 0.5, 0.5]))), pp.InvalidInputError,
+     r"path.x spans \[0.5, 0.5\]: a path needs s_begin < s_end"),
+    (lambda: pp.as_path(si.BSpline([0, 0, 1, 1], np.array([0.0, 1j]), 1)), pp.InvalidInputError, r"complex coefficients"),
+    (lambda: pp.as_path(si.BSpline.construct_fast(np.array([0.0, 0, 0, 0]), np.array([0.0, 1.0]), 1)),
+     pp.InvalidInputError, r"path has an empty base interval \[t\[k\], t\[-k-1\]\] = \[0.0, 0.0\]"),
+    (lambda: NoTuple()(0.5), TypeError, r"NoTuple.evaluate\(s\) must be a tuple \(q, dq, ddq\), got ndarray"),
+    (lambda: TwoItems()(0.5), pp.InvalidInputError, r"TwoItems.evaluate\(s\) returned 2 items, expected 3 \(q, dq, ddq\)"),
     (lambda: CallbackPath(42), TypeError, r"function must be callable, got int"),
+    (lambda: InterpolatorPath(42), TypeError, r"interpolator must be callable as interpolator\(s, order\), got int"),
     (lambda: InterpolatorPath(type("I", (), {"path_interval": (1.0, 1.0), "__call__": lambda self, s, k: s})()),
      pp.InvalidInputError, r"path.path_interval = \(1.0, 1.0\) must be finite with s_begin < s_end"),
 ])
