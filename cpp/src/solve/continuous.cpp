@@ -35,7 +35,8 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   const PiecewisePolynomialPath* pp = path.polynomial();
   if (!pp)
     fail("guarantee = 'continuous' bounds velocity and acceleration between grid points on piecewise-polynomial "
-         "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath); this path is not one");
+         "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath, scipy and toppra splines through as_path); "
+         "this path has no polynomial pieces (a callback path: sample it into a SampledPath)");
   const IntervalRows ir = interval_rows(*pp, samples.s);
   const double inf = std::numeric_limits<double>::infinity();
   const size_t own = rows.size();  // rows[i] are constraints[i]'s grid rows (for their labels)
