@@ -251,11 +251,12 @@ def test_a_toppra_style_object_is_called_once_per_order_and_batch():
 
 
 def test_a_toppra_users_script_gives_toppras_duration():
-    """toppra's TOPPRA and pathpace on the same SplineInterpolator, limits and grid. toppra solves the same
-    discretisation (its default JointAccelerationConstraint scheme, Interpolation, is eq. 26's rows on both
-    sides of each grid point), but lowers each forward step's ṡ² by 1e-8 (TINY in its reachability
-    algorithm, bench/README.md), so its T is slightly above the optimum: pathpace's T is at most toppra's
-    (to rounding) and within 1e-4 relative of it at N = 100 (bench/README.md measures -1.4e-5)."""
+    """toppra's TOPPRA and pathpace on the same SplineInterpolator, limits and grid. Both solve the same
+    discretisation (toppra's default JointAccelerationConstraint scheme, Interpolation, is eq. 26's rows on
+    both sides of each grid point); pathpace's T is that discretisation's optimum, toppra's is slightly above
+    it (it lowers each forward step's ṡ² by 1e-8, bench/README.md, and its LPs have their own tolerances).
+    So: pathpace's T at most toppra's (to rounding), and within 1e-4 relative at N = 100 (measured here
+    -6.1e-5; -2.9e-6 at N = 1000; bench/README.md's corpus -1.4e-5 at N = 100)."""
     ta = pytest.importorskip("toppra")
     import toppra.algorithm as algo
     import toppra.constraint as constraint
