@@ -535,3 +535,32 @@ def test_readme_paths_example_runs_as_pasted():
     traj, path = scope["traj"], scope["path"]
     np.testing.assert_allclose(traj(traj.duration), scope["way_pts"][-1], atol=1e-12)
     assert isinstance(pp.as_path(path), pp.PiecewisePolynomialPath)
+
+
+def line_on_0_2(s):
+    """Hand and box together, x = s (test_contact_phases.py's path) as a callback."""
+    one = np.ones((len(s), 2))
+    return np.column_stack([s, s]), one, 0 * one
+
+
+def test_contact_phases_insert_their_switch_on_a_callback_path_and_a_scipy_spline():
+    """test_contact_phases.py's push-then-brake (a 10 N hand on hand + box, 2 kg: |s̈| <= 5): with the switch
+    at s = 1 off the grid (7 intervals on [0, 2]) the problem inserts it, evaluating the path there again;
+    T is the closed form θ = min(2as, 2a(2 - s)), θ at the switch the smaller neighbour's."""
+    hand_box = pp.RobotModel.from_urdf(str(DATA / "hand_box.urdf"))
+
+    def on_box(nx):
+        return [pp.Contact("box", point=(0, 0, 0), normal=(nx, 0, 0), friction=0.5, other_link="hand")]
+
+    s = np.linspace(0.0, 2.0, 3)
+    for path in (pp.as_path(line_on_0_2, interval=(0.0, 2.0)), si.CubicSpline(s, np.column_stack([s, s]))):
+        prob = pp.TimeScalingProblem(path, grid=7)
+        prob.add_contact_phases(hand_box, [(0.0, 1.0, on_box(1)), (1.0, 2.0, on_box(-1))], cone_edges=4)
+        g = prob.grid
+        assert g.size == 9 and g[4] == 1.0
+        th = np.minimum(10.0 * g, 10.0 * (2.0 - g))
+        th[4] = min(th[3], th[5])
+        T = np.sum(2 * np.diff(g) / (np.sqrt(th[:-1]) + np.sqrt(th[1:])))
+        res = prob.solve()
+        assert res.status.name == "OPTIMAL" and close(res.duration, T)
+        assert pickle.loads(pickle.dumps(prob)).solve().duration == res.duration
