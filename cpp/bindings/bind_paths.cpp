@@ -1,4 +1,7 @@
-// Paths: the abstract Path and the three concrete ones.
+// Paths: the abstract Path (open to Python subclasses through a trampoline) and the three concrete ones. All
+// use py::smart_holder, which keeps a Python subclass alive while C++ holds it (as for Constraint).
+#include <cmath>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -6,9 +9,11 @@
 #include "convert.hpp"
 #include "docstrings.hpp"
 #include "pathpace/auto_grid.hpp"
+#include "pathpace/errors.hpp"
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
 #include "pathpace/sampled_path.hpp"
+#include "paths/sub_path.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -59,8 +64,90 @@ std::vector<Eigen::MatrixXd> polynomial_pieces(py::handle coefficients) {
   return pieces;
 }
 
+// A Path whose dof, s_begin, s_end and evaluate are Python (pathpace.paths.CallbackPath, InterpolatorPath, a
+// user's subclass). C++ calls it from any thread, with or without the GIL (solve and auto_grid release it):
+// each call takes it. Python sees s clamped to the domain, once per batch; what comes back is checked
+// (three arrays (m, dof), finite) so that a wrong callback is an InvalidInput naming it, not wrong rows.
+// Exceptions raised in Python come back as they were (error_already_set).
+class PyPath : public Path, public py::trampoline_self_life_support {
+ public:
+  int dof() const override {
+    py::gil_scoped_acquire gil;
+    return static_cast<int>(to_int(attribute("dof"), class_name() + ".dof", 1, 1 << 20));
+  }
+  double s_begin() const override {
+    py::gil_scoped_acquire gil;
+    return to_double(attribute("s_begin"), class_name() + ".s_begin");
+  }
+  double s_end() const override {
+    py::gil_scoped_acquire gil;
+    return to_double(attribute("s_end"), class_name() + ".s_end");
+  }
+
+  void evaluate(double s, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> dq,
+                Eigen::Ref<Eigen::VectorXd> ddq) const override {
+    Eigen::MatrixXd mq, mdq, mddq;
+    evaluate(Eigen::VectorXd::Constant(1, s), mq, mdq, mddq);
+    q = mq.row(0).transpose();
+    dq = mdq.row(0).transpose();
+    ddq = mddq.row(0).transpose();
+  }
+
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
+                Eigen::MatrixXd& ddq) const override {
+    py::gil_scoped_acquire gil;
+    py::function f = py::get_override(static_cast<const Path*>(this), "evaluate");
+    if (!f) throw Error("a Python subclass of pathpace.Path must define evaluate(s)");
+    const double a = s_begin(), b = s_end();
+    const Eigen::Index n = dof();
+    const Eigen::VectorXd x = s.cwiseMax(a).cwiseMin(b);
+    py::object r = f(py::array_t<double>(x.size(), x.data()));
+    const std::string what = class_name() + ".evaluate(s)";
+    if (!py::isinstance<py::tuple>(r) && !py::isinstance<py::list>(r)) type_error(what, "a tuple (q, dq, ddq)", r);
+    py::sequence seq = py::reinterpret_borrow<py::sequence>(r);
+    if (seq.size() != 3)
+      throw InvalidInput(what + " returned " + std::to_string(seq.size()) + " items, expected 3 (q, dq, ddq)");
+    q = checked(seq[0], what + "[0] (q)", x, n);
+    dq = checked(seq[1], what + "[1] (dq)", x, n);
+    ddq = checked(seq[2], what + "[2] (ddq)", x, n);
+  }
+
+ private:
+  py::handle self() const {
+    return py::detail::get_object_handle(static_cast<const Path*>(this), py::detail::get_type_info(typeid(Path)));
+  }
+  std::string class_name() const { return type_name(self()); }
+
+  // `name` may be a property, a plain attribute or a method of the Python class; Path's own (abstract) is not.
+  py::object attribute(const char* name) const {
+    py::handle me = self();
+    py::object base = py::type::of<Path>().attr("__dict__")[name];
+    if (py::getattr(py::type::handle_of(me), name).is(base))
+      throw Error("a Python subclass of pathpace.Path must define " + std::string(name));
+    py::object v = py::getattr(me, name);
+    return PyCallable_Check(v.ptr()) ? v() : v;
+  }
+
+  // One of q, dq, ddq: (m, n) (or (m,) when n = 1), every entry finite.
+  static Eigen::MatrixXd checked(py::handle h, const std::string& what, const Eigen::VectorXd& s, Eigen::Index n) {
+    Eigen::MatrixXd v = to_matrix(h, what, n == 1);
+    if (v.rows() != s.size() || v.cols() != n)
+      throw InvalidInput(what + " has shape (" + std::to_string(v.rows()) + ", " + std::to_string(v.cols()) + ") for " +
+                         std::to_string(s.size()) + " values of s, expected (" + std::to_string(s.size()) + ", " +
+                         std::to_string(n) + ")");
+    for (Eigen::Index i = 0; i < v.rows(); ++i)
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (!std::isfinite(v(i, j)))
+          throw InvalidInput(what + "[" + std::to_string(i) + ", " + std::to_string(j) + "] = " +
+                             py::repr(py::float_(v(i, j))).cast<std::string>() + " at s = " +
+                             py::repr(py::float_(s[i])).cast<std::string>() + " must be finite");
+    return v;
+  }
+};
+
 void bind_path(py::module_& m) {
-  py::class_<Path, std::shared_ptr<Path>>(m, "Path", doc::Path)
+  py::class_<Path, PyPath, py::smart_holder>(m, "Path", doc::Path)
+      .def(py::init<>())
       .def_property_readonly("dof", &Path::dof, doc::Path_dof)
       .def_property_readonly("s_begin", &Path::s_begin, doc::Path_s_begin)
       .def_property_readonly("s_end", &Path::s_end, doc::Path_s_end)
@@ -69,11 +156,15 @@ void bind_path(py::module_& m) {
       .def("ddq", [](const Path& p, py::handle s) { return eval(p, s, 2); }, "s"_a, doc::Path_ddq)
       .def("evaluate", [](const Path& p, py::handle s) {
         return py::make_tuple(eval(p, s, 0), eval(p, s, 1), eval(p, s, 2));
-      }, "s"_a, doc::Path_evaluate);
+      }, "s"_a, doc::Path_evaluate)
+      .def("__call__", [](const Path& p, py::handle s, py::handle order) {
+        const int k = static_cast<int>(to_int(order, "order", 0, 2));
+        return eval(p, s, k);
+      }, "s"_a, "order"_a = 0, doc::Path_call_);
 }
 
 void bind_piecewise_polynomial_path(py::module_& m) {
-  py::class_<PiecewisePolynomialPath, Path, std::shared_ptr<PiecewisePolynomialPath>>(m, "PiecewisePolynomialPath",
+  py::class_<PiecewisePolynomialPath, Path, py::smart_holder>(m, "PiecewisePolynomialPath",
                                                                                       doc::PiecewisePolynomialPath)
       .def(py::init([](py::handle breakpoints, py::handle coefficients) {
              Eigen::VectorXd b = to_vector(breakpoints, "breakpoints");
@@ -93,7 +184,7 @@ void bind_piecewise_polynomial_path(py::module_& m) {
 }
 
 void bind_cubic_spline_path(py::module_& m) {
-  py::class_<CubicSplinePath, PiecewisePolynomialPath, std::shared_ptr<CubicSplinePath>>(m, "CubicSplinePath", doc::CubicSplinePath)
+  py::class_<CubicSplinePath, PiecewisePolynomialPath, py::smart_holder>(m, "CubicSplinePath", doc::CubicSplinePath)
       .def(py::init([](py::handle waypoints, py::object knots, py::handle boundary, py::handle start_derivative,
                        py::handle end_derivative, py::handle s_begin_arg, py::handle s_end_arg) {
              const Eigen::MatrixXd w = to_matrix(waypoints, "waypoints");
@@ -143,7 +234,7 @@ void bind_cubic_spline_path(py::module_& m) {
 }
 
 void bind_sampled_path(py::module_& m) {
-  py::class_<SampledPath, PiecewisePolynomialPath, std::shared_ptr<SampledPath>>(m, "SampledPath", doc::SampledPath)
+  py::class_<SampledPath, PiecewisePolynomialPath, py::smart_holder>(m, "SampledPath", doc::SampledPath)
       .def(py::init([](py::handle s, py::handle q, py::handle dq, py::handle ddq) {
              return std::make_shared<SampledPath>(to_vector(s, "s"), to_matrix(q, "q", true), to_matrix(dq, "dq", true),
                                                   to_matrix(ddq, "ddq", true));
@@ -166,6 +257,23 @@ void bind_sampled_path(py::module_& m) {
       });
 }
 
+// The tail [s0, s_end] of a path without pieces (TimeScalingProblem.restarted on a callback path): private,
+// so that a restarted problem's path is a Path that pickles, as (parent, s0).
+void bind_sub_path(py::module_& m) {
+  py::class_<detail::SubPath, Path, py::smart_holder>(m, "_SubPath")
+      .def_property_readonly("parent", [](const detail::SubPath& p) { return std::const_pointer_cast<Path>(p.parent()); })
+      .def(py::pickle([](const detail::SubPath& p) { return py::make_tuple(std::const_pointer_cast<Path>(p.parent()), p.s_begin()); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "_SubPath");
+                        auto parent = to_object<Path>(t[0], "parent", "Path");
+                        return std::make_shared<detail::SubPath>(std::move(parent), to_double(t[1], "s0"));
+                      }))
+      .def("__repr__", [](const detail::SubPath& p) {
+        return "<_SubPath s=[" + std::to_string(p.s_begin()) + ", " + std::to_string(p.s_end()) + "] of " +
+               py::repr(py::cast(std::const_pointer_cast<Path>(p.parent()))).cast<std::string>() + ">";
+      });
+}
+
 }  // namespace
 
 void bind_paths(py::module_& m) {
@@ -173,6 +281,7 @@ void bind_paths(py::module_& m) {
   bind_piecewise_polynomial_path(m);
   bind_cubic_spline_path(m);
   bind_sampled_path(m);
+  bind_sub_path(m);
   m.def("auto_grid", [](py::handle path_arg, py::handle tolerance, py::handle min_intervals, py::handle max_intervals) {
     const auto path = to_object<Path>(path_arg, "path", "Path");
     const double tol = to_double(tolerance, "tolerance");

@@ -109,8 +109,15 @@ void bind_feasible_set(py::module_& m) {
       });
 }
 
+// A pathpace Path as it is; anything else path-like (a scipy spline, a toppra interpolator, a callable)
+// through pathpace.as_path, which names what it cannot take.
+std::shared_ptr<Path> to_path(py::handle path_arg) {
+  if (path_arg.is_none() || py::isinstance<Path>(path_arg)) return to_object<Path>(path_arg, "path", "Path");
+  return to_object<Path>(py::module_::import("pathpace.paths").attr("as_path")(path_arg), "path", "Path");
+}
+
 std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object grid, py::handle tolerance_arg) {
-  auto path = to_object<Path>(path_arg, "path", "Path");
+  auto path = to_path(path_arg);
   const double grid_tolerance = to_double(tolerance_arg, "grid_tolerance");
   if (py::isinstance<py::str>(grid)) {
     const std::string g = grid.cast<std::string>();

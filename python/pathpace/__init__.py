@@ -31,6 +31,7 @@ from ._core import (
 )
 
 from .batch import solve_many
+from .paths import as_path
 
 try:
     __version__ = _version("pathpace")
@@ -38,6 +39,7 @@ except PackageNotFoundError:  # running from a source tree
     __version__ = "0.0.0"
 
 __all__ = [
+    "as_path",
     "auto_grid",
     "AccelerationLimits",
     "Constraint",

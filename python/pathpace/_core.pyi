@@ -32,7 +32,13 @@ class Path:
 
     Joint coordinates q are in rad (revolute) or m (prismatic); s is dimensionless, so p' = dq/ds and
     p'' = d²q/ds² are in rad (or m) per unit s. Implementations are immutable after construction and safe
-    to evaluate from several threads at once.
+    to evaluate from several threads at once. ``path(s, order)`` evaluates it as toppra's interpolators do.
+
+    A Python subclass defines ``dof``, ``s_begin``, ``s_end`` (attributes or properties) and ``evaluate(s)``:
+    given a float array s of shape (m,), clamped to the domain, it returns (q, dq, ddq), each (m, n) (or (m,)
+    when n = 1). It is called once per batch of s, from any thread; its results are checked (shape, finite).
+    To pickle, define ``__reduce__``. ``pathpace.as_path`` builds such paths from callables and from toppra-style
+    interpolators.
 
     Attributes
     ----------
@@ -43,6 +49,7 @@ class Path:
     s_end : float
         Last value of s.
     """
+    def __init__(self) -> None: ...
     @property
     def dof(self) -> int:
         """int: Number of coordinates n of q."""
@@ -71,6 +78,20 @@ class Path:
         """p''(s) = d²q/ds²: (n,) for a scalar s, (m, n) for an array."""
     def evaluate(self, s: float | ArrayLike) -> tuple[Array, Array, Array]:
         """(p(s), p'(s), p''(s)) at once; shapes as in ``q``."""
+    def __call__(self, s: float | ArrayLike, order: int = 0) -> Array:
+        """p(s) (order 0), p'(s) (1) or p''(s) (2), as toppra's ``path(s, order)``.
+
+        Parameters
+        ----------
+        s : float or array_like (m,)
+            Path parameter, clamped to [s_begin, s_end].
+        order : {0, 1, 2}
+
+        Returns
+        -------
+        ndarray
+            (n,) for a scalar s, (m, n) for an array.
+        """
 
 class PiecewisePolynomialPath(Path):
     """Polynomial pieces between breakpoints.
@@ -1401,7 +1422,9 @@ class TimeScalingProblem:
 
     Parameters
     ----------
-    path : Path
+    path : Path or path-like
+        A pathpace Path, or anything ``pathpace.as_path`` takes: a scipy PPoly / CubicSpline / BSpline, a toppra
+        interpolator, a callable f(s) -> (q, dq, ddq).
     grid : int, array_like (N+1,) or 'auto'
         N uniform intervals over the path, a strictly increasing grid from s_begin to s_end, or 'auto'
         (pathpace.auto_grid(path, grid_tolerance): refined where the path bends; the N used is
@@ -1422,7 +1445,7 @@ class TimeScalingProblem:
     joint_names : list of str
         See ``set_joint_names``.
     """
-    def __init__(self, path: Path, grid: int | str | ArrayLike = 100, grid_tolerance: float = 1e-3) -> None: ...
+    def __init__(self, path: Path | Any, grid: int | str | ArrayLike = 100, grid_tolerance: float = 1e-3) -> None: ...
     def add_velocity_limits(self, vmin: ArrayLike, vmax: ArrayLike) -> None:
         """Joint velocity limits (eq. 13); see VelocityLimits.
 

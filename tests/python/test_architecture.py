@@ -4,6 +4,8 @@
   folders of earlier layers only.
 - Nothing outside cpp/src/constraints asks a constraint for its concrete type: constraints tell the problem
   what it needs through Constraint's virtual hooks.
+- Nothing outside cpp/src/paths asks a path for its concrete type: Path::polynomial() gives the polynomial
+  pieces of a path that has them (issue 22).
 - No function over ~150 lines and no file over ~700, unless the file says why: a comment containing
   "long file:" (the file) or "long function:" on the line before a function's definition.
 """
@@ -20,7 +22,9 @@ SRC = ROOT / "cpp" / "src"
 LAYERS = ["base", "paths", "geometry", "lp", "robot", "constraints", "solve", "result", "problem"]
 CONSTRAINT_TYPES = ("Constraint", "VelocityLimits", "AccelerationLimits", "LinearConstraint", "TorqueLimits",
                     "ContactConstraint")
+PATH_TYPES = ("Path", "PiecewisePolynomialPath", "CubicSplinePath", "SampledPath", "SubPath")
 MAX_FUNCTION, MAX_FILE = 150, 700
+CAST = re.compile(r"dynamic(?:_pointer)?_cast\s*<\s*(?:const\s+)?(?:pathpace::)?(?:detail::)?(\w+)|typeid\s*\(")
 
 
 def sources():
@@ -46,19 +50,34 @@ def test_dependencies_go_one_way():
     assert not wrong, "\n".join(wrong)
 
 
-def test_no_constraint_type_asked_outside_the_constraints():
-    cast = re.compile(r"dynamic(?:_pointer)?_cast\s*<\s*(?:const\s+)?(?:pathpace::)?(\w+)|typeid\s*\(")
+def casts_outside(folder: str, types: tuple[str, ...]) -> list[str]:
+    """Lines outside cpp/src/<folder> that cast to one of `types` (or use typeid)."""
     found = []
     for p in list(sources()) + sorted((ROOT / "cpp" / "bindings").glob("*.[ch]pp")):
-        if p.parent.name == "constraints":
+        if p.parent.name == folder and p.parent.parent == SRC:
             continue
         for line_no, line in enumerate(p.read_text().splitlines(), 1):
             if "get_type_info(typeid(" in line:
                 continue  # pybind11's own lookup of a trampoline's Python object, not a dispatch on the type
-            for m in cast.finditer(line):
-                if m.group(1) is None or m.group(1) in CONSTRAINT_TYPES:
+            for m in CAST.finditer(line):
+                if m.group(1) is None or m.group(1) in types:
                     found.append(f"{p.relative_to(ROOT)}:{line_no}: {line.strip()}")
+    return found
+
+
+def test_no_constraint_type_asked_outside_the_constraints():
+    found = casts_outside("constraints", CONSTRAINT_TYPES)
     assert not found, "\n".join(found)
+
+
+def test_no_path_type_asked_outside_the_paths():
+    found = casts_outside("paths", PATH_TYPES)
+    assert not found, "\n".join(found)
+
+
+def test_cast_pattern_sees_path_casts():
+    line = "if (auto pp = std::dynamic_pointer_cast<const PiecewisePolynomialPath>(path_)) x();"
+    assert [m.group(1) for m in CAST.finditer(line)] == ["PiecewisePolynomialPath"]
 
 
 def function_lengths(text: str):

@@ -6,12 +6,14 @@
 
 namespace pathpace {
 
+class PiecewisePolynomialPath;
+
 // docstrings.txt @@ Path
 /// @brief A geometric path q = p(s) for s in [s_begin, s_end] (abstract).
 ///
 /// Joint coordinates q are in rad (revolute) or m (prismatic); s is dimensionless, so p' = dq/ds and
 /// p'' = d²q/ds² are in rad (or m) per unit s. Implementations are immutable after construction and safe
-/// to evaluate from several threads at once.
+/// to evaluate from several threads at once. `path(s, order)` evaluates it as toppra's interpolators do.
 class Path {
  public:
   virtual ~Path() = default;
@@ -38,6 +40,11 @@ class Path {
   /// The default calls the single-point evaluate; paths can do better.
   virtual void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
                 Eigen::MatrixXd& ddq) const;
+
+  /// The path as polynomial pieces when it is one (CubicSplinePath, SampledPath, ...), else nullptr. What needs
+  /// the pieces asks this, never the concrete type: exact bounds between grid points (guarantee = continuous),
+  /// breakpoints in the automatic grid, the exact tail of a restart.
+  virtual const PiecewisePolynomialPath* polynomial() const { return nullptr; }
 
   // docstrings.txt @@ Path.q
   /// @brief p(s).

@@ -30,6 +30,7 @@ class PiecewisePolynomialPath : public Path {
                 Eigen::Ref<Eigen::VectorXd> ddq) const override;
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
                 Eigen::MatrixXd& ddq) const override;
+  const PiecewisePolynomialPath* polynomial() const override { return this; }
 
   const Eigen::VectorXd& breakpoints() const { return breakpoints_; }
   const std::vector<Eigen::MatrixXd>& coefficients() const { return coefficients_; }

@@ -90,9 +90,11 @@ class TimeScalingProblem {
   };
 
   // docstrings.txt @@ TimeScalingProblem.__init__
+  /// @param path The path, shared (immutable: the problem keeps the pointer).
   /// @param intervals N >= 1 uniform intervals over [s_begin, s_end] of the path.
   TimeScalingProblem(std::shared_ptr<const Path> path, int intervals);
   // docstrings.txt @@ TimeScalingProblem.__init__
+  /// @param path The path, shared (immutable: the problem keeps the pointer).
   /// @param grid A strictly increasing grid; its ends must be the path's s_begin and s_end (to 1e-12 relative).
   TimeScalingProblem(std::shared_ptr<const Path> path, Eigen::VectorXd grid);
 

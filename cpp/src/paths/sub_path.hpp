@@ -23,6 +23,7 @@ class SubPath final : public Path {
                 Eigen::MatrixXd& ddq) const override {
     parent_->evaluate(s.cwiseMax(s0_), q, dq, ddq);  // the parent's batch evaluation, if it has a fast one
   }
+  const std::shared_ptr<const Path>& parent() const { return parent_; }
 
  private:
   std::shared_ptr<const Path> parent_;
@@ -53,6 +54,14 @@ inline std::shared_ptr<const PiecewisePolynomialPath> polynomial_tail(const Piec
     c[0].row(m) = v;
   }
   return std::make_shared<PiecewisePolynomialPath>(std::move(b), std::move(c));
+}
+
+/// The tail [s0, s_end] of any path (s0 in [s_begin, s_end)): the path itself at s0 = s_begin, polynomial
+/// pieces again for a polynomial path, otherwise a SubPath evaluating the parent.
+inline std::shared_ptr<const Path> path_tail(std::shared_ptr<const Path> path, double s0) {
+  if (s0 == path->s_begin()) return path;
+  if (const PiecewisePolynomialPath* pp = path->polynomial()) return polynomial_tail(*pp, s0);
+  return std::make_shared<SubPath>(std::move(path), s0);
 }
 
 }  // namespace pathpace::detail

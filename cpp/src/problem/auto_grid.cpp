@@ -22,7 +22,7 @@ Eigen::VectorXd auto_grid(const Path& path, double tolerance, int min_intervals,
   std::vector<double> s(static_cast<size_t>(min_intervals) + 1);
   for (int i = 0; i <= min_intervals; ++i) s[static_cast<size_t>(i)] = a + (b - a) * i / min_intervals;
   s.back() = b;
-  if (const auto* pp = dynamic_cast<const PiecewisePolynomialPath*>(&path))
+  if (const PiecewisePolynomialPath* pp = path.polynomial())
     for (Eigen::Index i = 1; i + 1 < pp->breakpoints().size(); ++i) s.push_back(pp->breakpoints()[i]);
   std::sort(s.begin(), s.end());
   // Points closer than rounding would make intervals of zero width.

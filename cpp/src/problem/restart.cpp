@@ -6,7 +6,6 @@
 
 #include "paths/sub_path.hpp"
 #include "base/validate.hpp"
-#include "pathpace/piecewise_polynomial_path.hpp"
 
 namespace pathpace {
 
@@ -30,10 +29,7 @@ TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const 
     g.push_back(samples_.s[k]);
     kept.push_back(k);
   }
-  std::shared_ptr<const Path> tail;
-  if (s0 == a) tail = path_;
-  else if (auto pp = std::dynamic_pointer_cast<const PiecewisePolynomialPath>(path_)) tail = detail::polynomial_tail(*pp, s0);
-  else tail = std::make_shared<detail::SubPath>(path_, s0);
+  std::shared_ptr<const Path> tail = s0 == a ? path_ : detail::path_tail(path_, s0);
   TimeScalingProblem p(std::move(tail), Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())));
   for (const auto& c : constraints_) {
     if (!c->per_grid_point()) {

@@ -32,10 +32,11 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   bool any = false;
   for (const auto& c : constraints) any = any || c->joint_rate_limits().order != 0;
   if (!any) return;
-  const auto* pp = dynamic_cast<const PiecewisePolynomialPath*>(&path);
+  const PiecewisePolynomialPath* pp = path.polynomial();
   if (!pp)
     fail("guarantee = 'continuous' bounds velocity and acceleration between grid points on piecewise-polynomial "
-         "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath); this path is not one");
+         "paths (CubicSplinePath, PiecewisePolynomialPath, SampledPath, scipy and toppra splines through as_path); "
+         "this path has no polynomial pieces (a callback path: sample it into a SampledPath)");
   const IntervalRows ir = interval_rows(*pp, samples.s);
   const double inf = std::numeric_limits<double>::infinity();
   const size_t own = rows.size();  // rows[i] are constraints[i]'s grid rows (for their labels)
