@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
+#include "pathpace/constraints/second_order_constraint.hpp"
 #include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
@@ -99,6 +100,14 @@ class TimeScalingProblem {
   void add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                              const Eigen::MatrixXd& lo, const Eigen::MatrixXd& hi,
                              const std::string& label = "linear");
+  /// Torque limits tau_min <= id(q, q̇, q̈) <= tau_max from the user's own inverse dynamics, vectorised over
+  /// samples (SecondOrderConstraint::torque_limits: family "torque", labels from the joint names).
+  void add_torque_limits(SecondOrderFunctions::InverseDynamics inverse_dynamics, const Eigen::VectorXd& tau_min,
+                         const Eigen::VectorXd& tau_max, double scale = 1.0, double margin = 0.0);
+  /// F(q) w <= g(q) with w = id(q, q̇, q̈) (SecondOrderConstraint; toppra's SecondOrderConstraint, with
+  /// functions vectorised over samples).
+  void add_second_order_constraint(SecondOrderFunctions::InverseDynamics inverse_dynamics, SecondOrderFunctions::OfQ F,
+                                   SecondOrderFunctions::OfQ g, const SecondOrderOptions& options = SecondOrderOptions());
   /// Any constraint; its rows are evaluated now, so errors surface here.
   void add_constraint(std::shared_ptr<const Constraint> constraint);
 
