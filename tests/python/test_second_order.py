@@ -300,10 +300,12 @@ def test_callable_F_and_constant_F_agree():
 DATA = __import__("pathlib").Path(__file__).resolve().parents[1] / "data"
 
 
-def test_alongside_contact_phases_it_is_the_built_in_acceleration_limits():
+@pytest.mark.parametrize("N", [20, 7])
+def test_alongside_contact_phases_it_is_the_built_in_acceleration_limits(N):
     """hand_box.urdf: a hand pushes a box then brakes it; contacts and torque limits allow |s̈| <= 2. A callback
     w = q̈ with |w| <= 1.5 is the acceleration limit's second-order form: the same duration as the built-in
-    limit beside the same contacts (1e-12), and slower than the contacts alone."""
+    limit beside the same contacts (1e-12), and slower than the contacts alone. N = 7: the switch s = 1 is no
+    grid point, so it is inserted and the callback evaluated again on the new grid."""
     robot = pp.RobotModel.from_urdf(str(DATA / "hand_box.urdf"))
     hand = robot.joint_names.index("hand_x")
     lo, hi = np.zeros(2), np.zeros(2)
@@ -315,13 +317,14 @@ def test_alongside_contact_phases_it_is_the_built_in_acceleration_limits():
     s = np.linspace(0.0, 2.0, 3)
     path = pp.CubicSplinePath(np.column_stack([s, s]), knots=s)
     phases = [(0.0, 1.0, on_box(1)), (1.0, 2.0, on_box(-1))]
-    probs = [pp.TimeScalingProblem(path, grid=20) for _ in range(3)]
+    probs = [pp.TimeScalingProblem(path, grid=N) for _ in range(3)]
+    F = np.vstack([np.eye(2), -np.eye(2)])
+    probs[0].add_second_order_constraint(accelerations, F, np.full(4, 1.5))  # before the phases: re-evaluated
+    probs[1].add_acceleration_limits([-1.5, -1.5], [1.5, 1.5])
     for p in probs:
         p.add_contact_phases(robot, phases, cone_edges=4, tau_min=lo, tau_max=hi)
-    F = np.vstack([np.eye(2), -np.eye(2)])
-    probs[0].add_second_order_constraint(accelerations, F, np.full(4, 1.5))
-    probs[1].add_acceleration_limits([-1.5, -1.5], [1.5, 1.5])
     r0, r1, r2 = (ok(p.solve()) for p in probs)
+    assert len(probs[0].grid) == (N + 1 if N == 20 else N + 2)
     assert r0.duration == pytest.approx(r1.duration, rel=1e-12, abs=0)
     assert r0.duration > r2.duration * (1 + 1e-3)
     assert r0.trajectory().contact_phases  # the contacts still shape the result
