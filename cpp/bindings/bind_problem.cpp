@@ -10,6 +10,7 @@
 #include "contact_options.hpp"
 #include "convert.hpp"
 #include "docstrings.hpp"
+#include "second_order.hpp"
 #include "pathpace/auto_grid.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
@@ -211,16 +212,33 @@ void bind_problem_kinematics(ProblemClass& cls) {
                                 to_string_arg(label, "label"));
       }, "A"_a, "B"_a, "C"_a, "lo"_a, "hi"_a, "label"_a = "linear", doc::TimeScalingProblem_add_linear_constraint)
       .def("add_torque_limits", [](TimeScalingProblem& p, py::handle robot, py::object tau_min, py::object tau_max,
-                                   py::handle scale, py::handle margin) {
-        Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
-        Eigen::VectorXd hi = optional_vector(tau_max, "tau_max");
-        auto c = std::make_shared<TorqueLimits>(to_object<RobotModel>(robot, "robot", "RobotModel"), lo, hi,
-                                                to_double(scale, "scale"), to_double(margin, "margin"));
+                                   py::handle scale, py::handle margin, py::handle inverse_dynamics, py::handle vectorized) {
+        std::shared_ptr<const Constraint> c;
+        if (!inverse_dynamics.is_none()) {
+          if (!robot.is_none())
+            throw InvalidInput("add_torque_limits: robot = " + py::repr(robot).cast<std::string>() +
+                               " and inverse_dynamics given: give one (the robot's own dynamics, or yours)");
+          c = callback_torque_limits(inverse_dynamics, tau_min, tau_max, scale, margin, vectorized, p.joint_names());
+        } else {
+          Eigen::VectorXd lo = optional_vector(tau_min, "tau_min");
+          Eigen::VectorXd hi = optional_vector(tau_max, "tau_max");
+          c = std::make_shared<TorqueLimits>(to_object<RobotModel>(robot, "robot", "RobotModel"), lo, hi,
+                                             to_double(scale, "scale"), to_double(margin, "margin"));
+        }
         const Use use(p, Use::Write, "add_torque_limits");  // its name in the error, not add_constraint's
         py::gil_scoped_release release;                      // its rows may take long to evaluate
         p.add_constraint(std::move(c));
-      }, "robot"_a, "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0,
+      }, "robot"_a = py::none(), "tau_min"_a = py::none(), "tau_max"_a = py::none(), "scale"_a = 1.0, "margin"_a = 0.0,
+         py::kw_only(), "inverse_dynamics"_a = py::none(), "vectorized"_a = true,
          doc::TimeScalingProblem_add_torque_limits)
+      .def("add_second_order_constraint", [](TimeScalingProblem& p, py::handle inverse_dynamics, py::handle F, py::handle g,
+                                             py::handle name, py::handle labels, py::handle family, py::handle vectorized) {
+        std::shared_ptr<const Constraint> c = callback_second_order(inverse_dynamics, F, g, name, labels, family, vectorized);
+        const Use use(p, Use::Write, "add_second_order_constraint");
+        py::gil_scoped_release release;
+        p.add_constraint(std::move(c));
+      }, "inverse_dynamics"_a, "F"_a, "g"_a, py::kw_only(), "name"_a = "second-order constraint", "labels"_a = py::none(),
+         "family"_a = "second order", "vectorized"_a = true, doc::TimeScalingProblem_add_second_order_constraint)
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         auto constraint = to_object<Constraint>(c, "constraint", "Constraint");
         py::gil_scoped_release release;

@@ -20,6 +20,7 @@ void bind_constraint_base(py::module_& m);  // Constraint, PathSamples, Constrai
 void bind_constraints(py::module_& m);
 void bind_robot(py::module_& m);
 void bind_torque_limits(py::module_& m);  // bind_constraints.cpp
+void bind_second_order(py::module_& m);
 void bind_contacts(py::module_& m);
 void bind_trajectory(py::module_& m);
 void bind_result(py::module_& m);
@@ -64,6 +65,7 @@ PYBIND11_MODULE(_core, m) {
   pathpace::python::bind_constraints(m);
   pathpace::python::bind_robot(m);
   pathpace::python::bind_torque_limits(m);
+  pathpace::python::bind_second_order(m);
   pathpace::python::bind_contacts(m);
   pathpace::python::bind_trajectory(m);
   pathpace::python::bind_result(m);

@@ -1,7 +1,7 @@
 """Type stubs for the compiled module pathpace._core."""
 
 from enum import Enum
-from typing import Any, overload
+from typing import Any, Callable, overload
 
 import os
 
@@ -468,6 +468,111 @@ class TorqueLimits(Constraint):
     @property
     def tau_max(self) -> Array:
         """ndarray (nq,): After scale and margin."""
+
+class SecondOrderConstraint(Constraint):
+    """F(q) w <= g(q) with w = inverse_dynamics(q, q̇, q̈): toppra's second-order constraint (friction cones,
+    an object held by a gripper, a tray that must not slip, torque limits).
+
+    w = A(q) q̈ + q̇ᵀB(q) q̇ + f(q) is quadratic in q̇ and linear in q̈, so on the path (q = p, q̇ = p' ṡ,
+    q̈ = p' s̈ + p'' ṡ², eq. 10-12) three evaluations per grid point give w = a ṡ² + b s̈ + c:
+    c = id(p, 0, 0), b = id(p, 0, p') - c, a = id(p, p', p'') - c; the rows are (F a) ṡ² + (F b) s̈ <= g - F c.
+    All 3(N+1) evaluations are one call of inverse_dynamics, and F and g are called once each with the N+1
+    samples of q: vectorise them (numpy), since a call per sample costs more than the solve.
+
+    The callables are called from the solver's threads (the GIL taken for each call), again during
+    ``solve(guarantee='continuous')``, whose audit samples the rows between grid points, and on a restart or
+    a contact switch (new grid points). What they return is checked (shapes, finite w and F, g a number or
+    +inf): InvalidInputError names the callable, the grid point and s. An exception they raise comes out of
+    the pathpace call as it was. The constraint pickles when its callables do (module-level functions, or
+    objects with ``__reduce__``); pickle.PicklingError names the one that does not.
+
+    Differences from toppra's ``SecondOrderConstraint(inv_dyn, constraint_F, constraint_g, dof)``: the same
+    order and meaning of the first three arguments, but vectorised (``vectorized=False`` takes toppra's
+    per-sample functions unchanged), F and g may be constant arrays, no ``dof`` (the path's), no
+    ``custom_term`` (put it in inverse_dynamics) and no discretization scheme (rows hold at the grid points;
+    ``guarantee='continuous'`` holds them between).
+
+    Parameters
+    ----------
+    inverse_dynamics : callable
+        w = f(q, qd, qdd): arrays (m, n) -> (m, nw).
+    F : callable or array_like (r, nw)
+        F(q): (m, n) -> (m, r, nw), or constant.
+    g : callable or array_like (r,)
+        g(q): (m, n) -> (m, r), or constant; +inf for an absent row.
+    name : str
+        Names the constraint in messages, and its rows "<name> row j".
+    labels : list of str, optional
+        One per row of F, for infeasibility reports and Result.binding.
+    family : str
+        relaxation() widens g row by row about zero under this family ("" : not relaxed).
+    vectorized : bool
+        False: the callables take one sample (q (n,) -> w (nw,), F (r, nw), g (r,)), called per sample.
+
+    Attributes
+    ----------
+    inverse_dynamics : callable
+        As given.
+    F, g : callable or ndarray
+        As given; None for torque_limits.
+    vectorized : bool
+    tau_min, tau_max : ndarray (n,) or None
+        torque_limits' limits after scale and margin; None otherwise.
+    """
+    def __init__(
+        self,
+        inverse_dynamics: Callable[..., Any],
+        F: Callable[..., Any] | ArrayLike,
+        g: Callable[..., Any] | ArrayLike,
+        *,
+        name: str = "second-order constraint",
+        labels: list[str] | None = None,
+        family: str = "second order",
+        vectorized: bool = True,
+    ) -> None: ...
+    @staticmethod
+    def torque_limits(
+        inverse_dynamics: Callable[..., Any],
+        tau_min: ArrayLike,
+        tau_max: ArrayLike,
+        *,
+        scale: float = 1.0,
+        margin: float = 0.0,
+        vectorized: bool = True,
+    ) -> SecondOrderConstraint:
+        """Torque limits tau_min <= inverse_dynamics(q, q̇, q̈) <= tau_max (eq. 15) from your own dynamics: F =
+        [e_0; -e_0; e_1; ...], g = [τ_max,0; -τ_min,0; ...] (TorqueLimits' rows, in its order), family "torque",
+        labels "torque <joint> upper/lower" (the problem's joint names, "joint j" without).
+
+        Parameters
+        ----------
+        inverse_dynamics : callable
+            τ = f(q, qd, qdd): arrays (m, n) -> (m, n).
+        tau_min, tau_max : array_like (n,)
+            N·m (N); ±inf for none.
+        scale, margin : float
+            The limits are scale·[tau_min, tau_max] shrunk by margin on each side (as TorqueLimits).
+        vectorized : bool
+            False: f takes one sample.
+        """
+    @property
+    def inverse_dynamics(self) -> Callable[..., Any]:
+        """callable: As given."""
+    @property
+    def F(self) -> Callable[..., Any] | Array | None:
+        """callable or ndarray: As given; None for torque_limits."""
+    @property
+    def g(self) -> Callable[..., Any] | Array | None:
+        """callable or ndarray: As given; None for torque_limits."""
+    @property
+    def vectorized(self) -> bool:
+        """bool"""
+    @property
+    def tau_min(self) -> Array | None:
+        """ndarray (n,) or None: torque_limits' limits after scale and margin; None otherwise."""
+    @property
+    def tau_max(self) -> Array | None:
+        """ndarray (n,) or None: torque_limits' limits after scale and margin; None otherwise."""
 
 class Contact:
     """A point contact with Coulomb friction: a point fixed in a link (link coordinates) touching the world, or
@@ -1468,23 +1573,48 @@ class TimeScalingProblem:
         """lo <= A·ṡ² + B·s̈ + C <= hi per grid point; arrays (N+1, r). See LinearConstraint."""
     def add_torque_limits(
         self,
-        robot: RobotModel,
+        robot: RobotModel | None = None,
         tau_min: ArrayLike | None = None,
         tau_max: ArrayLike | None = None,
         scale: float = 1.0,
         margin: float = 0.0,
+        *,
+        inverse_dynamics: Callable[..., Any] | None = None,
+        vectorized: bool = True,
     ) -> None:
-        """Torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15).
+        """Torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15), from the robot's model or from your own
+        inverse dynamics.
 
         Parameters
         ----------
-        robot : RobotModel
+        robot : RobotModel, optional
+            Our RNEA on its URDF (TorqueLimits). Give robot or inverse_dynamics, not both.
         tau_min, tau_max : array_like (nq,), optional
-            N·m; default ∓ the URDF effort.
+            N·m; default ∓ the URDF effort (required with inverse_dynamics).
         scale : float
             Multiplies the limits (sec. V.D).
         margin : float
             N·m taken off each side.
+        inverse_dynamics : callable, optional
+            τ = f(q, qd, qdd) of your own model (MuJoCo, Drake, pinocchio, ...), vectorised: arrays (m, n) in,
+            (m, n) out, one call for all 3(N+1) evaluations of eq. 12. The rows are
+            SecondOrderConstraint.torque_limits' (family "torque", labels "torque <joint> upper/lower").
+        vectorized : bool
+            False: f takes and returns one sample (n,) (toppra's convention), called once per sample.
+        """
+    def add_second_order_constraint(
+        self,
+        inverse_dynamics: Callable[..., Any],
+        F: Callable[..., Any] | ArrayLike,
+        g: Callable[..., Any] | ArrayLike,
+        *,
+        name: str = "second-order constraint",
+        labels: list[str] | None = None,
+        family: str = "second order",
+        vectorized: bool = True,
+    ) -> None:
+        """F(q) w <= g(q) with w = inverse_dynamics(q, q̇, q̈) along the path: a SecondOrderConstraint (see it for the
+        arguments and what the callables receive), added as add_constraint does.
         """
     def add_contacts(
         self,

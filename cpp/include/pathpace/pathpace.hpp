@@ -11,6 +11,7 @@
 #include "pathpace/contact_forces.hpp"
 #include "pathpace/contact_wrenches.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
+#include "pathpace/constraints/second_order_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
 #include "pathpace/cubic_spline_path.hpp"

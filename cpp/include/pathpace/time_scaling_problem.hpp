@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
+#include "pathpace/constraints/second_order_constraint.hpp"
 #include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
@@ -113,6 +114,23 @@ class TimeScalingProblem {
   void add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                              const Eigen::MatrixXd& lo, const Eigen::MatrixXd& hi,
                              const std::string& label = "linear");
+  // docstrings.txt @@ TimeScalingProblem.add_torque_limits
+  /// @brief Torque limits τ_min <= τ <= τ_max along the path (eq. 12, 15), from the robot's model or from your own
+  /// inverse dynamics.
+  ///
+  /// @param inverse_dynamics τ = f(q, qd, qdd) of your own model (MuJoCo, Drake, pinocchio, ...), vectorised: arrays
+  ///   (m, n) in, (m, n) out, one call for all 3(N+1) evaluations of eq. 12. The rows are
+  ///   SecondOrderConstraint.torque_limits' (family "torque", labels "torque <joint> upper/lower").
+  /// @param tau_min,tau_max (nq,): N·m; default ∓ the URDF effort (required with inverse_dynamics).
+  /// @param scale Multiplies the limits (sec. V.D).
+  /// @param margin N·m taken off each side.
+  void add_torque_limits(SecondOrderFunctions::InverseDynamics inverse_dynamics, const Eigen::VectorXd& tau_min,
+                         const Eigen::VectorXd& tau_max, double scale = 1.0, double margin = 0.0);
+  // docstrings.txt @@ TimeScalingProblem.add_second_order_constraint
+  /// @brief F(q) w <= g(q) with w = inverse_dynamics(q, q̇, q̈) along the path: a SecondOrderConstraint (see it for the
+  /// arguments and what the callables receive), added as add_constraint does.
+  void add_second_order_constraint(SecondOrderFunctions::InverseDynamics inverse_dynamics, SecondOrderFunctions::OfQ F,
+                                   SecondOrderFunctions::OfQ g, const SecondOrderOptions& options = SecondOrderOptions());
   // docstrings.txt @@ TimeScalingProblem.add_constraint
   /// @brief Adds any Constraint; its rows are evaluated now, so errors surface here.
   void add_constraint(std::shared_ptr<const Constraint> constraint);

@@ -58,6 +58,22 @@ void TimeScalingProblem::add_linear_constraint(const Eigen::MatrixXd& A, const E
   add_constraint(std::make_shared<LinearConstraint>(A, B, C, lo, hi, label));
 }
 
+void TimeScalingProblem::add_torque_limits(SecondOrderFunctions::InverseDynamics inverse_dynamics,
+                                           const Eigen::VectorXd& tau_min, const Eigen::VectorXd& tau_max, double scale,
+                                           double margin) {
+  const Use use(*this, Use::Write, "add_torque_limits");
+  auto f = std::make_shared<SecondOrderFunctions>();
+  f->inverse_dynamics = std::move(inverse_dynamics);
+  add_constraint(SecondOrderConstraint::torque_limits(std::move(f), tau_min, tau_max, scale, margin, joint_names_));
+}
+
+void TimeScalingProblem::add_second_order_constraint(SecondOrderFunctions::InverseDynamics inverse_dynamics,
+                                                     SecondOrderFunctions::OfQ F, SecondOrderFunctions::OfQ g,
+                                                     const SecondOrderOptions& options) {
+  const Use use(*this, Use::Write, "add_second_order_constraint");
+  add_constraint(std::make_shared<SecondOrderConstraint>(std::move(inverse_dynamics), std::move(F), std::move(g), options));
+}
+
 void TimeScalingProblem::add_constraint(std::shared_ptr<const Constraint> constraint) {
   const Use use(*this, Use::Write, "add_constraint");
   if (!constraint) detail::fail("constraint must not be None");
