@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "pathpace/constraints/constraint.hpp"
+#include "pathpace/constraints/frame_limits.hpp"
 #include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
@@ -95,6 +96,19 @@ class TimeScalingProblem {
   void add_velocity_limits(const Eigen::VectorXd& vmin, const Eigen::VectorXd& vmax);
   /// See AccelerationLimits.
   void add_acceleration_limits(const Eigen::VectorXd& amin, const Eigen::VectorXd& amax);
+  /// ‖v‖ <= v_max (m/s) for `point` (link coordinates) on `link` of `robot`. See FrameLimits.
+  void add_frame_translational_speed_limit(std::shared_ptr<const RobotModel> robot, const std::string& link, double v_max,
+                                           const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
+  /// lo <= v <= hi per axis (3 entries each) for the point's linear velocity (m/s) or, if `angular`, the
+  /// link's angular velocity (rad/s), along the world's or the link's axes. See FrameLimits.
+  void add_frame_velocity_limits(std::shared_ptr<const RobotModel> robot, const std::string& link, const Eigen::VectorXd& lo,
+                                 const Eigen::VectorXd& hi, bool angular = false, FrameAxes axes = FrameAxes::World,
+                                 const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
+  /// lo <= a <= hi per axis for the point's classical acceleration (m/s²) or, if `angular`, the link's
+  /// angular acceleration (rad/s²). See FrameLimits.
+  void add_frame_acceleration_limits(std::shared_ptr<const RobotModel> robot, const std::string& link,
+                                     const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, bool angular = false,
+                                     FrameAxes axes = FrameAxes::World, const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
   /// lo <= A·x + B·u + C <= hi at each grid point; arrays of shape (N+1, r). See LinearConstraint.
   void add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                              const Eigen::MatrixXd& lo, const Eigen::MatrixXd& hi,
