@@ -125,7 +125,7 @@ class _Reader:
                 raise self.fail(f"{key}.{extra[0]}", f"unknown key (allowed: {', '.join(sorted(allowed))})")
         return value
 
-    def array(self, value: Any, key: str, ndim: int, size: int | None = None) -> np.ndarray:
+    def array(self, value: Any, key: str, ndim: int, size: int | None = None, per: str = "one per joint") -> np.ndarray:
         if ndim == 2 and isinstance(value, (list, tuple)) and value and all(isinstance(v, (list, tuple)) for v in value):
             for i, row in enumerate(value):  # ragged rows: name the first that differs from row 0
                 if len(row) != len(value[0]):
@@ -139,7 +139,7 @@ class _Reader:
         if a.ndim != ndim:
             raise self.fail(key, f"expected a {ndim}-D array of numbers, got shape {a.shape}")
         if size is not None and a.shape[-1] != size:
-            raise self.fail(key, f"has {a.shape[-1]} entries per row, expected {size} (one per joint)")
+            raise self.fail(key, f"has {a.shape[-1]} entries per row, expected {size} ({per})")
         return a
 
     def number(self, value: Any, key: str) -> float:
@@ -177,7 +177,8 @@ def _wrap(reader: _Reader, key: str, fn, *args, **kwargs):
         raise reader.fail(key, str(e)) from None
 
 
-def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | None, name: str):
+def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | None, name: str,
+            per: str = "one per joint"):
     """(min, max) from a list (symmetric), {min, max}, or {from: urdf, scale}."""
     if isinstance(value, dict):
         r.mapping(value, key, {"min", "max", "from", "scale"})
@@ -191,12 +192,12 @@ def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | 
             return -hi, hi
         if "max" not in value:
             raise r.fail(key, "expected 'max' (and optionally 'min'), or 'from: urdf'")
-        hi = scale * r.array(value["max"], f"{key}.max", 1, n)
-        lo = -hi if "min" not in value else scale * r.array(value["min"], f"{key}.min", 1, n)
+        hi = scale * r.array(value["max"], f"{key}.max", 1, n, per)
+        lo = -hi if "min" not in value else scale * r.array(value["min"], f"{key}.min", 1, n, per)
         return lo, hi
     if value == "urdf":
         return _limits(r, {"from": "urdf"}, key, n, urdf_values, name)
-    hi = r.array(value, key, 1, n)
+    hi = r.array(value, key, 1, n, per)
     return -hi, hi
 
 
@@ -226,7 +227,7 @@ def _frame_limits(r: _Reader, value: Any, robot: pp.RobotModel | None, prob: pp.
             if k == "speed":
                 lo, hi = None, r.number(fd[k], f"{key}.speed")
             else:
-                lo, hi = _limits(r, fd[k], f"{key}.{k}", 3, None, k)
+                lo, hi = _limits(r, fd[k], f"{key}.{k}", 3, None, k, per="one per axis x, y, z")
             c = _wrap(r, f"{key}.{k}", pp.FrameLimits, robot, fd["link"], _FRAME_QUANTITIES[k], lo, hi, frame=frame,
                       point=point)
             _wrap(r, f"{key}.{k}", prob.add_constraint, c)

@@ -407,19 +407,20 @@ def test_problem_file_frame_limits_by_link_name(tmp_path):
     assert spec.solve().duration == api.solve().duration
 
 
-@pytest.mark.parametrize("edit, needles", [
-    ("link: tool0", ("limits.frames[0]", "link 'tool9'"), ),
-    ("speed: 0.3", ("limits.frames[0].speed", "v_max = -1"), ),
-    ("frame: local", ("limits.frames[1].angular_velocity", "frame = 'body'"), ),
-    ("point: [0, 0, 0.1]", ("limits.frames[0]", "point has size 2"), ),
+@pytest.mark.parametrize("old, new, needles", [
+    ("link: tool0", "link: tool9", ("limits.frames[0].speed", "link 'tool9' is not a link of robot 'ur5'")),
+    ("speed: 0.3", "speed: -1", ("limits.frames[0].speed", "v_max = -1 must be > 0")),
+    ("frame: local", "frame: body", ("limits.frames[1].angular_velocity", "frame = 'body' must be 'world' or 'local'")),
+    ("point: [0, 0, 0.1]", "point: [0, 0.1]", ("limits.frames[0].speed", "point has size 2, expected 3")),
+    ("{max: [2, 2, 2]}", "{max: [2, 2]}", ("limits.frames[0].acceleration.max", "expected 3 (one per axis x, y, z)")),
+    ("      speed: 0.3\n", "      sped: 0.3\n", ("limits.frames[0].sped", "unknown key")),
 ])
-def test_problem_file_frame_errors_name_the_key(tmp_path, edit, needles):
+def test_problem_file_frame_errors_name_the_key(tmp_path, old, new, needles):
     from pathpace.problem_file import ProblemFileError, load_problem
 
-    bad = {"link: tool0": "link: tool9", "speed: 0.3": "speed: -1", "frame: local": "frame: body",
-           "point: [0, 0, 0.1]": "point: [0, 0.1]"}[edit]
     f = tmp_path / "bad.yaml"
-    f.write_text(YAML.replace(edit, bad, 1))
+    assert old in YAML
+    f.write_text(YAML.replace(old, new, 1))
     with pytest.raises(ProblemFileError) as e:
         load_problem(f)
     for n in needles:
@@ -480,3 +481,28 @@ def test_robot_must_fit_the_path(arm):
     prob = pp.TimeScalingProblem(circle_path(11), 10)
     with pytest.raises(pp.InvalidInputError, match="path has 2 coordinates, robot 'ur5' has 6 joints"):
         prob.add_frame_translational_speed_limit(robot, "tool0", 1.0)
+
+
+def test_with_contact_phases_and_an_inserted_switch():
+    # The hand pushes the box (a = 5 m/s²), then brakes it (tests/python/test_contact_phases.py); a hand speed
+    # limit v caps θ = ṡ² at v² (the hand moves at 1 m per unit s). grid = 7 puts the switch s = 1 off the
+    # grid: it is inserted and the frame limit evaluated again on the new grid. The discrete optimum is
+    # θ_k = min(2 a s_k, v², 2 a (2 - s_k)) (at the switch the cap holds on both sides).
+    from pathlib import Path
+
+    from oracles import duration
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    robot = pp.RobotModel.from_urdf(str(data / "hand_box.urdf"))
+    s = np.linspace(0.0, 2.0, 3)
+    prob = pp.TimeScalingProblem(pp.CubicSplinePath(np.column_stack([s, s]), knots=s), grid=7)
+    prob.add_frame_translational_speed_limit(robot, "hand", 1.5)
+    push = [pp.Contact("box", point=(0, 0, 0), normal=(1, 0, 0), friction=0.5, other_link="hand")]
+    brake = [pp.Contact("box", point=(0, 0, 0), normal=(-1, 0, 0), friction=0.5, other_link="hand")]
+    prob.add_contact_phases(robot, [(0.0, 1.0, push), (1.0, 2.0, brake)], cone_edges=4)
+    assert prob.grid.size == 9 and prob.grid[4] == 1.0
+    res = prob.solve()
+    assert res.ok
+    theta = np.minimum(np.minimum(10.0 * prob.grid, 1.5**2), 10.0 * (2.0 - prob.grid))
+    assert res.duration == pytest.approx(duration(prob.grid, theta), rel=1e-9)
+    assert np.max(res.sdot) == pytest.approx(1.5, rel=1e-9)
