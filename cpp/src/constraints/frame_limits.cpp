@@ -52,7 +52,8 @@ void check_limits(FrameQuantity quantity, const Eigen::VectorXd& lo, const Eigen
 Eigen::Vector3d in_axes(const Eigen::MatrixXd& m, const Eigen::MatrixXd& rot, Eigen::Index k, FrameAxes axes) {
   const Eigen::Vector3d v = m.row(k).transpose();
   if (axes == FrameAxes::World) return v;
-  const Eigen::Matrix3d R = Eigen::Map<const Eigen::Matrix3d>(rot.row(k).eval().data());
+  Eigen::Matrix3d R;
+  for (int j = 0; j < 9; ++j) R(j % 3, j / 3) = rot(k, j);
   return R.transpose() * v;
 }
 

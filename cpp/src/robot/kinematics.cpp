@@ -5,6 +5,7 @@
 
 #include "base/validate.hpp"
 #include "robot/bodies.hpp"
+#include "robot/joint_transform.hpp"
 
 namespace pathpace {
 
@@ -116,34 +117,32 @@ Eigen::MatrixXd RobotModel::frame_jacobian(const Eigen::VectorXd& q, const std::
 
 namespace {
 
-// The world state of one body's frame in the forward pass of path_frame_motion: rotation, origin, and the
-// origin's velocity and classical acceleration with the body's angular velocity and acceleration.
+// The world state of one body's frame in the forward pass of path_frame_motion: its rotation, its origin's
+// velocity and classical acceleration, the body's angular velocity and acceleration.
 struct FrameState {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d o = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero();
   Eigen::Vector3d w = Eigen::Vector3d::Zero(), al = Eigen::Vector3d::Zero();
 };
 
 // From the parent's state to body b's at (q, q̇, q̈) of its joint. The joint frame's origin sits at r (world
-// coordinates, from the parent's origin) and its world axis z turns with the parent (ż = ω_p × z), so
-// d/dt r = ω_p × r, plus z q̇ for a prismatic joint, whose slide is part of r.
+// coordinates, from the parent's origin; a prismatic joint's slide included) and its world axis z turns
+// with the parent (ż = ω_p × z), so d/dt r = ω_p × r, plus z q̇ for a prismatic joint.
 void advance(const Body& b, double q, double qd, double qdd, FrameState& f) {
-  const Eigen::Matrix3d Rt = f.R * b.E_tree.transpose();
-  const Eigen::Vector3d z = Rt * b.axis;
-  Eigen::Vector3d r = f.R * b.r_tree;
+  double E[9], rp[3];
+  detail::joint_transform(b, q, E, rp);  // parent -> body rotation, joint origin in parent coordinates
+  const Eigen::Matrix3d R = f.R * Eigen::Map<const Eigen::Matrix3d>(E).transpose();
+  const Eigen::Vector3d z = R * b.axis, r = f.R * Eigen::Map<const Eigen::Vector3d>(rp);
+  f.a += f.al.cross(r) + f.w.cross(f.w.cross(r));
+  f.v += f.w.cross(r);
   if (b.type == RobotModel::JointType::Revolute) {
-    f.a += f.al.cross(r) + f.w.cross(f.w.cross(r));
-    f.v += f.w.cross(r);
     f.al += f.w.cross(z) * qd + z * qdd;
     f.w += z * qd;
-    f.R = Rt * Eigen::AngleAxisd(q, b.axis).toRotationMatrix();
   } else {
-    r += z * q;
-    f.a += f.al.cross(r) + f.w.cross(f.w.cross(r)) + 2.0 * qd * f.w.cross(z) + z * qdd;
-    f.v += f.w.cross(r) + z * qd;
-    f.R = Rt;
+    f.a += 2.0 * qd * f.w.cross(z) + z * qdd;
+    f.v += z * qd;
   }
-  f.o += r;
+  f.R = R;
 }
 
 }  // namespace
