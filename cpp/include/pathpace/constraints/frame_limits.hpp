@@ -40,7 +40,8 @@ enum class FrameAxes { World, Local };
 ///    pair as joint acceleration limits (eq. 14). A bound on the norm of the acceleration is not a
 ///    half-plane in (x, u); it is not offered: bound it per axis.
 /// Between grid points the rows are left to guarantee = continuous's audit (joint_rate_limits() order 0),
-/// which evaluates them at interior points and cuts where the timing breaks them.
+/// which evaluates them at interior points and cuts where the timing breaks them (speed and velocity limits
+/// that bind along long stretches take many rounds at large N: bench/README.md, "Frame limits").
 ///
 /// Labels: "frame tool0 speed", "frame tool0 linear velocity x", "frame tool0 angular velocity local z",
 /// "frame tool0 linear acceleration z upper". Family "frame": relaxation() widens the limits about zero.
