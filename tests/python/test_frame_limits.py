@@ -348,14 +348,14 @@ def test_with_contacts_on_a_humanoid():
     h = cc.load("talos")
     path = cc.make_path(h, "lean")
     base = pp.TimeScalingProblem(path, 40)
-    base.add_contacts(h.robot, cc.contacts(h, "lean"), tau_min=None, tau_max=None)
+    base.add_contacts(h.robot, cc.contacts(h, "lean"), drift_tolerance=1e-5)  # the IK path keeps the soles to 3e-6 m
     free = base.solve()
     assert free.ok
     # The hand's speed along the free optimum, then a limit at half its peak: slower, and it holds at the grid.
     v_hand = h.robot.path_frame_motion(*path.evaluate(base.grid), h.hand)[0]
     peak = np.max(np.linalg.norm(v_hand, axis=1) * free.sdot)
     limited = pp.TimeScalingProblem(path, 40)
-    limited.add_contacts(h.robot, cc.contacts(h, "lean"))
+    limited.add_contacts(h.robot, cc.contacts(h, "lean"), drift_tolerance=1e-5)
     limited.add_frame_translational_speed_limit(h.robot, h.hand, 0.5 * peak)
     res = limited.solve()
     assert res.ok and res.duration > free.duration
@@ -506,3 +506,24 @@ def test_with_contact_phases_and_an_inserted_switch():
     theta = np.minimum(np.minimum(10.0 * prob.grid, 1.5**2), 10.0 * (2.0 - prob.grid))
     assert res.duration == pytest.approx(duration(prob.grid, theta), rel=1e-9)
     assert np.max(res.sdot) == pytest.approx(1.5, rel=1e-9)
+
+
+def test_a_mimic_joint_moves_the_point_as_in_pinocchio():
+    # The Panda with its fingers free: panda_finger_joint2 mimics panda_finger_joint1 (no coordinate of its
+    # own, nq = 8); pinocchio's model has both (nq = 9), given q2 = q1 and its rates.
+    urdf = str(example_robot_urdf("panda_description/urdf/panda.urdf"))
+    ours = pp.RobotModel.from_urdf(urdf)
+    assert ours.mimic_joints == [("panda_finger_joint2", "panda_finger_joint1", 1.0, 0.0)] and ours.nq == 8
+    point = np.array([0.01, -0.02, 0.03])
+    model, data, fid = pin_point_frame(pin.buildModelFromUrdf(urdf), "panda_rightfinger", point)
+    rng = np.random.default_rng(8)
+    Q, D, DD = rng.uniform(-1, 1, (3, 4, 8))
+    v_ours, w_ours, a_ours, al_ours = ours.path_frame_motion(Q, D, DD, "panda_rightfinger", point)
+    for k in range(4):
+        full = [np.append(x[k], x[k][7]) for x in (Q, D, DD)]
+        v, w, a, al = pin_motion(model, data, fid, *full, "world")
+        for ours_k, ref in ((v_ours[k], v), (w_ours[k], w), (a_ours[k], a), (al_ours[k], al)):
+            close(ours_k, ref, "mimic")
+        J = pin.computeFrameJacobian(model, data, full[0], fid, pin.LOCAL_WORLD_ALIGNED)
+        close(ours.frame_jacobian(Q[k], "panda_rightfinger", point), np.column_stack([J[:, :7], J[:, 7] + J[:, 8]]),
+              "mimic frame_jacobian")
