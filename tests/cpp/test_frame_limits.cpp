@@ -82,8 +82,8 @@ TEST(FrameLimits, RowsOfAPrismaticArmAreItsPolarClosedForm) {
   }
 }
 
-// Only the slider moves (q1 = 0): v = (b, 0, 0) along world x, so a limit [0, 0] forces ṡ = 0 and a limit
-// [-1, 0] (the point moves towards +x) too: rows b² x <= 0; [0, 1] leaves ṡ <= 1 / b.
+// Only the slider moves (q1 = 0): v = (b, 0, 0) along world x. The point moves towards +x, so [lo, hi] =
+// [-1, 0] forces ṡ = 0 (rows b² x <= 0, exactly), and [0, 1] leaves ṡ <= 1 / b (rows b² x <= 1).
 TEST(FrameLimits, TheSignOfThePointsVelocityPicksTheBound) {
   const auto robot = rp_arm();
   auto slide = std::make_shared<ClosedFormPath>(2, [](double s, Eigen::Ref<Eigen::VectorXd> q,
@@ -151,7 +151,7 @@ TEST(FrameLimits, HooksAndRelaxation) {
 
 TEST(FrameLimits, ValidationNamesArgumentAndValue) {
   const auto robot = rp_arm();
-  const Eigen::Vector3d lo(-1, -1, -1), hi(1, 1, 1), z = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d lo(-1, -1, -1), hi(1, 1, 1);
   TimeScalingProblem prob(polar_path(), 4);
   EXPECT_EQ(error_of([&] { prob.add_frame_translational_speed_limit(robot, "tool9", 1.0); }),
             "link 'tool9' is not a link of robot 'rp'");
@@ -173,7 +173,6 @@ TEST(FrameLimits, ValidationNamesArgumentAndValue) {
             "quantity = 'jerk' must be 'translational_speed', 'linear_velocity', 'angular_velocity', "
             "'linear_acceleration' or 'angular_acceleration'");
   EXPECT_TRUE(prob.constraints().empty());
-  (void)z;
 }
 
 }  // namespace
