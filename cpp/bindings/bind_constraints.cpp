@@ -6,9 +6,11 @@
 #include "convert.hpp"
 #include "docstrings.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
+#include "pathpace/constraints/frame_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/constraints/velocity_limits.hpp"
+#include "pathpace/path_samples.hpp"
 #include "pathpace/robot_model.hpp"
 
 namespace py = pybind11;
@@ -56,6 +58,52 @@ void bind_linear_constraint(py::module_& m) {
                       }));
 }
 
+void bind_frame_limits(py::module_& m) {
+  py::class_<FrameLimits, Constraint, py::smart_holder>(m, "FrameLimits", doc::FrameLimits)
+      .def(py::init([](py::handle robot, py::handle link, py::handle quantity, py::handle lo, py::handle hi,
+                       py::handle frame, py::handle point) {
+             const FrameQuantity q = frame_quantity(to_string_arg(quantity, "quantity"));
+             const bool speed = q == FrameQuantity::TranslationalSpeed;
+             return std::make_shared<FrameLimits>(to_object<RobotModel>(robot, "robot", "RobotModel"),
+                                                  to_string_arg(link, "link"), q, optional_vector(lo, "lo"),
+                                                  optional_vector(hi, speed ? "v_max" : "hi"),
+                                                  frame_axes(to_string_arg(frame, "frame")), to_point(point, "point"));
+           }),
+           "robot"_a, "link"_a, "quantity"_a, "lo"_a = py::none(), "hi"_a = py::none(), py::kw_only(), "frame"_a = "world",
+           "point"_a = py::make_tuple(0.0, 0.0, 0.0))
+      .def_property_readonly("robot", [](const FrameLimits& c) { return std::const_pointer_cast<RobotModel>(c.robot()); },
+                             doc::FrameLimits_robot)
+      .def_property_readonly("link", &FrameLimits::link, doc::FrameLimits_link)
+      .def_property_readonly("quantity", [](const FrameLimits& c) { return to_string(c.quantity()); }, doc::FrameLimits_quantity)
+      .def_property_readonly("frame", [](const FrameLimits& c) { return to_string(c.axes()); }, doc::FrameLimits_frame)
+      .def_property_readonly("lo", &FrameLimits::lo, doc::FrameLimits_lo)
+      .def_property_readonly("hi", &FrameLimits::hi, doc::FrameLimits_hi)
+      .def_property_readonly("point", &FrameLimits::point, doc::FrameLimits_point)
+      .def("evaluate_at", [](const FrameLimits& c, py::handle q, py::handle dq, py::handle ddq) {
+        PathSamples ps;
+        ps.q = to_matrix(q, "q");
+        ps.dq = to_matrix(dq, "dq");
+        ps.ddq = to_matrix(ddq, "ddq");
+        if (ps.dq.rows() != ps.q.rows() || ps.dq.cols() != ps.q.cols() || ps.ddq.rows() != ps.q.rows() ||
+            ps.ddq.cols() != ps.q.cols())
+          throw InvalidInput("q, dq and ddq must have the same shape (m, nq)");
+        ps.s = Eigen::VectorXd::LinSpaced(ps.q.rows(), 0.0, static_cast<double>(ps.q.rows() - 1));
+        py::gil_scoped_release release;
+        return c.evaluate(ps);
+      }, "q"_a, "dq"_a, "ddq"_a, doc::FrameLimits_evaluate_at)
+      .def(py::pickle([](const FrameLimits& c) {
+                        return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.link(), to_string(c.quantity()),
+                                              c.lo(), c.hi(), to_string(c.axes()), c.point());
+                      },
+                      [](const py::tuple& t) {
+                        check_state(t, 7, "FrameLimits");
+                        return std::make_shared<FrameLimits>(t[0].cast<std::shared_ptr<RobotModel>>(), t[1].cast<std::string>(),
+                                                             frame_quantity(t[2].cast<std::string>()), to_vector(t[3], "lo"),
+                                                             to_vector(t[4], "hi"), frame_axes(t[5].cast<std::string>()),
+                                                             to_point(t[6], "point"));
+                      }));
+}
+
 }  // namespace
 
 void bind_constraints(py::module_& m) {
@@ -89,6 +137,7 @@ void bind_torque_limits(py::module_& m) {
                         return std::make_shared<TorqueLimits>(t[0].cast<std::shared_ptr<RobotModel>>(), to_vector(t[1], "tau_min"),
                                                               to_vector(t[2], "tau_max"), 1.0, 0.0);
                       }));
+  bind_frame_limits(m);  // after RobotModel (bind_robot), which its constructor takes
 }
 
 }  // namespace pathpace::python

@@ -239,6 +239,40 @@ void bind_problem_kinematics(ProblemClass& cls) {
         p.add_constraint(std::move(c));
       }, "inverse_dynamics"_a, "F"_a, "g"_a, py::kw_only(), "name"_a = "second-order constraint", "labels"_a = py::none(),
          "family"_a = "second order", "vectorized"_a = true, doc::TimeScalingProblem_add_second_order_constraint)
+      .def("add_frame_translational_speed_limit", [](TimeScalingProblem& p, py::handle robot, py::handle link,
+                                                     py::handle v_max, py::handle point) {
+        auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
+        const std::string l = to_string_arg(link, "link");
+        const double v = to_double(v_max, "v_max");
+        const Eigen::Vector3d pt = to_point(point, "point");
+        py::gil_scoped_release release;
+        p.add_frame_translational_speed_limit(std::move(r), l, v, pt);
+      }, "robot"_a, "link"_a, "v_max"_a, py::kw_only(), "point"_a = py::make_tuple(0.0, 0.0, 0.0),
+         doc::TimeScalingProblem_add_frame_translational_speed_limit)
+      .def("add_frame_velocity_limits", [](TimeScalingProblem& p, py::handle robot, py::handle link, py::handle lo,
+                                           py::handle hi, py::handle angular, py::handle frame, py::handle point) {
+        auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
+        const std::string l = to_string_arg(link, "link");
+        const Eigen::VectorXd a = to_vector(lo, "lo"), b = to_vector(hi, "hi");
+        const bool ang = to_bool(angular, "angular");
+        const FrameAxes axes = frame_axes(to_string_arg(frame, "frame"));
+        const Eigen::Vector3d pt = to_point(point, "point");
+        py::gil_scoped_release release;
+        p.add_frame_velocity_limits(std::move(r), l, a, b, ang, axes, pt);
+      }, "robot"_a, "link"_a, "lo"_a, "hi"_a, py::kw_only(), "angular"_a = false, "frame"_a = "world",
+         "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::TimeScalingProblem_add_frame_velocity_limits)
+      .def("add_frame_acceleration_limits", [](TimeScalingProblem& p, py::handle robot, py::handle link, py::handle lo,
+                                               py::handle hi, py::handle angular, py::handle frame, py::handle point) {
+        auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
+        const std::string l = to_string_arg(link, "link");
+        const Eigen::VectorXd a = to_vector(lo, "lo"), b = to_vector(hi, "hi");
+        const bool ang = to_bool(angular, "angular");
+        const FrameAxes axes = frame_axes(to_string_arg(frame, "frame"));
+        const Eigen::Vector3d pt = to_point(point, "point");
+        py::gil_scoped_release release;
+        p.add_frame_acceleration_limits(std::move(r), l, a, b, ang, axes, pt);
+      }, "robot"_a, "link"_a, "lo"_a, "hi"_a, py::kw_only(), "angular"_a = false, "frame"_a = "world",
+         "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::TimeScalingProblem_add_frame_acceleration_limits)
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         auto constraint = to_object<Constraint>(c, "constraint", "Constraint");
         py::gil_scoped_release release;

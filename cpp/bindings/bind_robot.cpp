@@ -188,6 +188,22 @@ void bind_robot_dynamics(py::class_<RobotModel, std::shared_ptr<RobotModel>>& cl
         if (p.size() != 3) throw InvalidInput("point has size " + std::to_string(p.size()) + ", expected 3");
         return r.point_jacobian(qvec(r, q, "q"), l, p);
       }, "q"_a, "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::RobotModel_point_jacobian)
+      .def("frame_jacobian", [](const RobotModel& r, py::handle q, py::handle link, py::handle point) {
+        const std::string l = to_string_arg(link, "link");
+        return r.frame_jacobian(qvec(r, q, "q"), l, to_point(point, "point"));
+      }, "q"_a, "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::RobotModel_frame_jacobian)
+      .def("path_frame_motion", [](const RobotModel& r, py::handle q, py::handle dq, py::handle ddq, py::handle link,
+                                   py::handle point) {
+        const Eigen::MatrixXd Q = to_matrix(q, "q"), D = to_matrix(dq, "dq"), DD = to_matrix(ddq, "ddq");
+        const std::string l = to_string_arg(link, "link");
+        const Eigen::Vector3d p = to_point(point, "point");
+        RobotModel::FrameMotion f;
+        {
+          py::gil_scoped_release release;
+          f = r.path_frame_motion(Q, D, DD, l, p);
+        }
+        return py::make_tuple(f.velocity, f.angular_velocity, f.acceleration, f.angular_acceleration);
+      }, "q"_a, "dq"_a, "ddq"_a, "link"_a, "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::RobotModel_path_frame_motion)
       .def("path_torque_coefficients", [](const RobotModel& r, py::handle q, py::handle dq, py::handle ddq) {
         const Eigen::MatrixXd Q = to_matrix(q, "q"), D = to_matrix(dq, "dq"), DD = to_matrix(ddq, "ddq");
         if (Q.cols() != r.nq()) throw InvalidInput("q has " + std::to_string(Q.cols()) + " columns, robot has " + std::to_string(r.nq()) + " joints");

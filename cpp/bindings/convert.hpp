@@ -246,6 +246,13 @@ inline Eigen::VectorXd to_path_parameters(py::handle h, const std::string& name)
 /// Rows per grid point (N+1, r) of a LinearConstraint; a 1-D array of length N+1 is one row.
 inline Eigen::MatrixXd to_rows(py::handle h, const char* name) { return to_matrix(h, name, true); }
 
+/// A point in link coordinates (frame limits, point Jacobians): three numbers.
+inline Eigen::Vector3d to_point(py::handle h, const std::string& name) {
+  const Eigen::VectorXd p = to_vector(h, name);
+  if (p.size() != 3) throw InvalidInput(name + " has size " + std::to_string(p.size()) + ", expected 3 (x, y, z in the link frame, m)");
+  return p;
+}
+
 /// A pickled state tuple of the expected length (a state from another version is refused, named).
 inline void check_state(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size)

@@ -573,6 +573,84 @@ class SecondOrderConstraint(Constraint):
     @property
     def tau_max(self) -> Array | None:
         """ndarray (n,) or None: torque_limits' limits after scale and margin; None otherwise."""
+class FrameLimits(Constraint):
+    """Cartesian limits on a point fixed in a robot link (issue 22; Drake's Toppra frame limits), exact at the
+    grid points: with v = J p', ω = J_ω p' and the classical acceleration term J p'' + J̇(p') p' of the path,
+
+    - ``"translational_speed"``: ‖v‖ ṡ <= v_max, one row ‖v‖² ṡ² <= v_max²;
+    - ``"linear_velocity"``, ``"angular_velocity"``: lo_j <= (e_j·v) ṡ <= hi_j per axis; as ṡ >= 0 only the
+      side of e_j·v's sign binds, one row (e_j·v)² ṡ² <= hi_j² (or lo_j²); hi_j = 0 where e_j·v > 0 forces
+      ṡ = 0 there;
+    - ``"linear_acceleration"``, ``"angular_acceleration"``: lo_j <= e_j·(J p' s̈ + (J p'' + J̇ p') ṡ²) <= hi_j
+      per axis, two rows. Per axis only: a bound on the norm of the acceleration is not a half-plane.
+
+    With guarantee='continuous' the audit checks the rows between grid points; speed and velocity limits that
+    bind along long stretches need many audit rounds at large N (bench/README.md: seconds at N = 1000 with the
+    default audit_tolerance, under 1 s with audit_tolerance=1e-6). Family "frame" (relaxation).
+
+    Parameters
+    ----------
+    robot : RobotModel
+    link : str
+        A link of `robot` (merged fixed links too, e.g. a tool frame).
+    quantity : str
+        One of the five above.
+    lo, hi : array_like (3,)
+        Per axis x, y, z (±inf: no limit); velocities need lo <= 0 <= hi (rest admissible), accelerations
+        lo <= hi. For "translational_speed": hi is v_max (m/s, > 0) and lo None.
+    frame : str
+        "world" (the world's axes) or "local" (the link frame's, turning with it).
+    point : array_like (3,)
+        In the link frame, m.
+
+    Attributes
+    ----------
+    robot : RobotModel
+    link : str
+    quantity : str
+    frame : str
+        "world" or "local".
+    lo : ndarray
+        (3,), or (0,) for a speed limit.
+    hi : ndarray
+        (3,), or (1,) = v_max for a speed limit.
+    point : ndarray (3,)
+        m, link frame.
+    """
+    def __init__(
+        self,
+        robot: RobotModel,
+        link: str,
+        quantity: str,
+        lo: ArrayLike | None = None,
+        hi: ArrayLike | float | None = None,
+        *,
+        frame: str = "world",
+        point: ArrayLike = (0.0, 0.0, 0.0),
+    ) -> None: ...
+    @property
+    def robot(self) -> RobotModel:
+        """RobotModel"""
+    @property
+    def link(self) -> str:
+        """str"""
+    @property
+    def quantity(self) -> str:
+        """str"""
+    @property
+    def frame(self) -> str:
+        """str: "world" or "local"."""
+    @property
+    def lo(self) -> Array:
+        """ndarray: (3,), or (0,) for a speed limit."""
+    @property
+    def hi(self) -> Array:
+        """ndarray: (3,), or (1,) = v_max for a speed limit."""
+    @property
+    def point(self) -> Array:
+        """ndarray (3,): m, link frame."""
+    def evaluate_at(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike) -> ConstraintRows:
+        """The rows at samples q = p(s), dq = p', ddq = p'' (each (m, nq)), as Constraint.evaluate on a path."""
 
 class Contact:
     """A point contact with Coulomb friction: a point fixed in a link (link coordinates) touching the world, or
@@ -1016,6 +1094,37 @@ class RobotModel:
         """g(q): the joint torques that hold the robot still at q, (nq,) in N·m."""
     def frame_placement(self, q: ArrayLike, link: str) -> Array:
         """World placement of a link's frame at q: a 4x4 homogeneous matrix (translation in m)."""
+    def frame_jacobian(self, q: ArrayLike, link: str, point: ArrayLike = (0.0, 0.0, 0.0)) -> Array:
+        """World-frame Jacobian (6, nq) of a point fixed in a link: rows 0-2 the point's linear velocity, rows 3-5
+        the link's angular velocity (pinocchio's LOCAL_WORLD_ALIGNED layout).
+
+        Parameters
+        ----------
+        q : array_like (nq,)
+        link : str
+        point : array_like (3,)
+            In the link frame, m.
+        """
+    def path_frame_motion(
+        self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, link: str, point: ArrayLike = (0.0, 0.0, 0.0)
+    ) -> tuple[Array, Array, Array, Array]:
+        """The motion of a point fixed in a link along a path, per sample, by one forward pass (no Jacobian formed).
+
+        Parameters
+        ----------
+        q, dq, ddq : array_like (m, nq)
+            p, p', p'' at m samples.
+        link : str
+        point : array_like (3,)
+            In the link frame, m.
+
+        Returns
+        -------
+        (v, w, a, alpha) : ndarrays (m, 3), world frame
+            v = J p' and w = J_ω p' (velocity and angular velocity at ṡ = 1); a = J p'' + J̇(p') p' (the
+            classical acceleration at ṡ = 1, s̈ = 0) and alpha = J_ω p'' + J̇_ω(p') p'. At speed ṡ and s̈ the
+            point moves at v ṡ and accelerates at a ṡ² + v s̈.
+        """
     def point_jacobian(self, q: ArrayLike, link: str, point: ArrayLike = (0.0, 0.0, 0.0)) -> Array:
         """World-frame linear Jacobian (3, nq) of a point fixed in a link.
 
@@ -1571,6 +1680,73 @@ class TimeScalingProblem:
         self, A: ArrayLike, B: ArrayLike, C: ArrayLike, lo: ArrayLike, hi: ArrayLike, label: str = "linear"
     ) -> None:
         """lo <= A·ṡ² + B·s̈ + C <= hi per grid point; arrays (N+1, r). See LinearConstraint."""
+    def add_frame_translational_speed_limit(
+        self, robot: RobotModel, link: str, v_max: float, *, point: ArrayLike = (0.0, 0.0, 0.0)
+    ) -> None:
+        """‖v‖ <= v_max for a point on a link (Drake's AddFrameTranslationalSpeedLimit); see FrameLimits.
+
+        Parameters
+        ----------
+        robot : RobotModel
+        link : str
+        v_max : float
+            m/s, > 0.
+        point : array_like (3,)
+            In the link frame, m.
+        """
+    def add_frame_velocity_limits(
+        self,
+        robot: RobotModel,
+        link: str,
+        lo: ArrayLike,
+        hi: ArrayLike,
+        *,
+        angular: bool = False,
+        frame: str = "world",
+        point: ArrayLike = (0.0, 0.0, 0.0),
+    ) -> None:
+        """lo <= v <= hi per axis for a point's linear velocity or a link's angular velocity (Drake's
+        AddFrameVelocityLimit, which takes [ω, v] together); see FrameLimits.
+
+        Parameters
+        ----------
+        robot : RobotModel
+        link : str
+        lo, hi : array_like (3,)
+            m/s (rad/s if angular), lo <= 0 <= hi; ±inf: no limit.
+        angular : bool
+            Bound the angular velocity of the link instead of the point's linear velocity.
+        frame : str
+            "world" or "local" (the link frame's axes).
+        point : array_like (3,)
+            In the link frame, m.
+        """
+    def add_frame_acceleration_limits(
+        self,
+        robot: RobotModel,
+        link: str,
+        lo: ArrayLike,
+        hi: ArrayLike,
+        *,
+        angular: bool = False,
+        frame: str = "world",
+        point: ArrayLike = (0.0, 0.0, 0.0),
+    ) -> None:
+        """lo <= a <= hi per axis for a point's classical acceleration or a link's angular acceleration (Drake's
+        AddFrameAccelerationLimit); see FrameLimits. Per axis only (a norm bound is not a half-plane).
+
+        Parameters
+        ----------
+        robot : RobotModel
+        link : str
+        lo, hi : array_like (3,)
+            m/s² (rad/s² if angular), lo <= hi; ±inf: no limit.
+        angular : bool
+        frame : str
+            "world" or "local".
+        point : array_like (3,)
+            In the link frame, m.
+        """
     def add_torque_limits(
         self,
         robot: RobotModel | None = None,
@@ -1615,6 +1791,9 @@ class TimeScalingProblem:
     ) -> None:
         """F(q) w <= g(q) with w = inverse_dynamics(q, q̇, q̈) along the path: a SecondOrderConstraint (see it for the
         arguments and what the callables receive), added as add_constraint does.
+
+        starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial path.
+        Returns the grid points s_0..s_N (the N used is len - 1). InvalidInputError past `max_intervals`.
         """
     def add_contacts(
         self,

@@ -17,6 +17,13 @@ solver options; relative file names are relative to the problem file. Example (Y
       velocity: {from: urdf, scale: 0.9}          # or [v...] (symmetric), or {min: [...], max: [...]}
       acceleration: {max: [10, 10, 10, 10, 10, 10, 10]}
       torque: {from: urdf, scale: 0.9, margin: 0.5}
+      frames:                           # Cartesian limits on a point of a link (FrameLimits), by link name
+        - link: panda_hand
+          point: [0, 0, 0.1]            # link frame, m (default the link origin)
+          frame: world                  # axes of the per-axis limits: world | local
+          speed: 0.25                   # m/s, translational speed
+          velocity: [0.2, 0.2, 0.1]     # m/s per axis (symmetric), or {min: [...], max: [...]}
+          acceleration: {max: [2, 2, 2]}  # m/s² per axis; also angular_velocity, angular_acceleration
     contacts:                           # optional: frictional contacts (replaces limits.torque)
       points: [{link: left_sole_link, point: [0.1, 0.05, 0], normal: [0, 0, 1], friction: 0.5}]
       cone_edges: 8
@@ -63,6 +70,8 @@ class ProblemSpec:
     velocity_limits: tuple[np.ndarray, np.ndarray] | None = None
     acceleration_limits: tuple[np.ndarray, np.ndarray] | None = None
     torque_limits: pp.TorqueLimits | None = None
+    #: the FrameLimits of limits.frames, in file order
+    frame_limits: list = field(default_factory=list)
     contacts: pp.ContactConstraint | None = None
     #: (s_begin, s_end, contacts[, options]) per phase when the file gives contacts.phases
     contact_phases: list | None = None
@@ -116,7 +125,7 @@ class _Reader:
                 raise self.fail(f"{key}.{extra[0]}", f"unknown key (allowed: {', '.join(sorted(allowed))})")
         return value
 
-    def array(self, value: Any, key: str, ndim: int, size: int | None = None) -> np.ndarray:
+    def array(self, value: Any, key: str, ndim: int, size: int | None = None, per: str = "one per joint") -> np.ndarray:
         if ndim == 2 and isinstance(value, (list, tuple)) and value and all(isinstance(v, (list, tuple)) for v in value):
             for i, row in enumerate(value):  # ragged rows: name the first that differs from row 0
                 if len(row) != len(value[0]):
@@ -130,7 +139,7 @@ class _Reader:
         if a.ndim != ndim:
             raise self.fail(key, f"expected a {ndim}-D array of numbers, got shape {a.shape}")
         if size is not None and a.shape[-1] != size:
-            raise self.fail(key, f"has {a.shape[-1]} entries per row, expected {size} (one per joint)")
+            raise self.fail(key, f"has {a.shape[-1]} entries per row, expected {size} ({per})")
         return a
 
     def number(self, value: Any, key: str) -> float:
@@ -168,7 +177,8 @@ def _wrap(reader: _Reader, key: str, fn, *args, **kwargs):
         raise reader.fail(key, str(e)) from None
 
 
-def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | None, name: str):
+def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | None, name: str,
+            per: str = "one per joint"):
     """(min, max) from a list (symmetric), {min, max}, or {from: urdf, scale}."""
     if isinstance(value, dict):
         r.mapping(value, key, {"min", "max", "from", "scale"})
@@ -182,13 +192,46 @@ def _limits(r: _Reader, value: Any, key: str, n: int, urdf_values: np.ndarray | 
             return -hi, hi
         if "max" not in value:
             raise r.fail(key, "expected 'max' (and optionally 'min'), or 'from: urdf'")
-        hi = scale * r.array(value["max"], f"{key}.max", 1, n)
-        lo = -hi if "min" not in value else scale * r.array(value["min"], f"{key}.min", 1, n)
+        hi = scale * r.array(value["max"], f"{key}.max", 1, n, per)
+        lo = -hi if "min" not in value else scale * r.array(value["min"], f"{key}.min", 1, n, per)
         return lo, hi
     if value == "urdf":
         return _limits(r, {"from": "urdf"}, key, n, urdf_values, name)
-    hi = r.array(value, key, 1, n)
+    hi = r.array(value, key, 1, n, per)
     return -hi, hi
+
+
+_FRAME_QUANTITIES = {"speed": "translational_speed", "velocity": "linear_velocity",
+                     "angular_velocity": "angular_velocity", "acceleration": "linear_acceleration",
+                     "angular_acceleration": "angular_acceleration"}
+
+
+def _frame_limits(r: _Reader, value: Any, robot: pp.RobotModel | None, prob: pp.TimeScalingProblem,
+                  spec: ProblemSpec) -> None:
+    """limits.frames: a list of {link, point, frame, speed, velocity, ...}, one FrameLimits per quantity given."""
+    if robot is None:
+        raise r.fail("limits.frames", "needs a robot (key 'robot')")
+    if not isinstance(value, list) or not value:
+        raise r.fail("limits.frames", "expected a non-empty list of {link: ..., speed: ...}")
+    for i, item in enumerate(value):
+        key = f"limits.frames[{i}]"
+        fd = r.mapping(item, key, {"link", "point", "frame"} | set(_FRAME_QUANTITIES))
+        if not isinstance(fd.get("link"), str):
+            raise r.fail(f"{key}.link", f"expected a link name of robot '{robot.name}', got {fd.get('link')!r}")
+        point = r.array(fd.get("point", [0.0, 0.0, 0.0]), f"{key}.point", 1)
+        frame = fd.get("frame", "world")
+        given = [k for k in _FRAME_QUANTITIES if k in fd]
+        if not given:
+            raise r.fail(key, f"expected at least one of {', '.join(_FRAME_QUANTITIES)}")
+        for k in given:
+            if k == "speed":
+                lo, hi = None, r.number(fd[k], f"{key}.speed")
+            else:
+                lo, hi = _limits(r, fd[k], f"{key}.{k}", 3, None, k, per="one per axis x, y, z")
+            c = _wrap(r, f"{key}.{k}", pp.FrameLimits, robot, fd["link"], _FRAME_QUANTITIES[k], lo, hi, frame=frame,
+                      point=point)
+            _wrap(r, f"{key}.{k}", prob.add_constraint, c)
+            spec.frame_limits.append(c)
 
 
 _CONTACT_OPTIONS = ("friction_margin", "min_normal_force", "torque_scale", "torque_margin", "min_link_normal_force",
@@ -320,7 +363,7 @@ def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpe
     prob = _wrap(r, "grid", pp.TimeScalingProblem, path_obj, grid=g if isinstance(g, int) else r.array(g, "grid", 1))
 
     spec = ProblemSpec(file=path, problem=prob, robot=robot, joint_names=joint_names, name=str(data.get("name", path.stem)))
-    lim = r.mapping(data.get("limits", {}), "limits", {"velocity", "acceleration", "torque"})
+    lim = r.mapping(data.get("limits", {}), "limits", {"velocity", "acceleration", "torque", "frames"})
     if "velocity" in lim:
         lo, hi = _limits(r, lim["velocity"], "limits.velocity", n, None if robot is None else robot.velocity_limits,
                          "velocity")
@@ -349,6 +392,8 @@ def load_problem(file: str | os.PathLike, grid: int | None = None) -> ProblemSpe
                                    scale=r.number(t.get("scale", 1.0), "limits.torque.scale"),
                                    margin=r.number(t.get("margin", 0.0), "limits.torque.margin"))
         _wrap(r, "limits.torque", prob.add_constraint, spec.torque_limits)
+    if "frames" in lim:
+        _frame_limits(r, lim["frames"], robot, prob, spec)
     if "contacts" in data:
         if robot is None:
             raise r.fail("contacts", "needs a robot (key 'robot')")

@@ -6,6 +6,7 @@
 #include "pathpace/constraints/acceleration_limits.hpp"
 #include "pathpace/constraints/constraint.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/constraints/frame_limits.hpp"
 #include "pathpace/contact.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/contact_forces.hpp"

@@ -13,6 +13,7 @@
 
 #include "pathpace/constraints/constraint.hpp"
 #include "pathpace/constraints/second_order_constraint.hpp"
+#include "pathpace/constraints/frame_limits.hpp"
 #include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
@@ -109,6 +110,32 @@ class TimeScalingProblem {
   ///
   /// @param amin,amax (n,): rad/s² (m/s²); amin <= amax.
   void add_acceleration_limits(const Eigen::VectorXd& amin, const Eigen::VectorXd& amax);
+  // docstrings.txt @@ TimeScalingProblem.add_frame_translational_speed_limit
+  /// @brief ‖v‖ <= v_max for a point on a link (Drake's AddFrameTranslationalSpeedLimit); see FrameLimits.
+  ///
+  /// @param v_max m/s, > 0.
+  /// @param point (3,): In the link frame, m.
+  void add_frame_translational_speed_limit(std::shared_ptr<const RobotModel> robot, const std::string& link, double v_max,
+                                           const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
+  // docstrings.txt @@ TimeScalingProblem.add_frame_velocity_limits
+  /// @brief lo <= v <= hi per axis for a point's linear velocity or a link's angular velocity (Drake's
+  /// AddFrameVelocityLimit, which takes [ω, v] together); see FrameLimits.
+  ///
+  /// @param lo,hi (3,): m/s (rad/s if angular), lo <= 0 <= hi; ±inf: no limit.
+  /// @param angular Bound the angular velocity of the link instead of the point's linear velocity.
+  /// @param point (3,): In the link frame, m.
+  void add_frame_velocity_limits(std::shared_ptr<const RobotModel> robot, const std::string& link, const Eigen::VectorXd& lo,
+                                 const Eigen::VectorXd& hi, bool angular = false, FrameAxes axes = FrameAxes::World,
+                                 const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
+  // docstrings.txt @@ TimeScalingProblem.add_frame_acceleration_limits
+  /// @brief lo <= a <= hi per axis for a point's classical acceleration or a link's angular acceleration (Drake's
+  /// AddFrameAccelerationLimit); see FrameLimits. Per axis only (a norm bound is not a half-plane).
+  ///
+  /// @param lo,hi (3,): m/s² (rad/s² if angular), lo <= hi; ±inf: no limit.
+  /// @param point (3,): In the link frame, m.
+  void add_frame_acceleration_limits(std::shared_ptr<const RobotModel> robot, const std::string& link,
+                                     const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, bool angular = false,
+                                     FrameAxes axes = FrameAxes::World, const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
   // docstrings.txt @@ TimeScalingProblem.add_linear_constraint
   /// @brief lo <= A·ṡ² + B·s̈ + C <= hi per grid point; arrays (N+1, r). See LinearConstraint.
   void add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
@@ -129,6 +156,9 @@ class TimeScalingProblem {
   // docstrings.txt @@ TimeScalingProblem.add_second_order_constraint
   /// @brief F(q) w <= g(q) with w = inverse_dynamics(q, q̇, q̈) along the path: a SecondOrderConstraint (see it for the
   /// arguments and what the callables receive), added as add_constraint does.
+  ///
+  /// starts from `min_intervals` uniform intervals plus the breakpoints of a piecewise-polynomial path.
+  /// Returns the grid points s_0..s_N (the N used is len - 1). InvalidInput past `max_intervals`.
   void add_second_order_constraint(SecondOrderFunctions::InverseDynamics inverse_dynamics, SecondOrderFunctions::OfQ F,
                                    SecondOrderFunctions::OfQ g, const SecondOrderOptions& options = SecondOrderOptions());
   // docstrings.txt @@ TimeScalingProblem.add_constraint

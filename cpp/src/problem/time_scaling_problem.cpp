@@ -51,6 +51,32 @@ void TimeScalingProblem::add_acceleration_limits(const Eigen::VectorXd& amin, co
   add_constraint(std::make_shared<AccelerationLimits>(amin, amax, joint_names_));
 }
 
+void TimeScalingProblem::add_frame_translational_speed_limit(std::shared_ptr<const RobotModel> robot,
+                                                             const std::string& link, double v_max,
+                                                             const Eigen::Vector3d& point) {
+  const Use use(*this, Use::Write, "add_frame_translational_speed_limit");
+  add_constraint(std::make_shared<FrameLimits>(std::move(robot), link, FrameQuantity::TranslationalSpeed, Eigen::VectorXd(),
+                                               Eigen::VectorXd::Constant(1, v_max), FrameAxes::World, point));
+}
+
+void TimeScalingProblem::add_frame_velocity_limits(std::shared_ptr<const RobotModel> robot, const std::string& link,
+                                                   const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, bool angular,
+                                                   FrameAxes axes, const Eigen::Vector3d& point) {
+  const Use use(*this, Use::Write, "add_frame_velocity_limits");
+  add_constraint(std::make_shared<FrameLimits>(std::move(robot), link,
+                                               angular ? FrameQuantity::AngularVelocity : FrameQuantity::LinearVelocity, lo, hi,
+                                               axes, point));
+}
+
+void TimeScalingProblem::add_frame_acceleration_limits(std::shared_ptr<const RobotModel> robot, const std::string& link,
+                                                       const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, bool angular,
+                                                       FrameAxes axes, const Eigen::Vector3d& point) {
+  const Use use(*this, Use::Write, "add_frame_acceleration_limits");
+  add_constraint(std::make_shared<FrameLimits>(
+      std::move(robot), link, angular ? FrameQuantity::AngularAcceleration : FrameQuantity::LinearAcceleration, lo, hi, axes,
+      point));
+}
+
 void TimeScalingProblem::add_linear_constraint(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                                                const Eigen::MatrixXd& C, const Eigen::MatrixXd& lo,
                                                const Eigen::MatrixXd& hi, const std::string& label) {

@@ -1,9 +1,11 @@
 // Kinematics of a RobotModel: link lookup, body placements, frame placements, point Jacobians (the
-// contact constraints' J of eq. 17) and the centre of mass.
+// contact constraints' J of eq. 17), frame Jacobians and a point's motion along a path (the frame
+// limits' rows) and the centre of mass.
 #include <vector>
 
 #include "base/validate.hpp"
 #include "robot/bodies.hpp"
+#include "robot/joint_transform.hpp"
 
 namespace pathpace {
 
@@ -91,6 +93,94 @@ Eigen::MatrixXd RobotModel::point_jacobian(const Eigen::VectorXd& q, const std::
   if (body < 0) return J;
   add_point_jacobian(T, body, T[static_cast<size_t>(body)] * (in_body * point), 1.0, J);
   return J;
+}
+
+Eigen::MatrixXd RobotModel::frame_jacobian(const Eigen::VectorXd& q, const std::string& link,
+                                           const Eigen::Vector3d& point) const {
+  check_q(q, "q");
+  detail::require_finite("q", q);
+  detail::require_finite("point", point);
+  Eigen::Isometry3d in_body;
+  const int body = body_of_link(link, in_body);
+  if (mimic_) return mimic_->bodies_model->frame_jacobian(mimic_->E * q + mimic_->o, link, point) * mimic_->E;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, nq());
+  if (body < 0) return J;
+  std::vector<Eigen::Isometry3d> T;
+  body_placements(q, T);
+  add_point_jacobian(T, body, T[static_cast<size_t>(body)] * (in_body * point), 1.0, J.topRows(3));
+  const std::vector<Body>& bodies = tree_->bodies;
+  for (int i = body; i >= 0; i = bodies[static_cast<size_t>(i)].parent)
+    if (bodies[static_cast<size_t>(i)].type == JointType::Revolute)
+      J.block<3, 1>(3, i) = T[static_cast<size_t>(i)].linear() * bodies[static_cast<size_t>(i)].axis;
+  return J;
+}
+
+namespace {
+
+// The world state of one body's frame in the forward pass of path_frame_motion: its rotation, its origin's
+// velocity and classical acceleration, the body's angular velocity and acceleration.
+struct FrameState {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w = Eigen::Vector3d::Zero(), al = Eigen::Vector3d::Zero();
+};
+
+// From the parent's state to body b's at (q, q̇, q̈) of its joint. The joint frame's origin sits at r (world
+// coordinates, from the parent's origin; a prismatic joint's slide included) and its world axis z turns
+// with the parent (ż = ω_p × z), so d/dt r = ω_p × r, plus z q̇ for a prismatic joint.
+void advance(const Body& b, double q, double qd, double qdd, FrameState& f) {
+  double E[9], rp[3];
+  detail::joint_transform(b, q, E, rp);  // parent -> body rotation, joint origin in parent coordinates
+  const Eigen::Matrix3d R = f.R * Eigen::Map<const Eigen::Matrix3d>(E).transpose();
+  const Eigen::Vector3d z = R * b.axis, r = f.R * Eigen::Map<const Eigen::Vector3d>(rp);
+  f.a += f.al.cross(r) + f.w.cross(f.w.cross(r));
+  f.v += f.w.cross(r);
+  if (b.type == RobotModel::JointType::Revolute) {
+    f.al += f.w.cross(z) * qd + z * qdd;
+    f.w += z * qd;
+  } else {
+    f.a += 2.0 * qd * f.w.cross(z) + z * qdd;
+    f.v += z * qd;
+  }
+  f.R = R;
+}
+
+}  // namespace
+
+RobotModel::FrameMotion RobotModel::path_frame_motion(const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
+                                                      const Eigen::MatrixXd& ddq, const std::string& link,
+                                                      const Eigen::Vector3d& point) const {
+  const Eigen::Index m = q.rows();
+  detail::require_shape("q", q.rows(), q.cols(), m, nq(), "one row per sample, one column per joint");
+  detail::require_shape("dq", dq.rows(), dq.cols(), m, nq(), "the shape of q");
+  detail::require_shape("ddq", ddq.rows(), ddq.cols(), m, nq(), "the shape of q");
+  detail::require_finite("point", point);
+  Eigen::Isometry3d in_body;
+  const int body = body_of_link(link, in_body);
+  if (mimic_) {  // q_bodies = E q + o, so q̇_bodies = E q̇ and q̈_bodies = E q̈: the same pass on the bodies
+    const Eigen::MatrixXd Et = mimic_->E.transpose();
+    const Eigen::MatrixXd qb = (q * Et).rowwise() + mimic_->o.transpose();
+    return mimic_->bodies_model->path_frame_motion(qb, dq * Et, ddq * Et, link, point);
+  }
+  std::vector<int> chain;  // root first
+  for (int i = body; i >= 0; i = tree_->bodies[static_cast<size_t>(i)].parent) chain.insert(chain.begin(), i);
+  FrameMotion out;
+  out.rotation.resize(m, 9);
+  for (Eigen::MatrixXd* x : {&out.velocity, &out.angular_velocity, &out.acceleration, &out.angular_acceleration})
+    x->resize(m, 3);
+  const Eigen::Vector3d p_body = in_body * point;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    FrameState f;
+    for (int i : chain) advance(tree_->bodies[static_cast<size_t>(i)], q(k, i), dq(k, i), ddq(k, i), f);
+    const Eigen::Vector3d d = f.R * p_body;  // the point from the body's origin, world coordinates
+    const Eigen::Matrix3d R = f.R * in_body.linear();
+    out.rotation.row(k) = Eigen::Map<const Eigen::Matrix<double, 1, 9>>(R.data());
+    out.velocity.row(k) = (f.v + f.w.cross(d)).transpose();
+    out.angular_velocity.row(k) = f.w.transpose();
+    out.acceleration.row(k) = (f.a + f.al.cross(d) + f.w.cross(f.w.cross(d))).transpose();
+    out.angular_acceleration.row(k) = f.al.transpose();
+  }
+  return out;
 }
 
 double RobotModel::mass() const {
