@@ -53,20 +53,23 @@ void Polygon2d::assign(const Polygon2d& other) {
 
 namespace {
 
-// One envelope of the lines ids[0..m) (y = P + Q x each) over [x_lo, x_hi]: the minimum of the upper
-// bounds (sign = 1) or the maximum of the lower bounds (sign = -1). Pieces in increasing x; a switch at
-// x' < x (rounding) happens at x.
-bool envelope(const double* P, const double* Q, const int* ids, std::size_t m, double sign, double x_lo, double x_hi,
+// One envelope of the lines P[t] + Q[t] x, t < m (ids[t]: their line numbers) over [x_lo, x_hi]: the minimum of
+// the upper bounds (kUpper) or the maximum of the lower bounds. Pieces in increasing x; a switch at x' < x
+// (rounding) happens at x. A template on the side, not a sign factor: the comparisons of the maximum are those of
+// the minimum of the negated values (negation is exact), without the multiplications.
+template <bool kUpper>
+bool envelope(const double* P, const double* Q, const int* ids, std::size_t m, double x_lo, double x_hi,
               EnvelopePiece* out, std::size_t& pieces) {
+  // a "beats" b: lies beyond it on the envelope's side (below for the minimum, above for the maximum).
+  auto beats = [](double a, double b) { return kUpper ? a < b : a > b; };
   pieces = 0;
-  int cur = ids[0];
-  double best_v = sign * (P[cur] + Q[cur] * x_lo);
+  std::size_t cur = 0;
+  double best_v = P[0] + Q[0] * x_lo;
   for (std::size_t t = 1; t < m; ++t) {
-    const int i = ids[t];
-    const double v = sign * (P[i] + Q[i] * x_lo);
+    const double v = P[t] + Q[t] * x_lo;
     // Ties: the one that stays extreme longer (smaller slope for the minimum, larger for the maximum).
-    if (v < best_v || (v == best_v && sign * Q[i] < sign * Q[cur])) {
-      cur = i;
+    if (beats(v, best_v) || (v == best_v && beats(Q[t], Q[cur]))) {
+      cur = t;
       best_v = v;
     }
   }
@@ -74,13 +77,13 @@ bool envelope(const double* P, const double* Q, const int* ids, std::size_t m, d
   for (std::size_t guard = 0; guard <= m; ++guard) {
     // The next breakpoint: the nearest x' >= x where a line of steeper descent (ascent) takes over.
     // Candidates are compared as fractions num/den (den > 0), one division for the winner only.
-    int next = -1;
+    std::size_t next = m;  // none
     double best_num = x_hi, best_den = 1.0;
+    const double Pc = P[cur], Qc = Q[cur];
     for (std::size_t t = 0; t < m; ++t) {
-      const int j = ids[t];
-      double den = Q[cur] - Q[j];
-      if (!(sign * den > 0.0)) continue;  // j never overtakes cur to the right
-      double num = P[j] - P[cur];
+      double den = Qc - Q[t];
+      if (!(kUpper ? den > 0.0 : den < 0.0)) continue;  // t never overtakes cur to the right
+      double num = P[t] - Pc;
       if (den < 0.0) {
         num = -num;
         den = -den;
@@ -90,17 +93,18 @@ bool envelope(const double* P, const double* Q, const int* ids, std::size_t m, d
         den = 1.0;
       }
       const double lhs = num * best_den, rhs = best_num * den;
-      if (lhs < rhs || (lhs == rhs && next >= 0 && sign * Q[j] < sign * Q[next])) {
-        next = j;
+      if (lhs < rhs || (lhs == rhs && next < m && beats(Q[t], Q[next]))) {
+        next = t;
         best_num = num;
         best_den = den;
       }
     }
-    const double next_x = next < 0 ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
+    const double next_x = next == m ? x_hi : std::min(x_hi, std::max(x, best_num / best_den));
     EnvelopePiece& pc = out[pieces++];  // member by member (see append_line)
-    pc.line = cur;
+    pc.line = ids[cur];
+    pc.at = static_cast<int>(cur);
     pc.x_end = next_x;
-    if (next < 0) return true;
+    if (next == m) return true;
     cur = next;
     x = next_x;
   }
@@ -111,16 +115,16 @@ bool envelope(const double* P, const double* Q, const int* ids, std::size_t m, d
 double envelope_at(const double* P, const double* Q, const EnvelopePiece* pcs, std::size_t count, double x,
                    std::size_t& hint) {
   while (hint + 1 < count && pcs[hint].x_end < x) ++hint;
-  const int i = pcs[hint].line;
+  const int i = pcs[hint].at;
   return P[i] + Q[i] * x;
 }
 
 // The x-range [xa, xb] where the upper envelope U lies above the lower one L: g(x) = U(x) - L(x) is
 // concave, so it is read off g at every breakpoint, merged in increasing x. False when it is empty (left
 // to clipping, for the certificate) or degenerate (touching envelopes, or rounding that broke concavity).
-bool positive_range(const double* P, const double* Q, const EnvelopePiece* upper, std::size_t n_upper,
-                    const EnvelopePiece* lower, std::size_t n_lower, double x_lo, double x_hi, double& xa,
-                    double& xb) {
+bool positive_range(const double* Pu, const double* Qu, const EnvelopePiece* upper, std::size_t n_upper,
+                    const double* Pl, const double* Ql, const EnvelopePiece* lower, std::size_t n_lower, double x_lo,
+                    double x_hi, double& xa, double& xb) {
   std::size_t iu = 0, il = 0, hu = 0, hl = 0;
   xa = xb = std::numeric_limits<double>::quiet_NaN();
   double prev_x = x_lo, prev_g = 0.0;
@@ -136,7 +140,7 @@ bool positive_range(const double* P, const double* Q, const EnvelopePiece* upper
       if (x == xu) ++iu;
       if (x == xl) ++il;
     }
-    const double U = envelope_at(P, Q, upper, n_upper, x, hu), L = envelope_at(P, Q, lower, n_lower, x, hl);
+    const double U = envelope_at(Pu, Qu, upper, n_upper, x, hu), L = envelope_at(Pl, Ql, lower, n_lower, x, hl);
     const double g = U - L;
     if (std::abs(g) <= 1e-9 * (std::abs(U) + std::abs(L)) + 1e-300) return false;  // touching: degenerate
     if (first) {
@@ -182,14 +186,14 @@ bool Polygon2d::build(double x_lo, double x_hi, double y_lo, double y_hi, const 
   Sorted s;
   if (!sort_lines(lines, n, x_lo, x_hi, s)) return false;
   if (!(x_lo < x_hi)) return false;  // empty or a single x: leave it to clipping
-  const double* const P = p_.data();
-  const double* const Q = q_.data();
+  const double *const Pu = pu_.data(), *const Qu = qu_.data(), *const Pl = pl_.data(), *const Ql = ql_.data();
   std::size_t n_upper = 0, n_lower = 0;
-  if (!envelope(P, Q, up_.data(), s.n_up, 1.0, x_lo, x_hi, upper_.data(), n_upper) ||
-      !envelope(P, Q, low_.data(), s.n_low, -1.0, x_lo, x_hi, lower_.data(), n_lower))
+  if (!envelope<true>(Pu, Qu, up_.data(), s.n_up, x_lo, x_hi, upper_.data(), n_upper) ||
+      !envelope<false>(Pl, Ql, low_.data(), s.n_low, x_lo, x_hi, lower_.data(), n_lower))
     return false;
   double xa, xb;
-  if (!positive_range(P, Q, upper_.data(), n_upper, lower_.data(), n_lower, x_lo, x_hi, xa, xb)) return false;
+  if (!positive_range(Pu, Qu, upper_.data(), n_upper, Pl, Ql, lower_.data(), n_lower, x_lo, x_hi, xa, xb))
+    return false;
   Chains c;
   if (!collect_edges(lines, n, n_upper, n_lower, x_lo, x_hi, xa, xb, c)) return false;
   if (edges_only && s.n_steep == 0) {
@@ -220,9 +224,11 @@ void Polygon2d::reserve(std::size_t n) {
     upper_.resize(n + 3);
     lower_.resize(n + 3);
   }
-  if (p_.size() < n + 2) {
-    p_.resize(n + 2);
-    q_.resize(n + 2);
+  if (pu_.size() < n + 2) {
+    pu_.resize(n + 2);
+    qu_.resize(n + 2);
+    pl_.resize(n + 2);
+    ql_.resize(n + 2);
   }
 }
 
@@ -233,14 +239,14 @@ bool Polygon2d::sort_lines(const Line* lines, std::size_t n, double& x_lo, doubl
   Line& left = side_[2];
   Line& right = side_[3];
   // Local copies of the storage pointers: through the members, every store below reloaded them.
-  double* const P = p_.data();
-  double* const Q = q_.data();
+  double *const Pu = pu_.data(), *const Qu = qu_.data(), *const Pl = pl_.data(), *const Ql = ql_.data();
   int* const up = up_.data();
   int* const low = low_.data();
   int* const steep = steep_.data();
   std::size_t n_up = 0, n_low = 0, n_steep = 0;
-  for (std::size_t i = 0; i < n + 2; ++i) {
-    const Line& l = line_at(lines, n, static_cast<int>(i));
+  // Line i's kind; false: a line 0 <= c that fails. The input lines, then the box's two y-sides, in two loops
+  // (not one through line_at, whose choice between them cost a branch per line).
+  auto sort_one = [&](const Line& l, int i) {
     if (l.b == 0.0) {
       // A bound on x alone tightens the box (keeping its id, as clipping would).
       if (l.a > 0.0) {
@@ -256,21 +262,31 @@ bool Polygon2d::sort_lines(const Line* lines, std::size_t n, double& x_lo, doubl
       } else if (l.c < 0.0) {
         return false;  // 0 <= c fails: empty
       }
-      continue;
+      return true;
     }
     if (std::abs(l.b) <= kSteep * std::abs(l.a)) {
       // Nearly vertical (an edge of a contact polygon between two LP optima whose x differ by rounding):
       // as an envelope line its slope -a/b ~ 1e14 and intercept c/b ~ 1e16 ruin the breakpoints, and
       // its edge was seen to be dropped. It is clipped exactly once the polygon stands (few such lines).
-      steep[n_steep++] = static_cast<int>(i);
-      continue;
+      steep[n_steep++] = i;
+      return true;
     }
     const double inv = 1.0 / l.b;
-    P[i] = l.c * inv;
-    Q[i] = -l.a * inv;
-    if (l.b > 0.0) up[n_up++] = static_cast<int>(i);
-    else low[n_low++] = static_cast<int>(i);
-  }
+    if (l.b > 0.0) {
+      Pu[n_up] = l.c * inv;
+      Qu[n_up] = -l.a * inv;
+      up[n_up++] = i;
+    } else {
+      Pl[n_low] = l.c * inv;
+      Ql[n_low] = -l.a * inv;
+      low[n_low++] = i;
+    }
+    return true;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    if (!sort_one(lines[i], static_cast<int>(i))) return false;
+  for (std::size_t i = 0; i < 2; ++i)
+    if (!sort_one(side_[i], static_cast<int>(n + i))) return false;
   s = {n_up, n_low, n_steep};
   return true;
 }

@@ -75,6 +75,7 @@ struct Vertex {
 /// A piece of an envelope built by Polygon2d::build: `line` is the extreme one up to `x_end`.
 struct EnvelopePiece {
   int line;      // lines[line], or the box's lower (n) or upper (n + 1) side
+  int at;        // its place in its envelope's own y = P + Q x arrays (Polygon2d's pu_/qu_ or pl_/ql_)
   double x_end;  // where the next piece takes over
 };
 
@@ -179,7 +180,9 @@ class Polygon2d {
   std::vector<Line> edges_[2];
   std::vector<Vertex> vertices_[2];
   std::vector<double> dist_;
-  std::vector<double> p_, q_;  // build(): y = p + q x of each line with b != 0
+  // build(): y = p + q x of the lines bounding y from above (pu_, qu_, in up_'s order) and from below (pl_, ql_):
+  // contiguous per envelope, so that its walk reads them without going through the index lists.
+  std::vector<double> pu_, qu_, pl_, ql_;
   std::vector<int> up_, low_, steep_;
   std::vector<EnvelopePiece> upper_, lower_;
   Line side_[4];  // build(): the box's lower and upper sides, then the left and right x-bounds

@@ -7,7 +7,7 @@
 namespace pathpace::detail {
 
 std::string GridSets::label(int id) const {
-  if (id >= 0 && static_cast<size_t>(id) < labels.size()) return labels[static_cast<size_t>(id)];
+  if (id >= 0 && labels && static_cast<size_t>(id) < labels->size()) return (*labels)[static_cast<size_t>(id)];
   switch (id) {
     case kBoxXLow: return "sdot^2 >= 0";
     default: return "no limit on sdot";
@@ -142,7 +142,9 @@ PointSet build_point_set(const std::vector<ConstraintRows>& constraints, Eigen::
 GridSets build_grid_sets(const PathSamples& samples, const std::vector<ConstraintRows>& constraints,
                          const Scale& scale) {
   GridSets gs;
-  for (const ConstraintRows& cr : constraints) gs.labels.insert(gs.labels.end(), cr.labels.begin(), cr.labels.end());
+  auto labels = std::make_shared<std::vector<std::string>>();
+  for (const ConstraintRows& cr : constraints) labels->insert(labels->end(), cr.labels.begin(), cr.labels.end());
+  gs.labels = std::move(labels);
   const Eigen::Index n_points = samples.size();
   gs.points.resize(static_cast<size_t>(n_points));
   gs.row_offset.assign(static_cast<size_t>(n_points) + 1, 0);

@@ -2,6 +2,7 @@
 // Per-grid-point feasible polygons (sec. IV.A): all constraint rows at s_k, bounds on x alone folded
 // into [x_lo, x_hi], the rest pruned to the supporting half-planes.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,7 +52,8 @@ struct GridSets {
     const size_t o = row_offset[static_cast<size_t>(k)];
     return {row_data.data() + o, row_offset[static_cast<size_t>(k) + 1] - o};
   }
-  std::vector<std::string> labels;  // row id -> label ("velocity joint 3", ...)
+  // row id -> label ("velocity joint 3", ...); shared (never copied) with the Result's binding labels
+  std::shared_ptr<const std::vector<std::string>> labels;
   double average_rows = 0.0;
   /// Label for an id, including the implicit ones (negative ids).
   std::string label(int id) const;
