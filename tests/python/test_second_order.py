@@ -576,7 +576,7 @@ def test_validation_of_the_arguments():
         prob.add_second_order_constraint(accelerations, np.eye(2), None)
     with pytest.raises(TypeError, match=r"vectorized must be a bool, got str"):
         prob.add_second_order_constraint(accelerations, np.eye(2), np.ones(2), vectorized="no")
-    with pytest.raises(TypeError, match=r"add_second_order_constraint\(\): missing required argument 'g'"):
+    with pytest.raises(TypeError, match=r"add_second_order_constraint\(\): incompatible function arguments(.|\n)*g: object"):
         prob.add_second_order_constraint(accelerations, np.eye(2))
     assert prob.constraints == []
 

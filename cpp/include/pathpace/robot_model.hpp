@@ -189,8 +189,11 @@ class RobotModel {
   /// @param point (3,): In the link frame, m.
   Eigen::MatrixXd point_jacobian(const Eigen::VectorXd& q, const std::string& link, const Eigen::Vector3d& point) const;
 
-  /// World-frame Jacobian (6 x nq) of a point fixed in a link (coordinates in the link frame): rows 0-2 the
-  /// point's linear velocity, rows 3-5 the link's angular velocity (pinocchio's LOCAL_WORLD_ALIGNED order).
+  // docstrings.txt @@ RobotModel.frame_jacobian
+  /// @brief World-frame Jacobian (6, nq) of a point fixed in a link: rows 0-2 the point's linear velocity, rows 3-5
+  /// the link's angular velocity (pinocchio's LOCAL_WORLD_ALIGNED layout).
+  ///
+  /// @param point (3,): In the link frame, m.
   Eigen::MatrixXd frame_jacobian(const Eigen::VectorXd& q, const std::string& link, const Eigen::Vector3d& point) const;
 
   /// A point fixed in a link on a path q = p(s), per sample (row k of each matrix; see path_frame_motion).
@@ -201,11 +204,14 @@ class RobotModel {
     Eigen::MatrixXd acceleration;          ///< (samples, 3): J p'' + J̇(p') p', the point's classical acceleration at ṡ = 1, s̈ = 0
     Eigen::MatrixXd angular_acceleration;  ///< (samples, 3): J_ω p'' + J̇_ω(p') p'
   };
-  /// The motion of `point` (link coordinates) on `link` at samples q = p(s), dq = p', ddq = p'' (each
-  /// (samples, nq)), by one forward pass per sample, no Jacobian formed: since q̇ = p' ṡ and
-  /// q̈ = p' s̈ + p'' ṡ² (eq. 10-11), the point's velocity is velocity·ṡ and its acceleration
-  /// acceleration·ṡ² + velocity·s̈, exactly (likewise the angular ones). The J̇ q̇ terms are the classical
-  /// (not spatial) ones: the second derivative of the world position.
+  // docstrings.txt @@ RobotModel.path_frame_motion
+  /// @brief The motion of a point fixed in a link along a path, per sample, by one forward pass (no Jacobian formed).
+  ///
+  /// @param q,dq,ddq (m, nq): p, p', p'' at m samples.
+  /// @param point (3,): In the link frame, m.
+  /// @return v = J p' and w = J_ω p' (velocity and angular velocity at ṡ = 1); a = J p'' + J̇(p') p' (the
+  ///   classical acceleration at ṡ = 1, s̈ = 0) and alpha = J_ω p'' + J̇_ω(p') p'. At speed ṡ and s̈ the
+  ///   point moves at v ṡ and accelerates at a ṡ² + v s̈.
   FrameMotion path_frame_motion(const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq, const Eigen::MatrixXd& ddq,
                                 const std::string& link, const Eigen::Vector3d& point) const;
 

@@ -28,28 +28,28 @@ enum class FrameQuantity {
 /// the world position), only its components are taken along the chosen axes.
 enum class FrameAxes { World, Local };
 
-/// Limits on a point fixed in a link of `robot` as the path moves it. With v = J p', ω = J_ω p' and
-/// α_x = J p'' + J̇(p') p' (RobotModel::path_frame_motion), q̇ = p' ṡ and q̈ = p' s̈ + p'' ṡ² give, in
-/// x = ṡ² and u = s̈, rows that are exact at every grid point:
-///  - translational speed ‖v‖ ṡ <= v_max: one row ‖v‖² x <= v_max²;
-///  - velocity lo_j <= (e_j·v) ṡ <= hi_j per axis j: since ṡ >= 0, only one side can bind, so one row
-///    (e_j·v)² x <= hi_j² where e_j·v > 0 and (e_j·v)² x <= lo_j² where e_j·v < 0 (none where e_j·v = 0 or
-///    the bound is infinite). lo_j <= 0 <= hi_j, so rest is admissible: hi_j = 0 with e_j·v > 0 is the row
-///    (e_j·v)² x <= 0, which forces ṡ = 0 there, exactly;
-///  - acceleration lo_j <= (e_j·α_x) x + (e_j·v) u <= hi_j per axis: two rows (upper, lower), a half-plane
-///    pair as joint acceleration limits (eq. 14). A bound on the norm of the acceleration is not a
-///    half-plane in (x, u); it is not offered: bound it per axis.
-/// Between grid points the rows are left to guarantee = continuous's audit (joint_rate_limits() order 0),
-/// which evaluates them at interior points and cuts where the timing breaks them (speed and velocity limits
-/// that bind along long stretches take many rounds at large N: bench/README.md, "Frame limits").
+// docstrings.txt @@ FrameLimits
+/// @brief Cartesian limits on a point fixed in a robot link (issue 22; Drake's Toppra frame limits), exact at the
+/// grid points: with v = J p', ω = J_ω p' and the classical acceleration term J p'' + J̇(p') p' of the path,
 ///
-/// Labels: "frame tool0 speed", "frame tool0 linear velocity x", "frame tool0 angular velocity local z",
-/// "frame tool0 linear acceleration z upper". Family "frame": relaxation() widens the limits about zero.
+/// - `"translational_speed"`: ‖v‖ ṡ <= v_max, one row ‖v‖² ṡ² <= v_max²;
+/// - `"linear_velocity"`, `"angular_velocity"`: lo_j <= (e_j·v) ṡ <= hi_j per axis; as ṡ >= 0 only the
+///   side of e_j·v's sign binds, one row (e_j·v)² ṡ² <= hi_j² (or lo_j²); hi_j = 0 where e_j·v > 0 forces
+///   ṡ = 0 there;
+/// - `"linear_acceleration"`, `"angular_acceleration"`: lo_j <= e_j·(J p' s̈ + (J p'' + J̇ p') ṡ²) <= hi_j
+///   per axis, two rows. Per axis only: a bound on the norm of the acceleration is not a half-plane.
+///
+/// With guarantee='continuous' the audit checks the rows between grid points; speed and velocity limits that
+/// bind along long stretches need many audit rounds at large N (bench/README.md: seconds at N = 1000 with the
+/// default audit_tolerance, under 1 s with audit_tolerance=1e-6). Family "frame" (relaxation).
 class FrameLimits : public Constraint {
  public:
-  /// lo, hi of size 3 (per-axis quantities; ±inf: no limit on that axis side) or, for TranslationalSpeed,
-  /// hi of size 1 (v_max > 0, +inf allowed) and lo empty. Velocity limits need lo <= 0 <= hi, acceleration
-  /// limits lo <= hi. `point` is in link coordinates, finite. Throws InvalidInput naming the argument.
+  // docstrings.txt @@ FrameLimits.__init__
+  /// @param link A link of `robot` (merged fixed links too, e.g. a tool frame).
+  /// @param quantity One of the five above.
+  /// @param lo,hi (3,): Per axis x, y, z (±inf: no limit); velocities need lo <= 0 <= hi (rest admissible),
+  ///   accelerations lo <= hi. For "translational_speed": hi is v_max (m/s, > 0) and lo None.
+  /// @param point (3,): In the link frame, m.
   FrameLimits(std::shared_ptr<const RobotModel> robot, std::string link, FrameQuantity quantity, Eigen::VectorXd lo,
               Eigen::VectorXd hi, FrameAxes axes = FrameAxes::World,
               const Eigen::Vector3d& point = Eigen::Vector3d::Zero());
@@ -64,8 +64,14 @@ class FrameLimits : public Constraint {
   const std::string& link() const { return link_; }
   FrameQuantity quantity() const { return quantity_; }
   FrameAxes axes() const { return axes_; }
+  // docstrings.txt @@ FrameLimits.lo
+  /// (3,), or (0,) for a speed limit.
   const Eigen::VectorXd& lo() const { return lo_; }
+  // docstrings.txt @@ FrameLimits.hi
+  /// (3,), or (1,) = v_max for a speed limit.
   const Eigen::VectorXd& hi() const { return hi_; }
+  // docstrings.txt @@ FrameLimits.point
+  /// (3,): m, link frame.
   const Eigen::Vector3d& point() const { return point_; }
 
  private:

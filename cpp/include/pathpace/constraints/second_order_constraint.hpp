@@ -43,15 +43,28 @@ struct SecondOrderOptions {
   std::string family = "second order";            ///< relaxation() widens g (see relaxed); empty: not relaxed
 };
 
-/// F(q) w <= g(q) with w = id(q, q̇, q̈). At a grid point, q = p, q̇ = p' ṡ, q̈ = p' s̈ + p'' ṡ² (eq. 10-11)
-/// make w affine in (x, u) = (ṡ², s̈) because id is quadratic in q̇ and linear in q̈ (eq. 12): with
-///   c = id(p, 0, 0),  b_w = id(p, 0, p') - c,  a_w = id(p, p', p'') - c
-/// w = a_w x + b_w u + c, and the rows are (F a_w) x + (F b_w) u <= g - F c. All 3(N+1) evaluations of id
-/// are one call; F and g are called once each with the N+1 samples of q.
+// docstrings.txt @@ SecondOrderConstraint
+/// @brief F(q) w <= g(q) with w = inverse_dynamics(q, q̇, q̈): toppra's second-order constraint (friction cones,
+/// an object held by a gripper, a tray that must not slip, torque limits).
 ///
-/// The functions must be safe to call from any thread (solve() and guarantee = continuous's audit
-/// evaluate the rows again, on new samples, while solving). What they return is checked at each call:
-/// shapes, W and F finite, g a number or +inf; an InvalidInput names the function, the sample and s.
+/// w = A(q) q̈ + q̇ᵀB(q) q̇ + f(q) is quadratic in q̇ and linear in q̈, so on the path (q = p, q̇ = p' ṡ,
+/// q̈ = p' s̈ + p'' ṡ², eq. 10-12) three evaluations per grid point give w = a ṡ² + b s̈ + c:
+/// c = id(p, 0, 0), b = id(p, 0, p') - c, a = id(p, p', p'') - c; the rows are (F a) ṡ² + (F b) s̈ <= g - F c.
+/// All 3(N+1) evaluations are one call of inverse_dynamics, and F and g are called once each with the N+1
+/// samples of q: vectorise them (numpy), since a call per sample costs more than the solve.
+///
+/// The callables are called from the solver's threads (the GIL taken for each call), again during
+/// `solve(guarantee='continuous')`, whose audit samples the rows between grid points, and on a restart or
+/// a contact switch (new grid points). What they return is checked (shapes, finite w and F, g a number or
+/// +inf): InvalidInput names the callable, the grid point and s. An exception they raise comes out of
+/// the pathpace call as it was. The constraint pickles when its callables do (module-level functions, or
+/// objects with `__reduce__`); pickle.PicklingError names the one that does not.
+///
+/// Differences from toppra's `SecondOrderConstraint(inv_dyn, constraint_F, constraint_g, dof)`: the same
+/// order and meaning of the first three arguments, but vectorised (`vectorized=False` takes toppra's
+/// per-sample functions unchanged), F and g may be constant arrays, no `dof` (the path's), no
+/// `custom_term` (put it in inverse_dynamics) and no discretization scheme (rows hold at the grid points;
+/// `guarantee='continuous'` holds them between).
 class SecondOrderConstraint : public Constraint {
  public:
   using Options = SecondOrderOptions;
@@ -60,19 +73,32 @@ class SecondOrderConstraint : public Constraint {
   /// checked here: shapes and entries).
   SecondOrderConstraint(std::shared_ptr<const SecondOrderFunctions> functions, Options options);
 
-  /// Convenience: std::functions of q for F and g.
+  // docstrings.txt @@ SecondOrderConstraint.__init__
+  /// @param inverse_dynamics w = f(q, qd, qdd): arrays (m, n) -> (m, nw).
+  /// @param F (r, nw): F(q): (m, n) -> (m, r, nw), or constant.
+  /// @param g (r,): g(q): (m, n) -> (m, r), or constant; +inf for an absent row.
   SecondOrderConstraint(SecondOrderFunctions::InverseDynamics inverse_dynamics, SecondOrderFunctions::OfQ F,
                         SecondOrderFunctions::OfQ g, SecondOrderOptions options = SecondOrderOptions());
 
-  /// Torque limits tau_min <= id(q, q̇, q̈) <= tau_max (eq. 15) from the user's inverse dynamics: F and g
-  /// constant, row 2j = τ_j <= tau_max[j], row 2j+1 = -τ_j <= -tau_min[j] (TorqueLimits' rows, in its
-  /// order); the limits are scale·[tau_min, tau_max] shrunk by `margin` on each side, as TorqueLimits'.
-  /// Family "torque", labels "torque <joint> upper/lower" with the problem's joint names ("joint j"
-  /// without). `functions` needs only inverse_dynamics (F, g are replaced).
+  // docstrings.txt @@ SecondOrderConstraint.torque_limits
+  /// @brief Torque limits tau_min <= inverse_dynamics(q, q̇, q̈) <= tau_max (eq. 15) from your own dynamics: F =
+  /// [e_0; -e_0; e_1; ...], g = [τ_max,0; -τ_min,0; ...] (TorqueLimits' rows, in its order), family "torque",
+  /// labels "torque <joint> upper/lower" (the problem's joint names, "joint j" without).
+  ///
+  /// @param tau_min,tau_max (n,): N·m (N); ±inf for none.
+  /// @param scale,margin The limits are scale·[tau_min, tau_max] shrunk by margin on each side (as TorqueLimits).
   static std::shared_ptr<const SecondOrderConstraint> torque_limits(
       std::shared_ptr<const SecondOrderFunctions> functions, const Eigen::VectorXd& tau_min,
       const Eigen::VectorXd& tau_max, double scale = 1.0, double margin = 0.0,
       std::vector<std::string> joint_names = {});
+  // docstrings.txt @@ SecondOrderConstraint.torque_limits
+  /// @brief Torque limits tau_min <= inverse_dynamics(q, q̇, q̈) <= tau_max (eq. 15) from your own dynamics: F =
+  /// [e_0; -e_0; e_1; ...], g = [τ_max,0; -τ_min,0; ...] (TorqueLimits' rows, in its order), family "torque",
+  /// labels "torque <joint> upper/lower" (the problem's joint names, "joint j" without).
+  ///
+  /// @param inverse_dynamics τ = f(q, qd, qdd): arrays (m, n) -> (m, n).
+  /// @param tau_min,tau_max (n,): N·m (N); ±inf for none.
+  /// @param scale,margin The limits are scale·[tau_min, tau_max] shrunk by margin on each side (as TorqueLimits).
   static std::shared_ptr<const SecondOrderConstraint> torque_limits(SecondOrderFunctions::InverseDynamics inverse_dynamics,
                                                                     const Eigen::VectorXd& tau_min,
                                                                     const Eigen::VectorXd& tau_max, double scale = 1.0,
@@ -98,7 +124,11 @@ class SecondOrderConstraint : public Constraint {
   std::shared_ptr<const SecondOrderConstraint> with_g_scale(double scale) const;
   /// True for torque_limits(); then tau_min/tau_max (after scale and margin) and joint_names are set.
   bool is_torque_limits() const { return torque_; }
+  // docstrings.txt @@ SecondOrderConstraint.tau_min
+  /// (n,): torque_limits' limits after scale and margin; None otherwise.
   const Eigen::VectorXd& tau_min() const { return tau_min_; }
+  // docstrings.txt @@ SecondOrderConstraint.tau_max
+  /// (n,): torque_limits' limits after scale and margin; None otherwise.
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
   const std::vector<std::string>& joint_names() const { return joint_names_; }
 
