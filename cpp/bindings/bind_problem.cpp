@@ -110,6 +110,25 @@ void bind_feasible_set(py::module_& m) {
       });
 }
 
+// add_frame_velocity_limits and add_frame_acceleration_limits take the same arguments (per-axis lo/hi of a
+// point on a link): one binding body, the C++ method its only difference.
+using FrameAxisLimits = void (TimeScalingProblem::*)(std::shared_ptr<const RobotModel>, const std::string&,
+                                                     const Eigen::VectorXd&, const Eigen::VectorXd&, bool, FrameAxes,
+                                                     const Eigen::Vector3d&);
+auto frame_axis_limits(FrameAxisLimits method) {
+  return [method](TimeScalingProblem& p, py::handle robot, py::handle link, py::handle lo, py::handle hi,
+                  py::handle angular, py::handle frame, py::handle point) {
+    auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
+    const std::string l = to_string_arg(link, "link");
+    const Eigen::VectorXd a = to_vector(lo, "lo"), b = to_vector(hi, "hi");
+    const bool ang = to_bool(angular, "angular");
+    const FrameAxes axes = frame_axes(to_string_arg(frame, "frame"));
+    const Eigen::Vector3d pt = to_point(point, "point");
+    py::gil_scoped_release release;
+    (p.*method)(std::move(r), l, a, b, ang, axes, pt);
+  };
+}
+
 // A pathpace Path as it is; anything else path-like (a scipy spline, a toppra interpolator, a callable)
 // through pathpace.as_path, which names what it cannot take.
 std::shared_ptr<Path> to_path(py::handle path_arg) {
@@ -249,30 +268,12 @@ void bind_problem_kinematics(ProblemClass& cls) {
         p.add_frame_translational_speed_limit(std::move(r), l, v, pt);
       }, "robot"_a, "link"_a, "v_max"_a, py::kw_only(), "point"_a = py::make_tuple(0.0, 0.0, 0.0),
          doc::TimeScalingProblem_add_frame_translational_speed_limit)
-      .def("add_frame_velocity_limits", [](TimeScalingProblem& p, py::handle robot, py::handle link, py::handle lo,
-                                           py::handle hi, py::handle angular, py::handle frame, py::handle point) {
-        auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
-        const std::string l = to_string_arg(link, "link");
-        const Eigen::VectorXd a = to_vector(lo, "lo"), b = to_vector(hi, "hi");
-        const bool ang = to_bool(angular, "angular");
-        const FrameAxes axes = frame_axes(to_string_arg(frame, "frame"));
-        const Eigen::Vector3d pt = to_point(point, "point");
-        py::gil_scoped_release release;
-        p.add_frame_velocity_limits(std::move(r), l, a, b, ang, axes, pt);
-      }, "robot"_a, "link"_a, "lo"_a, "hi"_a, py::kw_only(), "angular"_a = false, "frame"_a = "world",
-         "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::TimeScalingProblem_add_frame_velocity_limits)
-      .def("add_frame_acceleration_limits", [](TimeScalingProblem& p, py::handle robot, py::handle link, py::handle lo,
-                                               py::handle hi, py::handle angular, py::handle frame, py::handle point) {
-        auto r = to_object<RobotModel>(robot, "robot", "RobotModel");
-        const std::string l = to_string_arg(link, "link");
-        const Eigen::VectorXd a = to_vector(lo, "lo"), b = to_vector(hi, "hi");
-        const bool ang = to_bool(angular, "angular");
-        const FrameAxes axes = frame_axes(to_string_arg(frame, "frame"));
-        const Eigen::Vector3d pt = to_point(point, "point");
-        py::gil_scoped_release release;
-        p.add_frame_acceleration_limits(std::move(r), l, a, b, ang, axes, pt);
-      }, "robot"_a, "link"_a, "lo"_a, "hi"_a, py::kw_only(), "angular"_a = false, "frame"_a = "world",
-         "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::TimeScalingProblem_add_frame_acceleration_limits)
+      .def("add_frame_velocity_limits", frame_axis_limits(&TimeScalingProblem::add_frame_velocity_limits), "robot"_a,
+           "link"_a, "lo"_a, "hi"_a, py::kw_only(), "angular"_a = false, "frame"_a = "world",
+           "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::TimeScalingProblem_add_frame_velocity_limits)
+      .def("add_frame_acceleration_limits", frame_axis_limits(&TimeScalingProblem::add_frame_acceleration_limits),
+           "robot"_a, "link"_a, "lo"_a, "hi"_a, py::kw_only(), "angular"_a = false, "frame"_a = "world",
+           "point"_a = py::make_tuple(0.0, 0.0, 0.0), doc::TimeScalingProblem_add_frame_acceleration_limits)
       .def("add_constraint", [](TimeScalingProblem& p, py::handle c) {
         auto constraint = to_object<Constraint>(c, "constraint", "Constraint");
         py::gil_scoped_release release;

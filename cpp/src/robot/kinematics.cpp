@@ -82,19 +82,11 @@ Eigen::Matrix4d RobotModel::frame_placement(const Eigen::VectorXd& q, const std:
 
 Eigen::MatrixXd RobotModel::point_jacobian(const Eigen::VectorXd& q, const std::string& link,
                                            const Eigen::Vector3d& point) const {
-  check_q(q, "q");
-  detail::require_finite("q", q);
-  detail::require_finite("point", point);
-  Eigen::Isometry3d in_body;
-  const int body = body_of_link(link, in_body);
-  std::vector<Eigen::Isometry3d> T;
-  body_placements(q, T);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, nq());
-  if (body < 0) return J;
-  add_point_jacobian(T, body, T[static_cast<size_t>(body)] * (in_body * point), 1.0, J);
-  return J;
+  return frame_jacobian(q, link, point).topRows(3);
 }
 
+// The point's linear rows (add_point_jacobian) and the link's angular rows: the world axis of every
+// revolute joint on the chain to the root. A mimic model's columns are its bodies model's, times E.
 Eigen::MatrixXd RobotModel::frame_jacobian(const Eigen::VectorXd& q, const std::string& link,
                                            const Eigen::Vector3d& point) const {
   check_q(q, "q");
