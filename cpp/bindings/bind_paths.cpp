@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "common.hpp"
 #include "convert.hpp"
 #include "docstrings.hpp"
 #include "pathpace/auto_grid.hpp"
@@ -160,7 +161,17 @@ void bind_path(py::module_& m) {
       .def("__call__", [](const Path& p, py::handle s, py::handle order) {
         const int k = static_cast<int>(to_int(order, "order", 0, 2));
         return eval(p, s, k);
-      }, "s"_a, "order"_a = 0, doc::Path_call_);
+      }, "s"_a, "order"_a = 0, doc::Path_call_)
+      // The concrete paths pickle by their own state (py::pickle overrides this), CallbackPath and
+      // InterpolatorPath by __reduce__. A user's subclass without either would get Python's "cannot pickle
+      // 'X' object", which says neither what nor how: this names the class and the two ways out.
+      .def("__getstate__", [](py::handle self) -> py::object {
+        const std::string cls = type_name(self);
+        throw py::type_error(cls + " does not pickle: a Python subclass of pathpace.Path needs its own __reduce__ "
+                             "(e.g. `def __reduce__(self): return " + cls + ", (<constructor arguments>,)`) or "
+                             "__getstate__/__setstate__; or give the path as a module-level function f(s) -> (q, dq, ddq) "
+                             "through pathpace.paths.CallbackPath(f, s_begin, s_end), which pickles");
+      });
 }
 
 void bind_piecewise_polynomial_path(py::module_& m) {
@@ -283,7 +294,7 @@ void bind_paths(py::module_& m) {
   bind_sampled_path(m);
   bind_sub_path(m);
   m.def("auto_grid", [](py::handle path_arg, py::handle tolerance, py::handle min_intervals, py::handle max_intervals) {
-    const auto path = to_object<Path>(path_arg, "path", "Path");
+    const auto path = to_path(path_arg);  // any path-like, as TimeScalingProblem(path, grid="auto") takes
     const double tol = to_double(tolerance, "tolerance");
     const int lo = to_int32(min_intervals, "min_intervals"), hi = to_int32(max_intervals, "max_intervals");
     py::gil_scoped_release release;

@@ -129,14 +129,7 @@ auto frame_axis_limits(FrameAxisLimits method) {
   };
 }
 
-// A pathpace Path as it is; anything else path-like (a scipy spline, a toppra interpolator, a callable)
-// through pathpace.as_path, which names what it cannot take.
-std::shared_ptr<Path> to_path(py::handle path_arg) {
-  if (path_arg.is_none() || py::isinstance<Path>(path_arg)) return to_object<Path>(path_arg, "path", "Path");
-  return to_object<Path>(py::module_::import("pathpace.paths").attr("as_path")(path_arg), "path", "Path");
-}
-
-std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object grid, py::handle tolerance_arg) {
+std::shared_ptr<TimeScalingProblem> make_grid_problem(py::handle path_arg, py::object grid, py::handle tolerance_arg) {
   auto path = to_path(path_arg);
   const double grid_tolerance = to_double(tolerance_arg, "grid_tolerance");
   if (py::isinstance<py::str>(grid)) {
@@ -163,6 +156,15 @@ std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object
   }
   Eigen::VectorXd g = to_vector(grid, "grid");
   return std::make_shared<TimeScalingProblem>(std::move(path), std::move(g));
+}
+
+// constraints=: toppra's constraint objects (or pathpace Constraints), added by pathpace.toppra_compat, which
+// reads their attributes and calls the add_* that means the same (a toppra script keeps its constraint lines).
+std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object grid, py::handle tolerance_arg,
+                                                 py::handle constraints) {
+  auto p = make_grid_problem(path_arg, std::move(grid), tolerance_arg);
+  if (!constraints.is_none()) py::module_::import("pathpace.toppra_compat").attr("add_constraints")(py::cast(p), constraints);
+  return p;
 }
 
 // Rebuilt from (path, grid, constraints, settings): constraint rows are evaluated again. The settings
@@ -200,7 +202,8 @@ std::string problem_repr(const TimeScalingProblem& p) {
 }
 
 void bind_problem_state(ProblemClass& cls) {
-  cls.def(py::init(&make_problem), "path"_a, "grid"_a = 100, "grid_tolerance"_a = 1e-3)
+  cls.def(py::init(&make_problem), "path"_a, "grid"_a = 100, "grid_tolerance"_a = 1e-3, py::kw_only(),
+          "constraints"_a = py::none())
       .def(py::pickle(&problem_state, &problem_from_state))
       .def("__repr__", &problem_repr)
       .def_property_readonly("joint_names", &TimeScalingProblem::joint_names, doc::TimeScalingProblem_joint_names)
@@ -382,6 +385,9 @@ void bind_problem_solve(ProblemClass& cls) {
         py::gil_scoped_release release;
         return p.restarted(a, b);
       }, "s0"_a, "sdot0"_a, doc::TimeScalingProblem_restarted)
+      .def("compute_trajectory", [](py::object self, py::handle sd_start, py::handle sd_end) {
+        return py::module_::import("pathpace.toppra_compat").attr("compute_trajectory")(self, sd_start, sd_end);
+      }, "sd_start"_a = 0.0, "sd_end"_a = 0.0, doc::TimeScalingProblem_compute_trajectory)
       .def("solve", [](const TimeScalingProblem& p, py::handle method, py::handle max_iterations, py::handle tolerance,
                        py::handle initial_trust_region, py::handle lp_feasibility_tolerance, py::handle explain,
                        py::handle guarantee, py::handle audit_points, py::handle audit_tolerance,

@@ -4,6 +4,11 @@
 
 namespace pathpace::python {
 
+std::shared_ptr<Path> to_path(py::handle path_arg, const std::string& name) {
+  if (path_arg.is_none() || py::isinstance<Path>(path_arg)) return to_object<Path>(path_arg, name, "Path");
+  return to_object<Path>(py::module_::import("pathpace.paths").attr("as_path")(path_arg), name, "Path");
+}
+
 py::list drift_list(const std::vector<ContactDrift>& v) {
   py::list out;
   for (const ContactDrift& d : v) out.append(py::make_tuple(d.constraint, d.contact, d.link, d.s, d.drift, d.tolerance));

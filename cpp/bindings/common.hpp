@@ -13,6 +13,7 @@
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_forces.hpp"
+#include "pathpace/path.hpp"
 #include "pathpace/solver_options.hpp"
 
 namespace pathpace::python {
@@ -47,6 +48,10 @@ inline std::string short_number(double v) {
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
+
+/// A pathpace Path as it is; anything else path-like (a scipy spline, a toppra interpolator, a callable)
+/// through pathpace.as_path, which names what it cannot take. `name` names the argument (None is refused).
+std::shared_ptr<Path> to_path(py::handle path_arg, const std::string& name = "path");
 
 /// guarantee= of solve and relaxation.
 Guarantee parse_guarantee(const std::string& g);

@@ -1645,6 +1645,12 @@ class TimeScalingProblem:
         ``intervals``).
     grid_tolerance : float
         Of grid='auto'.
+    constraints : list, optional
+        Keyword only. toppra's constraint objects (JointVelocityConstraint, JointAccelerationConstraint,
+        JointTorqueConstraint, SecondOrderConstraint, JointVelocityConstraintVarying) or pathpace Constraints,
+        each added as the add_* call that means the same (pathpace.toppra_compat.add_constraints), so that a
+        toppra script keeps its constraint lines. Another type, dry friction (fs_coef != 0) or a nonzero
+        custom_term is an InvalidInputError naming ``constraints[i]`` and its type.
 
     Attributes
     ----------
@@ -1659,7 +1665,14 @@ class TimeScalingProblem:
     joint_names : list of str
         See ``set_joint_names``.
     """
-    def __init__(self, path: Path | Any, grid: int | str | ArrayLike = 100, grid_tolerance: float = 1e-3) -> None: ...
+    def __init__(
+        self,
+        path: Path | Any,
+        grid: int | str | ArrayLike = 100,
+        grid_tolerance: float = 1e-3,
+        *,
+        constraints: list[Any] | None = None,
+    ) -> None: ...
     def add_velocity_limits(self, vmin: ArrayLike, vmax: ArrayLike) -> None:
         """Joint velocity limits (eq. 13); see VelocityLimits.
 
@@ -1998,6 +2011,23 @@ class TimeScalingProblem:
         must then be a grid point: InvalidInputError naming s0 and the nearest grid point otherwise). Its result
         starts at q = p(s0), qd = p'(s0)*sdot0 (no jump in position or velocity); its times count from the
         restart (t = 0 at s0).
+        """
+    def compute_trajectory(self, sd_start: float = 0.0, sd_end: float = 0.0) -> Trajectory | None:
+        """toppra's ``compute_trajectory(sd_start, sd_end)``: the time-optimal Trajectory, or None if the solve fails.
+
+        As toppra: None (not an exception) when there is no timing, with a warning on the "pathpace" logger
+        naming the status and why; ``solve()`` returns the Result with the reason (infeasible_s,
+        binding_constraints). The path speeds at the ends are set on the problem (set_boundary_speeds) when they
+        differ from its own, so they stay for later solves.
+
+        Parameters
+        ----------
+        sd_start, sd_end : float
+            ṡ at s_begin and s_end (1/s), as toppra's.
+
+        Returns
+        -------
+        Trajectory or None
         """
     def solve(
         self,

@@ -18,6 +18,7 @@
 #include "pathpace/cubic_spline_path.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/feasible_set.hpp"
+#include "pathpace/function_path.hpp"
 #include "pathpace/path.hpp"
 #include "pathpace/path_samples.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
