@@ -35,11 +35,13 @@ cp "$B"/cpp/bindings/_core*.so "$stage/"
 # libstdc++ is preloaded too: otherwise ASan's __cxa_throw interceptor, resolved when libasan loads
 # into the C interpreter, finds no real __cxa_throw and aborts at the first C++ exception.
 PRELOAD="$(g++ -print-file-name=libasan.so) $(g++ -print-file-name=libstdc++.so)"
-# Tests that drive the bindings (paths, problems, robots, contacts, threads, bad input, fuzz);
-# examples and the pinocchio/cvxpy-heavy comparisons add time, not binding coverage.
+# Tests that drive the bindings (paths, problems, robots, contacts, threads, bad input, fuzz; Python
+# callbacks called from the solver's threads: path-likes, user dynamics, toppra's constraint objects; frame
+# limits); examples and the pinocchio/cvxpy-heavy comparisons add time, not binding coverage.
 TESTS=(tests/python/test_robustness.py tests/python/test_api.py tests/python/test_paths.py
        tests/python/test_problem.py tests/python/test_contact.py tests/python/test_contact_phases.py
-       tests/python/test_argument_errors.py tests/python/fuzz)
+       tests/python/test_argument_errors.py tests/python/test_path_like.py tests/python/test_second_order.py
+       tests/python/test_frame_limits.py tests/python/test_toppra_compat.py tests/python/fuzz)
 PYTHONPATH="$PWD/$B/python" LD_PRELOAD="$PRELOAD" \
   ASAN_OPTIONS=detect_leaks=0:halt_on_error=1:allocator_may_return_null=1 \
   "$PY" -m pytest -q -p no:cacheprovider "${TESTS[@]}" \

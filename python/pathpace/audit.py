@@ -109,6 +109,8 @@ def audit_trajectory(spec, traj: dict[str, np.ndarray], progress: bool = False, 
         a, _, c = robot.path_torque_coefficients(q, qd, qdd)
         m, sc = _bound_margins(a + c, spec.torque_limits.tau_min, spec.torque_limits.tau_max)
         rows.append(_row("torque", m, sc, t, names, _units(spec, q.shape[1], "", torque=True)))
+    for c in getattr(spec, "frame_limits", []):
+        rows.append(_frame_row(robot, c, t, q, qd, qdd))
     if spec.contacts is not None:
         margins = np.empty(len(t))
         with ProgressBar(len(t), "contact forces", enabled=progress) as bar:
@@ -118,3 +120,28 @@ def audit_trajectory(spec, traj: dict[str, np.ndarray], progress: bool = False, 
                 bar.update(min(chunk, len(t) - i))
         rows.append(_row("contact", margins[:, None], np.ones(1), t, [], "N"))
     return rows
+
+
+_FRAME_UNITS = {"translational_speed": "m/s", "linear_velocity": "m/s", "angular_velocity": "rad/s",
+                "linear_acceleration": "m/s²", "angular_acceleration": "rad/s²"}
+
+
+def _frame_row(robot, c, t: np.ndarray, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> dict[str, Any]:
+    """A FrameLimits of the problem (limits.frames) on the motion itself: robot.path_frame_motion with
+    p' = q̇ and p'' = q̈ (ṡ = 1, s̈ = 0) is the point's velocity J q̇, the link's angular velocity and their
+    classical accelerations, in the world frame; frame "local" takes their components on the link's axes
+    (Rᵀ x, R from frame_placement)."""
+    v, w, a, alpha = robot.path_frame_motion(q, qd, qdd, c.link, c.point)
+    name = f"frame {c.link} {c.quantity}"
+    unit = _FRAME_UNITS[c.quantity]
+    if c.quantity == "translational_speed":
+        speed = np.linalg.norm(v, axis=1)[:, None]
+        m, sc = _bound_margins(speed, np.array([-np.inf]), np.asarray(c.hi, dtype=float).reshape(1))
+        return _row(name, m, sc, t, [], unit)
+    x = {"linear_velocity": v, "angular_velocity": w, "linear_acceleration": a, "angular_acceleration": alpha}[c.quantity]
+    if c.frame == "local":
+        R = np.stack([np.asarray(robot.frame_placement(qi, c.link))[:3, :3] for qi in q])
+        x = np.einsum("kji,kj->ki", R, x)
+    m, sc = _bound_margins(x, np.asarray(c.lo, dtype=float), np.asarray(c.hi, dtype=float))
+    return _row(name, m, sc, t, ["x", "y", "z"], unit)
+

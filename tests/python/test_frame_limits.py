@@ -527,3 +527,81 @@ def test_a_mimic_joint_moves_the_point_as_in_pinocchio():
         J = pin.computeFrameJacobian(model, data, full[0], fid, pin.LOCAL_WORLD_ALIGNED)
         close(ours.frame_jacobian(Q[k], "panda_rightfinger", point), np.column_stack([J[:, :7], J[:, 7] + J[:, 8]]),
               "mimic frame_jacobian")
+
+
+# ---------------------------------------------------------------------------------------------------
+# Problem files with frame limits through `pathpace check` and solve_many (issue 22, item 5).
+
+FRAMES_BASE = YAML.split("  frames:\n")[0] + "  frames:\n"
+
+
+@pytest.mark.parametrize("frames", [
+    "    - {link: tool0, point: [0, 0, 0.1], speed: 0.3}\n",
+    "    - {link: wrist_3_link, frame: local, angular_velocity: [0.3, 0.3, 0.3]}\n",
+    "    - {link: tool0, frame: local, point: [0, 0, 0.1], velocity: [0.1, 0.1, 0.1]}\n",
+    "    - {link: tool0, frame: local, point: [0, 0, 0.1], acceleration: {max: [0.5, 0.5, 0.5]}}\n",
+    "    - {link: wrist_3_link, angular_acceleration: {max: [0.5, 0.5, 0.5]}}\n",
+], ids=["speed", "angular-velocity-local", "velocity-local", "acceleration-local", "angular-acceleration"])
+def test_check_audits_frame_limits_of_a_problem_file(tmp_path, frames):
+    """The audit of `pathpace check` on the optimum at its grid times: the binding frame limit (each of these
+    binds, res.binding) has margin 0 to rounding, an independent reading of the rows (path_frame_motion at
+    ṡ = 1 with p' = q̇, the local axes from frame_placement). The same motion 10 % faster breaks it."""
+    from pathpace.audit import audit_trajectory
+    from pathpace.problem_file import load_problem
+
+    f = tmp_path / "tool.yaml"
+    f.write_text(FRAMES_BASE + frames)
+    spec = load_problem(f)
+    res = spec.solve()
+    assert res.ok and any(b.startswith("frame ") for b in res.binding)
+    traj = res.trajectory()
+    t = traj.times
+    motion = {"t": t, "q": traj.q(t), "qd": traj.qd(t), "qdd": traj.qdd(t)}
+    (row,) = [r for r in audit_trajectory(spec, motion) if r["constraint"].startswith("frame ")]
+    assert abs(row["margin"]) <= 1e-9 * row["scale"], row
+    faster = {"t": t / 1.1, "q": motion["q"], "qd": 1.1 * motion["qd"], "qdd": 1.21 * motion["qdd"]}
+    (row,) = [r for r in audit_trajectory(spec, faster) if r["constraint"].startswith("frame ")]
+    assert row["margin"] < -0.05 * row["scale"], row  # velocities 10 % over, accelerations 21 %
+
+    # The CLI on a CSV of each: exit 0 and "ok", exit 1 and "VIOLATED" on the frame line.
+    import subprocess
+    import sys
+
+    for name, m, code, word in (("ok.csv", motion, 0, "ok"), ("fast.csv", faster, 1, "VIOLATED")):
+        cols = ["t"] + [f"q_{j}" for j in spec.joint_names] + [f"qd_{j}" for j in spec.joint_names] + \
+            [f"qdd_{j}" for j in spec.joint_names]
+        np.savetxt(tmp_path / name, np.column_stack([m["t"], m["q"], m["qd"], m["qdd"]]), delimiter=",",
+                   header=",".join(cols), comments="", fmt="%.17g")
+        p = subprocess.run([sys.executable, "-m", "pathpace.cli", "check", str(f), str(tmp_path / name)],
+                           capture_output=True, text=True, timeout=300)
+        assert p.returncode == code, p.stdout + p.stderr
+        (line,) = [x for x in p.stdout.splitlines() if x.startswith("frame ")]
+        assert line.endswith(word), line
+
+
+def test_problem_files_with_frame_limits_through_solve_many(tmp_path):
+    """Several files: `pathpace solve a b` (solve_many on threads) and solve_many on processes (each problem
+    pickled with its robot and FrameLimits) give each file's own solve."""
+    import concurrent.futures
+    import json
+    import subprocess
+    import sys
+
+    from pathpace.problem_file import load_problem
+
+    files = []
+    for i, speed in enumerate((0.3, 0.2)):
+        f = tmp_path / f"tool{i}.yaml"
+        f.write_text(YAML.replace("speed: 0.3", f"speed: {speed}").replace("name: tool", f"name: tool{i}"))
+        files.append(f)
+    specs = [load_problem(f) for f in files]
+    expected = [s.solve().duration for s in specs]
+    assert expected[1] > expected[0]  # the slower tool speed binds
+    with concurrent.futures.ProcessPoolExecutor(2) as ex:
+        assert [r.duration for r in pp.solve_many([s.problem for s in specs], executor=ex)] == expected
+    out = tmp_path / "out"
+    p = subprocess.run([sys.executable, "-m", "pathpace.cli", "solve", *map(str, files), "--out-dir", str(out)],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    for f, T in zip(files, expected):
+        assert json.loads((out / f"{f.stem}.json").read_text())["duration"] == pytest.approx(T, rel=1e-12)

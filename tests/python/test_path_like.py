@@ -534,6 +534,7 @@ def test_readme_paths_example_runs_as_pasted():
     exec(compile(block, "README.md", "exec"), scope)  # noqa: S102 - the README's own example
     traj, path = scope["traj"], scope["path"]
     np.testing.assert_allclose(traj(traj.duration), scope["way_pts"][-1], atol=1e-12)
+    assert [c.name for c in scope["instance"].constraints] == ["velocity limits", "acceleration limits"]
     assert isinstance(pp.as_path(path), pp.PiecewisePolynomialPath)
 
 
@@ -564,3 +565,47 @@ def test_contact_phases_insert_their_switch_on_a_callback_path_and_a_scipy_splin
         res = prob.solve()
         assert res.status.name == "OPTIMAL" and close(res.duration, T)
         assert pickle.loads(pickle.dumps(prob)).solve().duration == res.duration
+
+
+# -- auto_grid on any path-like (what TimeScalingProblem(path, grid="auto") takes) -------------------------
+
+
+def test_auto_grid_takes_every_path_like_as_path_takes():
+    ta = pytest.importorskip("toppra")
+    for kind, obj in {**path_likes(), "toppra": ta.SplineInterpolator(KNOTS, WAYPOINTS)}.items():
+        grid = pp.auto_grid(obj, tolerance=1e-3)
+        assert np.array_equal(grid, pp.auto_grid(pp.as_path(obj), tolerance=1e-3)), kind
+        assert np.array_equal(grid, pp.TimeScalingProblem(obj, grid="auto").grid), kind
+    with pytest.raises(TypeError, match=r"path must be a pathpace.Path, a scipy PPoly.*got str"):
+        pp.auto_grid("not a path")
+    with pytest.raises(TypeError, match=r"path must be a pathpace.Path, got None"):
+        pp.auto_grid(None)
+
+
+# -- pickling a user's subclass ----------------------------------------------------------------------------
+
+
+class UserPathThatPickles(UserPath):
+    """UserPath with what pickle needs: how to make it again."""
+
+    def __reduce__(self):
+        return UserPathThatPickles, ()
+
+
+def test_a_user_subclass_without_reduce_says_how_to_make_it_pickle():
+    msg = (r"^UserPath does not pickle: a Python subclass of pathpace.Path needs its own __reduce__ \(e.g. `def "
+           r"__reduce__\(self\): return UserPath, \(<constructor arguments>,\)`\) or __getstate__/__setstate__; or give "
+           r"the path as a module-level function f\(s\) -> \(q, dq, ddq\) through pathpace.paths.CallbackPath")
+    with pytest.raises(TypeError, match=msg):
+        pickle.dumps(UserPath())
+    prob = pp.TimeScalingProblem(UserPath(), grid=40)
+    with pytest.raises(TypeError, match=r"^UserPath does not pickle"):  # inside a problem too
+        pickle.dumps(prob)
+    # With __reduce__ it pickles, alone and in a problem; the concrete paths keep their own state.
+    prob = pp.TimeScalingProblem(UserPathThatPickles(), grid=40)
+    prob.add_velocity_limits([-1, -1], [1, 1])
+    back = pickle.loads(pickle.dumps(prob))
+    assert type(back.path) is UserPathThatPickles and back.solve().duration == prob.solve().duration
+    for kind, path in every_path_kind().items():
+        if kind != "UserPath":
+            assert np.array_equal(pickle.loads(pickle.dumps(path))(0.3, 1), path(0.3, 1)), kind
