@@ -59,7 +59,7 @@ def compute_trajectory(problem: Any, sd_start: float = 0.0, sd_end: float = 0.0)
     solve does not succeed (logged as a warning on the "pathpace" logger with the status and message, as
     toppra logs its return code). ``sd_start``/``sd_end`` are the path speeds ṡ at the ends, set on the
     problem (``set_boundary_speeds``) when they differ from its own. ``solve()`` gives the Result with why."""
-    a, b = float(sd_start), float(sd_end)
+    a, b = _number(sd_start, "sd_start"), _number(sd_end, "sd_end")
     if (a, b) != (problem.sdot_begin, problem.sdot_end):
         problem.set_boundary_speeds(a, b)
     res = problem.solve()
@@ -67,6 +67,12 @@ def compute_trajectory(problem: Any, sd_start: float = 0.0, sd_end: float = 0.0)
         _log.warning("pathpace: no time scaling (%s): %s", res.status.name, res.message)
         return None
     return res.trajectory()
+
+
+def _number(value: Any, name: str) -> float:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number, got {type(value).__name__}")
+    return float(value)
 
 
 # -- one constraint ----------------------------------------------------------------------------------------

@@ -22,7 +22,7 @@ SRC = ROOT / "cpp" / "src"
 LAYERS = ["base", "paths", "geometry", "lp", "robot", "constraints", "solve", "result", "problem"]
 CONSTRAINT_TYPES = ("Constraint", "VelocityLimits", "AccelerationLimits", "LinearConstraint", "TorqueLimits",
                     "ContactConstraint")
-PATH_TYPES = ("Path", "PiecewisePolynomialPath", "CubicSplinePath", "SampledPath", "SubPath")
+PATH_TYPES = ("Path", "PiecewisePolynomialPath", "CubicSplinePath", "SampledPath", "FunctionPath", "SubPath")
 MAX_FUNCTION, MAX_FILE = 150, 700
 CAST = re.compile(r"dynamic(?:_pointer)?_cast\s*<\s*(?:const\s+)?(?:pathpace::)?(?:detail::)?(\w+)|typeid\s*\(")
 

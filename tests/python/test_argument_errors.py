@@ -30,7 +30,9 @@ TRAJ = problem().solve().trajectory()
 # ------------------------------------------------------------------------------------ wrong types
 # (call, message): every parameter is a py::handle converted by convert.hpp's helpers, which name it.
 WRONG_TYPES = {
-    "auto_grid path": (lambda: pp.auto_grid("x"), "path must be a pathpace.Path, got str"),
+    "auto_grid path": (lambda: pp.auto_grid("x"),  # any path-like, as TimeScalingProblem takes (pp.as_path)
+                       "path must be a pathpace.Path, a scipy PPoly/CubicSpline/BSpline, an object with toppra's "
+                       "__call__(s, order) and path_interval, or a callable f(s) -> (q, dq, ddq), got str"),
     "auto_grid path None": (lambda: pp.auto_grid(None), "path must be a pathpace.Path, got None"),
     "auto_grid tolerance": (lambda: pp.auto_grid(LINE, tolerance="a"), "tolerance must be a number, got str"),
     "auto_grid min_intervals": (lambda: pp.auto_grid(LINE, min_intervals=1.5), "min_intervals must be an int, got float"),

@@ -276,6 +276,10 @@ def test_compute_trajectory_takes_toppras_end_speeds():
     assert traj.duration == prob.solve().duration
     prob.compute_trajectory()  # toppra's defaults: at rest at both ends again
     assert (prob.sdot_begin, prob.sdot_end) == (0.0, 0.0)
+    with pytest.raises(TypeError, match=r"^sd_end must be a number, got str"):
+        prob.compute_trajectory(0.0, "0")
+    with pytest.raises(pp.InvalidInputError, match=r"sdot_begin"):  # the problem's own check of the value
+        prob.compute_trajectory(-1.0)
 
 
 def test_solve_many_takes_problems_built_from_toppra_constraints():
