@@ -53,6 +53,16 @@ CYCLES = 2
 FRICTION = 0.5
 MARGINS = dict(cone_edges=8, friction_margin=0.5, min_normal_force=10.0)
 KNOTS_PER_PHASE = 16
+# The spline through the knots keeps every held point within 0.22 mm of its place (max_drift at 401 points per
+# phase): the drift tolerance of add_contact_phases, a tenth of the slip that a run with room may have.
+DRIFT = 3e-4
+# MuJoCo's friction as stiff as 10 x its normal impedance (pathpace.sim.Simulator's impratio): at 1 every held
+# point creeps under the steady push and pull of the climb, by millimetres over its 10 s.
+IMPRATIO = 10.0
+# The executed timing: N = 400 (at N = 100 the torques between grid points exceed the limits by up to 4 x
+# just after a lift-off, and the robot falls), the motors planned at TORQUE_SCALE x their effort (the rest
+# is the feedback's) and SIM_MIN_NORMAL_FORCE per point.
+SIM_GRID, TORQUE_SCALE, SIM_MIN_NORMAL_FORCE = 400, 0.8, 30.0
 
 FEET = talos_sway.SOLES  # left, right
 HANDS = ("gripper_left_base_link", "gripper_right_base_link")
@@ -61,6 +71,12 @@ LIMBS = (HANDS[0], FEET[1], HANDS[1], FEET[0])  # the order of the swings in a c
 SOLE_CENTRE = 0.055
 FOOT_POINTS = [(x, y, 0.0) for x in (SOLE_CENTRE - 0.02, SOLE_CENTRE + 0.02) for y in (-0.05, 0.05)]
 HAND_POINT = (0.0, 0.0, 0.0)
+# A hand holds a rung with a ball of this radius (the simulator's contact sphere) centred on its point: the
+# point is BALL above the rung, and the hand may turn on the ball as the body climbs past it (a sole's
+# points are on the sole's surface instead: a sole stays flat). pathpace puts the hand's force at the
+# ball's centre, the simulator at its bottom: a moment of BALL x the friction force, at most 0.005 m x 0.25 x
+# the normal force.
+BALL = 0.005
 HAND_Y = 0.35  # |y| of the hands on the rungs
 LIMIT_GAP = 0.02  # rad (m) that the IK keeps inside every joint limit
 LIFT = 0.05  # m above the straight line that a swing limb clears
@@ -140,13 +156,13 @@ class ClimbPlan:
         y = side * (0.085 if limb in FEET else HAND_Y)
         u = self.swing_progress(limb, s)
         if u is None:
-            return rung_top(int(round(self.rung(limb, s)))) + [0.0, y, 0.0]
+            return rung_top(int(round(self.rung(limb, s)))) + [0.0, y, 0.0 if limb in FEET else BALL]
         j = int(round(self.rung(limb, s - u)))  # the rung it left
         up = RISE * smooth(u / 0.6) + LIFT * np.sin(np.pi * u) ** 2
         # A foot goes forward sooner than a hand (its ankle would bend past its limit), still clearing the
         # rung above by 1.4 cm; a hand's point starts 3 cm behind the rung above and goes up first.
         fwd = RUN * (smooth((u - 0.15) / 0.7) if limb in FEET else smooth((u - 0.4) / 0.6))
-        return rung_top(j) + [fwd, y, up]
+        return rung_top(j) + [fwd, y, up + (0.0 if limb in FEET else BALL)]
 
     def support(self, s: float) -> list[str]:
         for s0, s1, limb in self.phases:
@@ -251,8 +267,10 @@ class ClimbIK:
             new = np.clip(x + scale * dq, lo, hi)
             moved = float(np.max(np.abs(new - x)))
             q[free] = new
-            if np.max(np.abs(e1)) < 1e-11 and moved < 1e-6:
+            if np.max(np.abs(e1)) < 1e-10 and moved < 1e-6:
                 return q
+        if np.max(np.abs(e1)) < 1e-7:  # the limbs within 0.1 µm (rad), the posture's slow tail cut short
+            return q
         raise RuntimeError(f"climb IK did not converge (limbs {list(limbs)}, CoM {com_xy}; limb/CoM residual "
                            f"{np.max(np.abs(e1)):.2e}, step {moved:.2e})")
 
@@ -269,24 +287,19 @@ def posture_reference(ik: ClimbIK, plan: ClimbPlan, s: float) -> np.ndarray:
     return q
 
 
-def hand_rotation(robot: pp.RobotModel) -> dict[str, np.ndarray]:
-    """The hands' world orientation, held all along the climb: the one the posture prefers with the feet on
-    FOOT_RUNG and the hands' points on HAND_RUNG (IK with the hands' positions only)."""
-    ik, plan = ClimbIK(robot), ClimbPlan()
-    q = ik.q_half.copy()
+def initial_posture(robot: pp.RobotModel) -> np.ndarray:
+    """A first guess at s = 0: half-sitting moved onto FOOT_RUNG."""
+    q = talos_sway.standing_posture(robot)
     q[0] += rung_top(FOOT_RUNG)[0] - SOLE_CENTRE + 0.009
     q[2] += rung_top(FOOT_RUNG)[2]
-    targets = {l: (plan.limb_position(l, 0.0), np.eye(3) if l in FEET else None) for l in (*FEET, *HANDS)}
-    q = ik.solve(q, targets, plan.com_target(0.0), posture_reference(ik, plan, 0.0))
-    return {h: robot.frame_placement(q, h)[:3, :3] for h in HANDS}, q
+    return q
 
 
-def climb_path(robot: pp.RobotModel, cycles: int = CYCLES, knots_per_phase: int = KNOTS_PER_PHASE) -> pp.CubicSplinePath:
-    """The C² joint spline through the IK postures at `knots_per_phase` knots per phase."""
-    ik, plan = ClimbIK(robot), ClimbPlan(cycles)
-    q = hand_rotation(robot)[1]
-    s_end = plan.phases[-1][1]
-    s = np.linspace(0.0, s_end, int(round(s_end)) * knots_per_phase + 1)
+def _ik_sweep(robot: pp.RobotModel, plan: ClimbPlan, s: np.ndarray) -> list[np.ndarray]:
+    """IK postures at the values s, each from the one before: soles at their placements, hands' points at
+    their positions."""
+    ik = ClimbIK(robot)
+
     def targets(si: float) -> dict:
         return {l: (plan.limb_position(l, si), np.eye(3) if l in FEET else None) for l in (*FEET, *HANDS)}
 
@@ -301,9 +314,19 @@ def climb_path(robot: pp.RobotModel, cycles: int = CYCLES, knots_per_phase: int 
             mid = 0.5 * (s_from + s_to)
             return reach(reach(q, s_from, mid, depth + 1), mid, s_to, depth + 1)
 
-    waypoints = [reach(q, 0.0, 0.0)]
+    waypoints = [reach(initial_posture(robot), s[0], s[0])]
     for a, b in zip(s, s[1:]):
         waypoints.append(reach(waypoints[-1], a, b))
+    return waypoints
+
+
+def climb_path(robot: pp.RobotModel, cycles: int = CYCLES, knots_per_phase: int = KNOTS_PER_PHASE) -> pp.CubicSplinePath:
+    """The C² joint spline through the IK postures at `knots_per_phase` knots per phase: soles flat on their
+    rungs, the hands' ball centres at theirs (a hand turns on its ball as the body climbs past it)."""
+    plan = ClimbPlan(cycles)
+    s_end = plan.phases[-1][1]
+    s = np.linspace(0.0, s_end, int(round(s_end)) * knots_per_phase + 1)
+    waypoints = _ik_sweep(robot, plan, s)
     lo, hi = robot.position_limits
     for si, q in zip(s, waypoints):
         bad = np.flatnonzero((q < lo) | (q > hi))
@@ -313,7 +336,7 @@ def climb_path(robot: pp.RobotModel, cycles: int = CYCLES, knots_per_phase: int 
     return pp.CubicSplinePath(np.array(waypoints), knots=s)
 
 
-def timing(robot: pp.RobotModel, path: pp.Path, grid: int, cycles: int = CYCLES, drift_tolerance: float = 1e-4,
+def timing(robot: pp.RobotModel, path: pp.Path, grid: int, cycles: int = CYCLES, drift_tolerance: float = DRIFT,
            **options) -> tuple[pp.TimeScalingProblem, pp.Result, float, float]:
     """(problem, result, add_contact_phases time, solve time), times in s."""
     prob = pp.TimeScalingProblem(path, grid=grid)
@@ -333,6 +356,7 @@ def simulator(robot: pp.RobotModel, path: pp.Path, cycles: int = CYCLES, **optio
 
     contacts = all_contacts()
     return humanoid_sim.talos_simulator(robot, path, contacts, surfaces=[Box(**b) for b in rung_boxes()],
+                                        ball_links=HANDS, contact_radius=BALL, impratio=IMPRATIO,
                                         contact_configurations=contact_configurations(path, phases(cycles), contacts),
                                         **options)
 
@@ -383,6 +407,10 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--repeat", type=int, default=5, help="timed runs per N (median and worst; default 5)")
     ap.add_argument("--sweep", action="store_true", help="run time against N = 50..800, plotted")
     ap.add_argument("--sim", action="store_true", help="execute in MuJoCo (pathpace.sim with the rungs)")
+    ap.add_argument("--sim-grid", type=int, default=SIM_GRID,
+                    help=f"N of the timing that is executed (default {SIM_GRID}; see SIM_GRID)")
+    ap.add_argument("--min-normal-force", type=float, default=SIM_MIN_NORMAL_FORCE,
+                    help=f"N per point of the executed timing (default {SIM_MIN_NORMAL_FORCE})")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -415,13 +443,22 @@ def main(argv: list[str] | None = None) -> dict:
         print(f"wrote {png}")
     if args.sim:
         sim = simulator(robot, path)
-        traj = res.trajectory()
-        r = sim.run(traj, phases=ph)
-        crit, ratio = r.worst_criterion
-        verdict = "fell" if r.fell else ("executed, with room" if ratio <= 0.5 else ("executed" if r.executed else "off plan"))
-        print(f"{'timing':34s} {'T (s)':>7s}  {'verdict':20s} worst criterion / threshold")
-        print(f"{'torque + contacts, margins':34s} {traj.duration:7.3f}  {verdict:20s} {crit} {ratio:.2f}   ({r.summary()})")
-        out["sim"] = r
+        options = dict(MARGINS, min_normal_force=args.min_normal_force, torque_scale=TORQUE_SCALE)
+        rows = [("N = 100, margins of the timing above", res)]
+        rows.append((f"N = {args.sim_grid}, {args.min_normal_force:g} N per point, motors {TORQUE_SCALE} x",
+                     timing(robot, path, args.sim_grid, **options)[1]))
+        print(f"{'timing (executed in MuJoCo)':48s} {'T (s)':>7s}  {'verdict':20s} worst criterion / threshold")
+        out["sim"] = []
+        for name, r_ in rows:
+            if not r_.ok:
+                print(f"{name:48s} {'-':>7s}  {r_.status.name}")
+                continue
+            traj = r_.trajectory()
+            r = sim.run(traj, phases=ph)
+            crit, ratio = r.worst_criterion
+            verdict = "fell" if r.fell else ("executed, with room" if ratio <= 0.5 else ("executed" if r.executed else "off plan"))
+            print(f"{name:48s} {traj.duration:7.3f}  {verdict:20s} {crit} {ratio:.2f}   ({r.summary()})")
+            out["sim"].append({"timing": name, "T": traj.duration, "verdict": verdict, "worst": (crit, ratio), "sim": r})
     return out
 
 

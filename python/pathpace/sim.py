@@ -250,6 +250,16 @@ class Simulator:
     phases, contacts)`): the contact must be within 1 mm of a surface whose normal is its own, and its
     sphere is placed there, touching it. Slip and lift are measured along that surface and its normal.
 
+    ball_links: links whose contact points are the centres of balls of contact_radius (a fist, a fingertip)
+    rather than points on their surface: the point is contact_radius from its surface along the normal, and
+    the link may turn on its ball while it holds (a sole's sphere instead touches at the point, so a sole
+    that tilts lifts its point off the floor).
+
+    impratio: MuJoCo's ratio of frictional to normal constraint impedance (default 1, MuJoCo's own). At 1 a
+    point under a steady tangential load creeps (MuJoCo's friction is soft too): millimetres over seconds, on
+    a rung whose points hold the robot's pull and push for the whole climb; 10 makes friction that much
+    stiffer without changing μ.
+
     The floor is stiff: MuJoCo's soft contact with time constant `contact_timeconst` (default 5 ms; MuJoCo's
     own default, 20 ms, lets a sole edge sink by ~5 mm under Talos, and the robot rocks on it).
 
@@ -301,6 +311,8 @@ class Simulator:
         effort_limits: np.ndarray | None = None,
         surfaces: Sequence[Box] = (),
         contact_configurations: Sequence[np.ndarray] | None = None,
+        impratio: float = 1.0,
+        ball_links: Sequence[str] = (),
     ) -> None:
         mj = _mujoco()
         self.mujoco = mj
@@ -312,6 +324,8 @@ class Simulator:
             _fail(f"timestep = {timestep} must be > 0")
         if not (contact_radius > 0):
             _fail(f"contact_radius = {contact_radius} must be > 0")
+        if not (impratio >= 1 and math.isfinite(impratio)):
+            _fail(f"impratio = {impratio} must be >= 1 (MuJoCo's ratio of frictional to normal impedance)")
         if not (contact_timeconst >= 2 * timestep):
             _fail(f"contact_timeconst = {contact_timeconst} must be >= 2 timestep = {2 * timestep} (MuJoCo's stability limit)")
         names = list(robot.joint_names)
@@ -412,6 +426,7 @@ class Simulator:
         spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
         spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
         spec.option.iterations = solver_iterations
+        spec.option.impratio = impratio
 
         # Floor, boxes and contact spheres: only sphere-surface pairs collide (contype/conaffinity bits).
         self.floor_height = float(floor_height)
@@ -429,6 +444,10 @@ class Simulator:
             for k, q in enumerate(configs):
                 if q.shape != (robot.nq,):
                     _fail(f"contact_configurations[{k}] has shape {q.shape}, expected ({robot.nq},)")
+        balls = set(ball_links)
+        for name in balls:
+            if name not in robot.link_names:
+                _fail(f"ball_links: '{name}' is not a link of the robot")
         #: the surface each contact touches: "floor" or a Box's name
         self.contact_surfaces = []
         self.contact_normals = np.zeros((len(self.contacts), 3))
@@ -439,10 +458,13 @@ class Simulator:
             n = n / np.linalg.norm(n)
             X = robot.frame_placement(configs[k], c.link)
             p = (X @ np.append(c.point, 1.0))[:3]
-            self.contact_surfaces.append(self._surface_at(k, c, p, n))
+            ball = c.link in balls
+            self.contact_surfaces.append(self._surface_at(k, c, p - contact_radius * n if ball else p, n))
             self.contact_normals[k] = n
             body = spec.body(c.link)
-            centre = np.asarray(c.point, dtype=float) + contact_radius * (X[:3, :3].T @ n)
+            centre = np.asarray(c.point, dtype=float)
+            if not ball:
+                centre = centre + contact_radius * (X[:3, :3].T @ n)
             # priority: the sphere's μ is the contact's μ (MuJoCo would otherwise take the larger one).
             body.add_geom(name=f"pathpace_contact_{k}", type=mj.mjtGeom.mjGEOM_SPHERE, size=[contact_radius, 0, 0],
                           pos=centre, contype=2, conaffinity=0, condim=3, priority=1, friction=[c.friction, 0.0, 0.0],
