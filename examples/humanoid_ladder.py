@@ -336,10 +336,20 @@ def climb_path(robot: pp.RobotModel, cycles: int = CYCLES, knots_per_phase: int 
     return pp.CubicSplinePath(np.array(waypoints), knots=s)
 
 
+def phase_grid(n: int, cycles: int = CYCLES) -> np.ndarray:
+    """n intervals with every switch on the grid: n // phases per phase, one more in the first n % phases
+    (a uniform grid of n would have the switches inserted, n + 16 intervals)."""
+    ph = schedule(cycles)
+    per = [n // len(ph) + (1 if i < n % len(ph) else 0) for i in range(len(ph))]
+    if min(per) < 1:
+        raise ValueError(f"grid = {n}: at least one interval per phase ({len(ph)})")
+    return np.concatenate([np.linspace(s0, s1, m + 1)[:-1] for (s0, s1, _), m in zip(ph, per)] + [[ph[-1][1]]])
+
+
 def timing(robot: pp.RobotModel, path: pp.Path, grid: int, cycles: int = CYCLES, drift_tolerance: float = DRIFT,
            **options) -> tuple[pp.TimeScalingProblem, pp.Result, float, float]:
-    """(problem, result, add_contact_phases time, solve time), times in s."""
-    prob = pp.TimeScalingProblem(path, grid=grid)
+    """(problem, result, add_contact_phases time, solve time), times in s; N = grid intervals (phase_grid)."""
+    prob = pp.TimeScalingProblem(path, grid=phase_grid(grid, cycles))
     t0 = time.perf_counter()
     prob.add_contact_phases(robot, phases(cycles), drift_tolerance=drift_tolerance, **options)
     t_sets = time.perf_counter() - t0
@@ -362,20 +372,22 @@ def simulator(robot: pp.RobotModel, path: pp.Path, cycles: int = CYCLES, **optio
 
 
 def run_time_sweep(robot: pp.RobotModel, path: pp.Path, grids=(50, 100, 200, 400, 800), repeat: int = 5) -> list[dict]:
-    """add_contact_phases + solve at each N, `repeat` times: median and worst (s)."""
+    """add_contact_phases + solve at each N, `repeat` times: wall-clock median and worst (s), and the median
+    CPU time of this process (the wall time of a quiet machine: the work is single-threaded)."""
     rows = []
     for n in grids:
         runs = []
         for _ in range(repeat):
+            c0 = time.process_time()
             _, res, t_sets, t_solve = timing(robot, path, n, **MARGINS)
-            runs.append((t_sets, t_solve, t_sets + t_solve))
+            runs.append((t_sets, t_solve, t_sets + t_solve, time.process_time() - c0))
         runs = np.array(runs)
         rows.append({"N": n, "status": res.status.name, "T": res.duration, "projection": float(np.median(runs[:, 0])),
                      "solve": float(np.median(runs[:, 1])), "median": float(np.median(runs[:, 2])),
-                     "worst": float(np.max(runs[:, 2]))})
+                     "worst": float(np.max(runs[:, 2])), "cpu": float(np.median(runs[:, 3]))})
         r = rows[-1]
         print(f"| {n:4d} | {r['status']} | {r['T']:.4f} | {1e3 * r['projection']:8.1f} | {1e3 * r['solve']:7.1f} | "
-              f"{1e3 * r['median']:8.1f} | {1e3 * r['worst']:8.1f} |", flush=True)
+              f"{1e3 * r['median']:8.1f} | {1e3 * r['worst']:8.1f} | {1e3 * r['cpu']:8.1f} |", flush=True)
     return rows
 
 
@@ -387,7 +399,8 @@ def plot_sweep(rows: list[dict], out: Path) -> None:
 
     n = np.array([r["N"] for r in rows], dtype=float)
     fig, ax = plt.subplots(figsize=(5.5, 4))
-    for key, label in (("projection", "add_contact_phases (projection)"), ("solve", "solve"), ("median", "total")):
+    for key, label in (("projection", "add_contact_phases (projection)"), ("solve", "solve"), ("median", "total"),
+                       ("cpu", "total, CPU time")):
         ax.plot(n, [r[key] for r in rows], "o-", label=label)
     slope = np.polyfit(n, [r["median"] for r in rows], 1)
     ax.plot(n, np.polyval(slope, n), "k:", lw=0.8, label=f"linear fit: {1e3 * slope[0]:.2f} ms per interval")
@@ -421,22 +434,27 @@ def main(argv: list[str] | None = None) -> dict:
     print(f"Talos, nq = {robot.nq}; ladder path: {RUNGS} rungs, {CYCLES} rungs climbed, {contact_changes()} contact "
           f"changes, {len(ph)} phases, {mean_contacts:.1f} contacts per phase on average; IK built in "
           f"{time.perf_counter() - t0:.1f} s")
-    runs = [timing(robot, path, args.grid, **MARGINS) for _ in range(args.repeat)]
+    runs, cpu = [], []
+    for _ in range(args.repeat):
+        c0 = time.process_time()
+        runs.append(timing(robot, path, args.grid, **MARGINS))
+        cpu.append(time.process_time() - c0)
     prob, res = runs[0][0], runs[0][1]
     total = np.array([r[2] + r[3] for r in runs])
     print(f"timing (torque limits, contacts, margins {MARGINS}): {res.status.name}, T = {res.duration:.4f} s at N = "
           f"{prob.grid.size - 1}; add_contact_phases + solve median {1e3 * np.median(total):.0f} ms, worst "
           f"{1e3 * total.max():.0f} ms over {args.repeat} runs (projection {1e3 * np.median([r[2] for r in runs]):.0f} ms, "
-          f"solve {1e3 * np.median([r[3] for r in runs]):.1f} ms)")
-    out = {"path": path, "robot": robot, "problem": prob, "result": res, "plan_times": total}
+          f"solve {1e3 * np.median([r[3] for r in runs]):.1f} ms); CPU time median {1e3 * np.median(cpu):.0f} ms, "
+          f"worst {1e3 * np.max(cpu):.0f} ms")
+    out = {"path": path, "robot": robot, "problem": prob, "result": res, "plan_times": total, "plan_cpu": np.array(cpu)}
     if not res.ok:
         print(res.message)
         return out
     rest = [c.label for c in prob.constraints if isinstance(c, pp.ContactConstraint) and c.rest_at_begin]
     print(f"no-impact rule: sdot = 0 at {len(rest)} makes")
     if args.sweep:
-        print("| N | status | T (s) | projection (ms) | solve (ms) | total, median (ms) | total, worst (ms) |")
-        print("|---:|---|---:|---:|---:|---:|---:|")
+        print("| N | status | T (s) | projection (ms) | solve (ms) | total, median (ms) | total, worst (ms) | CPU, median (ms) |")
+        print("|---:|---|---:|---:|---:|---:|---:|---:|")
         out["sweep"] = run_time_sweep(robot, path, repeat=args.repeat)
         png = Path(__file__).resolve().parent / "output" / "humanoid_ladder.png"
         plot_sweep(out["sweep"], png)
