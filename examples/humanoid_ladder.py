@@ -25,8 +25,8 @@ Timed with torque limits (the URDF's effort) and the contacts of each phase, μ 
 friction margin and a minimum normal force per point (MARGINS), on N intervals with every switch a grid
 point (phase_grid). --sweep times it at N = 50..800 and plots run time against N
 (examples/output/humanoid_ladder.png). --sim executes it in MuJoCo (pathpace.sim: the rungs as box geoms,
-friction 10 x stiffer than MuJoCo's default, IMPRATIO): the N = 100 timing, and the one at SIM_GRID with the
-motors planned at TORQUE_SCALE and SIM_MIN_NORMAL_FORCE per point.
+the hands' balls as ball_links): the N = 100 timing, and the one at SIM_GRID with the motors planned at
+TORQUE_SCALE and SIM_MIN_NORMAL_FORCE per point.
 
     .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim] [--repeat 5]
 """
@@ -58,9 +58,6 @@ KNOTS_PER_PHASE = 16
 # The spline through the knots keeps every held point within 0.22 mm of its place (max_drift at 401 points per
 # phase): the drift tolerance of add_contact_phases, a tenth of the slip that a run with room may have.
 DRIFT = 3e-4
-# MuJoCo's friction as stiff as 10 x its normal impedance (pathpace.sim.Simulator's impratio): at 1 every held
-# point creeps under the steady push and pull of the climb, by millimetres over its 10 s.
-IMPRATIO = 10.0
 # The executed timing: N = 400 (at N = 100 the torques between grid points exceed the limits by up to 4 x
 # just after a lift-off, and the robot falls), the motors planned at TORQUE_SCALE x their effort (the rest
 # is the feedback's) and SIM_MIN_NORMAL_FORCE per point.
@@ -368,7 +365,7 @@ def simulator(robot: pp.RobotModel, path: pp.Path, cycles: int = CYCLES, **optio
 
     contacts = all_contacts()
     return humanoid_sim.talos_simulator(robot, path, contacts, surfaces=[Box(**b) for b in rung_boxes()],
-                                        ball_links=HANDS, contact_radius=BALL, impratio=IMPRATIO,
+                                        ball_links=HANDS, contact_radius=BALL,
                                         contact_configurations=contact_configurations(path, phases(cycles), contacts),
                                         **options)
 
