@@ -14,7 +14,9 @@ criterion at most half its threshold), T at zero margin and at that margin, and 
 of the run it found.
 
     .venv/bin/python bench/sim_margins.py [--grid 100] [--room 1]
-    .venv/bin/python bench/sim_margins.py --part experiments [--grid 100]
+    .venv/bin/python bench/sim_margins.py --part experiments [--grid 100] [--ladder]
+
+--ladder adds examples/humanoid_ladder.py's climb (its own N = SIM_GRID and motors at TORQUE_SCALE).
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ def main(argv=None):
     ap.add_argument("--grid", type=int, default=100)
     ap.add_argument("--part", choices=["floors", "experiments"], default="floors")
     ap.add_argument("--room", type=float, default=1.0, help="floors: find_executable_margin's room (default 1)")
+    ap.add_argument("--ladder", action="store_true", help="experiments: also the ladder climb (~2 min more)")
     args = ap.parse_args(argv)
     if args.part == "experiments":
         return experiments(args)
@@ -120,18 +123,34 @@ def experiments(args):
     walk = steps.steps_path(talos, 0.1, 0.03)
     rows.append(("Talos two steps (contact phases)", walk, dict(phases=steps.phases()),
                  humanoid_sim.talos_simulator(talos, walk, steps.phases()[0][2]), None))
+    if args.ladder:
+        ladder = common.import_example("humanoid_ladder")
+        climb = ladder.climb_path(talos)
+        # N = ladder.SIM_GRID on its phase grid (every switch a grid point), motors planned at TORQUE_SCALE.
+        rows.append((f"Talos ladder, 2 rungs, 16 contact changes (N = {ladder.SIM_GRID}, motors {ladder.TORQUE_SCALE} x)",
+                     climb, dict(phases=ladder.phases()), ladder.simulator(talos, climb),
+                     {"torque_scale": ladder.TORQUE_SCALE, "grid": ladder.phase_grid(ladder.SIM_GRID),
+                      "drift_tolerance": ladder.DRIFT}))
     print("| experiment | T at 0 N (s) | 0 N: worst criterion | smallest min normal force with room (N) | "
           "T (s) | cost | worst criterion there | trials | wall (s) |")
     print("|---|---:|---|---:|---:|---:|---|---:|---:|")
     for name, path, where, sim, extra in rows:
         options = dict(lower=0.0, upper=60.0, tolerance=1.0, friction_margin=0.5, grid=args.grid, room=0.5)
+        extra = dict(extra or {})
+        for key in ("grid", "drift_tolerance", "upper"):  # the ladder's own
+            if key in extra:
+                options[key] = extra.pop(key)
+        extra = extra or None
         t0 = time.perf_counter()
         out = find_executable_margin(sim, path, **where, **options, contact_options=extra)
         wall = time.perf_counter() - t0
         zero = out.trials[0]
         worst0 = "no timing" if zero.sim is None else "fell" if zero.sim.fell else "{} {:.2f}".format(*zero.sim.worst_criterion)
         if out.margin is None:
-            print(f"| {name} | {out.zero_margin_duration:.3f} | {worst0} | none in [0, 60] | - | - | - | {len(out.trials)} | {wall:.0f} |", flush=True)
+            tried = ", ".join(f"{tr.min_normal_force:g} N: " + ("no timing" if tr.sim is None else "fell" if tr.sim.fell else
+                              "{} {:.2f}".format(*tr.sim.worst_criterion)) for tr in out.trials)
+            print(f"| {name} | {out.zero_margin_duration:.3f} | {worst0} | none in [0, {options['upper']:g}] | - | - | {tried} | "
+                  f"{len(out.trials)} | {wall:.0f} |", flush=True)
             continue
         best = min((t for t in out.trials if t.executed), key=lambda t: t.min_normal_force)
         print(f"| {name} | {out.zero_margin_duration:.3f} | {worst0} | {out.margin:.1f} | {out.duration:.3f} | "

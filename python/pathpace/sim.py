@@ -32,7 +32,8 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Simulator", "SimResult", "MarginTrial", "MarginSearch", "find_executable_margin", "resolve_mesh"]
+__all__ = ["Simulator", "SimResult", "Box", "MarginTrial", "MarginSearch", "find_executable_margin", "resolve_mesh",
+           "contact_configurations"]
 
 FLOATING_JOINTS = ("floating_x", "floating_y", "floating_z", "floating_rz", "floating_ry", "floating_rx")
 
@@ -50,6 +51,47 @@ def _fail(message: str) -> None:
     raise _core.InvalidInputError(message)
 
 
+@dataclasses.dataclass(frozen=True)
+class Box:
+    """An axis-aligned box of the scene that contact points may stand on (a ladder rung, a step, a wall).
+
+    centre and half_size (3,) in m, world frame; friction: its μ (default: the smallest of the contacts').
+    A contact on a box touches one of its faces, with the face's outward normal as its (world) normal.
+    """
+
+    centre: tuple
+    half_size: tuple
+    name: str = ""
+    friction: float | None = None
+
+    def faces(self):
+        """(outward normal, point on the face, the face's half extents along x, y, z) of the six faces."""
+        c, h = np.asarray(self.centre, dtype=float), np.asarray(self.half_size, dtype=float)
+        for axis in range(3):
+            for sign in (1.0, -1.0):
+                n = np.zeros(3)
+                n[axis] = sign
+                extent = h.copy()
+                extent[axis] = 0.0
+                yield n, c + sign * h[axis] * n, extent
+
+
+def contact_configurations(path: _core.Path, phases: Sequence, contacts: Sequence[_core.Contact]) -> list[np.ndarray]:
+    """For each of `contacts`, the path's configuration where the first phase that holds it begins (a
+    contact of a link and point in that phase's contacts): where it touches its surface, for
+    Simulator(contact_configurations=...). A contact that no phase holds is an InvalidInputError."""
+    key = lambda c: (c.link, tuple(np.round(np.asarray(c.point, dtype=float), 12)))  # noqa: E731
+    out = []
+    for k, c in enumerate(contacts):
+        for ph in phases:
+            if key(c) in {key(d) for d in ph[2]}:
+                out.append(np.asarray(path.q(float(ph[0])), dtype=float))
+                break
+        else:
+            _fail(f"contacts[{k}] ('{c.link}' at {tuple(c.point)}) is in no phase")
+    return out
+
+
 @dataclasses.dataclass
 class SimResult:
     """What happened when a trajectory was executed (`Simulator.run`).
@@ -63,10 +105,10 @@ class SimResult:
     base_height: np.ndarray  #: (m,) z of the root link (m)
     base_height_planned: np.ndarray  #: (m,) z of the root link in the plan (held at the end)
     tilt: np.ndarray  #: (m,) angle between the root link's z axis and the plan's (rad)
-    #: (m, contacts) horizontal displacement of each contact point (m); with phases, from where the plan puts
-    #: it, and nan while its phase does not hold it
+    #: (m, contacts) displacement of each contact point along its surface (m; horizontal on the floor or a box
+    #: top); with phases, from where the plan puts it, and nan while its phase does not hold it
     slip: np.ndarray
-    lift: np.ndarray  #: (m, contacts) vertical displacement of each contact point (m), the same way
+    lift: np.ndarray  #: (m, contacts) displacement along the contact's normal, away from its surface (m), the same way
     tracking_error: np.ndarray  #: (m,) largest |q - q_planned| over the actuated joints (rad or m)
     duration: float  #: T of the trajectory (s)
     fell: bool  #: the base dropped by more than fall_height or tilted by more than fall_tilt
@@ -192,7 +234,7 @@ def _balance_inertias(spec, balance: bool) -> dict:
 
 
 class Simulator:
-    """A MuJoCo model of a pathpace `RobotModel` standing on a floor at z = `floor_height`.
+    """A MuJoCo model of a pathpace `RobotModel` standing on a floor at z = `floor_height` (and on `surfaces`).
 
     robot: the pathpace model; urdf: the file (or XML string) it was loaded from; locked_joints: the
     same dict given to `RobotModel.from_urdf` (every movable URDF joint must be either in robot.joint_names
@@ -200,6 +242,23 @@ class Simulator:
     becoming a sphere of `contact_radius` with friction μ = contact.friction; q0: a configuration in
     which the contact points are on the floor (used to place the spheres and to check that MuJoCo's
     kinematics agree with ours).
+
+    surfaces: `Box`es of the scene besides the floor (ladder rungs, steps); a contact may touch the floor
+    (normal +z) or a face of a box (its normal that face's outward normal: +z on a rung's top, +x on the far
+    side of a rung that a hand hooks). contact_configurations: one configuration per contact in which it
+    touches its surface (default q0 for every contact; with contact phases, `contact_configurations(path,
+    phases, contacts)`): the contact must be within 1 mm of a surface whose normal is its own, and its
+    sphere is placed there, touching it. Slip and lift are measured along that surface and its normal.
+
+    ball_links: links whose contact points are the centres of balls of contact_radius (a fist, a fingertip)
+    rather than points on their surface: the point is contact_radius from its surface along the normal, and
+    the link may turn on its ball while it holds (a sole's sphere instead touches at the point, so a sole
+    that tilts lifts its point off the floor).
+
+    impratio: MuJoCo's ratio of frictional to normal constraint impedance (default 1, MuJoCo's own). At 1 a
+    point under a steady tangential load creeps (MuJoCo's friction is soft too): millimetres over seconds, on
+    a rung whose points hold the robot's pull and push for the whole climb; 10 makes friction that much
+    stiffer without changing μ.
 
     The floor is stiff: MuJoCo's soft contact with time constant `contact_timeconst` (default 5 ms; MuJoCo's
     own default, 20 ms, lets a sole edge sink by ~5 mm under Talos, and the robot rocks on it).
@@ -250,6 +309,10 @@ class Simulator:
         package_dirs: Sequence[str | _FsPath] = (),
         balance_inertia: bool = True,
         effort_limits: np.ndarray | None = None,
+        surfaces: Sequence[Box] = (),
+        contact_configurations: Sequence[np.ndarray] | None = None,
+        impratio: float = 1.0,
+        ball_links: Sequence[str] = (),
     ) -> None:
         mj = _mujoco()
         self.mujoco = mj
@@ -261,6 +324,8 @@ class Simulator:
             _fail(f"timestep = {timestep} must be > 0")
         if not (contact_radius > 0):
             _fail(f"contact_radius = {contact_radius} must be > 0")
+        if not (impratio >= 1 and math.isfinite(impratio)):
+            _fail(f"impratio = {impratio} must be >= 1 (MuJoCo's ratio of frictional to normal impedance)")
         if not (contact_timeconst >= 2 * timestep):
             _fail(f"contact_timeconst = {contact_timeconst} must be >= 2 timestep = {2 * timestep} (MuJoCo's stability limit)")
         names = list(robot.joint_names)
@@ -361,25 +426,45 @@ class Simulator:
         spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
         spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
         spec.option.iterations = solver_iterations
+        spec.option.impratio = impratio
 
-        # Floor and contact spheres: only sphere-floor pairs collide (contype/conaffinity bits).
+        # Floor, boxes and contact spheres: only sphere-surface pairs collide (contype/conaffinity bits).
         self.floor_height = float(floor_height)
+        mu_min = min([c.friction for c in self.contacts], default=1.0)
         spec.worldbody.add_geom(name="floor", type=mj.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
                                 pos=[0, 0, self.floor_height], contype=0, conaffinity=2, condim=3,
-                                friction=[min([c.friction for c in self.contacts], default=1.0), 0.0, 0.0])
+                                friction=[mu_min, 0.0, 0.0])
+        self.surfaces = self._add_surfaces(spec, surfaces, mu_min)
+        if contact_configurations is None:
+            configs = [q0] * len(self.contacts)
+        else:
+            configs = [np.asarray(q, dtype=float) for q in contact_configurations]
+            if len(configs) != len(self.contacts):
+                _fail(f"contact_configurations has {len(configs)} configurations, expected one per contact ({len(self.contacts)})")
+            for k, q in enumerate(configs):
+                if q.shape != (robot.nq,):
+                    _fail(f"contact_configurations[{k}] has shape {q.shape}, expected ({robot.nq},)")
+        balls = set(ball_links)
+        for name in balls:
+            if name not in robot.link_names:
+                _fail(f"ball_links: '{name}' is not a link of the robot")
+        #: the surface each contact touches: "floor" or a Box's name
+        self.contact_surfaces = []
+        self.contact_normals = np.zeros((len(self.contacts), 3))
         for k, c in enumerate(self.contacts):
             if c.other_link is not None:
                 _fail(f"contacts[{k}]: link-to-link contacts ('{c.link}' on '{c.other_link}') are not simulated")
             n = np.asarray(c.normal, dtype=float)
             n = n / np.linalg.norm(n)
-            if abs(n[2] - 1.0) > 1e-9:
-                _fail(f"contacts[{k}].normal = ({', '.join(f'{v:g}' for v in c.normal)}) must be (0, 0, 1): only contacts on the floor are simulated")
-            X = robot.frame_placement(q0, c.link)
-            z = (X @ np.append(c.point, 1.0))[2]
-            if abs(z - self.floor_height) > 1e-3:
-                _fail(f"contacts[{k}] ('{c.link}') is at z = {z:.4g} in q0, expected on the floor (z = {self.floor_height})")
+            X = robot.frame_placement(configs[k], c.link)
+            p = (X @ np.append(c.point, 1.0))[:3]
+            ball = c.link in balls
+            self.contact_surfaces.append(self._surface_at(k, c, p - contact_radius * n if ball else p, n))
+            self.contact_normals[k] = n
             body = spec.body(c.link)
-            centre = np.asarray(c.point, dtype=float) + contact_radius * (X[:3, :3].T @ n)
+            centre = np.asarray(c.point, dtype=float)
+            if not ball:
+                centre = centre + contact_radius * (X[:3, :3].T @ n)
             # priority: the sphere's μ is the contact's μ (MuJoCo would otherwise take the larger one).
             body.add_geom(name=f"pathpace_contact_{k}", type=mj.mjtGeom.mjGEOM_SPHERE, size=[contact_radius, 0, 0],
                           pos=centre, contype=2, conaffinity=0, condim=3, priority=1, friction=[c.friction, 0.0, 0.0],
@@ -447,6 +532,54 @@ class Simulator:
         self._check_kinematics(q0)
 
     # ----------------------------------------------------------------------------------------------
+    def _add_surfaces(self, spec, surfaces: Sequence[Box], friction: float) -> list[Box]:
+        """The boxes as MuJoCo geoms that only the contact spheres touch."""
+        out = []
+        for i, b in enumerate(surfaces):
+            if isinstance(b, dict):
+                b = Box(**b)
+            if not isinstance(b, Box):
+                _fail(f"surfaces[{i}]: expected a pathpace.sim.Box, got {type(b).__name__}")
+            c, h = np.asarray(b.centre, dtype=float), np.asarray(b.half_size, dtype=float)
+            if c.shape != (3,) or not np.all(np.isfinite(c)):
+                _fail(f"surfaces[{i}].centre = {b.centre} must be 3 finite numbers (m)")
+            if h.shape != (3,) or not np.all(h > 0) or not np.all(np.isfinite(h)):
+                _fail(f"surfaces[{i}].half_size = {b.half_size} must be 3 finite numbers > 0 (m)")
+            mu = friction if b.friction is None else float(b.friction)
+            if not (mu > 0):
+                _fail(f"surfaces[{i}].friction = {b.friction} must be > 0")
+            name = b.name or f"surface_{i}"
+            if name == "floor" or any(o.name == name for o in out):
+                _fail(f"surfaces[{i}].name = '{name}' is not unique (nor may it be 'floor')")
+            b = Box(tuple(c), tuple(h), name, mu)
+            spec.worldbody.add_geom(name=name, type=self.mujoco.mjtGeom.mjGEOM_BOX, size=h, pos=c, contype=0,
+                                    conaffinity=2, condim=3, friction=[mu, 0.0, 0.0])
+            out.append(b)
+        return out
+
+    def _surface_at(self, k: int, c: _core.Contact, p: np.ndarray, n: np.ndarray) -> str:
+        """The surface that contact k touches at world point p with world normal n (see the class docstring)."""
+        tol = 1e-3
+        if not self.surfaces:  # the floor only: its own messages
+            if abs(n[2] - 1.0) > 1e-9:
+                _fail(f"contacts[{k}].normal = ({', '.join(f'{v:g}' for v in c.normal)}) must be (0, 0, 1): only contacts on the floor are simulated")
+            if abs(p[2] - self.floor_height) > tol:
+                _fail(f"contacts[{k}] ('{c.link}') is at z = {p[2]:.4g} in q0, expected on the floor (z = {self.floor_height})")
+            return "floor"
+        if abs(n[2] - 1.0) <= 1e-9 and abs(p[2] - self.floor_height) <= tol:
+            return "floor"
+        for b in self.surfaces:
+            for normal, on_face, extent in b.faces():
+                if np.max(np.abs(n - normal)) > 1e-9:
+                    continue
+                along = np.abs(normal) == 0  # the face's own directions
+                inside = np.all(np.abs(p - np.asarray(b.centre))[along] <= extent[along] + tol)
+                if abs((p - on_face) @ normal) <= tol and inside:
+                    return b.name
+        _fail(f"contacts[{k}] ('{c.link}', normal ({', '.join(f'{v:g}' for v in c.normal)})) is at "
+              f"({', '.join(f'{v:.4g}' for v in p)}) in its configuration, on no surface with that normal (the floor at "
+              f"z = {self.floor_height} or a face of surfaces {[b.name for b in self.surfaces]}, within 1 mm)")
+
     def _against_plan(self, traj: _core.Trajectory, t: np.ndarray, d: np.ndarray, phases: Sequence) -> np.ndarray:
         """Displacements d (times x contacts x 3) minus the plan's own, nan where no phase holds the point."""
         key = [(c.link, tuple(np.round(np.asarray(c.point, dtype=float), 12))) for c in self.contacts]
@@ -665,9 +798,10 @@ class Simulator:
         d = pos - p0
         if phases is not None:
             d = self._against_plan(traj, np.minimum(np.array(rec_t), T), d, phases)
+        lift = np.einsum("mkj,kj->mk", d, self.contact_normals)  # along each contact's normal; +z: d[:, :, 2]
         return SimResult(
             times=np.array(rec_t), base_height=np.array(rec_z), base_height_planned=np.array(rec_zp),
-            tilt=np.array(rec_tilt), slip=np.linalg.norm(d[:, :, :2], axis=2), lift=d[:, :, 2],
+            tilt=np.array(rec_tilt), slip=np.linalg.norm(d - lift[:, :, None] * self.contact_normals, axis=2), lift=lift,
             tracking_error=np.array(rec_err), duration=T, fell=fell, fall_time=fall_time,
             torque_saturation=saturated / max(1, n_move + n_hold), criteria=crit, feedforward=mode)
 

@@ -17,7 +17,7 @@ import pathpace as pp
 from pathpace.robots import example_robot_urdf
 
 mujoco = pytest.importorskip("mujoco")
-from pathpace.sim import Simulator, find_executable_margin, resolve_mesh  # noqa: E402
+from pathpace.sim import Box, Simulator, contact_configurations, find_executable_margin, resolve_mesh  # noqa: E402
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 # Torque and contact rows take the CPU's widest SIMD path: every width this CPU runs, each test.
@@ -121,6 +121,92 @@ def test_contacts_become_spheres_with_their_friction(sway):
     sim.set_configuration(q)
     pairs = {tuple(sorted(sim.model.geom(g).name for g in sim.data.contact.geom[i])) for i in range(sim.data.ncon)}
     assert pairs == {("floor", f"pathpace_contact_{k}") for k in range(len(contacts))}
+
+
+def _panda_on_a_box(**options):
+    """Panda (fixed base) at q = 0 with its hand's origin on the top of a box (a rung) under it."""
+    urdf = example_robot_urdf(PANDA)
+    robot = pp.RobotModel.from_urdf(str(urdf), locked_joints=PANDA_LOCKED)
+    q = np.zeros(robot.nq)
+    p = robot.frame_placement(q, "panda_hand")[:3, 3]
+    rung = Box(centre=(p[0], p[1], p[2] - 0.015), half_size=(0.03, 0.4, 0.015), name="rung")
+    return robot, urdf, q, p, rung
+
+
+def test_contacts_on_boxes_touch_the_face_with_their_normal():
+    robot, urdf, q, p, rung = _panda_on_a_box()
+    top = pp.Contact("panda_hand", normal=(0, 0, 1), friction=0.7)
+    sim = Simulator(robot, urdf, [top], q, locked_joints=PANDA_LOCKED, surfaces=[rung], impratio=10.0)
+    assert sim.contact_surfaces == ["rung"] and sim.model.opt.impratio == 10.0
+    g = sim.model.geom("rung")
+    assert g.type[0] == mujoco.mjtGeom.mjGEOM_BOX and np.allclose(g.size, rung.half_size) and g.friction[0] == 0.7
+    # The rung 1 mm higher: the sphere touches it, and nothing else touches anything.
+    sim.model.geom_pos[g.id][2] += 1e-3
+    sim.set_configuration(q)
+    pairs = {tuple(sorted(sim.model.geom(i).name for i in sim.data.contact.geom[k])) for k in range(sim.data.ncon)}
+    assert pairs == {("pathpace_contact_0", "rung")}
+    # A contact on the rung's far side pushes along +x (a hand that hooks the rung), on its top along +z.
+    side = Box(centre=(p[0] - 0.03, p[1], p[2]), half_size=(0.03, 0.4, 0.015), name="far_side")
+    hook = pp.Contact("panda_hand", normal=(1, 0, 0))
+    sim = Simulator(robot, urdf, [hook], q, locked_joints=PANDA_LOCKED, surfaces=[side])
+    assert sim.contact_surfaces == ["far_side"]
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[0\] \('panda_hand', normal \(0, 1, 0\)\) is at .* on no surface "
+                       r"with that normal .*'far_side'"):
+        Simulator(robot, urdf, [pp.Contact("panda_hand", normal=(0, 1, 0))], q, locked_joints=PANDA_LOCKED, surfaces=[side])
+    # Off the face's extent (the box moved 5 cm along y past its half width): no surface.
+    away = Box(centre=(p[0], p[1] + 0.45, p[2] - 0.015), half_size=(0.03, 0.4, 0.015))
+    with pytest.raises(pp.InvalidInputError, match="on no surface with that normal"):
+        Simulator(robot, urdf, [top], q, locked_joints=PANDA_LOCKED, surfaces=[away])
+
+
+def test_ball_links_hold_a_surface_with_their_point_at_the_centre():
+    robot, urdf, q, p, rung = _panda_on_a_box()
+    low = Box(centre=rung.centre - np.array([0, 0, 0.005]), half_size=rung.half_size, name="rung")
+    fist = pp.Contact("panda_hand", normal=(0, 0, 1))
+    with pytest.raises(pp.InvalidInputError, match="on no surface"):  # 5 mm above the rung: not on it
+        Simulator(robot, urdf, [fist], q, locked_joints=PANDA_LOCKED, surfaces=[low])
+    sim = Simulator(robot, urdf, [fist], q, locked_joints=PANDA_LOCKED, surfaces=[low], ball_links=["panda_hand"])
+    assert sim.contact_surfaces == ["rung"]
+    sim.set_configuration(q)
+    centre = sim.data.geom_xpos[sim.model.geom("pathpace_contact_0").id]
+    assert np.allclose(centre, p, atol=1e-12)  # the sphere is centred on the contact point
+    with pytest.raises(pp.InvalidInputError, match="ball_links: 'fist' is not a link of the robot"):
+        Simulator(robot, urdf, [fist], q, locked_joints=PANDA_LOCKED, surfaces=[low], ball_links=["fist"])
+
+
+def test_contact_configurations_place_each_contact_where_its_first_phase_makes_it():
+    robot, urdf, q, p, rung = _panda_on_a_box()
+    q1 = q.copy()
+    q1[0] = 0.3  # the hand elsewhere: the contact of phase 1 is made there
+    p1 = robot.frame_placement(q1, "panda_hand")[:3, 3]
+    assert np.linalg.norm(p1[:2] - p[:2]) > 0.02
+    rung = Box(centre=rung.centre, half_size=(0.01, 0.01, 0.015), name="rung")
+    other = Box(centre=(p1[0], p1[1], p1[2] - 0.015), half_size=(0.01, 0.01, 0.015), name="other")
+    path = pp.CubicSplinePath(np.array([q, q1, q1]), knots=[0.0, 1.0, 2.0])
+    a = pp.Contact("panda_hand", point=(0.0, 0.0, 0.0))
+    b = pp.Contact("panda_hand", point=(0.0, 0.0, 0.0001))
+    phases = [(0.0, 1.0, [a]), (1.0, 2.0, [b])]
+    configs = contact_configurations(path, phases, [a, b])
+    assert np.allclose(configs[0], q) and np.allclose(configs[1], q1)
+    sim = Simulator(robot, urdf, [a, b], q, locked_joints=PANDA_LOCKED, surfaces=[rung, other], contact_configurations=configs)
+    assert sim.contact_surfaces == ["rung", "other"]
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[1\] \('panda_hand' at .*\) is in no phase"):
+        contact_configurations(path, phases[:1], [a, b])
+    with pytest.raises(pp.InvalidInputError, match=r"contact_configurations has 1 configurations, expected one per contact \(2\)"):
+        Simulator(robot, urdf, [a, b], q, locked_joints=PANDA_LOCKED, surfaces=[rung, other], contact_configurations=configs[:1])
+
+
+def test_surface_validation_names_the_argument():
+    robot, urdf, q, p, rung = _panda_on_a_box()
+    cases = [(dict(surfaces=[Box((0, 0, 0), (0.1, 0.0, 0.1))]), r"surfaces\[0\].half_size = .* must be 3 finite numbers > 0"),
+             (dict(surfaces=[Box((0, 0, math.nan), (0.1, 0.1, 0.1))]), r"surfaces\[0\].centre = .* must be 3 finite numbers"),
+             (dict(surfaces=[Box((0, 0, 0), (0.1, 0.1, 0.1), name="floor")]), r"surfaces\[0\].name = 'floor' is not unique"),
+             (dict(surfaces=[Box((0, 0, 0), (0.1, 0.1, 0.1), friction=0.0)]), r"surfaces\[0\].friction = 0.0 must be > 0"),
+             (dict(surfaces=["rung"]), r"surfaces\[0\]: expected a pathpace.sim.Box, got str"),
+             (dict(impratio=0.5), r"impratio = 0.5 must be >= 1")]
+    for options, message in cases:
+        with pytest.raises(pp.InvalidInputError, match=message):
+            Simulator(robot, urdf, locked_joints=PANDA_LOCKED, **options)
 
 
 def test_validation_names_the_argument():
