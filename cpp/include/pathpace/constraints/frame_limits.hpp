@@ -41,9 +41,9 @@ enum class FrameAxes { World, Local };
 ///
 /// With guarantee='continuous' the audit checks the rows between grid points. Speed and velocity limits also
 /// bound ṡ² at the grid points so that the rows hold between them for a cubic Hermite model of the frame
-/// velocity (from its values and s-derivatives at the grid points; error O(Δs⁴)): where they bind along a
-/// stretch, the audit then confirms instead of cutting round after round (bench/README.md). Family "frame"
-/// (relaxation).
+/// velocity (from its values and s-derivatives at the grid points, with a margin for the model's error): where
+/// they bind along a stretch the audit then confirms in one round instead of cutting round after round
+/// (bench/README.md). Family "frame" (relaxation).
 class FrameLimits : public Constraint {
  public:
   // docstrings.txt @@ FrameLimits.__init__
