@@ -121,7 +121,9 @@ void sweep(const Eigen::VectorXd& grid, const Eigen::VectorXd& bound, double v, 
     const Eigen::Vector3d e = cubic_e(grid[k]);
     const double val = axis < 0 ? e.squaredNorm() : e[axis] * e[axis];
     const double lim = axis < 0 ? v : (e[axis] > 0 ? v : -lo);
-    if (val > 1e-6) tight = std::min(tight, bound[k] * val / (lim * lim));
+    // Away from zeros of e (|e| > 0.1): an interval where one axis changes sign takes its tighter limit, and
+    // near a zero v²/e² is strongly convex (the O(Δs²) loss grows as e'²/e²).
+    if (val > 1e-2) tight = std::min(tight, bound[k] * val / (lim * lim));
   }
 }
 

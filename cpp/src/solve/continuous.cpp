@@ -41,14 +41,15 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
     cr.resize(samples.size(), 1);
     const std::string own = ci < rows.size() && rows[ci].rows() > 0 ? rows[ci].labels[0] : constraints[ci]->name();
     cr.labels[0] = own + " (between grid points)";
-    for (Eigen::Index k = 0; k <= N; ++k)
+    for (Eigen::Index k = 0; k <= N; ++k) {
+      if (!(bound[k] >= 0.0))
+        fail(constraints[ci]->name() + ": speed_bounds_between_grid_points gave " + fmt(bound[k]) +
+             " at grid point " + std::to_string(k) + ", expected a number >= 0 (+inf: none)");
       if (bound[k] < std::numeric_limits<double>::infinity()) {
-        if (!(bound[k] >= 0.0))
-          fail(constraints[ci]->name() + ": speed_bounds_between_grid_points gave " + fmt(bound[k]) +
-               " at grid point " + std::to_string(k) + ", expected a number >= 0");
         cr.a(k, 0) = 1.0;
         cr.c(k, 0) = bound[k];
       }
+    }
     rows.push_back(std::move(cr));
   }
   bool any = false;
