@@ -584,9 +584,11 @@ class FrameLimits(Constraint):
     - ``"linear_acceleration"``, ``"angular_acceleration"``: lo_j <= e_j·(J p' s̈ + (J p'' + J̇ p') ṡ²) <= hi_j
       per axis, two rows. Per axis only: a bound on the norm of the acceleration is not a half-plane.
 
-    With guarantee='continuous' the audit checks the rows between grid points; speed and velocity limits that
-    bind along long stretches need many audit rounds at large N (bench/README.md: seconds at N = 1000 with the
-    default audit_tolerance, under 1 s with audit_tolerance=1e-6). Family "frame" (relaxation).
+    With guarantee='continuous' the audit checks the rows between grid points. Speed and velocity limits also
+    bound ṡ² at the grid points so that the rows hold between them for a cubic Hermite model of the frame
+    velocity (from its values and s-derivatives at the grid points, with a margin for the model's error): where
+    they bind along a stretch the audit then confirms in one round instead of cutting round after round
+    (bench/README.md). Family "frame" (relaxation).
 
     Parameters
     ----------

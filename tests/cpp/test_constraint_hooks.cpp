@@ -370,3 +370,54 @@ TEST(ConstraintHooks, RelaxationScalesTheFamily) {
     EXPECT_LE(m.at("speed"), 3.0 * (1 + 1e-3) * (1 + 1e-12));
   }
 }
+
+// speed_bounds_between_grid_points: guarantee = continuous adds a constraint's bounds as rows x <= bound
+// (the grid guarantee does not), named after its first row; a wrong count or a bound that is not a number
+// >= 0 is an InvalidInput naming the constraint.
+namespace {
+
+class CappedProfile : public SpeedProfile {
+ public:
+  CappedProfile(Eigen::VectorXd v, std::function<Eigen::VectorXd(const PathSamples&)> bounds)
+      : SpeedProfile(std::move(v), [](double) { return 1.0; }), bounds_(std::move(bounds)) {}
+  Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& samples) const override { return bounds_(samples); }
+
+ private:
+  std::function<Eigen::VectorXd(const PathSamples&)> bounds_;
+};
+
+}  // namespace
+
+TEST(ConstraintHooks, SpeedBoundsBetweenGridPointsBecomeRowsUnderTheContinuousGuarantee) {
+  const Eigen::Vector2d v(1.0, 0.6);
+  SolverOptions continuous;
+  continuous.guarantee = Guarantee::Continuous;
+  TimeScalingProblem prob(bend(), 40);
+  prob.add_constraint(std::make_shared<CappedProfile>(v, [](const PathSamples& s) {
+    return Eigen::VectorXd::Constant(s.size(), 0.04);  // ṡ <= 0.2 everywhere
+  }));
+  const Result grid = prob.solve(), cont = prob.solve(continuous);
+  ASSERT_TRUE(grid.ok() && cont.ok());
+  EXPECT_GT(grid.sdot.maxCoeff(), 0.3);
+  EXPECT_LE(cont.sdot.maxCoeff(), 0.2 * (1 + 1e-12));
+  EXPECT_NEAR(cont.sdot.maxCoeff(), 0.2, 1e-9);
+  bool named = false;
+  for (size_t k = 0; k < cont.binding.size(); ++k)
+    named = named || cont.binding[k] == "speed joint 0 (between grid points)";
+  EXPECT_TRUE(named);
+
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    TimeScalingProblem p(bend(), 10);
+    p.add_constraint(std::make_shared<CappedProfile>(v, [bad](const PathSamples& s) {
+      Eigen::VectorXd b = Eigen::VectorXd::Constant(s.size(), 1.0);
+      b[3] = bad;
+      return b;
+    }));
+    EXPECT_NE(error_of([&] { p.solve(continuous); }).find("speed profile: speed_bounds_between_grid_points gave"),
+              std::string::npos);
+  }
+  TimeScalingProblem p(bend(), 10);
+  p.add_constraint(std::make_shared<CappedProfile>(v, [](const PathSamples&) { return Eigen::VectorXd::Ones(3); }));
+  EXPECT_EQ(error_of([&] { p.solve(continuous); }),
+            "speed profile: speed_bounds_between_grid_points gave 3 bounds for 11 grid points");
+}

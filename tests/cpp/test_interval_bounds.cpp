@@ -96,3 +96,86 @@ TEST(IntervalBounds, QuinticSampledPath) {
   SampledPath path(s, q, dq, ddq);
   check(path, Eigen::VectorXd::LinSpaced(10, 0.0, 2.0), rng);
 }
+
+// hermite_speed_bounds: ‖e(s)‖² θ(s) <= v² between grid points for θ linear between the bounds. With e a
+// cubic the Hermite model is e itself, so the check is exact; the bounds lose O(Δs²) against v²/‖e‖².
+namespace {
+
+Eigen::Vector3d cubic_e(double s) { return {0.3 + s - 0.8 * s * s * s, -0.5 + 0.4 * s * s, 0.2 - 0.7 * s + 0.3 * s * s * s}; }
+Eigen::Vector3d cubic_de(double s) { return {1.0 - 2.4 * s * s, 0.8 * s, -0.7 + 0.9 * s * s}; }
+
+// The largest ‖e‖² θ / v² over dense samples of every interval, and the smallest bound / (v²/‖e_k‖²).
+void sweep(const Eigen::VectorXd& grid, const Eigen::VectorXd& bound, double v, int axis, double lo,
+           double& over, double& tight) {
+  over = 0.0;
+  tight = INFINITY;
+  for (Eigen::Index k = 0; k + 1 < grid.size(); ++k) {
+    for (int m = 0; m <= 400; ++m) {
+      const double l = m / 400.0, s = grid[k] + (grid[k + 1] - grid[k]) * l;
+      const Eigen::Vector3d e = cubic_e(s);
+      const double th = (1 - l) * bound[k] + l * bound[k + 1];
+      const double lim = axis < 0 ? v : (e[axis] > 0 ? v : -lo);
+      const double val = axis < 0 ? e.squaredNorm() : e[axis] * e[axis];
+      over = std::max(over, val * th / (lim * lim));
+    }
+    const Eigen::Vector3d e = cubic_e(grid[k]);
+    const double val = axis < 0 ? e.squaredNorm() : e[axis] * e[axis];
+    const double lim = axis < 0 ? v : (e[axis] > 0 ? v : -lo);
+    // Away from zeros of e (|e| > 0.1): an interval where one axis changes sign takes its tighter limit, and
+    // near a zero v²/e² is strongly convex (the O(Δs²) loss grows as e'²/e²).
+    if (val > 1e-2) tight = std::min(tight, bound[k] * val / (lim * lim));
+  }
+}
+
+}  // namespace
+
+TEST(IntervalBounds, HermiteSpeedBoundsHoldBetweenGridPointsAndAreTight) {
+  for (int N : {10, 100, 1000}) {
+    const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(N + 1, 0.0, 1.0);
+    Eigen::MatrixXd e(N + 1, 3), de(N + 1, 3);
+    for (int k = 0; k <= N; ++k) {
+      e.row(k) = cubic_e(grid[k]).transpose();
+      de.row(k) = cubic_de(grid[k]).transpose();
+    }
+    const Eigen::VectorXd none = Eigen::VectorXd::Constant(N + 1, INFINITY);
+    double over, tight;
+    // The norm (a translational speed limit).
+    sweep(grid, detail::hermite_speed_bounds(grid, e, de, -0.4, 0.4, none), 0.4, -1, -0.4, over, tight);
+    EXPECT_LE(over, 1.0 + 1e-12) << "N = " << N;
+    const double h = 1.0 / N;
+    EXPECT_GE(tight, 1.0 - 20.0 * h * h) << "N = " << N;  // O(Δs²): not the flat bound, O(Δs)
+    // One axis with different limits on its two sides (component 0 and 2 change sign on [0, 1]).
+    for (int axis : {0, 1, 2}) {
+      sweep(grid, detail::hermite_speed_bounds(grid, e.col(axis), de.col(axis), -0.25, 0.6, none), 0.6, axis, -0.25,
+            over, tight);
+      EXPECT_LE(over, 1.0 + 1e-12) << "N = " << N << ", axis " << axis;
+      if (N == 1000) EXPECT_GE(tight, 1.0 - 1e-3) << "axis " << axis;
+    }
+  }
+}
+
+TEST(IntervalBounds, HermiteSpeedBoundsRespectTheStartBoundsAndMissingLimits) {
+  const int N = 20;
+  const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(N + 1, 0.0, 2.0);
+  Eigen::MatrixXd e(N + 1, 1), de(N + 1, 1);
+  for (int k = 0; k <= N; ++k) {
+    e(k, 0) = 1.0 + grid[k];  // > 0 everywhere: only hi applies
+    de(k, 0) = 1.0;
+  }
+  Eigen::VectorXd start = Eigen::VectorXd::Constant(N + 1, INFINITY);
+  start[7] = 0.01;
+  const Eigen::VectorXd b = detail::hermite_speed_bounds(grid, e, de, -1.0, 2.0, start);
+  EXPECT_LE(b[7], 0.01);
+  // v²/e² is convex here, so the chord of the exact end values would exceed it between them: scaled below.
+  for (int k = 0; k < N; ++k) {
+    EXPECT_LT(b[k], 4.0 / (e(k, 0) * e(k, 0))) << k;
+    for (int m = 1; m < 50; ++m) {
+      const double l = m / 50.0, ee = e(k, 0) + l * (e(k + 1, 0) - e(k, 0));
+      EXPECT_LE(ee * ee * ((1 - l) * b[k] + l * b[k + 1]), 4.0 * (1 + 1e-12)) << k;
+    }
+  }
+  EXPECT_GE(b[0], 0.99 * 4.0);  // the loss is O(Δs²) = 1e-2 here, not the flat bound's 4/e(0.1)² = 3.3
+  EXPECT_TRUE(std::isinf(detail::hermite_speed_bounds(grid, e, de, -1.0, INFINITY, start)[0]));  // no upper limit
+  EXPECT_TRUE(std::isinf(detail::hermite_speed_bounds(grid, Eigen::MatrixXd::Zero(N + 1, 1), Eigen::MatrixXd::Zero(N + 1, 1),
+                                                      -1.0, 2.0, start)[3]));  // e = 0: no bound
+}

@@ -253,7 +253,7 @@ def test_limits_hold_at_1khz_with_the_continuous_guarantee():
     print("\n1 kHz, value / limit: worst " + ", ".join(f"{k} {v:.12f}" for k, v in worst.items()) + "; median margin "
           "(1 - value / limit) per case " + ", ".join(f"{k} {np.round(v, 4).tolist()}" for k, v in medians.items()))
     for kind in worst:
-        assert worst[kind] <= 1.0 + 1e-8, (kind, worst[kind])
+        assert worst[kind] <= 1.0 + 1e-9, (kind, worst[kind])
         assert bound_any[kind] >= 0.999, (kind, bound_any[kind])  # each limit binds somewhere: the check can fail
 
 
@@ -276,8 +276,85 @@ def test_grid_alone_breaks_between_grid_points_and_continuous_repairs():
     grid, cont = prob.solve(), prob.solve(guarantee="continuous")
     assert grid.ok and cont.ok
     assert worst(grid) > 1.0 + 1e-3
-    assert worst(cont) <= 1.0 + 1e-8
+    assert worst(cont) <= 1.0 + 1e-9
     assert cont.duration > grid.duration
+
+
+def binding_problem(ours, link, seed, kind, point, limit=None):
+    prob = pp.TimeScalingProblem(random_path(ours, seed), 1000)
+    prob.add_velocity_limits(-ours.velocity_limits, ours.velocity_limits)
+    prob.add_acceleration_limits(np.full(ours.nq, -8.0), np.full(ours.nq, 8.0))
+    if limit is not None:
+        prob.add_constraint(limit)
+    elif kind == "speed":
+        prob.add_frame_translational_speed_limit(ours, link, 0.25, point=point)
+    else:
+        prob.add_frame_velocity_limits(ours, link, -V_AXIS / 2, V_AXIS / 2, frame="local", point=point)
+    return prob
+
+
+class AuditOnly(pp.Constraint):
+    """A FrameLimits' rows without its between-grid bounds: guarantee='continuous' then holds them by the
+    audit's cuts alone, which converge to the semi-infinite optimum."""
+
+    def __init__(self, inner):
+        super().__init__()
+        self.inner = inner
+
+    def name(self):
+        return "frame rows, audited only"
+
+    def evaluate(self, samples):
+        return self.inner.evaluate(samples)
+
+
+@pytest.mark.parametrize("name,seed,kind", [("panda", 0, "speed"), ("ur5", 3, "velocity")])
+def test_between_grid_bounds_cost_little_beyond_the_cuts(name, seed, kind):
+    # The cuts alone (audit_tolerance 1e-7: 6-8 rounds, seconds) give a T a hair below the semi-infinite
+    # optimum; the bounds' T lies above it by a few percent of the between-grid correction (measured 1.4 %
+    # and 4 %: Bernstein coefficients of the Hermite model, and the model's error margin).
+    ours, _, link = models(name)
+    point = (0.0, 0.0, 0.1)
+    prob = binding_problem(ours, link, seed, kind, point)
+    grid, cont = prob.solve(), prob.solve(guarantee="continuous")
+    cuts = binding_problem(ours, link, seed, kind, point, AuditOnly(prob.constraints[-1]))
+    ref = cuts.solve(guarantee="continuous", audit_tolerance=1e-7)
+    assert ref.ok and ref.stats["audit_cuts"] > 100  # without the bounds the audit must cut
+    correction = ref.duration / grid.duration - 1.0
+    assert correction > 1e-5
+    assert -1e-9 < cont.duration / ref.duration - 1.0 < 0.1 * correction
+
+
+@pytest.mark.parametrize("name,seed", [("panda", 0), ("panda", 1), ("ur5", 2), ("ur5", 3)])
+@pytest.mark.parametrize("kind", ["speed", "velocity"])
+def test_between_grid_bounds_hold_speed_and_velocity_limits_that_bind_along_the_path(name, seed, kind):
+    # At N = 1000 a speed or per-axis velocity limit binds along long stretches, and the between-grid peak of
+    # ‖J p'‖² ṡ² lies above the grid rows there: the grid timing breaks the limit between grid points. The
+    # grid-point bounds of FrameLimits.speed_bounds_between_grid_points (a Hermite model of the frame velocity)
+    # hold it in one audit round without a cut (the audit confirms, it does not repair). T pays the
+    # between-grid correction, O(Δs²) (5e-5 to 1e-4 here; test_between_grid_bounds_cost_little_beyond_the_cuts
+    # compares it with the audit's cuts alone).
+    ours, theirs, link = models(name)
+    point = (0.0, 0.0, 0.1)
+    model, data, fid = pin_point_frame(theirs, link, point)
+    prob = binding_problem(ours, link, seed, kind, point)
+
+    def worst(res):
+        t = np.arange(0.0, res.duration, 1e-3)
+        q, qd, qdd = res.trajectory().evaluate(t)
+        out = 0.0
+        for k in range(len(t)):
+            v = pin_motion(model, data, fid, q[k], qd[k], qdd[k], "local")[0]
+            out = max(out, np.linalg.norm(v) / 0.25 if kind == "speed" else np.max(np.abs(v) / (V_AXIS / 2)))
+        return out
+
+    grid, cont = prob.solve(), prob.solve(guarantee="continuous")
+    assert grid.ok and cont.ok, (grid.message, cont.message)
+    assert (cont.stats["audit_rounds"], cont.stats["audit_cuts"]) == (1, 0)
+    assert 0.0 < cont.duration / grid.duration - 1.0 < 2e-4
+    assert worst(grid) > 1.0 + 1e-6  # the peak between grid points is above the grid rows
+    w = worst(cont)
+    assert 0.999 < w <= 1.0 + 1e-9, w  # held at 1 kHz, and binding
 
 
 # ---------------------------------------------------------------------------------------------------

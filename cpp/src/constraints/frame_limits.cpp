@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "base/validate.hpp"
+#include "geometry/interval_bounds.hpp"
 
 namespace pathpace {
 
@@ -49,12 +50,14 @@ void check_limits(FrameQuantity quantity, const Eigen::VectorXd& lo, const Eigen
 }
 
 // Row k of a (samples, 3) matrix, in the chosen axes: R^T v for the link frame's (R column-major in `rot`).
-Eigen::Vector3d in_axes(const Eigen::MatrixXd& m, const Eigen::MatrixXd& rot, Eigen::Index k, FrameAxes axes) {
-  const Eigen::Vector3d v = m.row(k).transpose();
+Eigen::Vector3d to_axes(const Eigen::Vector3d& v, const Eigen::MatrixXd& rot, Eigen::Index k, FrameAxes axes) {
   if (axes == FrameAxes::World) return v;
   Eigen::Matrix3d R;
   for (int j = 0; j < 9; ++j) R(j % 3, j / 3) = rot(k, j);
   return R.transpose() * v;
+}
+Eigen::Vector3d in_axes(const Eigen::MatrixXd& m, const Eigen::MatrixXd& rot, Eigen::Index k, FrameAxes axes) {
+  return to_axes(m.row(k).transpose(), rot, k, axes);
 }
 
 }  // namespace
@@ -147,6 +150,39 @@ ConstraintRows FrameLimits::evaluate(const PathSamples& samples) const {
     }
   }
   return rows;
+}
+
+Eigen::VectorXd FrameLimits::speed_bounds_between_grid_points(const PathSamples& samples) const {
+  if (quantity_ != FrameQuantity::TranslationalSpeed && !is_velocity(quantity_)) return {};
+  if (samples.dof() != robot_->nq()) return {};  // evaluate() has reported it
+  const RobotModel::FrameMotion f = robot_->path_frame_motion(samples.q, samples.dq, samples.ddq, link_, point_);
+  const Eigen::Index m = samples.size();
+  const bool angular = quantity_ == FrameQuantity::AngularVelocity;
+  const Eigen::MatrixXd& vel = angular ? f.angular_velocity : f.velocity;
+  // f's accelerations at ṡ = 1, s̈ = 0 are the s-derivatives of its velocities (d/ds of J p' = J p'' + J̇ p').
+  const Eigen::MatrixXd& dvel = angular ? f.angular_acceleration : f.acceleration;
+  // The grid rows' own bound per grid point (over every axis): no line needs to start above it.
+  const ConstraintRows grid = evaluate(samples);
+  Eigen::VectorXd start = Eigen::VectorXd::Constant(m, std::numeric_limits<double>::infinity());
+  for (Eigen::Index k = 0; k < m; ++k)
+    for (Eigen::Index j = 0; j < grid.rows(); ++j)
+      if (grid.a(k, j) > 0.0 && grid.c(k, j) < kInf) start[k] = std::min(start[k], grid.c(k, j) / grid.a(k, j));
+  if (quantity_ == FrameQuantity::TranslationalSpeed)
+    return detail::hermite_speed_bounds(samples.s, vel, dvel, -hi_[0], hi_[0], start);
+  // Components along the chosen axes, and their derivatives: d/ds (Rᵀ v) = Rᵀ (v' - ω × v), ω the link's
+  // angular velocity per unit s (for v = ω itself the cross term vanishes).
+  Eigen::MatrixXd e(m, 3), de(m, 3);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const Eigen::Vector3d v = vel.row(k).transpose(), w = f.angular_velocity.row(k).transpose();
+    Eigen::Vector3d d = dvel.row(k).transpose();
+    if (axes_ == FrameAxes::Local) d -= w.cross(v);
+    e.row(k) = to_axes(v, f.rotation, k, axes_).transpose();
+    de.row(k) = to_axes(d, f.rotation, k, axes_).transpose();
+  }
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(m, kInf);
+  for (Eigen::Index j = 0; j < 3; ++j)
+    out = out.cwiseMin(detail::hermite_speed_bounds(samples.s, e.col(j), de.col(j), lo_[j], hi_[j], start));
+  return out;
 }
 
 std::shared_ptr<const Constraint> FrameLimits::relaxed(double scale) const {

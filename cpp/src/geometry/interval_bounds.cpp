@@ -225,4 +225,115 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
   return out;
 }
 
+namespace {
+
+// The coefficients of Σ_j c[j] τ^j about τ = a (in place, degree d).
+void shift(double* c, int d, double a) {
+  for (int i = 0; i < d; ++i)
+    for (int j = d - 1; j >= i; --j) c[j] += a * c[j + 1];
+}
+
+// Per interval k, an estimate of max |e⁽⁴⁾| (over e's components) on it: 6 times the third divided
+// differences of e' over four neighbouring grid points, the largest of the windows that hold the interval
+// (a sampled estimate, which the caller's audit checks; 0 where the grid has fewer than four points).
+Eigen::VectorXd fourth_derivative_estimate(const Eigen::VectorXd& grid, const Eigen::MatrixXd& de) {
+  const Eigen::Index N = grid.size() - 1;
+  Eigen::VectorXd window = Eigen::VectorXd::Zero(std::max<Eigen::Index>(N - 2, 0)), out = Eigen::VectorXd::Zero(N);
+  for (Eigen::Index i = 0; i + 3 <= N; ++i)
+    for (Eigen::Index c = 0; c < de.cols(); ++c) {
+      double d[4];
+      for (int r = 0; r < 4; ++r) d[r] = de(i + r, c);
+      for (int order = 1; order <= 3; ++order)
+        for (int r = 3; r >= order; --r) d[r] = (d[r] - d[r - 1]) / (grid[i + r] - grid[i + r - order]);
+      window[i] = std::max(window[i], 6.0 * std::abs(d[3]));
+    }
+  for (Eigen::Index k = 0; k < N; ++k)
+    for (Eigen::Index i = std::max<Eigen::Index>(k - 2, 0); i <= k && i + 3 <= N; ++i) out[k] = std::max(out[k], window[i]);
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd hermite_speed_bounds(const Eigen::VectorXd& grid, const Eigen::MatrixXd& e, const Eigen::MatrixXd& de,
+                                     double lo, double hi, const Eigen::VectorXd& start) {
+  const Eigen::Index N = grid.size() - 1, m = e.cols();
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(N + 1, inf);
+  if (m < 1 || m > 3) fail("hermite_speed_bounds: " + std::to_string(m) + " components, expected 1 to 3");
+  const double cuts[5] = {0.0, 0.125, 0.5, 0.875, 1.0};
+  const Eigen::VectorXd d4 = fourth_derivative_estimate(grid, de);
+  for (Eigen::Index k = 0; k < N; ++k) {
+    const double h = grid[k + 1] - grid[k];
+    // The model's error per component, |e - H| <= h⁴/384 max |e⁽⁴⁾|, with twice the estimate.
+    const double delta = 2.0 * std::sqrt(static_cast<double>(m)) * std::pow(h, 4) / 384.0 * d4[k];
+    // Each component's cubic in σ = s - s_k (Hermite: values and slopes at both ends).
+    double H[3][4];
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const double e0 = e(k, i), e1 = e(k + 1, i), d0 = de(k, i), d1 = de(k + 1, i), q = (e1 - e0) / h;
+      H[i][0] = e0;
+      H[i][1] = d0;
+      H[i][2] = (3.0 * q - 2.0 * d0 - d1) / h;
+      H[i][3] = (d0 + d1 - 2.0 * q) / (h * h);
+    }
+    double v = hi;
+    if (m == 1) {
+      double b[4];
+      bernstein(H[0], 3, h, b);
+      const double bmin = *std::min_element(b, b + 4), bmax = *std::max_element(b, b + 4);
+      v = inf;
+      if (bmax + delta > 0.0) v = std::min(v, std::abs(hi));
+      if (bmin - delta < 0.0) v = std::min(v, std::abs(lo));
+    }
+    if (!std::isfinite(v)) continue;
+    const double v2 = v * v;
+    // Per piece [a, a + w] of the interval: P = ‖H‖² in τ = σ - a (degree 6), and its Bernstein maximum.
+    double P[4][7], bP[7];
+    double max_all = 0.0;
+    for (int p = 0; p < 4; ++p) {
+      const double a = cuts[p] * h, w = (cuts[p + 1] - cuts[p]) * h;
+      std::fill(P[p], P[p] + 7, 0.0);
+      for (Eigen::Index i = 0; i < m; ++i) {
+        double c[4] = {H[i][0], H[i][1], H[i][2], H[i][3]};
+        shift(c, 3, a);
+        for (int x = 0; x < 4; ++x)
+          for (int y = 0; y < 4; ++y) P[p][x + y] += c[x] * c[y];
+      }
+      bernstein(P[p], 6, w, bP);
+      max_all = std::max(max_all, *std::max_element(bP, bP + 7));
+    }
+    if (!(max_all > 0.0) && delta == 0.0) continue;  // e = 0 on the whole interval: no bound
+    // ‖e‖² <= ‖H‖² + pad on the interval, if the estimate of e⁽⁴⁾ holds.
+    const double pad = delta * (2.0 * std::sqrt(max_all) + delta);
+    const double n0 = e.row(k).squaredNorm(), n1 = e.row(k + 1).squaredNorm();
+    double m0 = std::min(n0 > 0.0 ? v2 / n0 : inf, start[k]), m1 = std::min(n1 > 0.0 ? v2 / n1 : inf, start[k + 1]);
+    const double flat = v2 / (max_all + pad);
+    if (!std::isfinite(m0) || !std::isfinite(m1)) m0 = m1 = flat;
+    // max over the interval of P ((1 - σ/h) m0 + (σ/h) m1), σ = a + τ, by Bernstein per piece.
+    double worst = 0.0, E[8], F[8], bE[8], bF[8];
+    for (int p = 0; p < 4; ++p) {
+      const double a = cuts[p] * h, w = (cuts[p + 1] - cuts[p]) * h;
+      std::fill(E, E + 8, 0.0);
+      std::fill(F, F + 8, 0.0);
+      for (int x = 0; x < 7; ++x) {
+        F[x] += P[p][x] * a / h;
+        F[x + 1] += P[p][x] / h;
+        E[x] += P[p][x] * (1.0 - a / h);
+        E[x + 1] -= P[p][x] / h;
+      }
+      bernstein(E, 7, w, bE);
+      bernstein(F, 7, w, bF);
+      for (int i = 0; i < 8; ++i) worst = std::max(worst, m0 * bE[i] + m1 * bF[i]);
+    }
+    worst += pad * std::max(m0, m1);
+    if (worst > v2) {
+      m0 *= v2 / worst;
+      m1 *= v2 / worst;
+    }
+    if (m0 < flat && m1 < flat) m0 = m1 = flat;
+    out[k] = std::min(out[k], m0);
+    out[k + 1] = std::min(out[k + 1], m1);
+  }
+  return out;
+}
+
 }  // namespace pathpace::detail

@@ -49,4 +49,17 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
                                         const IntervalRows& rows, const Eigen::MatrixXd& dq, const Eigen::VectorXd& vmin,
                                         const Eigen::VectorXd& vmax);
 
+/// Speed bounds at the grid points for a row ‖e(s)‖² ṡ² <= v² whose e (m <= 3 components: a frame's velocity
+/// per unit ṡ) is known only at the grid points, with its s-derivative: `e`, `de` (N+1, m). Between grid points
+/// e is modelled by its cubic Hermite interpolant (error O(Δs⁴) times e's fourth derivative), so the bounds
+/// are exact for the model, not rigorous for e itself: the caller's rows stay audited. On each interval the
+/// line θ = (1 - λ) m0 + λ m1 starts from v²/‖e‖² at the ends (no more than `start`, the grid point's own
+/// bound over the constraint's rows) and is scaled down until the model's ‖e‖² θ <= v² holds by its Bernstein
+/// coefficients (four pieces per interval, as in continuous_speed_bounds); the flat bound v²/max ‖e‖² is kept
+/// where it allows more at both ends. v is `hi` for m > 1; for m = 1 it is hi where e > 0 and -lo where
+/// e < 0, the smaller where the model may change sign on the interval (lo <= 0 <= hi, ±inf: none). Entries
+/// without a bound are +inf.
+Eigen::VectorXd hermite_speed_bounds(const Eigen::VectorXd& grid, const Eigen::MatrixXd& e, const Eigen::MatrixXd& de,
+                                     double lo, double hi, const Eigen::VectorXd& start);
+
 }  // namespace pathpace::detail

@@ -29,6 +29,29 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
                                    std::vector<ConstraintRows>& rows, IntervalExtra& extra) {
   const Eigen::Index N = samples.size() - 1, n = samples.dof();
   extra.rows.resize(static_cast<size_t>(N));
+  // A constraint's own speed bounds for between grid points (Constraint::speed_bounds_between_grid_points):
+  // rows x <= bound, named after its first row.
+  for (size_t ci = 0; ci < constraints.size(); ++ci) {
+    const Eigen::VectorXd bound = constraints[ci]->speed_bounds_between_grid_points(samples);
+    if (bound.size() == 0) continue;
+    if (bound.size() != N + 1)
+      fail(constraints[ci]->name() + ": speed_bounds_between_grid_points gave " + std::to_string(bound.size()) +
+           " bounds for " + std::to_string(N + 1) + " grid points");
+    ConstraintRows cr;
+    cr.resize(samples.size(), 1);
+    const std::string own = ci < rows.size() && rows[ci].rows() > 0 ? rows[ci].labels[0] : constraints[ci]->name();
+    cr.labels[0] = own + " (between grid points)";
+    for (Eigen::Index k = 0; k <= N; ++k) {
+      if (!(bound[k] >= 0.0))
+        fail(constraints[ci]->name() + ": speed_bounds_between_grid_points gave " + fmt(bound[k]) +
+             " at grid point " + std::to_string(k) + ", expected a number >= 0 (+inf: none)");
+      if (bound[k] < std::numeric_limits<double>::infinity()) {
+        cr.a(k, 0) = 1.0;
+        cr.c(k, 0) = bound[k];
+      }
+    }
+    rows.push_back(std::move(cr));
+  }
   bool any = false;
   for (const auto& c : constraints) any = any || c->joint_rate_limits().order != 0;
   if (!any) return;
