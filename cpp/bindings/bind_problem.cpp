@@ -225,6 +225,9 @@ void bind_problem_kinematics(ProblemClass& cls) {
       .def("add_acceleration_limits", [](TimeScalingProblem& p, py::handle amin, py::handle amax) {
         p.add_acceleration_limits(to_vector(amin, "amin"), to_vector(amax, "amax"));
       }, "amin"_a, "amax"_a, doc::TimeScalingProblem_add_acceleration_limits)
+      .def("add_jerk_limits", [](TimeScalingProblem& p, py::handle jmin, py::handle jmax) {
+        p.add_jerk_limits(to_vector(jmin, "jmin"), to_vector(jmax, "jmax"));
+      }, "jmin"_a, "jmax"_a, doc::TimeScalingProblem_add_jerk_limits)
       .def("add_linear_constraint", [](TimeScalingProblem& p, py::handle A, py::handle B, py::handle C, py::handle lo,
                                        py::handle hi, py::handle label) {
         p.add_linear_constraint(to_rows(A, "A"), to_rows(B, "B"), to_rows(C, "C"), to_rows(lo, "lo"), to_rows(hi, "hi"),

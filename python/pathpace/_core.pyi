@@ -1277,6 +1277,10 @@ class Trajectory:
         Grid.
     sdot : array_like (N+1,)
         ṡ at the grid points, 1/s; >= 0 with no two consecutive zeros.
+    sddot_points : array_like (N+1,), optional
+        s̈ at the grid points of a jerk-limited timing (add_jerk_limits): s̈ is linear in s between them, with
+        θ = ṡ² consistent (θ_{k+1} = θ_k + Δs_k (s̈_k + s̈_{k+1}), to 1e-9 relative), and an end at rest (ṡ = 0) has
+        constant s⃛ on its interval (s̈ = 0 there, θ_1 = 1.5 Δs_0 s̈_1). None: s̈ constant per interval (eq. 24).
 
     Attributes
     ----------
@@ -1288,6 +1292,8 @@ class Trajectory:
         s at the grid points, s_0..s_N.
     sdot_grid : ndarray (N+1,)
         ṡ at the grid points, 1/s.
+    sddot_points : ndarray (N+1,) or None
+        s̈ at the grid points of a jerk-limited timing (s̈ continuous); None (C++: empty) otherwise.
     path : Path
     robot : RobotModel or None
         The robot whose torque limits or contacts shaped it; None (C++: null) if none did.
@@ -1523,6 +1529,9 @@ class Result:
         t_k at the grid points, s; t_0 = 0.
     sddot : ndarray (N,)
         s̈ on each interval, 1/s².
+    sddot_points : ndarray (N+1,) or None
+        s̈ at the grid points of a jerk-limited timing (s̈ linear in s between them; ``sddot`` is then each
+        interval's mean); None (C++: empty) otherwise.
     infeasible_index : int
         First grid index where no timing exists (-1 if feasible).
     infeasible_s : float
@@ -1531,6 +1540,10 @@ class Result:
     stats : dict
         slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
         (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+        With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
+        T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
+        the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
+        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's).
     relaxation : dict of str to float
         For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
         that makes the problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see
@@ -1596,6 +1609,10 @@ class Result:
     def stats(self) -> dict[str, Any]:
         """dict: slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
         (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+        With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
+        T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
+        the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
+        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's).
         """
     @property
     def contact_drift(self) -> list[dict[str, Any]]:
