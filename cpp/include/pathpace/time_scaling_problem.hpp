@@ -373,8 +373,11 @@ class TimeScalingProblem {
   std::vector<std::string> joint_names_;
   std::vector<ContactDrift> contact_drift_;
   std::shared_ptr<const JerkLimits> jerk_;
-  /// solve() with jerk limits: the second-order solve, then the linearisation rounds (solve/jerk_scp.hpp).
-  Result solve_jerk(const SolverOptions& options) const;
+  /// solve() with jerk limits: the second-order solve, then the linearisation rounds (solve/jerk_scp.hpp); with
+  /// adapt_grid, first on the grid whose rest-end intervals are the jerk ramps (problem/solve_jerk.cpp).
+  Result solve_jerk(const SolverOptions& options, bool adapt_grid = true) const;
+  /// The grid with each rest end's first interval as long as its estimated jerk ramp (problem/solve_jerk.cpp).
+  Eigen::VectorXd jerk_grid(const Result& second_order) const;
   mutable detail::UseCount use_;
 };
 

@@ -324,7 +324,22 @@ JerkOutput solve_jerk(const JerkInput& in) {
   // Rounds: linearise at x, minimise ∇T·y in a trust region, line search on T (x + α (y - x) stays feasible:
   // both ends satisfy the convex linearised rows, which are inner ones).
   double rho = 0.5;
+  bool certified = false;  // out.gap is that of the current x
   Eigen::VectorXd g, y;
+  // Certificate: the LP of the linearisation at x without a trust region. T is convex and the linearised rows
+  // form a convex set C containing x, so min_C T >= T(x) + min_C ∇T·(y - x): the gap bound is -min ∇T·(y - x).
+  auto certify = [&](const Eigen::VectorXd& at) {
+    Eigen::VectorXd gc, yc;
+    total_time(sh, at, &gc);
+    Eigen::VectorXd l = lo, h = hi;
+    const double cap = 1e6 * s_theta;
+    for (Eigen::Index k = 0; k <= n; ++k) h[k] = std::min(h[k], cap);  // hit only if nothing bounds θ
+    ++out.lp_solves;
+    out.gap = kInf;
+    if (lp.build(at.head(nb), l, h) && lp.solve(gc, yc) == GlpkLp::Outcome::Optimal && yc.head(nb).maxCoeff() < 0.5 * cap)
+      out.gap = std::max(0.0, -gc.dot(yc - at)) / total_time(sh, at, nullptr);
+    return out.gap;
+  };
   out.status = Status::IterationLimit;
   for (int it = 0;; ++it) {
     if (it >= in.max_iterations) {
@@ -359,7 +374,13 @@ JerkOutput solve_jerk(const JerkInput& in) {
     make_consistent(sh, y, thN, in.zero_sddot_end);
     const Eigen::VectorXd d = y - x;
     const double pred = -g.dot(d);
-    if (pred <= 0.1 * in.tolerance * T) break;  // the certificate below decides
+    if (pred <= 0.1 * in.tolerance * T) {
+      // Converged within the trust region: done if the certificate agrees, else widen the region and go on.
+      certified = true;
+      if (certify(x) <= in.tolerance || rho >= 1e3) break;
+      rho = std::min(16 * rho, 1e3);
+      continue;
+    }
     double alpha = 1, Tn = kInf;
     for (int ls = 0; ls < 30; ++ls, alpha *= 0.5) {
       Tn = total_time(sh, x + alpha * d, nullptr);
@@ -371,31 +392,22 @@ JerkOutput solve_jerk(const JerkInput& in) {
       continue;
     }
     x += alpha * d;
+    certified = false;
     make_consistent(sh, x, thN, in.zero_sddot_end);
     T = total_time(sh, x, nullptr);
     rho = alpha == 1 ? std::min(2 * rho, 1e3) : std::max(alpha, 0.1) * rho;
   }
 
-  // Certificate: the LP of the final linearisation without a trust region. T is convex and the linearised rows
-  // form a convex set C containing x, so min_C T >= T(x) + min_C ∇T·(y - x): the gap bound is -min ∇T·(y - x).
   if (out.status != Status::NumericalError) {
-    total_time(sh, x, &g);
-    Eigen::VectorXd l = lo, h = hi;
-    const double cap = 1e6 * s_theta;
-    for (Eigen::Index k = 0; k <= n; ++k) h[k] = std::min(h[k], cap);  // hit only if nothing bounds θ
-    ++out.lp_solves;
-    if (lp.build(x.head(nb), l, h) && lp.solve(g, y) == GlpkLp::Outcome::Optimal &&
-        y.head(nb).maxCoeff() < 0.5 * cap) {
-      out.gap = std::max(0.0, -g.dot(y - x)) / T;
-      if (out.status == Status::IterationLimit && out.gap <= in.tolerance) {
-        out.status = Status::Optimal;
-        out.message.clear();
-      } else if (out.status == Status::IterationLimit && out.message.empty()) {
-        out.message = "jerk limits: the rounds stopped with a gap of " + std::to_string(out.gap) +
-                      " to the linearised problem (above tolerance)";
-      }
-    } else if (out.message.empty()) {
-      out.message = "jerk limits: the certificate LP failed (no gap bound)";
+    if (!certified) certify(x);
+    if (!std::isfinite(out.gap)) {
+      if (out.message.empty()) out.message = "jerk limits: the certificate LP failed (no gap bound)";
+    } else if (out.status == Status::IterationLimit && out.gap <= in.tolerance) {
+      out.status = Status::Optimal;
+      out.message.clear();
+    } else if (out.status == Status::IterationLimit && out.message.empty()) {
+      out.message = "jerk limits: the rounds stopped with a gap of " + std::to_string(out.gap) +
+                    " to the linearised problem (above tolerance)";
     }
   }
   out.theta = x.head(nb);
