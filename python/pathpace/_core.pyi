@@ -1582,7 +1582,7 @@ class Result:
         With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
         T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
         the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
-        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's).
+        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's; 0 without jerk limits).
     relaxation : dict of str to float
         For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
         that makes the problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see
@@ -1656,7 +1656,7 @@ class Result:
         With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
         T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
         the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
-        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's).
+        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's; 0 without jerk limits).
         """
     @property
     def contact_drift(self) -> list[dict[str, Any]]:

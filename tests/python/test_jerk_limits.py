@@ -178,7 +178,7 @@ def test_without_jerk_limits_no_sddot_points():
     res = prob.solve()
     assert res.sddot_points is None
     assert res.trajectory().sddot_points is None
-    assert np.isnan(res.stats["second_order_duration"])
+    assert res.stats["second_order_duration"] == 0 and res.stats["jerk_iterations"] == 0
 
 
 def test_boundary_speeds_and_zero_sddot():

@@ -82,10 +82,10 @@ struct SolverStats {
   /// Jerk limits (add_jerk_limits): linearisation rounds, the gap bound to the convex problem linearised at the
   /// final timing ((T - T_lin*) / T, see Status::Optimal there), and T of the same problem without jerk limits
   /// (the second-order timing the rounds start from; a lower bound on the continuous-time optimum, not on this
-  /// grid's), 0 / nan without jerk limits.
+  /// grid's), 0 without jerk limits.
   int jerk_iterations = 0;
   double jerk_linearised_gap = 0.0;
-  double second_order_duration = std::numeric_limits<double>::quiet_NaN();
+  double second_order_duration = 0.0;
 };
 
 // docstrings.txt @@ Result
@@ -138,7 +138,7 @@ class Result {
   /// With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
   /// T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
   /// the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
-  /// same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's).
+  /// same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's; 0 without jerk limits).
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any

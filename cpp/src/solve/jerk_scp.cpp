@@ -219,6 +219,67 @@ void make_consistent(const Shape& sh, Eigen::VectorXd& x, double theta_end, bool
   }
 }
 
+// Column bounds: the fixed ends, θ >= 0, and at a rest end the bound that the jerk of its interval (constant
+// s⃛ = (2/9) θ^{3/2}/Δs², times p' there) puts on θ of the interval's moving end.
+void column_bounds(const JerkInput& in, const Shape& sh, Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
+  const PathSamples& smp = *in.samples;
+  const Eigen::Index n = sh.n, nb = n + 1;
+  lo.resize(2 * nb), hi.resize(2 * nb);
+  lo.head(nb).setZero();
+  hi.head(nb).setConstant(kInf);
+  lo.tail(nb).setConstant(-kInf);
+  hi.tail(nb).setConstant(kInf);
+  lo[0] = hi[0] = in.sdot_begin * in.sdot_begin;
+  lo[n] = hi[n] = in.sdot_end * in.sdot_end;
+  if (sh.rest0 || in.zero_sddot_begin) lo[nb] = hi[nb] = 0;
+  if (sh.restN || in.zero_sddot_end) lo[nb + n] = hi[nb + n] = 0;
+  auto rest_cap = [&](Eigen::Index point, Eigen::Index moving, double ds) {
+    for (Eigen::Index j = 0; j < smp.dof(); ++j) {
+      const double d = smp.dq(point, j);
+      if (d == 0) continue;
+      const double J = d > 0 ? in.jmax[j] : -in.jmin[j];
+      if (J < kInf) hi[moving] = std::min(hi[moving], std::pow(4.5 * ds * ds * J / std::abs(d), 2.0 / 3.0));
+    }
+  };
+  if (sh.rest0) rest_cap(0, 1, sh.ds[0]);
+  if (sh.restN) rest_cap(n, n - 1, sh.ds[n - 1]);
+}
+
+// Start: the LP linearised at the second-order optimum (floored), maximising Σ w_k θ_k with the weights of
+// ∂(Σ Δs/√θ)/∂θ there; its solution is feasible (inner rows) whatever the linearisation point. False (and `out`
+// says why) if it fails.
+bool start_point(const JerkInput& in, const Shape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                 double s_theta, double s_b, JerkLp& lp, Eigen::VectorXd& x, JerkOutput& out) {
+  const Eigen::Index n = sh.n, nb = n + 1;
+  const Eigen::VectorXd bar = in.theta_hint.cwiseMax(1e-6 * s_theta);
+  Eigen::VectorXd l = lo, h = hi, cost = Eigen::VectorXd::Zero(2 * nb);
+  for (Eigen::Index k = 0; k <= n; ++k) {
+    if (lo[k] != hi[k]) h[k] = std::min(h[k], 3 * bar[k]);
+    const double w = 0.5 * ((k > 0 ? sh.ds[k - 1] : 0) + (k < n ? sh.ds[k] : 0));
+    cost[k] = -w / (bar[k] * std::sqrt(bar[k]));
+  }
+  for (Eigen::Index k = 0; k <= n; ++k)
+    if (lo[nb + k] != hi[nb + k]) l[nb + k] = std::max(l[nb + k], -1e3 * s_b), h[nb + k] = std::min(h[nb + k], 1e3 * s_b);
+  if (!lp.build(bar, l, h)) {
+    out.message = "jerk limits: the LP could not be loaded";
+    return false;
+  }
+  ++out.lp_solves;
+  const GlpkLp::Outcome o = lp.solve(cost, x);
+  if (o == GlpkLp::Outcome::Infeasible) {
+    out.status = Status::Infeasible;
+    out.message = "jerk limits: no timing found whose jerk, linearised at the timing without jerk limits, holds "
+                  "with the other constraints at the grid points (an inner approximation: the problem may still "
+                  "be feasible)";
+    return false;
+  }
+  if (o != GlpkLp::Outcome::Optimal) {
+    out.message = "jerk limits: the start LP failed";
+    return false;
+  }
+  return true;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -258,62 +319,14 @@ JerkOutput solve_jerk(const JerkInput& in) {
     return out;
   }
 
-  // Column bounds: the fixed ends, θ >= 0, and at a rest end the bound that the jerk of its interval (constant
-  // s⃛ = (2/9) θ^{3/2}/Δs², times p' there) puts on θ of the interval's moving end.
-  Eigen::VectorXd lo(2 * nb), hi(2 * nb);
-  lo.head(nb).setZero();
-  hi.head(nb).setConstant(kInf);
-  lo.tail(nb).setConstant(-kInf);
-  hi.tail(nb).setConstant(kInf);
-  lo[0] = hi[0] = th0;
-  lo[n] = hi[n] = thN;
-  if (sh.rest0 || in.zero_sddot_begin) lo[nb] = hi[nb] = 0;
-  if (sh.restN || in.zero_sddot_end) lo[nb + n] = hi[nb + n] = 0;
-  auto rest_cap = [&](Eigen::Index point, Eigen::Index moving, double ds) {
-    for (Eigen::Index j = 0; j < smp.dof(); ++j) {
-      const double d = smp.dq(point, j);
-      if (d == 0) continue;
-      const double J = d > 0 ? in.jmax[j] : -in.jmin[j];
-      if (J < kInf) hi[moving] = std::min(hi[moving], std::pow(4.5 * ds * ds * J / std::abs(d), 2.0 / 3.0));
-    }
-  };
-  if (sh.rest0) rest_cap(0, 1, sh.ds[0]);
-  if (sh.restN) rest_cap(n, n - 1, sh.ds[n - 1]);
+  Eigen::VectorXd lo, hi;
+  column_bounds(in, sh, lo, hi);
 
   JerkLp lp(in, sh, s_theta, s_b);
   auto fixed = [&](Eigen::Index c) { return lo[c] == hi[c]; };
 
-  // Start: the LP linearised at the second-order optimum (floored), maximising Σ w_k θ_k with the weights of
-  // ∂(Σ Δs/√θ)/∂θ there; its solution is feasible (inner rows) whatever the linearisation point.
-  Eigen::VectorXd bar = in.theta_hint.cwiseMax(1e-6 * s_theta);
   Eigen::VectorXd x;
-  {
-    Eigen::VectorXd l = lo, h = hi, cost = Eigen::VectorXd::Zero(2 * nb);
-    for (Eigen::Index k = 0; k <= n; ++k) {
-      if (!fixed(k)) h[k] = std::min(h[k], 3 * bar[k]);
-      const double w = 0.5 * ((k > 0 ? sh.ds[k - 1] : 0) + (k < n ? sh.ds[k] : 0));
-      cost[k] = -w / (bar[k] * std::sqrt(bar[k]));
-    }
-    for (Eigen::Index k = 0; k <= n; ++k)
-      if (!fixed(nb + k)) l[nb + k] = std::max(l[nb + k], -1e3 * s_b), h[nb + k] = std::min(h[nb + k], 1e3 * s_b);
-    if (!lp.build(bar, l, h)) {
-      out.message = "jerk limits: the LP could not be loaded";
-      return out;
-    }
-    ++out.lp_solves;
-    const GlpkLp::Outcome o = lp.solve(cost, x);
-    if (o == GlpkLp::Outcome::Infeasible) {
-      out.status = Status::Infeasible;
-      out.message = "jerk limits: no timing found whose jerk, linearised at the timing without jerk limits, holds "
-                    "with the other constraints at the grid points (an inner approximation: the problem may still "
-                    "be feasible)";
-      return out;
-    }
-    if (o != GlpkLp::Outcome::Optimal) {
-      out.message = "jerk limits: the start LP failed";
-      return out;
-    }
-  }
+  if (!start_point(in, sh, lo, hi, s_theta, s_b, lp, x, out)) return out;
   make_consistent(sh, x, thN, in.zero_sddot_end);
   double T = total_time(sh, x, nullptr);
   if (!std::isfinite(T)) {
