@@ -6,6 +6,7 @@
 #include "convert.hpp"
 #include "docstrings.hpp"
 #include "pathpace/constraints/acceleration_limits.hpp"
+#include "pathpace/constraints/jerk_limits.hpp"
 #include "pathpace/constraints/frame_limits.hpp"
 #include "pathpace/constraints/linear_constraint.hpp"
 #include "pathpace/constraints/torque_limits.hpp"
@@ -40,6 +41,18 @@ void bind_joint_limits(py::module_& m, const char* name, const char* doc, const 
                         return std::make_shared<Limits>(to_vector(t[0], lo_name), to_vector(t[1], hi_name),
                                                         t[2].cast<std::vector<std::string>>());
                       }));
+}
+
+void bind_jerk_limits(py::module_& m) {
+  py::class_<JerkLimits, std::shared_ptr<JerkLimits>>(m, "JerkLimits", doc::JerkLimits)
+      .def(py::init([](py::handle a, py::handle b, py::handle joint_names) {
+             return std::make_shared<JerkLimits>(to_vector(a, "jmin"), to_vector(b, "jmax"),
+                                                 to_string_list(joint_names, "joint_names", true));
+           }),
+           "jmin"_a, "jmax"_a, "joint_names"_a = py::none())
+      .def_property_readonly("jmin", &JerkLimits::jmin, doc::JerkLimits_jmin)
+      .def_property_readonly("jmax", &JerkLimits::jmax, doc::JerkLimits_jmax)
+      .def_property_readonly("joint_names", &JerkLimits::joint_names, doc::JerkLimits_joint_names);
 }
 
 void bind_linear_constraint(py::module_& m) {
@@ -111,6 +124,7 @@ void bind_constraints(py::module_& m) {
   bind_joint_limits<VelocityLimits>(m, "VelocityLimits", doc::VelocityLimits, "vmin", "vmax", &VelocityLimits::vmin,
                                     &VelocityLimits::vmax, doc::VelocityLimits_vmin, doc::VelocityLimits_vmax,
                                     doc::VelocityLimits_joint_names);
+  bind_jerk_limits(m);
   bind_joint_limits<AccelerationLimits>(m, "AccelerationLimits", doc::AccelerationLimits, "amin", "amax",
                                         &AccelerationLimits::amin, &AccelerationLimits::amax, doc::AccelerationLimits_amin,
                                         doc::AccelerationLimits_amax, doc::AccelerationLimits_joint_names);

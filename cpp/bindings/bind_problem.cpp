@@ -172,12 +172,14 @@ std::shared_ptr<TimeScalingProblem> make_problem(py::handle path_arg, py::object
 py::tuple problem_state(const TimeScalingProblem& p) {
   std::vector<std::shared_ptr<Constraint>> cs;
   for (const auto& c : p.constraints()) cs.push_back(std::const_pointer_cast<Constraint>(c));
+  py::object jerk = py::none();
+  if (p.jerk_limits()) jerk = py::make_tuple(p.jerk_limits()->jmin(), p.jerk_limits()->jmax());
   return py::make_tuple(std::const_pointer_cast<Path>(p.path()), p.grid(), cs, settings_state(p.settings()),
-                        drift_list(p.contact_drift()));
+                        drift_list(p.contact_drift()), jerk);
 }
 
 std::shared_ptr<TimeScalingProblem> problem_from_state(const py::tuple& t) {
-  if (t.size() != 4) check_state(t, 5, "TimeScalingProblem");  // 4: before contact drift
+  if (t.size() != 4 && t.size() != 5) check_state(t, 6, "TimeScalingProblem");  // 4: before contact drift, 5: jerk
   auto p = std::make_shared<TimeScalingProblem>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "grid"));
   const auto cs = t[2].cast<std::vector<std::shared_ptr<Constraint>>>();
   const ProblemSettings settings = settings_from_state(t[3]);
@@ -186,7 +188,11 @@ std::shared_ptr<TimeScalingProblem> problem_from_state(const py::tuple& t) {
     for (const auto& c : cs) p->add_constraint(c);
   }
   p->set_settings(settings);
-  if (t.size() == 5) p->set_contact_drift(drift_vector(t[4]));
+  if (t.size() >= 5) p->set_contact_drift(drift_vector(t[4]));
+  if (t.size() == 6 && !t[5].is_none()) {
+    const py::tuple j = t[5].cast<py::tuple>();
+    p->add_jerk_limits(to_vector(j[0], "jmin"), to_vector(j[1], "jmax"));
+  }
   return p;
 }
 
@@ -228,6 +234,9 @@ void bind_problem_kinematics(ProblemClass& cls) {
       .def("add_acceleration_limits", [](TimeScalingProblem& p, py::handle amin, py::handle amax) {
         p.add_acceleration_limits(to_vector(amin, "amin"), to_vector(amax, "amax"));
       }, "amin"_a, "amax"_a, doc::TimeScalingProblem_add_acceleration_limits)
+      .def("add_jerk_limits", [](TimeScalingProblem& p, py::handle jmin, py::handle jmax) {
+        p.add_jerk_limits(to_vector(jmin, "jmin"), to_vector(jmax, "jmax"));
+      }, "jmin"_a, "jmax"_a, doc::TimeScalingProblem_add_jerk_limits)
       .def("add_linear_constraint", [](TimeScalingProblem& p, py::handle A, py::handle B, py::handle C, py::handle lo,
                                        py::handle hi, py::handle label) {
         p.add_linear_constraint(to_rows(A, "A"), to_rows(B, "B"), to_rows(C, "C"), to_rows(lo, "lo"), to_rows(hi, "hi"),

@@ -53,6 +53,9 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("audit_lps", s.audit_lps);
   f("audit_projections", s.audit_projections);
   f("audit_reused", s.audit_reused);
+  f("jerk_iterations", s.jerk_iterations);
+  f("jerk_linearised_gap", s.jerk_linearised_gap);
+  f("second_order_duration", s.second_order_duration);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -78,7 +81,8 @@ py::tuple stats_state(const SolverStats& s) {
 SolverStats stats_from_state(const py::tuple& st) {
   constexpr size_t kFirstStatsStateSize = 18;   // pickles written before the projection's LP causes
   constexpr size_t kSecondStatsStateSize = 23;  // ... and before the audit's LP and projection counts
-  if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize)
+  constexpr size_t kThirdStatsStateSize = 26;   // ... and before the jerk statistics
+  if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize && st.size() != kThirdStatsStateSize)
     check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;
@@ -100,11 +104,11 @@ py::tuple result_state(const Result& r) {
       stats_state(r.stats),
       std::const_pointer_cast<Path>(r.path), std::const_pointer_cast<RobotModel>(r.robot),
       std::const_pointer_cast<ContactConstraint>(r.contacts), r.relaxation, r.binding.strings(),
-      phases_list(r.contact_phases), drift_list(r.contact_drift), r.tau_min, r.tau_max);
+      phases_list(r.contact_phases), drift_list(r.contact_drift), r.tau_min, r.tau_max, r.sddot_points);
 }
 
 Result result_from_state(const py::tuple& t) {
-  if (t.size() != 15) check_state(t, 18, "Result");  // 15: before contact_drift, tau_min/max
+  if (t.size() != 15 && t.size() != 18) check_state(t, 19, "Result");  // 15: before contact_drift, tau_min/max; 18: before sddot_points
   Result r;
   r.status = static_cast<Status>(t[0].cast<int>());
   r.message = t[1].cast<std::string>();
@@ -124,11 +128,12 @@ Result result_from_state(const py::tuple& t) {
   r.relaxation = t[12].cast<std::map<std::string, double>>();
   r.binding = BindingLabels(t[13].cast<std::vector<std::string>>());
   r.contact_phases = phases_vector(t[14]);
-  if (t.size() == 18) {
+  if (t.size() >= 18) {
     r.contact_drift = drift_vector(t[15]);
     r.tau_min = to_vector(t[16], "tau_min");
     r.tau_max = to_vector(t[17], "tau_max");
   }
+  if (t.size() == 19) r.sddot_points = to_vector(t[18], "sddot_points");
   return r;
 }
 
@@ -152,6 +157,9 @@ void bind_result(py::module_& m) {
       .def_readonly("sdot", &Result::sdot, doc::Result_sdot)
       .def_readonly("times", &Result::times, doc::Result_times)
       .def_readonly("sddot", &Result::sddot, doc::Result_sddot)
+      .def_property_readonly("sddot_points", [](const Result& r) -> py::object {
+        return r.sddot_points.size() ? py::cast(r.sddot_points) : py::object(py::none());
+      }, doc::Result_sddot_points)
       .def_property_readonly("infeasible_index", [](const Result& r) { return r.infeasibility.grid_index; },
                              doc::Result_infeasible_index)
       .def_property_readonly("infeasible_s", [](const Result& r) { return r.infeasibility.s; }, doc::Result_infeasible_s)

@@ -69,10 +69,21 @@ void bind_contact_wrenches(py::module_& m) {
 }
 
 void bind_trajectory_timing(TrajectoryClass& cls) {
-  cls.def(py::init([](py::handle path, py::handle s, py::handle sdot) {
-       return std::make_shared<Trajectory>(to_object<Path>(path, "path", "Path"), to_vector(s, "s"), to_vector(sdot, "sdot"));
+  cls.def(py::init([](py::handle path, py::handle s, py::handle sdot, py::handle sddot_points) {
+       if (sddot_points.is_none())
+         return std::make_shared<Trajectory>(to_object<Path>(path, "path", "Path"), to_vector(s, "s"), to_vector(sdot, "sdot"));
+       return std::make_shared<Trajectory>(to_object<Path>(path, "path", "Path"), to_vector(s, "s"), to_vector(sdot, "sdot"),
+                                           to_vector(sddot_points, "sddot_points"));
      }),
-     "path"_a, "s"_a, "sdot"_a)
+     "path"_a, "s"_a, "sdot"_a, "sddot_points"_a = py::none())
+      .def_property_readonly("sddot_points", [](const Trajectory& t) -> py::object {
+        return t.sddot_points().size() ? py::cast(t.sddot_points()) : py::object(py::none());
+      }, doc::Trajectory_sddot_points)
+      .def("qddd", [](const Trajectory& tr, py::handle t) -> py::object {
+        const Eigen::MatrixXd j = tr.qddd(to_vector(t, "t"));
+        if (is_scalar(t)) return py::cast(Eigen::VectorXd(j.row(0).transpose()));
+        return py::cast(j);
+      }, "t"_a, doc::Trajectory_qddd)
       .def_property_readonly("duration", &Trajectory::duration, doc::Trajectory_duration)
       .def_property_readonly("times", &Trajectory::times, doc::Trajectory_times)
       .def_property_readonly("grid", &Trajectory::grid, doc::Trajectory_grid)
@@ -195,12 +206,15 @@ void bind_trajectory(py::module_& m) {
                        return py::make_tuple(std::const_pointer_cast<Path>(tr.path()), tr.grid(), tr.sdot_grid(),
                                              std::const_pointer_cast<RobotModel>(tr.robot()),
                                              std::const_pointer_cast<ContactConstraint>(tr.contacts()),
-                                             phases_list(tr.contact_phases()));
+                                             phases_list(tr.contact_phases()), tr.sddot_points());
                      },
                      [](const py::tuple& t) {
-                       check_state(t, 6, "Trajectory");
-                       auto tr = std::make_shared<Trajectory>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "s"),
-                                                              to_vector(t[2], "sdot"));
+                       if (t.size() != 6) check_state(t, 7, "Trajectory");  // 6: before jerk-limited timings
+                       const bool jerk = t.size() == 7 && to_vector(t[6], "sddot_points").size() > 0;
+                       auto tr = jerk ? std::make_shared<Trajectory>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "s"),
+                                                                     to_vector(t[2], "sdot"), to_vector(t[6], "sddot_points"))
+                                      : std::make_shared<Trajectory>(t[0].cast<std::shared_ptr<Path>>(), to_vector(t[1], "s"),
+                                                                     to_vector(t[2], "sdot"));
                        tr->set_robot(optional_ptr<RobotModel>(t[3]));
                        tr->set_contacts(optional_ptr<ContactConstraint>(t[4]));
                        tr->set_contact_phases(phases_vector(t[5]));

@@ -415,6 +415,36 @@ class AccelerationLimits(Constraint):
     def amax(self) -> Array:
         """ndarray (n,)"""
 
+class JerkLimits:
+    """Joint jerk limits jmin <= q⃛ <= jmax, with q⃛ = p' s⃛ + 3 p'' ṡ s̈ + p''' ṡ³.
+
+    Not a Constraint: in (θ = ṡ², b = s̈) a jerk limit reads |p' b' + 3 p'' b + p''' θ| <= J / √θ (b' = ds̈/ds),
+    which is neither a half-plane nor a function of one grid point. TimeScalingProblem::add_jerk_limits keeps
+    it beside the constraints, and solve() linearises it at each iterate (docs/method.md, "Jerk limits").
+
+    Parameters
+    ----------
+    jmin, jmax : array_like (n,)
+        rad/s³ (or m/s³); jmin < 0 < jmax, -inf / inf for none; no NaN.
+    joint_names : list of str, optional
+        One per joint for messages (default "joint 1").
+
+    Attributes
+    ----------
+    jmin, jmax : ndarray (n,)
+    joint_names : list of str
+    """
+    def __init__(self, jmin: ArrayLike, jmax: ArrayLike, joint_names: list[str] | None = None) -> None: ...
+    @property
+    def joint_names(self) -> list[str]:
+        """list of str"""
+    @property
+    def jmin(self) -> Array:
+        """ndarray (n,)"""
+    @property
+    def jmax(self) -> Array:
+        """ndarray (n,)"""
+
 class LinearConstraint(Constraint):
     """lo <= A·x + B·u + C <= hi at every grid point (x = ṡ², u = s̈).
 
@@ -1279,6 +1309,10 @@ class Trajectory:
         Grid.
     sdot : array_like (N+1,)
         ṡ at the grid points, 1/s; >= 0 with no two consecutive zeros.
+    sddot_points : array_like (N+1,), optional
+        s̈ at the grid points of a jerk-limited timing (add_jerk_limits): s̈ is linear in s between them, with
+        θ = ṡ² consistent (θ_{k+1} = θ_k + Δs_k (s̈_k + s̈_{k+1}), to 1e-9 relative), and an end at rest (ṡ = 0) has
+        constant s⃛ on its interval (s̈ = 0 there, θ_1 = 1.5 Δs_0 s̈_1). None: s̈ constant per interval (eq. 24).
 
     Attributes
     ----------
@@ -1290,6 +1324,8 @@ class Trajectory:
         s at the grid points, s_0..s_N.
     sdot_grid : ndarray (N+1,)
         ṡ at the grid points, 1/s.
+    sddot_points : ndarray (N+1,) or None
+        s̈ at the grid points of a jerk-limited timing (s̈ continuous); None (C++: empty) otherwise.
     path : Path
     robot : RobotModel or None
         The robot whose torque limits or contacts shaped it; None (C++: null) if none did.
@@ -1299,7 +1335,7 @@ class Trajectory:
 
     Calling ``traj(t, order)`` gives q (order 0), q̇ (1) or q̈ (2), as toppra's trajectories.
     """
-    def __init__(self, path: Path, s: ArrayLike, sdot: ArrayLike) -> None: ...
+    def __init__(self, path: Path, s: ArrayLike, sdot: ArrayLike, sddot_points: ArrayLike | None = None) -> None: ...
     def contact_forces(self, t: ArrayLike) -> ContactForces:
         """Contact forces at t from the force-distribution LP (the solver looked only at grid points).
 
@@ -1380,6 +1416,15 @@ class Trajectory:
         """q̇(t) = p'(s) ṡ (eq. 10), rad/s; shapes as ``q``."""
     def qdd(self, t: float | ArrayLike) -> Array:
         """q̈(t) = p''(s) ṡ² + p'(s) s̈ (eq. 11), rad/s²; s̈ of the interval to the right of t."""
+    def qddd(self, t: float | ArrayLike) -> Array:
+        """The jerk q⃛(t) = p' s⃛ + 3 p'' ṡ s̈ + p''' ṡ³, rad/s³: (len(t), n). Needs a path of polynomial pieces (p''').
+
+        For a jerk-limited timing s⃛ is finite; for the piecewise-constant s̈ of other timings s⃛ = 0 inside each
+        interval and a jump of q̈ at grid points is not shown.
+        """
+    @property
+    def sddot_points(self) -> Array | None:
+        """ndarray (N+1,) or None: s̈ at the grid points of a jerk-limited timing (s̈ continuous); None (C++: empty) otherwise."""
     def evaluate(self, t: float | ArrayLike) -> tuple[Array, Array, Array]:
         """(q, q̇ = p'ṡ, q̈ = p''ṡ² + p's̈) at t; shapes as ``q``."""
     def sample(self, dt: float, max_memory: float = 1e9) -> dict[str, Array]:
@@ -1525,6 +1570,9 @@ class Result:
         t_k at the grid points, s; t_0 = 0.
     sddot : ndarray (N,)
         s̈ on each interval, 1/s².
+    sddot_points : ndarray (N+1,) or None
+        s̈ at the grid points of a jerk-limited timing (s̈ linear in s between them; ``sddot`` is then each
+        interval's mean); None (C++: empty) otherwise.
     infeasible_index : int
         First grid index where no timing exists (-1 if feasible).
     infeasible_s : float
@@ -1533,6 +1581,10 @@ class Result:
     stats : dict
         slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
         (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+        With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
+        T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
+        the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
+        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's; 0 without jerk limits).
     relaxation : dict of str to float
         For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
         that makes the problem feasible, e.g. {'torque': 1.18, 'velocity': inf} (see
@@ -1570,6 +1622,11 @@ class Result:
     def sddot(self) -> Array:
         """ndarray (N,): s̈ on each interval, 1/s²."""
     @property
+    def sddot_points(self) -> Array | None:
+        """ndarray (N+1,) or None: s̈ at the grid points of a jerk-limited timing (s̈ linear in s between them; ``sddot`` is then each
+        interval's mean); None (C++: empty) otherwise.
+        """
+    @property
     def ok(self) -> bool:
         """bool: True for OPTIMAL, ITERATION_LIMIT and TIME_LIMIT (a feasible timing)."""
     @property
@@ -1598,6 +1655,10 @@ class Result:
     def stats(self) -> dict[str, Any]:
         """dict: slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
         (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+        With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
+        T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
+        the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
+        same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's; 0 without jerk limits).
         """
     @property
     def contact_drift(self) -> list[dict[str, Any]]:
@@ -1682,6 +1743,24 @@ class TimeScalingProblem:
         ----------
         vmin, vmax : array_like (n,)
             rad/s (m/s); vmin <= 0 <= vmax, ±inf for none.
+        """
+    def add_jerk_limits(self, jmin: ArrayLike, jmax: ArrayLike) -> None:
+        """Joint jerk limits jmin <= q⃛ <= jmax (see JerkLimits): the timing's s̈ becomes continuous.
+
+        s̈ is then linear in s between grid points (ṡ² quadratic), so q̈ is continuous; an end at rest starts or
+        stops with constant s⃛ on its interval (s̈ = 0 there). Every other constraint's rows hold at the grid points
+        with the s̈ there; the jerk limits hold at the grid points on both sides (the s⃛ of each adjacent interval).
+        solve() first solves the problem without jerk limits, then linearises the jerk rows (an inner
+        approximation, so every round's timing is feasible) and improves T round by round (docs/method.md).
+        OPTIMAL means a first-order (KKT) point of this non-convex problem: within ``tolerance`` of the optimum of the
+        convex problem linearised there (stats["jerk_linearised_gap"]); not a global optimum. A second call
+        replaces the limits. Needs a path of polynomial pieces (p''') and N >= 4; guarantee = 'continuous' and
+        restarted() are not implemented with jerk limits yet (InvalidInput).
+
+        Parameters
+        ----------
+        jmin, jmax : array_like (n,)
+            rad/s³ (m/s³); jmin < 0 < jmax, ∓inf for none.
         """
     def add_acceleration_limits(self, amin: ArrayLike, amax: ArrayLike) -> None:
         """Joint acceleration limits (eq. 14); see AccelerationLimits.

@@ -287,7 +287,7 @@ def test_stubs_match_the_module():
 def test_pickle_state_and_tolerance_validation():
     with pytest.raises(pp.InvalidInputError, match=r"CubicSplinePath pickle state has 1 entries, expected 5"):
         pp.CubicSplinePath.__new__(pp.CubicSplinePath).__setstate__((1,))
-    with pytest.raises(pp.InvalidInputError, match=r"TimeScalingProblem pickle state has 2 entries, expected 5"):
+    with pytest.raises(pp.InvalidInputError, match=r"TimeScalingProblem pickle state has 2 entries, expected 6"):
         pp.TimeScalingProblem.__new__(pp.TimeScalingProblem).__setstate__((1, 2))
     with pytest.raises(pp.InvalidInputError, match=r"RobotModel pickle state kind = 'mesh' must be 'urdf', 'combine' or 'free_object'"):
         pp.RobotModel.__new__(pp.RobotModel).__setstate__(("mesh",))

@@ -113,15 +113,19 @@ def test_pickles_written_before_contact_drift_still_load():
     prob = readme_problem(50)
     res = prob.solve()
     state = res.__getstate__()
-    assert len(state) == 18
+    assert len(state) == 19  # 18 before sddot_points (jerk limits); that layout still loads
+    mid = pp.Result.__new__(pp.Result)
+    mid.__setstate__(state[:18])
+    assert mid.duration == res.duration and mid.sddot_points is None
     old = pp.Result.__new__(pp.Result)
     old.__setstate__(state[:15])
     assert old.duration == res.duration and old.contact_drift == [] and old.tau_max is None
     pstate = prob.__getstate__()
-    assert len(pstate) == 5
-    p = pp.TimeScalingProblem.__new__(pp.TimeScalingProblem)
-    p.__setstate__(pstate[:4])
-    assert p.solve().duration == res.duration
+    assert len(pstate) == 6  # 5 before the jerk limits; that layout and the 4-entry one still load
+    for n in (4, 5):
+        p = pp.TimeScalingProblem.__new__(pp.TimeScalingProblem)
+        p.__setstate__(pstate[:n])
+        assert p.solve().duration == res.duration
     with pytest.raises(pp.InvalidInputError, match="Result"):
         pp.Result.__new__(pp.Result).__setstate__(state[:16])
 

@@ -79,6 +79,13 @@ struct SolverStats {
   int audit_lps = 0;
   int audit_projections = 0;
   int audit_reused = 0;  ///< contact samples settled by the slices of an earlier round (no LP)
+  /// Jerk limits (add_jerk_limits): linearisation rounds, the gap bound to the convex problem linearised at the
+  /// final timing ((T - T_lin*) / T, see Status::Optimal there), and T of the same problem without jerk limits
+  /// (the second-order timing the rounds start from; a lower bound on the continuous-time optimum, not on this
+  /// grid's), 0 without jerk limits.
+  int jerk_iterations = 0;
+  double jerk_linearised_gap = 0.0;
+  double second_order_duration = 0.0;
 };
 
 // docstrings.txt @@ Result
@@ -109,6 +116,10 @@ class Result {
   // docstrings.txt @@ Result.sddot
   /// (N,): s̈ on each interval, 1/s².
   Eigen::VectorXd sddot;
+  // docstrings.txt @@ Result.sddot_points
+  /// (N+1,): s̈ at the grid points of a jerk-limited timing (s̈ linear in s between them; `sddot` is then each
+  /// interval's mean); None (C++: empty) otherwise.
+  Eigen::VectorXd sddot_points;
   Infeasibility infeasibility;
   // docstrings.txt @@ Result.relaxation
   /// For an INFEASIBLE result (when solved with explain): family -> smallest scale of that family's limits
@@ -124,6 +135,10 @@ class Result {
   // docstrings.txt @@ Result.stats
   /// slp_iterations, lp_solves, greatest_element (exact optimum without SLP), gap (certified bound on
   /// (T - T*) / T*), average_halfplanes, time_feasible_sets, time_reachability, time_slp (s).
+  /// With jerk limits: jerk_iterations (linearisation rounds), jerk_linearised_gap (bound on (T - T_lin*) / T,
+  /// T_lin* the optimum of the convex problem linearised at the final timing; also in gap: not a bound to
+  /// the global optimum of this non-convex problem) and second_order_duration (T without jerk limits on the
+  /// same grid: a lower bound of the continuous-time optimum as N grows, not of this grid's; 0 without jerk limits).
   SolverStats stats;
   std::shared_ptr<const Path> path;
   std::shared_ptr<const RobotModel> robot;  ///< from the problem's torque limits or contacts, if any

@@ -14,6 +14,7 @@
 #include "pathpace/constraints/constraint.hpp"
 #include "pathpace/constraints/second_order_constraint.hpp"
 #include "pathpace/constraints/frame_limits.hpp"
+#include "pathpace/constraints/jerk_limits.hpp"
 #include "pathpace/contact_drift.hpp"
 #include "pathpace/contact_phase.hpp"
 #include "pathpace/feasible_set.hpp"
@@ -110,6 +111,24 @@ class TimeScalingProblem {
   ///
   /// @param amin,amax (n,): rad/s² (m/s²); amin <= amax.
   void add_acceleration_limits(const Eigen::VectorXd& amin, const Eigen::VectorXd& amax);
+  // docstrings.txt @@ TimeScalingProblem.add_jerk_limits
+  /// @brief Joint jerk limits jmin <= q⃛ <= jmax (see JerkLimits): the timing's s̈ becomes continuous.
+  ///
+  /// s̈ is then linear in s between grid points (ṡ² quadratic), so q̈ is continuous; an end at rest starts or
+  /// stops with constant s⃛ on its interval (s̈ = 0 there). Every other constraint's rows hold at the grid points
+  /// with the s̈ there; the jerk limits hold at the grid points on both sides (the s⃛ of each adjacent interval).
+  /// solve() first solves the problem without jerk limits, then linearises the jerk rows (an inner
+  /// approximation, so every round's timing is feasible) and improves T round by round (docs/method.md).
+  /// OPTIMAL means a first-order (KKT) point of this non-convex problem: within `tolerance` of the optimum of the
+  /// convex problem linearised there (stats["jerk_linearised_gap"]); not a global optimum. A second call
+  /// replaces the limits. Needs a path of polynomial pieces (p''') and N >= 4; guarantee = 'continuous' and
+  /// restarted() are not implemented with jerk limits yet (InvalidInput).
+  ///
+  /// @param jmin,jmax (n,): rad/s³ (m/s³); jmin < 0 < jmax, ∓inf for none.
+  void add_jerk_limits(const Eigen::VectorXd& jmin, const Eigen::VectorXd& jmax);
+  /// The jerk limits (add_jerk_limits), or null.
+  const std::shared_ptr<const JerkLimits>& jerk_limits() const { return jerk_; }
+
   // docstrings.txt @@ TimeScalingProblem.add_frame_translational_speed_limit
   /// @brief ‖v‖ <= v_max for a point on a link (Drake's AddFrameTranslationalSpeedLimit); see FrameLimits.
   ///
@@ -353,6 +372,12 @@ class TimeScalingProblem {
   bool zero_sddot_begin_ = false, zero_sddot_end_ = false;
   std::vector<std::string> joint_names_;
   std::vector<ContactDrift> contact_drift_;
+  std::shared_ptr<const JerkLimits> jerk_;
+  /// solve() with jerk limits: the second-order solve, then the linearisation rounds (solve/jerk_scp.hpp); with
+  /// adapt_grid, first on the grid whose rest-end intervals are the jerk ramps (problem/solve_jerk.cpp).
+  Result solve_jerk(const SolverOptions& options, bool adapt_grid = true) const;
+  /// The grid with each rest end's first interval as long as its estimated jerk ramp (problem/solve_jerk.cpp).
+  Eigen::VectorXd jerk_grid(const Result& second_order) const;
   mutable detail::UseCount use_;
 };
 

@@ -25,6 +25,13 @@ class Trajectory {
   /// @param s The grid s_0..s_N.
   /// @param sdot ṡ_k >= 0 with ṡ_k + ṡ_{k+1} > 0 on every interval.
   Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot);
+  // docstrings.txt @@ Trajectory.__init__
+  /// @param s The grid s_0..s_N.
+  /// @param sdot ṡ_k >= 0 with ṡ_k + ṡ_{k+1} > 0 on every interval.
+  /// @param sddot_points (N+1,): s̈ at the grid points of a jerk-limited timing (add_jerk_limits): s̈ is linear in s
+  ///   between them, with θ = ṡ² consistent (θ_{k+1} = θ_k + Δs_k (s̈_k + s̈_{k+1}), to 1e-9 relative), and an end at
+  ///   rest (ṡ = 0) has constant s⃛ on its interval (s̈ = 0 there, θ_1 = 1.5 Δs_0 s̈_1).
+  Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot, Eigen::VectorXd sddot_points);
 
   // docstrings.txt @@ Trajectory.duration
   /// T in s.
@@ -39,6 +46,16 @@ class Trajectory {
   /// (N+1,): ṡ at the grid points, 1/s.
   const Eigen::VectorXd& sdot_grid() const { return sdot_; }
   const std::shared_ptr<const Path>& path() const { return path_; }
+  // docstrings.txt @@ Trajectory.sddot_points
+  /// (N+1,): s̈ at the grid points of a jerk-limited timing (s̈ continuous); None (C++: empty) otherwise.
+  const Eigen::VectorXd& sddot_points() const { return sddot_points_; }
+  // docstrings.txt @@ Trajectory.qddd
+  /// @brief The jerk q⃛(t) = p' s⃛ + 3 p'' ṡ s̈ + p''' ṡ³, rad/s³: (len(t), n). Needs a path of polynomial pieces
+  ///   (p''').
+  ///
+  /// For a jerk-limited timing s⃛ is finite; for the piecewise-constant s̈ of other timings s⃛ = 0 inside each
+  /// interval and a jump of q̈ at grid points is not shown.
+  Eigen::MatrixXd qddd(const Eigen::Ref<const Eigen::VectorXd>& t) const;
 
   // docstrings.txt @@ Trajectory.s
   /// @brief (s, ṡ, s̈) at t: floats for a scalar t, arrays (m,) otherwise; ṡ in 1/s, s̈ in 1/s².
@@ -171,6 +188,9 @@ class Trajectory {
   std::shared_ptr<const ContactConstraint> contacts_;
   std::vector<std::shared_ptr<const ContactConstraint>> contact_phases_;
   Eigen::VectorXd s_, sdot_, times_, sddot_;
+  Eigen::VectorXd sddot_points_;  // jerk-limited timing: s̈ at the grid points (else empty)
+  // (s, ṡ, s̈, s⃛) at one t on interval k of a jerk-limited timing.
+  void jerk_motion(Eigen::Index k, double t, double& s, double& sd, double& sdd, double& sddd) const;
 };
 
 }  // namespace pathpace

@@ -124,6 +124,7 @@ Result report(const TimeScalingProblem& problem, const std::vector<ConstraintRow
 Result TimeScalingProblem::solve(const SolverOptions& options) const {
   const Use use(*this, Use::Read, "solve");
   detail::validate(options);
+  if (jerk_) return with_drift_note(solve_jerk(options));
   if (zero_sddot_begin_ && sdot_begin_ == 0.0)
     detail::fail("sddot = 0 at s_begin needs sdot_begin > 0: with sddot constant on each interval (eq. 24), a start "
                  "from rest with sddot = 0 never moves");

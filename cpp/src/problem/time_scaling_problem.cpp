@@ -51,6 +51,15 @@ void TimeScalingProblem::add_acceleration_limits(const Eigen::VectorXd& amin, co
   add_constraint(std::make_shared<AccelerationLimits>(amin, amax, joint_names_));
 }
 
+void TimeScalingProblem::add_jerk_limits(const Eigen::VectorXd& jmin, const Eigen::VectorXd& jmax) {
+  const Use use(*this, Use::Write, "add_jerk_limits");
+  auto limits = std::make_shared<JerkLimits>(jmin, jmax, joint_names_);
+  detail::require_size("jmax", jmax.size(), path_->dof(), "one entry per path coordinate");
+  Eigen::MatrixXd l, r;
+  JerkLimits::third_derivatives(*path_, samples_.s.head(1), l, r);  // InvalidInput now for a path without pieces
+  jerk_ = std::move(limits);
+}
+
 void TimeScalingProblem::add_frame_translational_speed_limit(std::shared_ptr<const RobotModel> robot,
                                                              const std::string& link, double v_max,
                                                              const Eigen::Vector3d& point) {

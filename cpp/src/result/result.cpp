@@ -21,7 +21,7 @@ Trajectory Result::trajectory() const {
   if (!ok() || sdot.size() < 2 || !path)
     throw Error(std::string("no trajectory: the solve ended with status ") + to_string(status) +
                 (message.empty() ? "" : " (" + message + ")"));
-  Trajectory t(path, s, sdot);
+  Trajectory t = sddot_points.size() ? Trajectory(path, s, sdot, sddot_points) : Trajectory(path, s, sdot);
   t.set_robot(robot);
   t.set_contacts(contacts);
   t.set_contact_phases(contact_phases);

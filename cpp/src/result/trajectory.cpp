@@ -5,6 +5,9 @@
 #include <cstdio>
 
 #include "base/gather_rows.hpp"
+#include "base/jerk_interval.hpp"
+#include "pathpace/constraints/jerk_limits.hpp"
+#include "solve/jerk_scp.hpp"
 #include "base/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/errors.hpp"
@@ -46,6 +49,80 @@ Trajectory::Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eige
   }
 }
 
+Trajectory::Trajectory(std::shared_ptr<const Path> path, Eigen::VectorXd s, Eigen::VectorXd sdot,
+                       Eigen::VectorXd sddot_points)
+    : Trajectory(path, s, sdot) {
+  const Eigen::Index n = s_.size() - 1;
+  detail::require_size("sddot_points", sddot_points.size(), n + 1, "one per grid point");
+  detail::require_finite("sddot_points", sddot_points);
+  if (n < 2) detail::fail("a jerk-limited timing needs at least 2 intervals, the grid has " + std::to_string(n));
+  if (sdot_[0] == 0 && sddot_points[0] != 0)
+    detail::fail("sddot_points[0] = " + detail::fmt(sddot_points[0]) + " must be 0 at a start from rest");
+  if (sdot_[n] == 0 && sddot_points[n] != 0)
+    detail::fail(detail::at("sddot_points", n) + " = " + detail::fmt(sddot_points[n]) + " must be 0 at a stop at rest");
+  const Eigen::VectorXd theta = sdot_.array().square();
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double ds = s_[k + 1] - s_[k];
+    double expect;
+    if (k == 0 && sdot_[0] == 0) expect = 1.5 * ds * sddot_points[1];
+    else if (k == n - 1 && sdot_[n] == 0) expect = theta[k] + 1.5 * ds * sddot_points[k];  // θ_N = 0
+    else expect = theta[k] + ds * (sddot_points[k] + sddot_points[k + 1]);
+    const double target = k == n - 1 && sdot_[n] == 0 ? 0.0 : theta[k + 1];
+    if (std::abs(expect - target) > 1e-9 * std::max(theta[k], theta[k + 1]))
+      detail::fail("sdot and sddot_points disagree on interval " + std::to_string(k) + ": sdot[" + std::to_string(k + 1) +
+                   "]^2 = " + detail::fmt(theta[k + 1]) + ", the interval's s̈ gives " + detail::fmt(expect));
+  }
+  sddot_points_ = std::move(sddot_points);
+  const Eigen::VectorXd dt = detail::jerk_interval_times(s_, theta, sddot_points_);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (!(dt[k] > 0) || !std::isfinite(dt[k]))
+      detail::fail("interval " + std::to_string(k) + " of the jerk-limited timing takes " + detail::fmt(dt[k]) +
+                   " s (its speed reaches 0 inside)");
+    times_[k + 1] = times_[k] + dt[k];
+    sddot_[k] = (sdot_[k + 1] - sdot_[k]) / dt[k];  // the interval's mean s̈
+  }
+}
+
+void Trajectory::jerk_motion(Eigen::Index k, double t, double& s, double& sd, double& sdd, double& sddd) const {
+  const Eigen::Index n = s_.size() - 1;
+  const double ds = s_[k + 1] - s_[k];
+  if (k == 0 && sdot_[0] == 0) {  // s = j τ³/6 from rest
+    const double j = detail::rest_interval_jerk(sdot_[1] * sdot_[1], ds), tau = t - times_[0];
+    s = std::min(s_[0] + j * tau * tau * tau / 6, s_[1]), sd = 0.5 * j * tau * tau, sdd = j * tau, sddd = j;
+    return;
+  }
+  if (k == n - 1 && sdot_[n] == 0) {  // mirrored: s_N - s = j τ'³/6 with τ' = T - t
+    const double j = detail::rest_interval_jerk(sdot_[n - 1] * sdot_[n - 1], ds), tau = std::max(times_[n] - t, 0.0);
+    s = std::max(s_[n] - j * tau * tau * tau / 6, s_[n - 1]), sd = 0.5 * j * tau * tau, sdd = -j * tau, sddd = j;
+    return;
+  }
+  const double c = (sddot_points_[k + 1] - sddot_points_[k]) / ds;
+  const detail::IntervalMotion m = detail::linear_b_motion(sdot_[k], sddot_points_[k], c, t - times_[k]);
+  s = std::min(s_[k] + m.sigma, s_[k + 1]), sd = std::max(m.sdot, 0.0), sdd = m.sddot, sddd = c * sd;
+}
+
+Eigen::MatrixXd Trajectory::qddd(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+  const double T = duration();
+  Eigen::VectorXd s(t.size()), sd(t.size()), sdd(t.size()), sddd(t.size());
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    if (std::isnan(t[i])) detail::fail(detail::at("t", i) + " = nan must be a number");
+    const double ti = std::clamp(t[i], 0.0, T);
+    const Eigen::Index k = interval(ti);
+    if (sddot_points_.size()) {
+      jerk_motion(k, ti, s[i], sd[i], sdd[i], sddd[i]);
+    } else {
+      const double tau = ti - times_[k];
+      s[i] = std::min(s_[k] + sdot_[k] * tau + 0.5 * sddot_[k] * tau * tau, s_[k + 1]);
+      sd[i] = std::max(sdot_[k] + sddot_[k] * tau, 0.0), sdd[i] = sddot_[k], sddd[i] = 0;
+    }
+  }
+  Eigen::MatrixXd q, dq, ddq, l, r;
+  path_->evaluate(s, q, dq, ddq);
+  JerkLimits::third_derivatives(*path_, s, l, r);
+  const Eigen::ArrayXd sd3 = sd.array().cube(), sdsdd = sd.array() * sdd.array();
+  return (dq.array().colwise() * sddd.array() + (3 * ddq.array()).colwise() * sdsdd + r.array().colwise() * sd3).matrix();
+}
+
 Eigen::Index Trajectory::interval(double t) const {
   const Eigen::Index n = s_.size() - 1;
   const auto it = std::upper_bound(times_.data(), times_.data() + n + 1, t);
@@ -63,6 +140,11 @@ void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::V
     if (std::isnan(t[i])) detail::fail(detail::at("t", i) + " = nan must be a number");
     const double ti = std::clamp(t[i], 0.0, T);
     const Eigen::Index k = interval(ti);
+    if (sddot_points_.size()) {
+      double sddd;
+      jerk_motion(k, ti, s[i], sd[i], sdd[i], sddd);
+      continue;
+    }
     const double tau = ti - times_[k];
     // eq. (24): s(t) = s̈_k τ²/2 + ṡ_k τ + s_k on interval k
     s[i] = std::min(s_[k] + sdot_[k] * tau + 0.5 * sddot_[k] * tau * tau, s_[k + 1]);

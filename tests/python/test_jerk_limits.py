@@ -1,0 +1,308 @@
+"""Jerk limits (issue 23): add_jerk_limits, the linearisation rounds, and the trajectory of a continuous s̈.
+
+The analytic case is the time-optimal rest-to-rest S-curve of a straight line under |q̇| <= v, |q̈| <= a,
+|q⃛| <= j, computed here from its closed form (independent of the library). The discretisation is s̈ linear in s
+between grid points with the limits held at the grid points, so T approaches it only as N grows, and not
+monotonically: the jerk phase from rest covers s ∝ t³, so a uniform grid in s resolves it by few intervals, and
+intervals of s̈ linear in s would lose a fraction of the jerk there; solve() therefore makes each rest end's
+interval the jerk ramp itself (see docs/method.md, "Jerk limits"). The tolerances below are the measured gaps
+(rounded up), stated per N.
+"""
+
+import pickle
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+from helpers import random_waypoints
+
+
+def s_curve_time(D, v, a, j):
+    """Rest-to-rest minimum time over distance D under |v|, |a|, |j| limits: the 7-segment S-curve."""
+
+    def accel(vp):  # time and distance to reach speed vp from rest (and back) with the jerk and accel limits
+        t = vp / a + a / j if vp * j >= a * a else 2 * np.sqrt(vp / j)
+        return t, vp * t / 2  # symmetric acceleration profile: mean speed vp / 2
+
+    t_acc, d_acc = accel(v)
+    if 2 * d_acc <= D:
+        return 2 * t_acc + (D - 2 * d_acc) / v
+    lo, hi = 0.0, v  # peak speed below v: 2 d_acc(vp) = D, d_acc increasing in vp
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if 2 * accel(mid)[1] < D else (lo, mid)
+    return 2 * accel(lo)[0]
+
+
+def line_problem(d, N, v, a, j):
+    """q = d s on s in [0, 1] with per-joint limits."""
+    d = np.asarray(d, float)
+    path = pp.PiecewisePolynomialPath([0.0, 1.0], [np.vstack([np.zeros_like(d), d])])
+    prob = pp.TimeScalingProblem(path, N)
+    prob.add_velocity_limits(-np.asarray(v, float), v)
+    prob.add_acceleration_limits(-np.asarray(a, float), a)
+    if j is not None:
+        prob.add_jerk_limits(-np.asarray(j, float), j)
+    return prob
+
+
+def test_s_curve_closed_form_itself():
+    # Triangular-free check of the oracle: with huge jerk it is the trapezoid, with huge accel the jerk-only curve.
+    assert s_curve_time(2.0, 1.0, 2.0, 1e12) == pytest.approx(2.0 / 1.0 + 1.0 / 2.0, rel=1e-9)
+    # Jerk only (a, v huge): D = 2 j (T/4)^3 ... T = 4 (D / (2 j))^(1/3)
+    assert s_curve_time(2.0, 1e9, 1e9, 8.0) == pytest.approx(4 * (2.0 / 16.0) ** (1 / 3), rel=1e-9)
+
+
+# (N, relative tolerance of T over the S-curve) as measured: v=1 a=2 j=8 over L=2 gives 2.75 s; N=30: +5.1e-4,
+# N=100: +1.3e-4, N=150: +7.4e-5, N=400: +2.4e-5, N=800: +1.2e-5 (about 0.01 / N).
+@pytest.mark.parametrize("N, tol", [(30, 1e-3), (100, 3e-4), (150, 1.5e-4), (400, 5e-5)])
+def test_straight_line_s_curve(N, tol):
+    L, v, a, j = 2.0, 1.0, 2.0, 8.0
+    T_star = s_curve_time(L, v, a, j)
+    assert T_star == pytest.approx(2.75, rel=1e-12)
+    res = line_problem([L], N, [v], [a], [j]).solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    assert res.stats["jerk_linearised_gap"] <= 1e-7
+    # Limits at grid points only: T may undercut the continuous optimum only by what the grid lets through.
+    assert T_star * (1 - 1e-3) <= res.duration <= T_star * (1 + tol)
+    assert res.stats["second_order_duration"] < res.duration
+
+
+def test_scaled_line_several_joints():
+    # q = d s: each limit in s is min_j limit_j / |d_j|; different joints bind velocity, acceleration and jerk.
+    d = np.array([2.0, -1.0, 0.5])
+    v, a, j = np.array([1.5, 0.5, 1.0]), np.array([4.0, 3.0, 0.5]), np.array([100.0, 40.0, 1.0])
+    vs, as_, js = (np.min(x / np.abs(d)) for x in (v, a, j))
+    T_star = s_curve_time(1.0, vs, as_, js)
+    res = line_problem(d, 100, v, a, j).solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    assert T_star * (1 - 1e-3) <= res.duration <= T_star * (1 + 5e-3)
+
+
+def test_short_line_without_cruise():
+    # The peak speed stays below v (no cruise): the closed form by bisection on the peak speed.
+    L, v, a, j = 0.2, 1.0, 2.0, 8.0
+    T_star = s_curve_time(L, v, a, j)
+    res = line_problem([L], 100, [v], [a], [j]).solve()
+    assert res.ok, res.message
+    assert T_star * (1 - 1e-3) <= res.duration <= T_star * (1 + 2e-2)
+
+
+def arm_problem(seed, N, jerk_factor):
+    n = 7
+    rng = np.random.default_rng(seed)
+    path = pp.CubicSplinePath(random_waypoints(-2 * np.ones(n), 2 * np.ones(n), rng))
+    vmax = np.array([2.0, 2.0, 2.2, 2.2, 2.6, 2.6, 2.6])
+    amax = 3 * vmax
+    prob = pp.TimeScalingProblem(path, N)
+    prob.add_velocity_limits(-vmax, vmax)
+    prob.add_acceleration_limits(-amax, amax)
+    if jerk_factor is not None:
+        prob.add_jerk_limits(-jerk_factor * amax, jerk_factor * amax)
+    return prob, vmax, amax, None if jerk_factor is None else jerk_factor * amax
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_random_arm_limits_at_1khz(seed):
+    prob, vmax, amax, jmax = arm_problem(seed, 200, 10.0)
+    res = prob.solve()
+    assert res.ok, res.message
+    tr = res.trajectory()
+    # At the grid points (both sides) the limits hold to the LP's tolerance.
+    tg = tr.times
+    eps = 1e-9 * tr.duration
+    for t in (np.maximum(tg - eps, 0), np.minimum(tg + eps, tr.duration)):
+        assert np.all(np.abs(tr.qd(t)) <= vmax * (1 + 1e-6))
+        assert np.all(np.abs(tr.qdd(t)) <= amax * (1 + 1e-6))
+        assert np.all(np.abs(tr.qddd(t)) <= jmax * (1 + 1e-4))
+    # q̈ is continuous: the same on both sides of every grid time (to the equality's repair, 1e-9 relative).
+    assert np.abs(tr.qdd(tg[1:-1] - eps) - tr.qdd(tg[1:-1] + eps)).max() <= 1e-5 * amax.max()
+    # Between grid points (1 kHz): only the grid is guaranteed; measured at N = 200 on seeds 0-3 the worst
+    # excess is 2.6 % (velocity), 3.9 % (acceleration), 1.6 % (jerk); at N = 400 (seeds 0-1) 0.4 %, 1.3 %, 0.6 %.
+    ts = tr.sample_times(1e-3)
+    q, qd, qdd = tr.evaluate(ts)
+    assert np.all(np.abs(qd) <= vmax * 1.05)
+    assert np.all(np.abs(qdd) <= amax * 1.06)
+    assert np.all(np.abs(tr.qddd(ts)) <= jmax * 1.03)
+    # Exported accelerations are the trajectory's own (exact, continuous), and q̈ = d q̇/dt.
+    samples = tr.sample(1e-3)
+    np.testing.assert_allclose(samples["qdd"], qdd, rtol=0, atol=1e-12)
+    t, h = ts[1:-1], 1e-6  # central difference: error <= the jump of q⃛ (at knots, grid points) times h
+    fd = (tr.qd(t + h) - tr.qd(t - h)) / (2 * h)
+    np.testing.assert_allclose(fd, qdd[1:-1], atol=1e-3 * amax.max())
+    # T is at least the optimum without jerk limits (a binding jerk limit costs time).
+    assert res.duration > res.stats["second_order_duration"]
+
+
+def test_jerk_limit_growing_approaches_second_order():
+    T = []
+    for factor in (5.0, 20.0, 100.0, 1000.0):
+        prob, *_ = arm_problem(1, 100, factor)
+        res = prob.solve()
+        assert res.ok, res.message
+        T.append(res.duration)
+        T2 = res.stats["second_order_duration"]
+    # Looser jerk limits, faster timing (to the rounds' tolerance: each is a KKT point, not a global optimum).
+    assert all(T[i + 1] <= T[i] * (1 + 1e-6) for i in range(len(T) - 1)), T
+    # Measured on this path at N = 100: 7.1487, 6.9382, 6.9018, 6.9018 against 6.9032 without jerk limits: loose
+    # jerk limits give the no-jerk T to the discretisation (here 2e-4 below it: the limits hold at the grid points,
+    # which differ, and s̈ is linear between them instead of constant).
+    assert T[0] > T2 * 1.01
+    assert T[-1] == pytest.approx(T2, rel=1e-3)
+
+
+def test_loose_jerk_limits_reach_trapezoid():
+    # Jerk 5e4 x the acceleration limit per second: the S-curve is the trapezoid to 2e-5 s; the rest intervals are
+    # the short ramps (the grid adapted to them), and the switch from +a to -a costs one interval of s̈ linear in s
+    # (measured +3.1e-3 at N = 100, +1.6e-3 at N = 400).
+    L, v, a, j = 2.0, 1.0, 2.0, 1e5
+    for N, tol in ((100, 5e-3), (400, 3e-3)):
+        res = line_problem([L], N, [v], [a], [j]).solve()
+        assert res.ok, res.message
+        assert s_curve_time(L, v, a, j) * (1 - 1e-3) <= res.duration <= s_curve_time(L, v, a, j) * (1 + tol)
+
+
+def test_rest_intervals_follow_the_ramp():
+    # The first and last grid intervals end where the jerk ramp to the no-jerk s̈ there ends: s_r = b³/(6 j²)
+    # in s with b = a/L, j = J/L (q = L s): here 0.0104, against a uniform interval of 1/400.
+    L, a, j = 2.0, 2.0, 8.0
+    res = line_problem([L], 400, [1.0], [a], [j]).solve()
+    s_r = (a / L) ** 3 / (6 * (j / L) ** 2)
+    assert res.s[1] == pytest.approx(s_r, rel=1e-9) and 1 - res.s[-2] == pytest.approx(s_r, rel=1e-9)
+    assert np.all(np.diff(res.s[1:-1]) >= 0.25 / 400)  # points inside the ramps dropped
+
+
+def test_without_jerk_limits_no_sddot_points():
+    prob, *_ = arm_problem(0, 50, None)
+    res = prob.solve()
+    assert res.sddot_points is None
+    assert res.trajectory().sddot_points is None
+    assert res.stats["second_order_duration"] == 0 and res.stats["jerk_iterations"] == 0
+
+
+def test_boundary_speeds_and_zero_sddot():
+    prob = line_problem([2.0], 100, [1.0], [2.0], [8.0])
+    prob.set_boundary_speeds(0.2, 0.1)
+    prob.set_zero_boundary_accelerations(True, True)
+    res = prob.solve()
+    assert res.ok, res.message
+    assert res.sdot[0] == pytest.approx(0.2, abs=1e-12) and res.sdot[-1] == pytest.approx(0.1, abs=1e-12)
+    assert res.sddot_points[0] == 0 and res.sddot_points[-1] == 0
+    tr = res.trajectory()
+    assert tr.qdd([0.0])[0, 0] == pytest.approx(0, abs=1e-12)
+
+
+def test_pickle_round_trips():
+    prob = line_problem([2.0], 60, [1.0], [2.0], [8.0])
+    res = prob.solve()
+    again = pickle.loads(pickle.dumps(prob)).solve()
+    assert again.duration == res.duration
+    r2 = pickle.loads(pickle.dumps(res))
+    np.testing.assert_array_equal(r2.sddot_points, res.sddot_points)
+    tr = pickle.loads(pickle.dumps(res.trajectory()))
+    assert tr.duration == res.trajectory().duration
+    np.testing.assert_array_equal(tr.sddot_points, res.sddot_points)
+
+
+# ---- validation ------------------------------------------------------------------------------------------
+
+
+def test_add_jerk_limits_validation():
+    prob = line_problem([2.0, 1.0], 20, [1.0, 1.0], [2.0, 2.0], None)
+    with pytest.raises(pp.InvalidInputError, match=r"jmin has size 1, expected 2"):
+        prob.add_jerk_limits([-1.0], [1.0, 1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"jmax has size 3, expected 2 \(one entry per path coordinate\)"):
+        prob.add_jerk_limits([-1.0, -1, -1], [1.0, 1.0, 1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"jmax\[1\] = 0 must be > 0"):
+        prob.add_jerk_limits([-1.0, -1.0], [1.0, 0.0])
+    with pytest.raises(pp.InvalidInputError, match=r"jmin\[0\] = 0.5 must be < 0"):
+        prob.add_jerk_limits([0.5, -1.0], [1.0, 1.0])
+    with pytest.raises(pp.InvalidInputError, match=r"jmax.*nan"):
+        prob.add_jerk_limits([-1.0, -1.0], [1.0, np.nan])
+    with pytest.raises(pp.InvalidInputError, match=r"jmax has 0 entries"):
+        pp.TimeScalingProblem(pp.PiecewisePolynomialPath([0.0, 1.0], [[[0.0], [1.0]]]), 10).add_jerk_limits([], [])
+    prob.add_jerk_limits([-np.inf, -1.0], [np.inf, 1.0])  # infinite: no limit on that side
+
+
+class CallbackPath(pp.Path):
+    dof, s_begin, s_end = 1, 0.0, 1.0
+
+    def evaluate(self, s):
+        return s[:, None], np.ones((len(s), 1)), np.zeros((len(s), 1))
+
+
+def test_path_without_third_derivative():
+    prob = pp.TimeScalingProblem(CallbackPath(), 20)
+    with pytest.raises(pp.InvalidInputError, match=r"third derivative .* polynomial pieces .* SampledPath"):
+        prob.add_jerk_limits([-1.0], [1.0])
+
+
+def test_solve_validation():
+    prob = line_problem([2.0], 3, [1.0], [2.0], [8.0])
+    with pytest.raises(pp.InvalidInputError, match=r"at least 4 grid intervals, the problem has 3"):
+        prob.solve()
+    prob = line_problem([2.0], 20, [1.0], [2.0], [8.0])
+    with pytest.raises(pp.InvalidInputError, match=r"guarantee = 'continuous' is not implemented with jerk limits"):
+        prob.solve(guarantee="continuous")
+    with pytest.raises(pp.InvalidInputError, match=r"restarted: not implemented with jerk limits"):
+        prob.restarted(0.5, 0.1)
+
+
+def test_infeasible_without_jerk_is_reported():
+    prob = line_problem([2.0], 20, [1.0], [2.0], [8.0])
+    prob.add_linear_constraint(np.zeros((21, 1)), np.zeros((21, 1)), np.ones((21, 1)), np.full((21, 1), -np.inf),
+                               np.zeros((21, 1)))  # 1 <= 0: infeasible everywhere
+    res = prob.solve()
+    assert res.status == pp.Status.INFEASIBLE
+    assert res.message.startswith("without jerk limits: ")
+
+
+def test_trajectory_validation():
+    res = line_problem([2.0], 20, [1.0], [2.0], [8.0]).solve()
+    path, s, sdot, b = res.trajectory().path, res.s, res.sdot, res.sddot_points
+    pp.Trajectory(path, s, sdot, b)  # consistent
+    n = len(s) - 1  # the grid solve() used (its rest intervals adapted to the jerk ramps)
+    with pytest.raises(pp.InvalidInputError, match=rf"sddot_points has size {n}, expected {n + 1}"):
+        pp.Trajectory(path, s, sdot, b[:-1])
+    bad = b.copy()
+    bad[0] = 0.1
+    with pytest.raises(pp.InvalidInputError, match=r"sddot_points\[0\] = 0.1 must be 0 at a start from rest"):
+        pp.Trajectory(path, s, sdot, bad)
+    bad = b.copy()
+    bad[-1] = -0.1
+    with pytest.raises(pp.InvalidInputError, match=rf"sddot_points\[{n}\] = -0.1 must be 0 at a stop at rest"):
+        pp.Trajectory(path, s, sdot, bad)
+    bad = b.copy()
+    bad[5] *= 1.01
+    with pytest.raises(pp.InvalidInputError, match=r"sdot and sddot_points disagree on interval 4"):
+        pp.Trajectory(path, s, sdot, bad)
+    with pytest.raises(pp.InvalidInputError, match=r"sddot_points.*nan"):
+        pp.Trajectory(path, s, sdot, np.full(n + 1, np.nan))
+    with pytest.raises(pp.InvalidInputError, match=r"at least 2 intervals"):
+        pp.Trajectory(path, s[[0, -1]], sdot[[0, -1]] + 1, [0.0, 0.0])
+
+
+def test_torque_limits_compose():
+    # UR10 at 0.6 x effort with jerk 10 x the acceleration limit per second: the torque rows hold at the grid
+    # points with the s̈ there (measured: OPTIMAL, T 17.117 against 16.997 without jerk limits, N = 100).
+    from pathpace.robots import example_robot_urdf
+
+    robot = pp.RobotModel.from_urdf(example_robot_urdf("ur_description/urdf/ur10_joint_limited_robot.urdf"))
+    lo, hi = robot.position_limits
+    v = np.asarray(robot.velocity_limits, float)
+    a = 2 * v
+    path = pp.CubicSplinePath(random_waypoints(lo, hi, np.random.default_rng(0)), knots="uniform",
+                              boundary="not-a-knot", s_begin=0.0, s_end=1.0)
+    prob = pp.TimeScalingProblem(path, 100)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-a, a)
+    prob.add_torque_limits(robot, scale=0.6)
+    prob.add_jerk_limits(-10 * a, 10 * a)
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    assert res.duration > res.stats["second_order_duration"]
+    tr = res.trajectory()
+    tg = tr.times
+    assert np.all(np.abs(tr.torques(tg, robot)) <= res.tau_max * (1 + 1e-6))
+    assert np.all(np.abs(tr.qddd(np.minimum(tg + 1e-12, tr.duration))) <= 10 * a * (1 + 1e-4))
