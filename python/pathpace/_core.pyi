@@ -790,6 +790,14 @@ class ContactConstraint(Constraint):
     def tau_max(self) -> Array:
         """ndarray (nq,): After scale and margin (and any merged TorqueLimits)."""
     @property
+    def physical_tau_min(self) -> Array:
+        """(nq,): The torque limits before torque_scale and torque_margin (tightened by any merged TorqueLimits):
+        the torque rows of the centred force distribution.
+        """
+    @property
+    def physical_tau_max(self) -> Array:
+        """(nq,): The torque limits before torque_scale and torque_margin (see physical_tau_min)."""
+    @property
     def projected_contacts(self) -> list[int]:
         """list of int: Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull
         vertices of each flat group.
@@ -807,7 +815,7 @@ class ContactConstraint(Constraint):
     @property
     def robot(self) -> RobotModel:
         """RobotModel"""
-    def force_distribution(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> ContactForces:
+    def force_distribution(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, distribution: str = "centre") -> ContactForces:
         """Contact forces that realise each configuration, with the force-distribution LP's margin, at each row of
         q, qd, qdd (how a timing is audited between grid points).
 
@@ -909,6 +917,16 @@ class ContactForces:
         """ndarray of int (samples,) or int: Index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the
         later phase at a switch); -1 without phases. forces then has as many rows as the largest phase has
         contacts, NaN beyond a phase's own.
+        """
+    @property
+    def centred(self) -> Array | bool:
+        """ndarray of bool (samples,) or bool: True where forces is the analytic centre; False for the LP's vertex (asked for, or where the
+        physical force set has no interior).
+        """
+    @property
+    def slack(self) -> Array | float:
+        """ndarray (samples,) or float: N: the smallest slack of forces in the physical rows (friction facets of μ, torque limits before
+        scale and margin), each row's distance in force space to its boundary; NaN when not feasible.
         """
 
 class ContactWrenches:
@@ -1310,7 +1328,7 @@ class Trajectory:
     Calling ``traj(t, order)`` gives q (order 0), q̇ (1) or q̈ (2), as toppra's trajectories.
     """
     def __init__(self, path: Path, s: ArrayLike, sdot: ArrayLike) -> None: ...
-    def contact_forces(self, t: ArrayLike) -> ContactForces:
+    def contact_forces(self, t: ArrayLike, distribution: str = "centre") -> ContactForces:
         """Contact forces at t that realise the motion (the solver looked only at grid points).
 
         With contact phases (``add_contact_phases``) each t uses the contacts of its phase, the later one at a
@@ -1330,7 +1348,7 @@ class Trajectory:
         -------
         ContactForces
         """
-    def contact_wrenches(self, t: float | ArrayLike) -> ContactWrenches:
+    def contact_wrenches(self, t: float | ArrayLike, distribution: str = "centre") -> ContactWrenches:
         """Per-link wrenches and centres of pressure of ``contact_forces(t)``: what a controller or a balance check
         reads (the centre of pressure inside each sole). Raises Error if no contact constraint shaped the
         trajectory.
@@ -1352,7 +1370,7 @@ class Trajectory:
         -------
         ContactWrenches
         """
-    def centers_of_pressure(self, t: float | ArrayLike) -> Array:
+    def centers_of_pressure(self, t: float | ArrayLike, distribution: str = "centre") -> Array:
         """``contact_wrenches(t, distribution).center_of_pressure``: (samples, links, 3), m.
 
         The links are ``contact_wrenches(t).links``; NaN where a link does not push.

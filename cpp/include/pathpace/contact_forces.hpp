@@ -8,7 +8,6 @@
 
 namespace pathpace {
 
-// docstrings.txt @@ ForceDistribution
 /// @brief Which of the forces that realise a motion `force_distribution` / `Trajectory.contact_forces` give.
 ///
 /// Centre ("centre", the default): the analytic centre of the physical force set at each state, the forces
@@ -45,10 +44,12 @@ struct ContactForces {
   Eigen::Matrix<double, Eigen::Dynamic, 3> forces;
   /// Joint torques that go with these forces: τ = RNEA(q, q̇, q̈) - Σ J_iᵀ f_i (NaN when not feasible).
   Eigen::VectorXd torques;
-  /// True where `forces` is the analytic centre (ForceDistribution::Centre with an interior); false for the
-  /// LP's vertex (asked for, or the fallback where the physical force set has no interior).
+  // docstrings.txt @@ ContactForces.centred
+  /// True where forces is the analytic centre; False for the LP's vertex (asked for, or where the
+  /// physical force set has no interior).
   bool centred = false;
-  /// N: the smallest slack of `forces` in the physical rows (friction facets of μ, torque limits before
+  // docstrings.txt @@ ContactForces.slack
+  /// (samples,): N: the smallest slack of forces in the physical rows (friction facets of μ, torque limits before
   /// scale and margin), each row's distance in force space to its boundary; NaN when not feasible.
   double slack = std::numeric_limits<double>::quiet_NaN();
 };
