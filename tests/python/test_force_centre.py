@@ -238,6 +238,7 @@ def test_a_zero_margin_plan_falls_back_to_the_vertex_where_the_set_has_no_interi
     cf, cv = traj.contact_forces(t), traj.contact_forces(t, distribution="vertex")
     assert np.all(cf.feasible)
     fell = ~np.asarray(cf.centred)
+    assert 0 < fell.sum() < t.size  # both kinds occur (28 of 61 fall back, bench/README.md)
     # Where not centred the forces are the vertex, as documented; where centred, strictly inside.
     np.testing.assert_array_equal(cf.forces[fell], cv.forces[fell])
     assert np.all(cf.slack[~fell] > 0)
