@@ -258,3 +258,20 @@ def test_distribution_is_checked():
     one = traj.contact_forces(float(t[5]))
     assert one.forces.shape == (len(cons), 3) and isinstance(one.centred, bool) and isinstance(one.slack, float)
     np.testing.assert_allclose(one.forces, cf.forces[5], rtol=0, atol=1e-6)
+
+
+def test_the_physical_limits_survive_a_pickle_and_the_scaled_ones_stay_the_lps():
+    import pickle
+    h, cons, traj, t, _, _ = timed(*CASES[0])
+    c = pp.ContactConstraint(h.robot, cons, cone_edges=CONE_EDGES, torque_scale=0.5, torque_margin=0.1)
+    actuated = ~((c.physical_tau_min == 0) & (c.physical_tau_max == 0))
+    np.testing.assert_array_equal(c.physical_tau_max, h.robot.effort_limits)
+    np.testing.assert_allclose(c.tau_max[actuated], 0.5 * h.robot.effort_limits[actuated] - 0.1)
+    back = pickle.loads(pickle.dumps(c))
+    np.testing.assert_array_equal(back.physical_tau_min, c.physical_tau_min)
+    np.testing.assert_array_equal(back.physical_tau_max, c.physical_tau_max)
+    np.testing.assert_array_equal(back.tau_max, c.tau_max)
+    q, qd, qdd = traj.evaluate(t[::100])
+    a, b = c.force_distribution(q, qd, qdd), back.force_distribution(q, qd, qdd)
+    np.testing.assert_allclose(b.forces, a.forces, rtol=0, atol=1e-9 * h.robot.mass)
+    np.testing.assert_array_equal(b.margin, a.margin)
