@@ -208,9 +208,9 @@ TEST(Contact, PerPointMinimumReducesExactlyOnADenseBoxBottom) {
       EXPECT_EQ(feasible_at(c, ps, p, lo + tol), 1) << k;
       EXPECT_EQ(feasible_at(c, ps, p, lo - tol), 0) << k;
     }
-    // The most robust forces at the largest acceleration keep every point's minimum, in its cone.
+    // The LP's most robust forces (the vertex) at the largest acceleration keep every point's minimum, in its cone.
     Eigen::MatrixXd q = ps.q.topRows(1), qd = ps.dq.topRows(1), qdd = (1 - 1e-6) * u_range(r, 0).second * ps.dq.topRows(1);
-    const ContactForces f = c.force_distribution(q, qd, qdd)[0];
+    const ContactForces f = c.force_distribution(q, qd, qdd, ForceDistribution::Vertex)[0];
     ASSERT_TRUE(f.feasible);
     EXPECT_GE(f.margin, 0.0);
     const double mu = 2.5 * (1 - 0.2);
