@@ -80,7 +80,13 @@ void bind_contact_forces(py::module_& m) {
       }, doc::ContactForces_torques)
       .def_property_readonly("phase", [](const ForceSamples& f) -> py::object {
         return f.scalar ? py::object(py::int_(f.phase[0])) : py::cast(f.phase);
-      }, doc::ContactForces_phase);
+      }, doc::ContactForces_phase)
+      .def_property_readonly("centred", [](const ForceSamples& f) -> py::object {
+        return f.scalar ? py::object(py::bool_(f.centred.at(0))) : py::object(f.centred);
+      }, doc::ContactForces_centred)
+      .def_property_readonly("slack", [](const ForceSamples& f) -> py::object {
+        return f.scalar ? py::object(py::float_(f.slack[0])) : py::cast(f.slack);
+      }, doc::ContactForces_slack);
 }
 
 using ContactClass = py::class_<ContactConstraint, Constraint, py::smart_holder>;
@@ -92,12 +98,13 @@ py::tuple contact_state(const ContactConstraint& c) {
   return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.contacts(), o.cone_edges, o.friction_margin,
                         o.min_normal_force, o.cap, c.tau_min(), c.tau_max(), o.min_link_normal_force, o.max_lps,
                         py::make_tuple(o.active_begin, o.active_end, o.label, o.rest_at_begin), o.cone_offset,
-                        o.projection_tolerance);
+                        o.projection_tolerance, py::make_tuple(c.physical_tau_min(), c.physical_tau_max()));
 }
 
 std::shared_ptr<ContactConstraint> contact_from_state(const py::tuple& t) {
-  // 11 / 12 entries: a state written before cone_offset / projection_tolerance (then 0).
-  if (t.size() != 11 && t.size() != 12) check_state(t, 13, "ContactConstraint");
+  // 11 / 12 / 13 entries: a state written before cone_offset / projection_tolerance (then 0) / the
+  // physical torque limits (then the stored ones).
+  if (t.size() < 11 || t.size() > 13) check_state(t, 14, "ContactConstraint");
   ContactOptions o;
   o.cone_edges = t[2].cast<int>();
   o.friction_margin = t[3].cast<double>();
@@ -116,12 +123,22 @@ std::shared_ptr<ContactConstraint> contact_from_state(const py::tuple& t) {
   auto robot = t[0].cast<std::shared_ptr<RobotModel>>();
   auto contacts = t[1].cast<std::vector<Contact>>();
   Eigen::VectorXd lo = to_vector(t[6], "tau_min"), hi = to_vector(t[7], "tau_max");
+  Eigen::VectorXd plo, phi;
+  if (t.size() >= 14) {
+    const py::tuple phys = t[13].cast<py::tuple>();
+    check_state(phys, 2, "ContactConstraint physical limits");
+    plo = to_vector(phys[0], "physical_tau_min");
+    phi = to_vector(phys[1], "physical_tau_max");
+  }
   py::gil_scoped_release release;
-  return std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o, std::move(lo), std::move(hi));
+  auto out = std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o, std::move(lo), std::move(hi));
+  return plo.size() ? out->with_physical_torque_limits(plo, phi) : out;
 }
 
 void bind_contact_queries(ContactClass& cls) {
-  cls.def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd) {
+  cls.def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd,
+                                   const std::string& distribution) {
+       const ForceDistribution dist = parse_distribution(distribution);
        const bool scalar = as_float_array(q, "q").ndim() == 1;
        auto rows = [&](py::handle h, const char* name) {
          Eigen::MatrixXd a = to_matrix(h, name, true);
@@ -132,10 +149,10 @@ void bind_contact_queries(ContactClass& cls) {
        std::vector<ContactForces> out;
        {
          py::gil_scoped_release release;
-         out = c.force_distribution(Q, QD, QDD);
+         out = c.force_distribution(Q, QD, QDD, dist);
        }
        return to_force_samples(out, static_cast<int>(c.contacts().size()), c.robot()->nq(), scalar);
-     }, "q"_a, "qd"_a, "qdd"_a, doc::ContactConstraint_force_distribution)
+     }, "q"_a, "qd"_a, "qdd"_a, "distribution"_a = "centre", doc::ContactConstraint_force_distribution)
       .def("max_drift", [](const ContactConstraint& c, py::handle path_arg, py::handle s) {
         const auto path = to_object<Path>(path_arg, "path", "Path");
         if (path->dof() != c.robot()->nq())
@@ -164,6 +181,8 @@ void bind_contact_constraint(py::module_& m) {
       "robot"_a, "contacts"_a, py::kw_only(), "tau_min"_a = py::none(), "tau_max"_a = py::none());
   cls.def_property_readonly("tau_min", &ContactConstraint::tau_min, doc::ContactConstraint_tau_min)
       .def_property_readonly("tau_max", &ContactConstraint::tau_max, doc::ContactConstraint_tau_max)
+      .def_property_readonly("physical_tau_min", &ContactConstraint::physical_tau_min, doc::ContactConstraint_physical_tau_min)
+      .def_property_readonly("physical_tau_max", &ContactConstraint::physical_tau_max, doc::ContactConstraint_physical_tau_max)
       .def_property_readonly("projected_contacts", &ContactConstraint::projected_contacts,
                              doc::ContactConstraint_projected_contacts)
       .def_property_readonly("section_contacts", &ContactConstraint::section_contacts, doc::ContactConstraint_section_contacts)

@@ -38,12 +38,13 @@ struct WrenchSamples {
   }
 };
 
-WrenchSamples wrench_samples(const Trajectory& tr, py::handle t) {
+WrenchSamples wrench_samples(const Trajectory& tr, py::handle t, const std::string& distribution) {
+  const ForceDistribution dist = parse_distribution(distribution);
   const Eigen::VectorXd tv = to_vector(t, "t");
   WrenchSamples out;
   out.scalar = is_scalar(t);
   py::gil_scoped_release release;  // the force-distribution LPs
-  out.w = tr.contact_wrenches(tv);
+  out.w = tr.contact_wrenches(tv, dist);
   return out;
 }
 
@@ -124,13 +125,14 @@ void bind_trajectory_timing(TrajectoryClass& cls) {
 }
 
 void bind_trajectory_contacts(TrajectoryClass& cls) {
-  cls.def("contact_forces", [](const Trajectory& tr, py::handle t) {
+  cls.def("contact_forces", [](const Trajectory& tr, py::handle t, const std::string& distribution) {
+       const ForceDistribution dist = parse_distribution(distribution);
        const Eigen::VectorXd tv = to_vector(t, "t");
        std::vector<ContactForces> out;
        Eigen::VectorXi phase;  // with the forces, inside the release: the phase of each t is evaluated once
        {
          py::gil_scoped_release release;
-         out = tr.contact_forces(tv, &phase);
+         out = tr.contact_forces(tv, &phase, dist);
        }
        if (tr.contact_phases().empty())
          return to_force_samples(out, static_cast<int>(tr.contacts()->contacts().size()), tr.contacts()->robot()->nq(),
@@ -140,12 +142,12 @@ void bind_trajectory_contacts(TrajectoryClass& cls) {
        ForceSamples f = to_force_samples(out, static_cast<int>(m), tr.contact_phases()[0]->robot()->nq(), is_scalar(t));
        f.phase = std::move(phase);
        return f;
-     }, "t"_a, doc::Trajectory_contact_forces)
-      .def("contact_wrenches", &wrench_samples, "t"_a, doc::Trajectory_contact_wrenches)
-      .def("centers_of_pressure", [](const Trajectory& tr, py::handle t) {
-        const WrenchSamples w = wrench_samples(tr, t);
+     }, "t"_a, "distribution"_a = "centre", doc::Trajectory_contact_forces)
+      .def("contact_wrenches", &wrench_samples, "t"_a, "distribution"_a = "centre", doc::Trajectory_contact_wrenches)
+      .def("centers_of_pressure", [](const Trajectory& tr, py::handle t, const std::string& distribution) {
+        const WrenchSamples w = wrench_samples(tr, t, distribution);
         return w.per_link(w.w.center_of_pressure);
-      }, "t"_a, doc::Trajectory_centers_of_pressure)
+      }, "t"_a, "distribution"_a = "centre", doc::Trajectory_centers_of_pressure)
       .def("contact_phase", [](const Trajectory& tr, py::handle t) -> py::object {
         const Eigen::VectorXi out = tr.contact_phase(to_vector(t, "t"));
         return is_scalar(t) ? py::object(py::int_(out[0])) : py::cast(out);

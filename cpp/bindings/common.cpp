@@ -32,12 +32,21 @@ Guarantee parse_guarantee(const std::string& g) {
   throw InvalidInput("guarantee = '" + g + "' must be one of 'grid', 'continuous'");
 }
 
+ForceDistribution parse_distribution(const std::string& d) {
+  if (d == "centre") return ForceDistribution::Centre;
+  if (d == "vertex") return ForceDistribution::Vertex;
+  throw InvalidInput("distribution = '" + d + "' must be 'centre' or 'vertex'");
+}
+
 ForceSamples to_force_samples(const std::vector<ContactForces>& v, int contacts, int joints, bool scalar) {
   ForceSamples out;
   const auto S = static_cast<py::ssize_t>(v.size());
   out.feasible = py::array_t<bool>(S);
   out.forces = py::array_t<double>({S, static_cast<py::ssize_t>(contacts), static_cast<py::ssize_t>(3)});
   out.margin.resize(S);
+  out.centred = py::array_t<bool>(S);
+  out.slack.resize(S);
+  auto ce = out.centred.mutable_unchecked<1>();
   out.torques.resize(S, joints);
   out.phase = Eigen::VectorXi::Constant(S, -1);
   auto fe = out.feasible.mutable_unchecked<1>();
@@ -46,6 +55,8 @@ ForceSamples to_force_samples(const std::vector<ContactForces>& v, int contacts,
     const ContactForces& c = v[static_cast<size_t>(s)];
     fe(s) = c.feasible;
     out.margin[s] = c.margin;
+    ce(s) = c.centred;
+    out.slack[s] = c.slack;
     out.torques.row(s) = c.torques.transpose();
     // Contact phases have their own numbers of contacts: rows beyond a phase's own are NaN.
     for (int i = 0; i < contacts; ++i)

@@ -63,8 +63,13 @@ struct ForceSamples {
   py::array_t<double> forces;   // (S, m, 3)
   Eigen::MatrixXd torques;      // (S, n)
   Eigen::VectorXi phase;        // (S,): the contact phase of each sample (Trajectory.contact_forces), -1: none
+  py::array_t<bool> centred;    // (S,)
+  Eigen::VectorXd slack;        // (S,)
   bool scalar = false;          // one sample asked for as a scalar: drop the leading axis
 };
+
+/// distribution= of force_distribution / contact_forces / contact_wrenches: "centre" or "vertex".
+ForceDistribution parse_distribution(const std::string& d);
 
 /// `contacts` rows per sample (NaN beyond a phase's own), `joints` torques.
 ForceSamples to_force_samples(const std::vector<ContactForces>& v, int contacts, int joints, bool scalar);

@@ -822,6 +822,14 @@ class ContactConstraint(Constraint):
     def tau_max(self) -> Array:
         """ndarray (nq,): After scale and margin (and any merged TorqueLimits)."""
     @property
+    def physical_tau_min(self) -> Array:
+        """(nq,): The torque limits before torque_scale and torque_margin (tightened by any merged TorqueLimits):
+        the torque rows of the centred force distribution.
+        """
+    @property
+    def physical_tau_max(self) -> Array:
+        """(nq,): The torque limits before torque_scale and torque_margin (see physical_tau_min)."""
+    @property
     def projected_contacts(self) -> list[int]:
         """list of int: Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull
         vertices of each flat group.
@@ -839,14 +847,18 @@ class ContactConstraint(Constraint):
     @property
     def robot(self) -> RobotModel:
         """RobotModel"""
-    def force_distribution(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> ContactForces:
-        """The most robust contact forces at each configuration: the force-distribution LP at each row of q, qd,
-        qdd (how a timing is audited between grid points).
+    def force_distribution(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, distribution: str = "centre") -> ContactForces:
+        """Contact forces that realise each configuration, with the force-distribution LP's margin, at each row of
+        q, qd, qdd (how a timing is audited between grid points).
 
         Parameters
         ----------
         q, qd, qdd : array_like (samples, nq) or (nq,)
             Positions (rad, m), velocities (per s), accelerations (per s²).
+        distribution : {"centre", "vertex"}
+            "centre" (default): the analytic centre of the physical force set, continuous in the motion (the
+            vertex where that set has no interior); "vertex": the LP's optimum (ForceDistribution). margin and
+            feasible are the LP's either way.
 
         Returns
         -------
@@ -885,9 +897,11 @@ class ContactConstraint(Constraint):
         """str: The no-impact row's label if the phase forces sdot = 0 at its first point, else ''."""
 
 class ContactForces:
-    """Force-distribution LP results at samples.
+    """Contact forces that realise a motion at samples, with the force-distribution LP's margin.
 
-    At each state (q, q̇, q̈), the most robust distribution: the one that maximises the margin
+    ``forces`` and ``torques`` are those of the distribution asked for (ForceDistribution: by default the
+    analytic centre of the physical force set, continuous in t). ``margin`` and ``feasible`` are the LP's
+    whichever distribution is asked for. At each state (q, q̇, q̈) the LP finds the most robust distribution: the one that maximises the margin
       δ = min( min_ie λ_ie , min_i (n_i·f_i - min_normal_force) , min_l (Σ_{i on l} n_i·f_i - min_link_normal_force) )
     in N, over the cone weights λ (f_i = Σ_e λ_ie g_ie, n_i·g_ie = 1), subject to the torque limits (after
     torque_scale and torque_margin; equalities for unactuated joints). The per-link term (l over the links
@@ -911,6 +925,12 @@ class ContactForces:
         Index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the
         later phase at a switch); -1 without phases. forces then has as many rows as the largest phase has
         contacts, NaN beyond a phase's own.
+    centred : ndarray of bool (samples,) or bool
+        True where forces is the analytic centre; False for the LP's vertex (asked for, or where the
+        physical force set has no interior).
+    slack : ndarray (samples,) or float
+        N: the smallest slack of forces in the physical rows (friction facets of μ, torque limits before
+        scale and margin), each row's distance in force space to its boundary; NaN when not feasible.
     """
     @property
     def feasible(self) -> Array | bool:
@@ -929,6 +949,16 @@ class ContactForces:
         """ndarray of int (samples,) or int: Index of the contact phase of each sample (Trajectory.contact_forces with add_contact_phases: the
         later phase at a switch); -1 without phases. forces then has as many rows as the largest phase has
         contacts, NaN beyond a phase's own.
+        """
+    @property
+    def centred(self) -> Array | bool:
+        """ndarray of bool (samples,) or bool: True where forces is the analytic centre; False for the LP's vertex (asked for, or where the
+        physical force set has no interior).
+        """
+    @property
+    def slack(self) -> Array | float:
+        """ndarray (samples,) or float: N: the smallest slack of forces in the physical rows (friction facets of μ, torque limits before
+        scale and margin), each row's distance in force space to its boundary; NaN when not feasible.
         """
 
 class ContactWrenches:
@@ -1336,18 +1366,27 @@ class Trajectory:
     Calling ``traj(t, order)`` gives q (order 0), q̇ (1) or q̈ (2), as toppra's trajectories.
     """
     def __init__(self, path: Path, s: ArrayLike, sdot: ArrayLike, sddot_points: ArrayLike | None = None) -> None: ...
-    def contact_forces(self, t: ArrayLike) -> ContactForces:
-        """Contact forces at t from the force-distribution LP (the solver looked only at grid points).
+    def contact_forces(self, t: ArrayLike, distribution: str = "centre") -> ContactForces:
+        """Contact forces at t that realise the motion (the solver looked only at grid points).
 
         With contact phases (``add_contact_phases``) each t uses the contacts of its phase, the later one at a
         switch time; ``.phase`` gives the phase of each t and ``forces`` has as many rows as the largest phase
         has contacts (NaN beyond a phase's own). Raises Error if no contact constraint shaped the trajectory.
 
+        Parameters
+        ----------
+        t : float or array_like
+            Times, s.
+        distribution : {"centre", "vertex"}
+            "centre" (default): at each t the analytic centre of the physical force set, continuous in t
+            wherever the motion is (the LP's vertex where that set has no interior; ``centred`` says which);
+            "vertex": the force-distribution LP's optimum (ForceDistribution).
+
         Returns
         -------
         ContactForces
         """
-    def contact_wrenches(self, t: float | ArrayLike) -> ContactWrenches:
+    def contact_wrenches(self, t: float | ArrayLike, distribution: str = "centre") -> ContactWrenches:
         """Per-link wrenches and centres of pressure of ``contact_forces(t)``: what a controller or a balance check
         reads (the centre of pressure inside each sole). Raises Error if no contact constraint shaped the
         trajectory.
@@ -1358,12 +1397,19 @@ class Trajectory:
         where the link does not push, or its contacts have several normals). A link its phase does not hold
         has zero force there; an infeasible sample is NaN.
 
+        Parameters
+        ----------
+        t : float or array_like
+            Times, s.
+        distribution : {"centre", "vertex"}
+            As for contact_forces (default "centre").
+
         Returns
         -------
         ContactWrenches
         """
-    def centers_of_pressure(self, t: float | ArrayLike) -> Array:
-        """``contact_wrenches(t).center_of_pressure``: (samples, links, 3), m.
+    def centers_of_pressure(self, t: float | ArrayLike, distribution: str = "centre") -> Array:
+        """``contact_wrenches(t, distribution).center_of_pressure``: (samples, links, 3), m.
 
         The links are ``contact_wrenches(t).links``; NaN where a link does not push.
         """

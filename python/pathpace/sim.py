@@ -5,9 +5,9 @@ pathpace `RobotModel` came from into MuJoCo (``pip install 'pathpace[sim]'``, Mu
 floor, a free joint when the model has a floating base, the joints the model locked welded at their
 values, and one small sphere per pathpace `Contact` (with its friction coefficient μ) as the only
 geometry that touches the floor. It then tracks a `Trajectory` with joint PD plus feed-forward torques
-from *our* model: inverse dynamics with the contact forces of the force-distribution LP (the most
-robust forces that realise the motion, `Trajectory.contact_forces` / `ContactConstraint.
-force_distribution`), or plain inverse dynamics (`Trajectory.torques`) for a robot without contacts.
+from *our* model: inverse dynamics with contact forces that realise the motion, the centred
+distribution (the analytic centre of the physical force set, continuous in t: `Trajectory.contact_forces`
+/ `ContactConstraint.force_distribution`), or plain inverse dynamics (`Trajectory.torques`) for a robot without contacts.
 The simulator knows nothing of the plan beyond the joint targets: if the timing asks for forces the
 floor cannot give (a pull, a force outside the friction cone, a centre of pressure beyond the sole),
 the robot slips, pivots on a sole edge or falls, and `SimResult` says so.
@@ -655,7 +655,8 @@ class Simulator:
                     contact_model: _core.ContactConstraint | None = None) -> tuple[np.ndarray, str]:
         """(len(t), nq) feed-forward torques and the mode used.
 
-        "contact": τ = M q̈ + C q̇ + g - Σ Jᵀ f with f from the force-distribution LP: the trajectory's own
+        "contact": τ = M q̈ + C q̇ + g - Σ Jᵀ f with f the centred force distribution (continuous in t;
+        the LP's vertex only where the physical force set has no interior): the trajectory's own
         contact constraint when it has one (its margins shape the forces), else `contact_model`, else the
         simulator's contacts with 8 cone edges and no margins. "inverse_dynamics": τ = M q̈ + C q̇ + g
         (a robot without contacts). "none": PD only. "auto": "contact" if there are contacts.

@@ -95,6 +95,33 @@ TEST(Contact, WrenchesAndCentreOfPressureOfTheCarriedBox) {
   }
 }
 
+TEST(Contact, CentredDistributionOfABoxAtRestIsItsSymmetricSplit) {
+  // The box at rest on four corners symmetric about its centre of mass: the physical force set is
+  // invariant under both mirrors of the sole and under f_t -> -f_t at every corner (even k, symmetric
+  // slide limits), so its unique analytic centre is a quarter of the weight at each corner, no tangential
+  // force. The LP's vertex need not be (it is any optimum of its margin).
+  auto model = lifter_with_box();
+  ContactConstraint c(model, corners(0.5), box_options());
+  const Eigen::MatrixXd q = Eigen::MatrixXd::Zero(1, 7), qd = q, qdd = q;
+  const ContactForces f = c.force_distribution(q, qd, qdd)[0];
+  ASSERT_TRUE(f.feasible);
+  EXPECT_TRUE(f.centred);
+  const double weight = f.forces.col(2).sum();
+  EXPECT_NEAR(weight, 2.0 * 9.81, 1e-6);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(f.forces(i, 2), weight / 4.0, 1e-9 * weight) << i;
+    EXPECT_NEAR(f.forces(i, 0), 0.0, 1e-9 * weight) << i;
+    EXPECT_NEAR(f.forces(i, 1), 0.0, 1e-9 * weight) << i;
+  }
+  // The smallest slack is that of the pyramid's facets at the quarter weight: μ cos(π/4) f_n / |(μ cos(π/4), 1)|.
+  const double a = 0.5 * std::cos(M_PI / 4.0);
+  EXPECT_NEAR(f.slack, a * weight / 4.0 / std::sqrt(1.0 + a * a), 1e-9 * weight);
+  const ContactForces v = c.force_distribution(q, qd, qdd, ForceDistribution::Vertex)[0];
+  EXPECT_FALSE(v.centred);
+  EXPECT_EQ(v.margin, f.margin);  // the LP's margin either way
+  EXPECT_LE(v.slack, f.slack + 1e-9 * weight);
+}
+
 TEST(Contact, ForceDistributionReportsMissingForces) {
   // The box at rest on the platform, asked to accelerate at 2 g sideways: friction cannot, and the
   // margin says by how much (negative); with no contact at all the LP has no solution.
@@ -181,9 +208,9 @@ TEST(Contact, PerPointMinimumReducesExactlyOnADenseBoxBottom) {
       EXPECT_EQ(feasible_at(c, ps, p, lo + tol), 1) << k;
       EXPECT_EQ(feasible_at(c, ps, p, lo - tol), 0) << k;
     }
-    // The most robust forces at the largest acceleration keep every point's minimum, in its cone.
+    // The LP's most robust forces (the vertex) at the largest acceleration keep every point's minimum, in its cone.
     Eigen::MatrixXd q = ps.q.topRows(1), qd = ps.dq.topRows(1), qdd = (1 - 1e-6) * u_range(r, 0).second * ps.dq.topRows(1);
-    const ContactForces f = c.force_distribution(q, qd, qdd)[0];
+    const ContactForces f = c.force_distribution(q, qd, qdd, ForceDistribution::Vertex)[0];
     ASSERT_TRUE(f.feasible);
     EXPECT_GE(f.margin, 0.0);
     const double mu = 2.5 * (1 - 0.2);

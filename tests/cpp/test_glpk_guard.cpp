@@ -181,7 +181,7 @@ TEST(GlpkGuard, AnErrorInTheForceDistributionThrowsAndTheNextOneWorks) {
   Eigen::MatrixXd q = Eigen::MatrixXd::Zero(3, 7), qd = q, qdd = q;
   qdd(1, 0) = qdd(1, 1) = 0.2 * 9.81;
   qdd(2, 0) = qdd(2, 1) = 2.0 * 9.81;  // friction cannot: a negative margin
-  const std::vector<ContactForces> ref = c.force_distribution(q, qd, qdd);
+  const std::vector<ContactForces> ref = c.force_distribution(q, qd, qdd, ForceDistribution::Vertex);
   ASSERT_EQ(ref.size(), 3u);
   Bystander other;
   PolytopeProjector warm;
@@ -193,7 +193,7 @@ TEST(GlpkGuard, AnErrorInTheForceDistributionThrowsAndTheNextOneWorks) {
     std::vector<ContactForces> got;
     if (!fired_at(k, [&] {
           try {
-            got = c.force_distribution(q, qd, qdd);
+            got = c.force_distribution(q, qd, qdd, ForceDistribution::Vertex);
           } catch (const Error& e) {
             threw = true;
             EXPECT_NE(std::string(e.what()).find("GLPK error"), std::string::npos) << e.what();
@@ -204,7 +204,7 @@ TEST(GlpkGuard, AnErrorInTheForceDistributionThrowsAndTheNextOneWorks) {
     if (!threw) ASSERT_EQ(got.size(), ref.size()) << k;
     other.check();
     EXPECT_EQ(warm.project(octahedron()).outcome, Projection::Outcome::Polygon);
-    const std::vector<ContactForces> again = c.force_distribution(q, qd, qdd);
+    const std::vector<ContactForces> again = c.force_distribution(q, qd, qdd, ForceDistribution::Vertex);
     for (size_t s = 0; s < ref.size(); ++s) {
       ASSERT_TRUE(again[s].feasible);
       EXPECT_NEAR(again[s].margin, ref[s].margin, 1e-9 * (1.0 + std::abs(ref[s].margin))) << k << " " << s;

@@ -1,7 +1,8 @@
-"""force_distribution honours every margin of ContactOptions that the projection's polytope holds: the
+"""The LP's distribution (force_distribution(..., distribution="vertex")) honours every margin of ContactOptions that the projection's polytope holds: the
 per-point and per-link minimum normal forces, the friction margin and the torque scale and margin. Each
 test checks the returned forces against the margin itself (not against the LP's own margin), and where
-it can, shows a state where the forces chosen without that margin break it."""
+it can, shows a state where the forces chosen without that margin break it. (The default, centred distribution
+takes the centre of the physical set, without the margins: tests/python/test_force_centre.py.)"""
 
 import numpy as np
 import pytest
@@ -53,14 +54,14 @@ def test_per_link_minimum_normal_force_holds_where_the_plain_distribution_breaks
     contacts = box_corners() + platform_points()
     q, qd, qdd = state()
     plain = pp.ContactConstraint(lifter_with_box(), contacts, cone_edges=K)
-    free = plain.force_distribution(q, qd, qdd)
+    free = plain.force_distribution(q, qd, qdd, distribution="vertex")
     check_realises_the_motion(plain, free, q, qd, qdd)
     weight = M_BOX * G
     assert sum(link_sums(plain, free).values()) == pytest.approx(weight, rel=1e-9)
     f_link = 6.0
     assert link_sums(plain, free)["platform"] < f_link - 1.0  # the rows are needed
     c = pp.ContactConstraint(lifter_with_box(), contacts, cone_edges=K, min_link_normal_force=f_link)
-    out = c.force_distribution(q, qd, qdd)
+    out = c.force_distribution(q, qd, qdd, distribution="vertex")
     check_realises_the_motion(c, out, q, qd, qdd)
     assert out.margin > 0.1
     for link, total in link_sums(c, out).items():
@@ -68,7 +69,7 @@ def test_per_link_minimum_normal_force_holds_where_the_plain_distribution_breaks
     # Asked for more than the weight can give both links, the margin says by how much: the link sums are
     # what they can be (weight/2 each at best), short of the minimum by -margin.
     c = pp.ContactConstraint(lifter_with_box(), contacts, cone_edges=K, min_link_normal_force=0.6 * weight)
-    out = c.force_distribution(q, qd, qdd)
+    out = c.force_distribution(q, qd, qdd, distribution="vertex")
     assert out.feasible
     assert out.margin == pytest.approx(-0.1 * weight, rel=1e-7)
     assert min(link_sums(c, out).values()) == pytest.approx(0.5 * weight, rel=1e-7)
@@ -85,11 +86,11 @@ def test_per_point_minimum_normal_force_holds_on_every_point():
     broken_without = 0
     for ax, az in [(0.0, 0.0), (1.0, 0.0), (-2.0, 1.0), (0.5, -4.0), (3.0, 0.0)]:
         q, qd, qdd = state(ax, az)
-        out = c.force_distribution(q, qd, qdd)
+        out = c.force_distribution(q, qd, qdd, distribution="vertex")
         check_realises_the_motion(c, out, q, qd, qdd)
         assert out.margin > 0.0
         assert np.all(normal_forces(c, out) >= f_min + out.margin - 1e-7)
-        broken_without += np.min(normal_forces(plain, plain.force_distribution(q, qd, qdd))) < f_min
+        broken_without += np.min(normal_forces(plain, plain.force_distribution(q, qd, qdd, distribution="vertex"))) < f_min
     assert broken_without  # the rows mattered somewhere
 
 
@@ -102,14 +103,14 @@ def test_friction_margin_keeps_every_force_inside_the_narrowed_cone(margin):
     mu = 0.5
     c = pp.ContactConstraint(lifter_with_box(), box_corners(mu), cone_edges=K, friction_margin=margin)
     q, qd, qdd = state(0.2 * G)
-    out = c.force_distribution(q, qd, qdd)
+    out = c.force_distribution(q, qd, qdd, distribution="vertex")
     check_realises_the_motion(c, out, q, qd, qdd)
     assert out.margin > 0.0
     n = out.forces[:, 2]
     tangential = np.hypot(out.forces[:, 0], out.forces[:, 1])
     assert np.all(tangential <= mu * (1 - margin) * n + 1e-9)
     assert np.sum(out.forces[:, 0]) == pytest.approx(M_BOX * 0.2 * G, rel=1e-9)
-    fast = c.force_distribution(*state(0.35 * G))
+    fast = c.force_distribution(*state(0.35 * G), distribution="vertex")
     if margin == 0.0:
         assert fast.margin > 0.0
     else:
@@ -124,12 +125,12 @@ def test_torque_scale_and_margin_bound_the_torques_or_make_the_state_infeasible(
     hold = (M_PLATFORM + M_BOX) * G
     c = pp.ContactConstraint(lifter_with_box(), box_corners(), cone_edges=K, torque_scale=0.5, torque_margin=5.0)
     assert c.tau_max[1] == pytest.approx(45.0)
-    out = c.force_distribution(q, qd, qdd)
+    out = c.force_distribution(q, qd, qdd, distribution="vertex")
     check_realises_the_motion(c, out, q, qd, qdd)
     assert out.torques[1] == pytest.approx(hold, rel=1e-9)
     tight = pp.ContactConstraint(lifter_with_box(), box_corners(), cone_edges=K, torque_margin=65.0)
     assert tight.tau_max[1] == pytest.approx(35.0) and tight.tau_max[1] < hold
-    bad = tight.force_distribution(q, qd, qdd)
+    bad = tight.force_distribution(q, qd, qdd, distribution="vertex")
     assert not bad.feasible and bad.margin == -np.inf and np.all(np.isnan(bad.forces))
 
 
@@ -156,7 +157,7 @@ def test_the_margin_is_the_projections_verdict_where_the_per_link_minimum_binds(
     k = len(grid) - 2  # the last interval decelerates; its first grid point
     assert res.sddot[k] == pytest.approx(-a_down, rel=1e-7)
     for harder, check in [(1.0, lambda m: abs(m) <= 1e-6 * M_BOX * G), (1.1, lambda m: m < -0.1)]:
-        out = c.force_distribution(qs[k], dqs[k] * res.sdot[k], dqs[k] * harder * res.sddot[k])
+        out = c.force_distribution(qs[k], dqs[k] * res.sdot[k], dqs[k] * harder * res.sddot[k], distribution="vertex")
         assert out.feasible
         assert check(out.margin), (harder, out.margin)
         sums = link_sums(c, out)

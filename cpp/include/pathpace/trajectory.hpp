@@ -116,17 +116,22 @@ class Trajectory {
   Eigen::VectorXi contact_phase(const Eigen::Ref<const Eigen::VectorXd>& t) const;
 
   // docstrings.txt @@ Trajectory.contact_forces
-  /// @brief Contact forces at t from the force-distribution LP (the solver looked only at grid points).
+  /// @brief Contact forces at t that realise the motion (the solver looked only at grid points).
   ///
   /// With contact phases (`add_contact_phases`) each t uses the contacts of its phase, the later one at a
   /// switch time; `.phase` gives the phase of each t and `forces` has as many rows as the largest phase
   /// has contacts (NaN beyond a phase's own). Raises Error if no contact constraint shaped the trajectory.
   ///
+  /// @param t Times, s.
   /// @param phase If given, receives contact_phase(t), the phase that served each t, from the same
   ///   evaluation (-1 everywhere without phases).
+  /// @param distribution "centre" (default): at each t the analytic centre of the physical force set, continuous in t
+  ///   wherever the motion is (the LP's vertex where that set has no interior; `centred` says which);
+  ///   "vertex": the force-distribution LP's optimum (ForceDistribution).
   /// @return One ContactForces per t; with phases, its forces have that phase's number of rows.
   std::vector<ContactForces> contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
-                                            Eigen::VectorXi* phase = nullptr) const;
+                                            Eigen::VectorXi* phase = nullptr,
+                                            ForceDistribution distribution = ForceDistribution::Centre) const;
 
   // docstrings.txt @@ Trajectory.contact_wrenches
   /// @brief Per-link wrenches and centres of pressure of `contact_forces(t)`: what a controller or a balance check
@@ -139,8 +144,11 @@ class Trajectory {
   /// where the link does not push, or its contacts have several normals). A link its phase does not hold
   /// has zero force there; an infeasible sample is NaN.
   ///
+  /// @param t Times, s.
+  /// @param distribution As for contact_forces (default "centre").
   /// @return ContactWrenches
-  ContactWrenches contact_wrenches(const Eigen::Ref<const Eigen::VectorXd>& t) const;
+  ContactWrenches contact_wrenches(const Eigen::Ref<const Eigen::VectorXd>& t,
+                                   ForceDistribution distribution = ForceDistribution::Centre) const;
 
   // docstrings.txt @@ Trajectory.time_spline
   /// @brief A C² cubic spline in time through the grid (toppra's ParametrizeSpline).

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "base/validate.hpp"
+#include "lp/analytic_centre.hpp"
 #include "lp/projection.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/robot_workspace.hpp"
@@ -127,7 +128,8 @@ void margin_lp(const detail::PolytopeLp& polytope, int torque_rows, double cap, 
 }  // namespace
 
 std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
-                                                                 const Eigen::MatrixXd& qdd) const {
+                                                                 const Eigen::MatrixXd& qdd,
+                                                                 ForceDistribution distribution) const {
   const int n = robot_->nq(), m = static_cast<int>(contacts_.size()), k = options_.cone_edges;
   const std::pair<const Eigen::MatrixXd*, const char*> args[3] = {{&q, "q"}, {&qd, "qd"}, {&qdd, "qdd"}};
   for (const auto& [arr, name] : args) {
@@ -154,6 +156,15 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
   Eigen::VectorXd objective = Eigen::VectorXd::Zero(m * k + 1);
   objective[m * k] = 1.0;  // maximise δ
   detail::PolytopeProjector solver;  // one GLPK problem, warm-started from sample to sample
+  // The centre (ForceDistribution::Centre): the analytic centre of the physical rows (physical_rows) at
+  // each sample, by Newton from the previous sample's centre. It maximises Σ log slack, which is strictly
+  // concave on the (bounded) set, so it is unique, and smooth in the rows' data (detail::analytic_centre):
+  // continuous in t wherever q, q̇, q̈ are. Without an interior (the motion sits on a physical row, as a
+  // zero-margin time-optimal plan does on its bang-bang arcs) there is no centre: the vertex is kept
+  // (centred = false).
+  detail::PolytopeProjector phase_one;
+  Eigen::MatrixXd Aeq, G;
+  Eigen::VectorXd beq, h, centre;
   for (Eigen::Index s = 0; s < q.rows(); ++s) {
     const Eigen::VectorXd qs = q.row(s).transpose();
     robot_->inverse_dynamics(ws, qs, qd.row(s).transpose(), qdd.row(s).transpose(), true, tau);
@@ -175,6 +186,7 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
       continue;
     }
     contact_jacobians(qs, T, J, gen);
+    physical_rows(T, J, tau, Aeq, beq, G, h);
     const double delta = z[m * k];
     f.feasible = true;
     f.margin = delta;
@@ -187,6 +199,20 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
       f.forces.row(i) = fi.transpose();
       f.torques.noalias() -= J.middleRows(3 * i, 3).transpose() * fi;
     }
+    const Eigen::VectorXd vertex = Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(f.forces.transpose()).data(), 3 * m);
+    f.slack = G.rows() ? (h - G * vertex).minCoeff() : 0.0;
+    if (distribution != ForceDistribution::Centre || m == 0) continue;
+    const double scale = std::max(1.0, beq.size() ? beq.cwiseAbs().maxCoeff() : 0.0);
+    if (centre.size() != 3 * m) centre = vertex;
+    const detail::CentreResult r = detail::analytic_centre(Aeq, beq, G, h, 1e-7 * scale, phase_one, centre);
+    if (r.status != detail::CentreResult::Status::Centre) {
+      centre.resize(0);  // the next sample starts afresh
+      continue;
+    }
+    f.centred = true;
+    f.slack = (h - G * centre).minCoeff();
+    f.torques = tau - J.transpose() * centre;
+    for (int i = 0; i < m; ++i) f.forces.row(i) = centre.segment<3>(3 * i).transpose();
   }
   return out;
 }

@@ -44,6 +44,8 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
   // Unactuated joints (zero range) stay equalities whatever the margin.
   for (int j = 0; j < n; ++j)
     if (tau_min[j] == 0.0 && tau_max[j] == 0.0) tau_min_[j] = tau_max_[j] = 0.0;
+  phys_tau_min_ = tau_min;
+  phys_tau_max_ = tau_max;
   for (int j = 0; j < n; ++j)
     if (tau_min_[j] > tau_max_[j])
       detail::fail((tau_min[j] <= tau_max[j] ? "torque_margin = " + detail::fmt(options_.torque_margin) + " closes the range: "
@@ -105,11 +107,28 @@ std::shared_ptr<ContactConstraint> ContactConstraint::with_torque_limits(const E
   auto out = std::make_shared<ContactConstraint>(*this);
   out->tau_min_ = tau_min_.cwiseMax(lo);
   out->tau_max_ = tau_max_.cwiseMin(hi);
+  out->phys_tau_min_ = phys_tau_min_.cwiseMax(lo);
+  out->phys_tau_max_ = phys_tau_max_.cwiseMin(hi);
   for (Eigen::Index j = 0; j < n; ++j)
     if (!(out->tau_min_[j] <= out->tau_max_[j]))
       detail::fail("torque limits of joint " + std::to_string(j) + " ('" + robot_->joint_names()[static_cast<size_t>(j)] +
                    "'): the contacts' [" + detail::fmt(tau_min_[j]) + ", " + detail::fmt(tau_max_[j]) +
                    "] and the torque limits' [" + detail::fmt(lo[j]) + ", " + detail::fmt(hi[j]) + "] do not intersect");
+  return out;
+}
+
+std::shared_ptr<ContactConstraint> ContactConstraint::with_physical_torque_limits(const Eigen::VectorXd& lo,
+                                                                                  const Eigen::VectorXd& hi) const {
+  const Eigen::Index n = robot_->nq();
+  detail::require_size("physical_tau_min", lo.size(), n, "one per joint");
+  detail::require_size("physical_tau_max", hi.size(), n, "one per joint");
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (!(lo[j] <= hi[j]))
+      detail::fail("physical_tau_min[" + std::to_string(j) + "] = " + detail::fmt(lo[j]) + " must be <= physical_tau_max[" +
+                   std::to_string(j) + "] = " + detail::fmt(hi[j]));
+  auto out = std::make_shared<ContactConstraint>(*this);
+  out->phys_tau_min_ = lo;
+  out->phys_tau_max_ = hi;
   return out;
 }
 

@@ -51,9 +51,10 @@ struct LinkSums {
 
 }  // namespace
 
-ContactWrenches Trajectory::contact_wrenches(const Eigen::Ref<const Eigen::VectorXd>& t) const {
+ContactWrenches Trajectory::contact_wrenches(const Eigen::Ref<const Eigen::VectorXd>& t,
+                                             ForceDistribution distribution) const {
   Eigen::VectorXi phase;
-  const std::vector<ContactForces> forces = contact_forces(t, &phase);  // throws without contacts
+  const std::vector<ContactForces> forces = contact_forces(t, &phase, distribution);  // throws without contacts
   std::vector<std::shared_ptr<const ContactConstraint>> cons = contact_phases_;
   if (cons.empty()) cons.push_back(contacts_);
   Eigen::MatrixXd q, qd, qdd;

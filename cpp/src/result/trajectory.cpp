@@ -226,7 +226,7 @@ Eigen::VectorXi Trajectory::phase_of_s(const Eigen::VectorXd& s) const {
 }
 
 std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
-                                                      Eigen::VectorXi* phase_out) const {
+                                                      Eigen::VectorXi* phase_out, ForceDistribution distribution) const {
   if (!contacts_ && contact_phases_.empty())
     throw Error("no contact constraint shaped this trajectory: use ContactConstraint.force_distribution");
   Eigen::VectorXd s;
@@ -234,7 +234,7 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
   evaluate_with_s(t, s, q, qd, qdd);
   if (contact_phases_.empty()) {
     if (phase_out) *phase_out = Eigen::VectorXi::Constant(t.size(), -1);
-    return contacts_->force_distribution(q, qd, qdd);
+    return contacts_->force_distribution(q, qd, qdd, distribution);
   }
   // One force-distribution batch per phase, each with that phase's contacts.
   Eigen::VectorXi phase = phase_of_s(s);
@@ -245,7 +245,7 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
       if (phase[i] == static_cast<int>(p)) idx.push_back(i);
     if (idx.empty()) continue;
     std::vector<ContactForces> f = contact_phases_[p]->force_distribution(
-        detail::gather_rows(q, idx), detail::gather_rows(qd, idx), detail::gather_rows(qdd, idx));
+        detail::gather_rows(q, idx), detail::gather_rows(qd, idx), detail::gather_rows(qdd, idx), distribution);
     for (size_t j = 0; j < idx.size(); ++j) out[static_cast<size_t>(idx[j])] = std::move(f[j]);
   }
   if (phase_out) *phase_out = std::move(phase);

@@ -126,13 +126,17 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   void point_velocities(const PathSamples& samples, Eigen::MatrixXd& normal, Eigen::MatrixXd& speed) const;
 
   // docstrings.txt @@ ContactConstraint.force_distribution
-  /// @brief The most robust contact forces at each configuration: the force-distribution LP at each row of q, qd,
-  /// qdd (how a timing is audited between grid points).
+  /// @brief Contact forces that realise each configuration, with the force-distribution LP's margin, at each row of
+  /// q, qd, qdd (how a timing is audited between grid points).
   ///
   /// @param q,qd,qdd (samples, nq): Positions (rad, m), velocities (per s), accelerations (per s²).
+  /// @param distribution "centre" (default): the analytic centre of the physical force set, continuous in the motion
+  ///   (the vertex where that set has no interior); "vertex": the LP's optimum (ForceDistribution). margin and
+  ///   feasible are the LP's either way.
   /// @return One ContactForces per row.
   std::vector<ContactForces> force_distribution(const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
-                                                const Eigen::MatrixXd& qdd) const;
+                                                const Eigen::MatrixXd& qdd,
+                                                ForceDistribution distribution = ForceDistribution::Centre) const;
 
   std::shared_ptr<const RobotModel> robot() const override { return robot_; }
   /// Torque limits of the same robot (a TorqueLimits) join the projection: absorb(t) is
@@ -151,6 +155,16 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   // docstrings.txt @@ ContactConstraint.tau_max
   /// (nq,): After scale and margin (and any merged TorqueLimits).
   const Eigen::VectorXd& tau_max() const { return tau_max_; }
+
+  // docstrings.txt @@ ContactConstraint.physical_tau_min
+  /// @brief (nq,): The torque limits before torque_scale and torque_margin (tightened by any merged TorqueLimits):
+  /// the torque rows of the centred force distribution.
+  const Eigen::VectorXd& physical_tau_min() const { return phys_tau_min_; }
+  // docstrings.txt @@ ContactConstraint.physical_tau_max
+  /// @brief (nq,): The torque limits before torque_scale and torque_margin (see physical_tau_min).
+  const Eigen::VectorXd& physical_tau_max() const { return phys_tau_max_; }
+  /// This constraint with physical_tau_min/max set to lo, hi (a copy restored from its pickled state).
+  std::shared_ptr<ContactConstraint> with_physical_torque_limits(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) const;
 
   /// This constraint with torque limits tightened to [max(tau_min, lo), min(tau_max, hi)] (e.g. from a
   /// TorqueLimits of the same robot): one projection for both.
@@ -229,6 +243,11 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   void lp_point(const LpLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
+  // The physical rows of the force set at q with inverse-dynamics torques tau (variables: the 3 m world
+  // forces): A f = b for unactuated joints, G f <= h (rows of unit norm) for each friction facet of μ,
+  // each finite torque limit (phys_tau_*) and a stand-in ceiling n·f <= cap per point (contact_centre.cpp).
+  void physical_rows(const std::vector<Eigen::Isometry3d>& T, const Eigen::MatrixXd& J, const Eigen::VectorXd& tau,
+                     Eigen::MatrixXd& A, Eigen::VectorXd& b, Eigen::MatrixXd& G, Eigen::VectorXd& h) const;
   // The rotation from contact i's normal frame (the world, or other_link) to the world, at placements T.
   Eigen::Matrix3d normal_frame(size_t i, const std::vector<Eigen::Isometry3d>& T) const;
   LpLayout reduced_;                                    // the projection's LPs
@@ -239,6 +258,7 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   std::vector<Eigen::Matrix3Xd> local_generators_;      // in world (or other_link) coordinates
   ContactOptions options_;
   Eigen::VectorXd tau_min_, tau_max_;
+  Eigen::VectorXd phys_tau_min_, phys_tau_max_;  // before scale and margin
 };
 
 }  // namespace pathpace
