@@ -39,7 +39,8 @@ def _sole_corners(h, cons):
 
 def _vertices_have_forces(prob, c, point, fmin):
     """Every (finite) vertex of the reduced polygon at grid point `point`, pulled towards the centroid by 1e-7 of
-    the polygon's size, has per-point forces in the unreduced LP (force_distribution: every point, its
+    the polygon's size, has per-point forces in the unreduced LP (force_distribution(distribution="vertex"): the
+    LP with the margins, every point, its
     row, its cone): margin >= 0, every normal force >= fmin."""
     fs = prob.feasible_set(point)
     s = prob.grid[point]
@@ -50,15 +51,17 @@ def _vertices_have_forces(prob, c, point, fmin):
     size = cc.polygon_size(fs)
     for v in finite:
         x, u = v - 1e-7 * size * (v - cen) / np.linalg.norm(v - cen)
-        f = c.force_distribution(q[None], (dq * np.sqrt(max(x, 0.0)))[None], (ddq * x + dq * u)[None])
+        f = c.force_distribution(q[None], (dq * np.sqrt(max(x, 0.0)))[None], (ddq * x + dq * u)[None],
+                               distribution="vertex")
         assert f.feasible[0] and f.margin[0] >= 0.0, (v, f.margin)
         assert np.all(f.forces[0][:, 2] >= fmin - 1e-9)
 
 
 def _check_forces(res, cons, k, margins):
-    """At the grid points: the most robust forces keep every margin (normal >= min_normal_force, f -
-    cone_offset·n inside the k-edge pyramid of μ (1 - friction_margin))."""
-    fs = res.trajectory().contact_forces(res.times)
+    """At the grid points: the LP's most robust forces (distribution="vertex"; the default centre is that of the
+    physical set, without margins) keep every margin (normal >= min_normal_force, f - cone_offset·n inside the
+    k-edge pyramid of μ (1 - friction_margin))."""
+    fs = res.trajectory().contact_forces(res.times, distribution="vertex")
     assert np.all(fs.margin >= -1e-6)
     fmin, off = margins.get("min_normal_force", 0.0), margins.get("cone_offset", 0.0)
     mu = np.array([c.friction for c in cons]) * (1 - margins.get("friction_margin", 0.0))
@@ -164,7 +167,7 @@ def test_an_odd_cone_keeps_every_point_and_is_exact(k):
     assert worst <= 1e-9  # the unreduced LP, as before
     res = prob.solve()
     assert res.ok, res.message
-    fs = res.trajectory().contact_forces(res.times)
+    fs = res.trajectory().contact_forces(res.times, distribution="vertex")  # the LP's forces keep the margins
     assert np.all(fs.margin >= -1e-6) and np.all(fs.forces[..., 2] >= 1.5 - 1e-6)
 
 

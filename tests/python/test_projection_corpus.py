@@ -282,8 +282,9 @@ def test_shifted_cone_reduces_exactly_to_the_sole_corners(robot, kind, margins):
     assert res.ok and res_bare.ok
     assert res.duration > res_bare.duration * (1 + 1e-6)
     # At the grid points (where the timing is feasible) the forces the constraint reports keep every
-    # point's offset along its normal, with friction to spare: f - cone_offset·n in the reduced cone.
-    fs = res.trajectory().contact_forces(res.times)
+    # point's offset along its normal, with friction to spare: f - cone_offset·n in the reduced cone (the
+    # LP's forces, distribution="vertex": the default centre is that of the physical set, without margins).
+    fs = res.trajectory().contact_forces(res.times, distribution="vertex")
     assert np.all(fs.margin >= -1e-6)
     off = margins["cone_offset"]
     normal = fs.forces[..., 2]
