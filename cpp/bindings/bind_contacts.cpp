@@ -137,7 +137,7 @@ std::shared_ptr<ContactConstraint> contact_from_state(const py::tuple& t) {
 
 void bind_contact_queries(ContactClass& cls) {
   cls.def("force_distribution", [](const ContactConstraint& c, py::handle q, py::handle qd, py::handle qdd,
-                                   const std::string& distribution) {
+                                   py::handle distribution) {
        const ForceDistribution dist = parse_distribution(distribution);
        const bool scalar = as_float_array(q, "q").ndim() == 1;
        auto rows = [&](py::handle h, const char* name) {

@@ -38,7 +38,7 @@ struct WrenchSamples {
   }
 };
 
-WrenchSamples wrench_samples(const Trajectory& tr, py::handle t, const std::string& distribution) {
+WrenchSamples wrench_samples(const Trajectory& tr, py::handle t, py::handle distribution) {
   const ForceDistribution dist = parse_distribution(distribution);
   const Eigen::VectorXd tv = to_vector(t, "t");
   WrenchSamples out;
@@ -125,7 +125,7 @@ void bind_trajectory_timing(TrajectoryClass& cls) {
 }
 
 void bind_trajectory_contacts(TrajectoryClass& cls) {
-  cls.def("contact_forces", [](const Trajectory& tr, py::handle t, const std::string& distribution) {
+  cls.def("contact_forces", [](const Trajectory& tr, py::handle t, py::handle distribution) {
        const ForceDistribution dist = parse_distribution(distribution);
        const Eigen::VectorXd tv = to_vector(t, "t");
        std::vector<ContactForces> out;
@@ -144,7 +144,7 @@ void bind_trajectory_contacts(TrajectoryClass& cls) {
        return f;
      }, "t"_a, "distribution"_a = "centre", doc::Trajectory_contact_forces)
       .def("contact_wrenches", &wrench_samples, "t"_a, "distribution"_a = "centre", doc::Trajectory_contact_wrenches)
-      .def("centers_of_pressure", [](const Trajectory& tr, py::handle t, const std::string& distribution) {
+      .def("centers_of_pressure", [](const Trajectory& tr, py::handle t, py::handle distribution) {
         const WrenchSamples w = wrench_samples(tr, t, distribution);
         return w.per_link(w.w.center_of_pressure);
       }, "t"_a, "distribution"_a = "centre", doc::Trajectory_centers_of_pressure)

@@ -32,7 +32,8 @@ Guarantee parse_guarantee(const std::string& g) {
   throw InvalidInput("guarantee = '" + g + "' must be one of 'grid', 'continuous'");
 }
 
-ForceDistribution parse_distribution(const std::string& d) {
+ForceDistribution parse_distribution(py::handle h) {
+  const std::string d = to_string_arg(h, "distribution");
   if (d == "centre") return ForceDistribution::Centre;
   if (d == "vertex") return ForceDistribution::Vertex;
   throw InvalidInput("distribution = '" + d + "' must be 'centre' or 'vertex'");

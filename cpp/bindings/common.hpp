@@ -69,7 +69,7 @@ struct ForceSamples {
 };
 
 /// distribution= of force_distribution / contact_forces / contact_wrenches: "centre" or "vertex".
-ForceDistribution parse_distribution(const std::string& d);
+ForceDistribution parse_distribution(py::handle distribution);
 
 /// `contacts` rows per sample (NaN beyond a phase's own), `joints` torques.
 ForceSamples to_force_samples(const std::vector<ContactForces>& v, int contacts, int joints, bool scalar);

@@ -199,6 +199,9 @@ class Trajectory {
   Eigen::VectorXd sddot_points_;  // jerk-limited timing: s̈ at the grid points (else empty)
   // (s, ṡ, s̈, s⃛) at one t on interval k of a jerk-limited timing.
   void jerk_motion(Eigen::Index k, double t, double& s, double& sd, double& sdd, double& sddd) const;
+  // evaluate_s, and s⃛ into *sddd if given (qddd).
+  void evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::VectorXd& sd,
+                  Eigen::VectorXd& sdd, Eigen::VectorXd* sddd) const;
 };
 
 }  // namespace pathpace

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pathpace/constraints/contact_constraint.hpp"
+#include "constraints/contact_tangents.hpp"
 
 namespace pathpace {
 
@@ -40,8 +41,8 @@ void ContactConstraint::physical_rows(const std::vector<Eigen::Isometry3d>& T, c
   for (int i = 0; i < m; ++i) {
     const Contact& c = contacts_[static_cast<size_t>(i)];
     const Eigen::Vector3d& nrm = c.normal;
-    const Eigen::Vector3d e = std::abs(nrm.x()) > 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
-    const Eigen::Vector3d t1 = nrm.cross(e).normalized(), t2 = nrm.cross(t1);
+    Eigen::Vector3d t1, t2;
+    detail::contact_tangents(nrm, t1, t2);
     const Eigen::Matrix3d R = normal_frame(static_cast<size_t>(i), T);
     for (int f = 0; f < k; ++f) {
       const double phi = 2.0 * M_PI * (f + 0.5) / k;

@@ -8,6 +8,7 @@
 #include "pathpace/constraints/torque_limits.hpp"
 #include "pathpace/result.hpp"
 #include "pathpace/errors.hpp"
+#include "constraints/contact_tangents.hpp"
 
 namespace pathpace {
 
@@ -81,8 +82,8 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     // Cone generators g_e = n + μ' (cos φ_e t1 + sin φ_e t2), inscribed in the cone of μ' = μ (1 -
     // friction_margin) (sec. V.D), in the normal's own frame (the world, or other_link).
     const Eigen::Vector3d& nrm = c.normal;
-    const Eigen::Vector3d e = std::abs(nrm.x()) > 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
-    const Eigen::Vector3d t1 = nrm.cross(e).normalized(), t2 = nrm.cross(t1);
+    Eigen::Vector3d t1, t2;
+    detail::contact_tangents(nrm, t1, t2);
     const double mu = c.friction * (1.0 - options_.friction_margin);
     Eigen::Matrix3Xd g(3, k);
     for (int j = 0; j < k; ++j) {

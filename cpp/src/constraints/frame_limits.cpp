@@ -152,7 +152,8 @@ ConstraintRows FrameLimits::evaluate(const PathSamples& samples) const {
   return rows;
 }
 
-Eigen::VectorXd FrameLimits::speed_bounds_between_grid_points(const PathSamples& samples) const {
+Eigen::VectorXd FrameLimits::speed_bounds_between_grid_points(const PathSamples& samples,
+                                                              const ConstraintRows& grid) const {
   if (quantity_ != FrameQuantity::TranslationalSpeed && !is_velocity(quantity_)) return {};
   if (samples.dof() != robot_->nq()) return {};  // evaluate() has reported it
   const RobotModel::FrameMotion f = robot_->path_frame_motion(samples.q, samples.dq, samples.ddq, link_, point_);
@@ -162,9 +163,8 @@ Eigen::VectorXd FrameLimits::speed_bounds_between_grid_points(const PathSamples&
   // f's accelerations at ṡ = 1, s̈ = 0 are the s-derivatives of its velocities (d/ds of J p' = J p'' + J̇ p').
   const Eigen::MatrixXd& dvel = angular ? f.angular_acceleration : f.acceleration;
   // The grid rows' own bound per grid point (over every axis): no line needs to start above it.
-  const ConstraintRows grid = evaluate(samples);
   Eigen::VectorXd start = Eigen::VectorXd::Constant(m, std::numeric_limits<double>::infinity());
-  for (Eigen::Index k = 0; k < m; ++k)
+  for (Eigen::Index k = 0; k < m && grid.a.rows() == m; ++k)
     for (Eigen::Index j = 0; j < grid.rows(); ++j)
       if (grid.a(k, j) > 0.0 && grid.c(k, j) < kInf) start[k] = std::min(start[k], grid.c(k, j) / grid.a(k, j));
   if (quantity_ == FrameQuantity::TranslationalSpeed)

@@ -137,6 +137,25 @@ void for_each_sub(const PiecewisePolynomialPath& path, double a, double b, std::
   }
 }
 
+// The largest Bernstein coefficient, over a piece [s0, s0 + w] of an interval of width h, of
+// P(τ) ((1 - σ/h) m0 + (σ/h) m1) with σ = s0 + τ and P of degree d in τ (d <= 14): an upper bound of the
+// row's value there when ṡ² follows the line from m0 to m1 across the interval.
+double line_product_bound(const double* P, int d, double s0, double w, double h, double m0, double m1) {
+  double E[16] = {}, F[16] = {}, bE[16], bF[16];
+  for (int x = 0; x <= d; ++x) {
+    const double p = P[x];
+    F[x] += p * s0 / h;
+    F[x + 1] += p / h;
+    E[x] += p - p * s0 / h;
+    E[x + 1] -= p / h;
+  }
+  bernstein(E, d + 1, w, bE);
+  bernstein(F, d + 1, w, bF);
+  double worst = 0.0;
+  for (int i = 0; i <= d + 1; ++i) worst = std::max(worst, m0 * bE[i] + m1 * bF[i]);
+  return worst;
+}
+
 }  // namespace
 
 Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, const Eigen::VectorXd& grid,
@@ -163,8 +182,7 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
     std::vector<double> P;      // p'_j² in τ
   };
   std::vector<Sub> subs;
-  std::vector<double> t, E(static_cast<size_t>(dq) + 1), F(static_cast<size_t>(dq) + 1), bE(E.size()), bF(F.size()),
-      bP(static_cast<size_t>(2 * dd) + 1);
+  std::vector<double> t, bP(static_cast<size_t>(2 * dd) + 1);
   for (Eigen::Index k = 0; k < N; ++k) {
     const double sk = grid[k], sk1 = grid[k + 1], h = sk1 - sk;
     for (Eigen::Index j = 0; j < n; ++j) {
@@ -197,20 +215,7 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
       const double flat = v2 / max_all;
       if (!std::isfinite(m0) || !std::isfinite(m1)) m0 = m1 = flat;
       double worst = 0.0;  // max over the interval of p'² ((1 - λ) m0 + λ m1), by Bernstein per piece
-      for (const Sub& sub : subs) {
-        std::fill(E.begin(), E.end(), 0.0);
-        std::fill(F.begin(), F.end(), 0.0);
-        for (int x = 0; x <= 2 * dd; ++x) {
-          const double p = sub.P[static_cast<size_t>(x)];
-          F[static_cast<size_t>(x)] += p * sub.s0 / h;
-          F[static_cast<size_t>(x) + 1] += p / h;
-          E[static_cast<size_t>(x)] += p - p * sub.s0 / h;
-          E[static_cast<size_t>(x) + 1] -= p / h;
-        }
-        bernstein(E.data(), dq, sub.w, bE.data());
-        bernstein(F.data(), dq, sub.w, bF.data());
-        for (int i = 0; i <= dq; ++i) worst = std::max(worst, m0 * bE[static_cast<size_t>(i)] + m1 * bF[static_cast<size_t>(i)]);
-      }
+      for (const Sub& sub : subs) worst = std::max(worst, line_product_bound(sub.P.data(), 2 * dd, sub.s0, sub.w, h, m0, m1));
       if (worst > v2) {
         m0 *= v2 / worst;
         m1 *= v2 / worst;
@@ -309,21 +314,9 @@ Eigen::VectorXd hermite_speed_bounds(const Eigen::VectorXd& grid, const Eigen::M
     const double flat = v2 / (max_all + pad);
     if (!std::isfinite(m0) || !std::isfinite(m1)) m0 = m1 = flat;
     // max over the interval of P ((1 - σ/h) m0 + (σ/h) m1), σ = a + τ, by Bernstein per piece.
-    double worst = 0.0, E[8], F[8], bE[8], bF[8];
-    for (int p = 0; p < 4; ++p) {
-      const double a = cuts[p] * h, w = (cuts[p + 1] - cuts[p]) * h;
-      std::fill(E, E + 8, 0.0);
-      std::fill(F, F + 8, 0.0);
-      for (int x = 0; x < 7; ++x) {
-        F[x] += P[p][x] * a / h;
-        F[x + 1] += P[p][x] / h;
-        E[x] += P[p][x] * (1.0 - a / h);
-        E[x + 1] -= P[p][x] / h;
-      }
-      bernstein(E, 7, w, bE);
-      bernstein(F, 7, w, bF);
-      for (int i = 0; i < 8; ++i) worst = std::max(worst, m0 * bE[i] + m1 * bF[i]);
-    }
+    double worst = 0.0;
+    for (int p = 0; p < 4; ++p)
+      worst = std::max(worst, line_product_bound(P[p], 6, cuts[p] * h, (cuts[p + 1] - cuts[p]) * h, h, m0, m1));
     worst += pad * std::max(m0, m1);
     if (worst > v2) {
       m0 *= v2 / worst;

@@ -1,43 +1,35 @@
 #include "pathpace/function_path.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
-#include "pathpace/errors.hpp"
+#include "base/validate.hpp"
 
 namespace pathpace {
 
 namespace {
 
-std::string number(double v) {
-  std::ostringstream o;
-  o.precision(17);
-  o << v;
-  return o.str();
-}
-
 // One of q, dq, ddq as the function left it: (m, n), every entry finite.
 void check(const Eigen::MatrixXd& v, const char* what, const Eigen::VectorXd& s, int n) {
   if (v.rows() != s.size() || v.cols() != n)
-    throw InvalidInput(std::string("FunctionPath: the function's ") + what + " has shape (" + std::to_string(v.rows()) +
+    detail::fail(std::string("FunctionPath: the function's ") + what + " has shape (" + std::to_string(v.rows()) +
                        ", " + std::to_string(v.cols()) + ") for " + std::to_string(s.size()) + " values of s, expected (" +
                        std::to_string(s.size()) + ", " + std::to_string(n) + ")");
   for (Eigen::Index i = 0; i < v.rows(); ++i)
     for (Eigen::Index j = 0; j < n; ++j)
       if (!std::isfinite(v(i, j)))
-        throw InvalidInput(std::string("FunctionPath: the function's ") + what + "(" + std::to_string(i) + ", " +
-                           std::to_string(j) + ") = " + number(v(i, j)) + " at s = " + number(s[i]) + " must be finite");
+        detail::fail(std::string("FunctionPath: the function's ") + what + "(" + std::to_string(i) + ", " +
+                           std::to_string(j) + ") = " + detail::fmt(v(i, j)) + " at s = " + detail::fmt(s[i]) + " must be finite");
 }
 
 }  // namespace
 
 FunctionPath::FunctionPath(Function function, int dof, double s_begin, double s_end)
     : function_(std::move(function)), dof_(dof), s_begin_(s_begin), s_end_(s_end) {
-  if (!function_) throw InvalidInput("FunctionPath: function is empty, expected p, p', p'' on a vector of s");
-  if (dof < 1) throw InvalidInput("FunctionPath: dof = " + std::to_string(dof) + " must be >= 1");
+  if (!function_) detail::fail("FunctionPath: function is empty, expected p, p', p'' on a vector of s");
+  if (dof < 1) detail::fail("FunctionPath: dof = " + std::to_string(dof) + " must be >= 1");
   if (!(std::isfinite(s_begin) && std::isfinite(s_end) && s_begin < s_end))
-    throw InvalidInput("FunctionPath: (s_begin, s_end) = (" + number(s_begin) + ", " + number(s_end) +
+    detail::fail("FunctionPath: (s_begin, s_end) = (" + detail::fmt(s_begin) + ", " + detail::fmt(s_end) +
                        ") must be finite with s_begin < s_end");
 }
 

@@ -11,6 +11,9 @@ namespace pathpace {
 
 TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const {
   const Use use(*this, Use::Read, "restarted");
+  if (jerk_)
+    detail::fail("restarted: not implemented with jerk limits yet (the running trajectory's s̈ at s0 would have to "
+                 "be a boundary state)");
   const Eigen::Index n = intervals();
   const double a = samples_.s[0], b = samples_.s[n];
   if (!std::isfinite(s0) || s0 < a || s0 >= b)
@@ -45,9 +48,6 @@ TimeScalingProblem TimeScalingProblem::restarted(double s0, double sdot0) const 
     }
     p.add_constraint(c->at_grid_points(kept));
   }
-  if (jerk_)
-    detail::fail("restarted: not implemented with jerk limits yet (the running trajectory's s̈ at s0 would have to "
-                 "be a boundary state)");
   ProblemSettings s = settings();
   s.sdot_begin = sdot0;
   if (s0 != a) s.zero_sddot_begin = false;  // a running trajectory's s̈ at s0 is free

@@ -102,20 +102,8 @@ void Trajectory::jerk_motion(Eigen::Index k, double t, double& s, double& sd, do
 }
 
 Eigen::MatrixXd Trajectory::qddd(const Eigen::Ref<const Eigen::VectorXd>& t) const {
-  const double T = duration();
-  Eigen::VectorXd s(t.size()), sd(t.size()), sdd(t.size()), sddd(t.size());
-  for (Eigen::Index i = 0; i < t.size(); ++i) {
-    if (std::isnan(t[i])) detail::fail(detail::at("t", i) + " = nan must be a number");
-    const double ti = std::clamp(t[i], 0.0, T);
-    const Eigen::Index k = interval(ti);
-    if (sddot_points_.size()) {
-      jerk_motion(k, ti, s[i], sd[i], sdd[i], sddd[i]);
-    } else {
-      const double tau = ti - times_[k];
-      s[i] = std::min(s_[k] + sdot_[k] * tau + 0.5 * sddot_[k] * tau * tau, s_[k + 1]);
-      sd[i] = std::max(sdot_[k] + sddot_[k] * tau, 0.0), sdd[i] = sddot_[k], sddd[i] = 0;
-    }
-  }
+  Eigen::VectorXd s, sd, sdd, sddd;
+  evaluate_s(t, s, sd, sdd, &sddd);
   Eigen::MatrixXd q, dq, ddq, l, r;
   path_->evaluate(s, q, dq, ddq);
   JerkLimits::third_derivatives(*path_, s, l, r);
@@ -132,17 +120,24 @@ Eigen::Index Trajectory::interval(double t) const {
 
 void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::VectorXd& sd,
                             Eigen::VectorXd& sdd) const {
+  evaluate_s(t, s, sd, sdd, nullptr);
+}
+
+void Trajectory::evaluate_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::VectorXd& sd,
+                            Eigen::VectorXd& sdd, Eigen::VectorXd* sddd) const {
   s.resize(t.size());
   sd.resize(t.size());
   sdd.resize(t.size());
+  if (sddd) sddd->setZero(t.size());  // s̈ constant on each interval unless jerk-limited
   const double T = duration();
   for (Eigen::Index i = 0; i < t.size(); ++i) {
     if (std::isnan(t[i])) detail::fail(detail::at("t", i) + " = nan must be a number");
     const double ti = std::clamp(t[i], 0.0, T);
     const Eigen::Index k = interval(ti);
     if (sddot_points_.size()) {
-      double sddd;
-      jerk_motion(k, ti, s[i], sd[i], sdd[i], sddd);
+      double j;
+      jerk_motion(k, ti, s[i], sd[i], sdd[i], j);
+      if (sddd) (*sddd)[i] = j;
       continue;
     }
     const double tau = ti - times_[k];

@@ -31,15 +31,17 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   extra.rows.resize(static_cast<size_t>(N));
   // A constraint's own speed bounds for between grid points (Constraint::speed_bounds_between_grid_points):
   // rows x <= bound, named after its first row.
+  const size_t own_rows = rows.size();  // rows[ci] are constraints[ci]'s (the loop appends after them)
   for (size_t ci = 0; ci < constraints.size(); ++ci) {
-    const Eigen::VectorXd bound = constraints[ci]->speed_bounds_between_grid_points(samples);
+    const Eigen::VectorXd bound =
+        constraints[ci]->speed_bounds_between_grid_points(samples, ci < own_rows ? rows[ci] : ConstraintRows{});
     if (bound.size() == 0) continue;
     if (bound.size() != N + 1)
       fail(constraints[ci]->name() + ": speed_bounds_between_grid_points gave " + std::to_string(bound.size()) +
            " bounds for " + std::to_string(N + 1) + " grid points");
     ConstraintRows cr;
     cr.resize(samples.size(), 1);
-    const std::string own = ci < rows.size() && rows[ci].rows() > 0 ? rows[ci].labels[0] : constraints[ci]->name();
+    const std::string own = ci < own_rows && rows[ci].rows() > 0 ? rows[ci].labels[0] : constraints[ci]->name();
     cr.labels[0] = own + " (between grid points)";
     for (Eigen::Index k = 0; k <= N; ++k) {
       if (!(bound[k] >= 0.0))

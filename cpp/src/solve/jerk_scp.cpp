@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "base/jerk_interval.hpp"
+#include "base/validate.hpp"
 #include "lp/glpk_lp.hpp"
 
 namespace pathpace::detail {
@@ -419,7 +420,7 @@ JerkOutput solve_jerk(const JerkInput& in) {
       out.status = Status::Optimal;
       out.message.clear();
     } else if (out.status == Status::IterationLimit && out.message.empty()) {
-      out.message = "jerk limits: the rounds stopped with a gap of " + std::to_string(out.gap) +
+      out.message = "jerk limits: the rounds stopped with a gap of " + fmt(out.gap) +
                     " to the linearised problem (above tolerance)";
     }
   }

@@ -192,11 +192,15 @@ class Constraint {
   virtual JointRateLimits joint_rate_limits() const { return {}; }
 
   /// For guarantee = continuous: upper bounds on x = ṡ² at the grid points of `samples` (N+1 entries, +inf
-  /// where none) under which this constraint's rows also hold between grid points, up to a model error of
+  /// where none; `rows` are this constraint's rows there, as evaluate() gave them, empty if the problem has
+  /// none) under which this constraint's rows also hold between grid points, up to a model error of
   /// the constraint's choosing; empty (the default) for none. The problem adds them as rows x <= bound, and
   /// still audits the constraint (joint_rate_limits order 0), so the bounds need not be rigorous: they spare
   /// the audit its rounds of cuts where the rows bind along a stretch (FrameLimits' speed rows).
-  virtual Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& /*samples*/) const { return {}; }
+  virtual Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& /*samples*/,
+                                                           const ConstraintRows& /*rows*/) const {
+    return {};
+  }
 
   /// True if the rows are a projection of a polytope in more variables (contact forces, sec. IV.C). Its
   /// evaluation time counts as projection time, an infeasibility at a point is re-checked on the full

@@ -64,7 +64,7 @@ class FrameLimits : public Constraint {
   std::shared_ptr<const RobotModel> robot() const override { return robot_; }
   /// Speed and velocity limits: the bounds of detail::hermite_speed_bounds, from the frame velocity and its
   /// s-derivative (the path acceleration of path_frame_motion) at the grid points; accelerations: none.
-  Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& samples) const override;
+  Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& samples, const ConstraintRows& rows) const override;
 
   const std::string& link() const { return link_; }
   FrameQuantity quantity() const { return quantity_; }
