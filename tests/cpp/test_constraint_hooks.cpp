@@ -380,7 +380,9 @@ class CappedProfile : public SpeedProfile {
  public:
   CappedProfile(Eigen::VectorXd v, std::function<Eigen::VectorXd(const PathSamples&)> bounds)
       : SpeedProfile(std::move(v), [](double) { return 1.0; }), bounds_(std::move(bounds)) {}
-  Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& samples) const override { return bounds_(samples); }
+  Eigen::VectorXd speed_bounds_between_grid_points(const PathSamples& samples, const ConstraintRows&) const override {
+    return bounds_(samples);
+  }
 
  private:
   std::function<Eigen::VectorXd(const PathSamples&)> bounds_;

@@ -109,13 +109,14 @@ def test_random_arm_limits_at_1khz(seed):
     res = prob.solve()
     assert res.ok, res.message
     tr = res.trajectory()
-    # At the grid points (both sides) the limits hold to the LP's tolerance.
+    # At the grid points (both sides) the limits hold to the LP's tolerance (measured on seeds 0-3: at most
+    # 9e-9 over on velocity, 3.5e-8 on acceleration, 1.1e-8 on jerk).
     tg = tr.times
     eps = 1e-9 * tr.duration
     for t in (np.maximum(tg - eps, 0), np.minimum(tg + eps, tr.duration)):
         assert np.all(np.abs(tr.qd(t)) <= vmax * (1 + 1e-6))
         assert np.all(np.abs(tr.qdd(t)) <= amax * (1 + 1e-6))
-        assert np.all(np.abs(tr.qddd(t)) <= jmax * (1 + 1e-4))
+        assert np.all(np.abs(tr.qddd(t)) <= jmax * (1 + 1e-6))
     # q̈ is continuous: the same on both sides of every grid time (to the equality's repair, 1e-9 relative).
     assert np.abs(tr.qdd(tg[1:-1] - eps) - tr.qdd(tg[1:-1] + eps)).max() <= 1e-5 * amax.max()
     # Between grid points (1 kHz): only the grid is guaranteed; measured at N = 200 on seeds 0-3 the worst
@@ -284,8 +285,10 @@ def test_trajectory_validation():
 
 
 def test_torque_limits_compose():
-    # UR10 at 0.6 x effort with jerk 10 x the acceleration limit per second: the torque rows hold at the grid
-    # points with the s̈ there (measured: OPTIMAL, T 17.117 against 16.997 without jerk limits, N = 100).
+    # UR10 at 0.45 x effort (where a torque limit binds: at 0.6 x the largest torque was 0.79 of its limit, so
+    # the test could not fail) with jerk 10 x the acceleration limit per second: the torque rows hold at the grid
+    # points with the s̈ there (measured: OPTIMAL, T 17.117 against 16.982 without jerk limits, N = 100; the
+    # largest torque / limit is 1 to the bit, the largest jerk / limit 1 + 2.4e-13).
     from pathpace.robots import example_robot_urdf
 
     robot = pp.RobotModel.from_urdf(example_robot_urdf("ur_description/urdf/ur10_joint_limited_robot.urdf"))
@@ -297,12 +300,13 @@ def test_torque_limits_compose():
     prob = pp.TimeScalingProblem(path, 100)
     prob.add_velocity_limits(-v, v)
     prob.add_acceleration_limits(-a, a)
-    prob.add_torque_limits(robot, scale=0.6)
+    prob.add_torque_limits(robot, scale=0.45)
     prob.add_jerk_limits(-10 * a, 10 * a)
     res = prob.solve()
     assert res.status == pp.Status.OPTIMAL, res.message
     assert res.duration > res.stats["second_order_duration"]
     tr = res.trajectory()
     tg = tr.times
-    assert np.all(np.abs(tr.torques(tg, robot)) <= res.tau_max * (1 + 1e-6))
-    assert np.all(np.abs(tr.qddd(np.minimum(tg + 1e-12, tr.duration))) <= 10 * a * (1 + 1e-4))
+    ratio = np.abs(tr.torques(tg, robot)) / res.tau_max
+    assert ratio.max() <= 1 + 1e-6 and ratio.max() >= 0.999  # held, and binding
+    assert np.all(np.abs(tr.qddd(np.minimum(tg + 1e-12, tr.duration))) <= 10 * a * (1 + 1e-6))

@@ -95,4 +95,7 @@ def test_mujoco_execution_verdicts_with_room(ladder):
     res = ns["timing"](robot, path, ns["SIM_GRID"], **options)[1]
     out = sim.run(res.trajectory(), phases=phases)
     ratios = out.criterion_ratios
-    assert not out.fell and ratios["tilt"] <= 0.2 and ratios["tracking"] <= 0.2
+    # Room as the project defines it (at most half the threshold). Measured with the centred feed-forward
+    # (the simulator's default): tilt 0.13, tracking 0.19 (0.10 and 0.05 with the LP's vertex), slip 1.73:
+    # the slip is the open failure (bench/README.md), not asserted.
+    assert not out.fell and ratios["tilt"] <= 0.5 and ratios["tracking"] <= 0.5
