@@ -205,6 +205,9 @@ std::vector<ContactForces> ContactConstraint::force_distribution(const Eigen::Ma
     const double scale = std::max(1.0, beq.size() ? beq.cwiseAbs().maxCoeff() : 0.0);
     if (centre.size() != 3 * m) centre = vertex;
     const detail::CentreResult r = detail::analytic_centre(Aeq, beq, G, h, 1e-7 * scale, phase_one, centre);
+    if (r.status == detail::CentreResult::Status::SolverError)
+      throw Error("force distribution: the centre's phase-I LP failed (GLPK error or no finish) at sample " +
+                  std::to_string(s));
     if (r.status != detail::CentreResult::Status::Centre) {
       centre.resize(0);  // the next sample starts afresh
       continue;

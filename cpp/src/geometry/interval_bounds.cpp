@@ -156,6 +156,19 @@ double line_product_bound(const double* P, int d, double s0, double w, double h,
   return worst;
 }
 
+// The bound x <= (1 - λ) m0 + λ m1 over an interval whose largest product with the rate's square is
+// `worst`: scaled down until that product is v2, replaced by the flat bound if that allows more at both
+// ends, and written into the ends' bounds.
+void settle_line(double worst, double v2, double flat, double m0, double m1, double& out0, double& out1) {
+  if (worst > v2) {
+    m0 *= v2 / worst;
+    m1 *= v2 / worst;
+  }
+  if (m0 < flat && m1 < flat) m0 = m1 = flat;
+  out0 = std::min(out0, m0);
+  out1 = std::min(out1, m1);
+}
+
 }  // namespace
 
 Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, const Eigen::VectorXd& grid,
@@ -216,15 +229,8 @@ Eigen::VectorXd continuous_speed_bounds(const PiecewisePolynomialPath& path, con
       if (!std::isfinite(m0) || !std::isfinite(m1)) m0 = m1 = flat;
       double worst = 0.0;  // max over the interval of p'² ((1 - λ) m0 + λ m1), by Bernstein per piece
       for (const Sub& sub : subs) worst = std::max(worst, line_product_bound(sub.P.data(), 2 * dd, sub.s0, sub.w, h, m0, m1));
-      if (worst > v2) {
-        m0 *= v2 / worst;
-        m1 *= v2 / worst;
-      }
-      // The flat bound (max p'² over the whole interval at both ends) is valid too: keep it if it allows
-      // more speed at both ends.
-      if (m0 < flat && m1 < flat) m0 = m1 = flat;
-      out[k] = std::min(out[k], m0);
-      out[k + 1] = std::min(out[k + 1], m1);
+      // The flat bound (max p'² over the whole interval at both ends) is valid too.
+      settle_line(worst, v2, flat, m0, m1, out[k], out[k + 1]);
     }
   }
   return out;
@@ -318,13 +324,7 @@ Eigen::VectorXd hermite_speed_bounds(const Eigen::VectorXd& grid, const Eigen::M
     for (int p = 0; p < 4; ++p)
       worst = std::max(worst, line_product_bound(P[p], 6, cuts[p] * h, (cuts[p + 1] - cuts[p]) * h, h, m0, m1));
     worst += pad * std::max(m0, m1);
-    if (worst > v2) {
-      m0 *= v2 / worst;
-      m1 *= v2 / worst;
-    }
-    if (m0 < flat && m1 < flat) m0 = m1 = flat;
-    out[k] = std::min(out[k], m0);
-    out[k + 1] = std::min(out[k + 1], m1);
+    settle_line(worst, v2, flat, m0, m1, out[k], out[k + 1]);
   }
   return out;
 }

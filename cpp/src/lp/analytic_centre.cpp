@@ -73,6 +73,10 @@ CentreResult analytic_centre(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
       out.status = CentreResult::Status::Infeasible;
       return out;
     }
+    if (st < 0) {
+      out.status = CentreResult::Status::SolverError;
+      return out;
+    }
     if (st != 1) return out;  // Failed
     out.depth = depth;
     if (!(depth > empty_tol)) {

@@ -16,7 +16,9 @@ namespace pathpace::detail {
 class PolytopeProjector;
 
 struct CentreResult {
-  enum class Status { Centre, EmptyInterior, Infeasible, Failed };
+  // Failed: Newton did not converge (the caller keeps its vertex); SolverError: the phase-I LP's solver
+  // failed or did not finish (the caller reports it, as for its own LP).
+  enum class Status { Centre, EmptyInterior, Infeasible, Failed, SolverError };
   Status status = Status::Failed;
   double depth = 0.0;   // the phase-I LP's max-min slack when it ran (rows of unit norm), else -1
   int newton_steps = 0;
