@@ -112,6 +112,29 @@ def test_torque_relaxation_is_the_smallest_feasible_scale():
     assert problem(1.0).solve(explain=False).relaxation == {}
 
 
+def test_torque_relaxation_beyond_the_empty_points_is_still_the_smallest():
+    """Gravity empties the points near 1.3 rad below x 1.69, but braking the start speed to rest needs more:
+    the scale bracketed on the empty points alone is too small, and the search must go on from it."""
+    robot = pp.RobotModel.from_urdf(str(DATA / "pendulum.urdf"))
+    path = pp.CubicSplinePath(np.array([[1.2], [1.25], [1.3]]))
+
+    def problem(scale):
+        p = pp.TimeScalingProblem(path, grid=100)
+        p.add_velocity_limits([-50.0], [50.0])
+        p.add_torque_limits(robot, scale=scale)
+        p.set_boundary_speeds(25.0, 0.0)  # q̇ = 2.5 rad/s up at 1.2 rad, at rest at 1.3
+        return p
+
+    statics = 9.81 * math.sin(1.3) / 5.6
+    assert not problem(statics * 1.01).solve(explain=False).ok  # the points alone would say feasible here
+    res = problem(1.0).solve()
+    assert res.status == pp.Status.INFEASIBLE
+    r = res.relaxation["torque"]
+    assert r > 1.5 * statics
+    assert problem(r).solve(explain=False).ok
+    assert not problem(r / (1 + 2e-3)).solve(explain=False).ok
+
+
 def test_relaxation_of_a_feasible_problem_is_one_and_validates_its_arguments():
     prob = line_problem(10)
     assert prob.relaxation() == {"velocity": 1.0, "acceleration": 1.0, "all": 1.0}

@@ -13,6 +13,38 @@
 #include "base/validate.hpp"
 
 namespace pathpace {
+namespace {
+
+// The constraints' own rows at the grid points `kept` alone (no boundary or interval rows): a subset of the
+// problem's rows there, so an empty set at one of them means the whole problem is infeasible. It costs
+// |kept| / (N + 1) of a full evaluation: where a grid point's own set is empty, the relaxation brackets its
+// scale on those points first and evaluates the whole problem once or twice, not at every bisection step.
+bool points_nonempty(const std::vector<std::shared_ptr<const Constraint>>& constraints, const PathSamples& all,
+                     const std::vector<Eigen::Index>& kept) {
+  PathSamples sub;
+  const Eigen::Index m = static_cast<Eigen::Index>(kept.size());
+  sub.s.resize(m);
+  sub.q.resize(m, all.dof());
+  sub.dq.resize(m, all.dof());
+  sub.ddq.resize(m, all.dof());
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const Eigen::Index k = kept[static_cast<size_t>(i)];
+    sub.s[i] = all.s[k];
+    sub.q.row(i) = all.q.row(k);
+    sub.dq.row(i) = all.dq.row(k);
+    sub.ddq.row(i) = all.ddq.row(k);
+  }
+  std::vector<ConstraintRows> rows;
+  rows.reserve(constraints.size());
+  for (const auto& c : constraints)
+    rows.push_back(c->per_grid_point() ? c->at_grid_points(kept)->evaluate(sub) : c->evaluate(sub));
+  const detail::GridSets sets = detail::build_grid_sets(sub, rows, detail::problem_scale(sub.s, rows));
+  for (const detail::PointSet& p : sets.points)
+    if (p.empty) return false;
+  return true;
+}
+
+}  // namespace
 
 bool TimeScalingProblem::feasible_with(const std::vector<std::shared_ptr<const Constraint>>& constraints,
                                        std::vector<ConstraintRows> rows, Guarantee guarantee) const {
@@ -51,9 +83,15 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
     for (const std::string& f : families) out[f] = 1.0;
     return out;
   }
+  // The grid points whose own set is empty as posed (see points_nonempty).
+  std::vector<Eigen::Index> empty;
+  {
+    const detail::GridSets sets = detail::build_grid_sets(samples_, rows_, detail::problem_scale(samples_.s, rows_));
+    for (size_t k = 0; k < sets.points.size(); ++k)
+      if (sets.points[k].empty) empty.push_back(static_cast<Eigen::Index>(k));
+  }
   for (const std::string& f : families) {
-    auto feasible = [&](double scale) {
-      std::vector<ConstraintRows> rows = rows_;
+    auto relaxed = [&](double scale, std::vector<ConstraintRows>* rows) {
       std::vector<std::shared_ptr<const Constraint>> cons = constraints_;
       for (size_t i = 0; i < constraints_.size(); ++i) {
         // "all": every family of the constraint at once (relaxed one after the other).
@@ -63,28 +101,59 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
           if (auto next = (r ? r : constraints_[i])->relaxed(fi, scale)) r = std::move(next);
         }
         if (r) {
-          rows[i] = r->evaluate(samples_);
+          if (rows) (*rows)[i] = r->evaluate(samples_);
           cons[i] = std::move(r);
         }
       }
+      return cons;
+    };
+    auto feasible = [&](double scale) {
+      std::vector<ConstraintRows> rows = rows_;
+      std::vector<std::shared_ptr<const Constraint>> cons = relaxed(scale, &rows);
       return feasible_with(cons, std::move(rows), guarantee);
     };
-    // Feasibility grows with the scale (each relaxed set contains the last): double until feasible,
-    // then bisect on log(scale).
-    double lo = 1.0, hi = 2.0;
-    while (hi < max_scale && !feasible(hi)) {
-      lo = hi;
-      hi = std::min(4.0 * hi, max_scale);
-    }
-    if (hi >= max_scale && !feasible(max_scale)) {
-      out[f] = std::numeric_limits<double>::infinity();
+    auto points_feasible = [&](double scale) { return points_nonempty(relaxed(scale, nullptr), samples_, empty); };
+    // Feasibility grows with the scale (each relaxed set contains the last): from an infeasible lo, grow
+    // hi (x 4) until feasible, then bisect on log(scale). Returns hi, or inf if max_scale is infeasible.
+    auto bisect = [&](const auto& ok, double lo, double hi) {  // lo infeasible, hi feasible
+      while (hi > lo * (1.0 + rel_tolerance)) {
+        const double mid = std::sqrt(lo * hi);
+        (ok(mid) ? hi : lo) = mid;
+      }
+      return hi;
+    };
+    auto search = [&](const auto& ok, double lo, double hi) {
+      while (hi < max_scale && !ok(hi)) {
+        lo = hi;
+        hi = std::min(4.0 * hi, max_scale);
+      }
+      if (hi >= max_scale && !ok(max_scale)) return std::numeric_limits<double>::infinity();
+      return bisect(ok, lo, hi);
+    };
+    if (empty.empty()) {
+      out[f] = search(feasible, 1.0, 2.0);
       continue;
     }
-    while (hi > lo * (1.0 + rel_tolerance)) {
-      const double mid = std::sqrt(lo * hi);
-      (feasible(mid) ? hi : lo) = mid;
+    // Infeasible on the empty points at a scale => infeasible there; their bracket's upper end is the
+    // answer when the whole problem is feasible at it (then its lower end, infeasible, is within tolerance).
+    double lo = search(points_feasible, 1.0, 2.0);
+    if (!std::isfinite(lo) || feasible(lo)) {
+      out[f] = lo;
+      continue;
     }
-    out[f] = hi;
+    // Otherwise the answer is usually just above: grow by (1 + tol), (1 + 4 tol), ... before bisecting.
+    double step = rel_tolerance, hi = lo;
+    while (true) {
+      hi = std::min(lo * (1.0 + step), max_scale);
+      if (feasible(hi)) break;
+      if (hi >= max_scale) {
+        hi = std::numeric_limits<double>::infinity();
+        break;
+      }
+      lo = hi;
+      step *= 4.0;
+    }
+    out[f] = std::isfinite(hi) ? bisect(feasible, lo, hi) : hi;
   }
   return out;
 }
