@@ -310,3 +310,129 @@ def test_torque_limits_compose():
     ratio = np.abs(tr.torques(tg, robot)) / res.tau_max
     assert ratio.max() <= 1 + 1e-6 and ratio.max() >= 0.999  # held, and binding
     assert np.all(np.abs(tr.qddd(np.minimum(tg + 1e-12, tr.duration))) <= 10 * a * (1 + 1e-6))
+
+
+# The structured solve (banded barrier Newton, docs/method.md "Jerk limits") against an independent convex
+# solver: the convex problem linearised at pathpace's answer, written out here from the paths' derivatives and
+# solved by cvxpy + Clarabel. pathpace's answer is the optimum of the problem linearised at itself (a KKT point),
+# so its T (by the same graded 8-point Gauss-Legendre quadrature, which the certificate also uses) must match.
+GL8_X = np.array([0.019855071751231856, 0.10166676129318664, 0.2372337950418355, 0.4082826787521751,
+                  0.5917173212478249, 0.7627662049581645, 0.8983332387068134, 0.9801449282487681])
+GL8_W = np.array([0.05061426814518813, 0.11119051722668724, 0.15685332293894364, 0.18134189168918100,
+                  0.18134189168918100, 0.15685332293894364, 0.11119051722668724, 0.05061426814518813])
+
+
+def quartic_problem(seed, N):
+    """One polynomial piece of degree 4 per joint (3 joints), rest to rest, binding velocity, acceleration and
+    jerk limits; p''' is then the polynomial's own, continuous."""
+    rng = np.random.default_rng(seed)
+    coef = np.vstack([np.zeros(3), rng.uniform(0.5, 1.5, 3) * rng.choice([-1, 1], 3), rng.normal(0, 0.6, (3, 3))])
+    path = pp.PiecewisePolynomialPath([0.0, 1.0], [coef])
+    v, a, j = np.full(3, 1.0), np.full(3, 2.0), np.full(3, 12.0)
+    prob = pp.TimeScalingProblem(path, N)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-a, a)
+    prob.add_jerk_limits(-j, j)
+    d3 = lambda s: np.outer(np.ones_like(s), 6 * coef[3]) + np.outer(s, 24 * coef[4])  # noqa: E731
+    return prob, path, d3, v, a, j
+
+
+def quadrature_nodes(theta0, theta1, theta_min, ds):
+    """Nodes σ and weights of the graded 8-point Gauss-Legendre rule on one interval: 1 piece if θ varies by at
+    most 2 on it, else 1 + ceil(log2(max θ / min θ)) pieces halving towards the end of smaller θ."""
+    ratio = max(theta0, theta1) / theta_min
+    pieces = 1 if ratio <= 2 else min(40, 1 + int(np.ceil(np.log2(ratio))))
+    u1 = np.array([1.0] + [2.0**-p for p in range(1, pieces)])
+    u0 = np.append(0.5 * u1[:-1], 0.0)
+    u = (u0[:, None] + (u1 - u0)[:, None] * GL8_X).ravel()
+    w = ((u1 - u0)[:, None] * GL8_W).ravel() * ds
+    return ((1 - u) if theta1 < theta0 else u) * ds, w
+
+
+def interval_rules(s, theta, b):
+    ds = np.diff(s)
+    rules = []
+    for k in range(1, len(ds) - 1):
+        c = (b[k + 1] - b[k]) / ds[k]
+        th_min = min(theta[k], theta[k + 1])
+        if c > 0 and b[k] < 0 and -b[k] < c * ds[k]:
+            th_min = min(th_min, theta[k] - b[k] ** 2 / c)
+        rules.append(quadrature_nodes(theta[k], theta[k + 1], th_min, ds[k]))
+    return rules
+
+
+def quadrature_time(s, theta, b):
+    ds = np.diff(s)
+    T = 3 * ds[0] / np.sqrt(theta[1]) + 3 * ds[-1] / np.sqrt(theta[-2])
+    for k, (sg, w) in enumerate(interval_rules(s, theta, b), start=1):
+        T += np.sum(w / np.sqrt(theta[k] + b[k] * (2 * sg - sg**2 / ds[k]) + b[k + 1] * sg**2 / ds[k]))
+    return T
+
+
+def grid_jerk_rows(s, b, dq, ddq, dddq, k, side):
+    """(coefficient of the θ_k term, and the expression's b part) on one side: p' b' + 3 p'' b + p''' θ."""
+    N = len(s) - 1
+    iv = k - 1 if side == 0 else k
+    ds = s[iv + 1] - s[iv]
+    if iv == 0:
+        slope = b[1] / (3 * ds)
+    elif iv == N - 1:
+        slope = -b[N - 1] / (3 * ds)
+    else:
+        slope = (b[iv + 1] - b[iv]) / ds
+    return dq[k] * slope + 3 * ddq[k] * b[k], dddq[k]
+
+
+def linearised_optimum(s, theta_bar, b_bar, path, d3, v, a, j):
+    import cvxpy as cp
+
+    N = len(s) - 1
+    ds = np.diff(s)
+    dq, ddq, dddq = path.dq(s), path.ddq(s), d3(s)
+    th, b = cp.Variable(N + 1), cp.Variable(N + 1)
+    cons = [th[0] == 0, th[N] == 0, b[0] == 0, b[N] == 0, th[1] == 1.5 * ds[0] * b[1],
+            th[N - 1] == -1.5 * ds[-1] * b[N - 1]]
+    cons += [th[k + 1] == th[k] + ds[k] * (b[k] + b[k + 1]) for k in range(1, N - 1)]
+    for k in range(N + 1):
+        cons += [cp.multiply(dq[k] ** 2, th[k]) <= v**2, cp.abs(ddq[k] * th[k] + dq[k] * b[k]) <= a]
+    cons += [th[1] <= np.min((4.5 * ds[0] ** 2 * j / np.abs(dq[0])) ** (2 / 3)),
+             th[N - 1] <= np.min((4.5 * ds[-1] ** 2 * j / np.abs(dq[N])) ** (2 / 3))]
+    for k in range(1, N):
+        cap = j * (3 * theta_bar[k] - th[k]) / (2 * theta_bar[k] ** 1.5)
+        for side in (0, 1):
+            g, p3 = grid_jerk_rows(s, b, dq, ddq, dddq, k, side)
+            cons += [cp.abs(g + p3 * th[k]) <= cap]
+    T = 3 * ds[0] * cp.power(th[1], -0.5) + 3 * ds[-1] * cp.power(th[N - 1], -0.5)
+    for k, (sg, w) in enumerate(interval_rules(s, theta_bar, b_bar), start=1):  # pathpace's rule at its answer
+        arg = th[k] + b[k] * (2 * sg - sg**2 / ds[k]) + b[k + 1] * (sg**2 / ds[k])
+        T += cp.sum(cp.multiply(w, cp.power(arg, -0.5)))
+    pr = cp.Problem(cp.Minimize(T), cons)
+    pr.solve(solver="CLARABEL", tol_gap_abs=1e-9, tol_gap_rel=1e-9, tol_feas=1e-9, max_iter=500)
+    assert pr.status == "optimal"
+    return pr.value
+
+
+def grid_violation(s, theta, b, dq, ddq, dddq, v, a, j):
+    """Worst relative excess of velocity, acceleration and the exact jerk at the grid points (0 if within)."""
+    N = len(s) - 1
+    worst = max(np.max(np.abs(dq * np.sqrt(theta)[:, None]) / v) - 1,
+                np.max(np.abs(ddq * theta[:, None] + dq * b[:, None]) / a) - 1)
+    for k in range(1, N):
+        for side in (0, 1):
+            g, p3 = grid_jerk_rows(s, b, dq, ddq, dddq, k, side)
+            worst = max(worst, np.max(np.abs(np.sqrt(theta[k]) * (g + p3 * theta[k])) / j) - 1)
+    return max(worst, 0.0)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_structured_solve_matches_clarabel(seed):
+    prob, path, d3, v, a, j = quartic_problem(seed, 40)
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    s, theta, b = np.asarray(res.s), np.asarray(res.sdot) ** 2, np.asarray(res.sddot_points)
+    assert res.duration > res.stats["second_order_duration"]  # the jerk limits bind
+    Tq = quadrature_time(s, theta, b)
+    assert Tq == pytest.approx(res.duration, rel=1e-9)  # the quadrature is the exact time to ~1e-9 here
+    T_cvx = linearised_optimum(s, theta, b, path, d3, v, a, j)
+    assert abs(Tq / T_cvx - 1) <= 1e-7
+    assert grid_violation(s, theta, b, path.dq(s), path.ddq(s), d3(s), v, a, j) <= 1e-9

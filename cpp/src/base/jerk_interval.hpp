@@ -76,8 +76,8 @@ inline double linear_b_time(double theta0, double b0, double b1, double ds) {
   return tau;
 }
 
-// Gauss-Legendre nodes and weights on [0, 1] (8 points): for the gradient of the time, whose integrand
-// θ^{-3/2} is smooth where θ > 0.
+// Gauss-Legendre nodes and weights on [0, 1] (8 points): for the time ∫ dσ/√θ and its derivatives, smooth
+// where θ > 0 (solve/jerk_rows.hpp).
 inline const double* gl8_nodes() {
   static const double x[8] = {0.019855071751231856, 0.10166676129318664, 0.2372337950418355, 0.4082826787521751,
                               0.5917173212478249,   0.7627662049581645,  0.8983332387068134, 0.9801449282487681};
@@ -87,19 +87,6 @@ inline const double* gl8_weights() {
   static const double w[8] = {0.05061426814518813, 0.11119051722668724, 0.15685332293894364, 0.18134189168918100,
                               0.18134189168918100, 0.15685332293894364, 0.11119051722668724, 0.05061426814518813};
   return w;
-}
-
-// ∂T/∂(θ_k, b_k, b_{k+1}) of a linear-b interval: -½ ∫ θ^{-3/2} ∂θ/∂v dσ.
-inline void linear_b_time_gradient(double theta0, double b0, double b1, double ds, double g[3]) {
-  const double c = (b1 - b0) / ds;
-  g[0] = g[1] = g[2] = 0;
-  for (int i = 0; i < 8; ++i) {
-    const double sg = gl8_nodes()[i] * ds, th = theta0 + 2 * b0 * sg + c * sg * sg;
-    const double f = -0.5 * gl8_weights()[i] * ds / (th * std::sqrt(th));
-    g[0] += f;
-    g[1] += f * (2 * sg - sg * sg / ds);
-    g[2] += f * (sg * sg / ds);
-  }
 }
 
 // Rest-end interval (see above): time, and j = s⃛ on it, from θ at its moving end.

@@ -8,6 +8,7 @@
 #include "base/validate.hpp"
 #include "pathpace/time_scaling_problem.hpp"
 #include "solve/jerk_scp.hpp"
+#include "paths/third_derivatives.hpp"
 
 namespace pathpace {
 
@@ -88,7 +89,7 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
   }
   detail::JerkInput in;
   in.samples = &samples_;
-  JerkLimits::third_derivatives(*path_, samples_.s, in.p3_left, in.p3_right);
+  detail::third_derivatives(*path_, samples_.s, in.p3_left, in.p3_right);
   in.jmin = jerk_->jmin();
   in.jmax = jerk_->jmax();
   in.rows = &rows_;
@@ -107,7 +108,7 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
   res.message = out.message;
   res.binding = BindingLabels(std::vector<std::string>(static_cast<size_t>(n)));
   res.stats.lp_solves += out.lp_solves;
-  res.stats.jerk_iterations = out.iterations;
+  res.stats.jerk_iterations = out.structured ? out.newton_steps : out.iterations;
   res.stats.jerk_linearised_gap = out.gap;
   res.stats.gap = out.gap;
   res.stats.second_order_duration = t2;

@@ -14,6 +14,7 @@
 #include "pathpace/constraints/velocity_limits.hpp"
 #include "problem/sampling.hpp"
 #include "pathpace/piecewise_polynomial_path.hpp"
+#include "paths/third_derivatives.hpp"
 
 namespace pathpace {
 
@@ -56,7 +57,7 @@ void TimeScalingProblem::add_jerk_limits(const Eigen::VectorXd& jmin, const Eige
   auto limits = std::make_shared<JerkLimits>(jmin, jmax, joint_names_);
   detail::require_size("jmax", jmax.size(), path_->dof(), "one entry per path coordinate");
   Eigen::MatrixXd l, r;
-  JerkLimits::third_derivatives(*path_, samples_.s.head(1), l, r);  // InvalidInput now for a path without pieces
+  detail::third_derivatives(*path_, samples_.s.head(1), l, r);  // InvalidInput now for a path without pieces
   jerk_ = std::move(limits);
 }
 

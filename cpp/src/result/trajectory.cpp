@@ -6,13 +6,13 @@
 
 #include "base/gather_rows.hpp"
 #include "base/jerk_interval.hpp"
-#include "pathpace/constraints/jerk_limits.hpp"
 #include "solve/jerk_scp.hpp"
 #include "base/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/robot_workspace.hpp"
+#include "paths/third_derivatives.hpp"
 
 namespace pathpace {
 
@@ -106,7 +106,7 @@ Eigen::MatrixXd Trajectory::qddd(const Eigen::Ref<const Eigen::VectorXd>& t) con
   evaluate_s(t, s, sd, sdd, &sddd);
   Eigen::MatrixXd q, dq, ddq, l, r;
   path_->evaluate(s, q, dq, ddq);
-  JerkLimits::third_derivatives(*path_, s, l, r);
+  detail::third_derivatives(*path_, s, l, r);
   const Eigen::ArrayXd sd3 = sd.array().cube(), sdsdd = sd.array() * sdd.array();
   return (dq.array().colwise() * sddd.array() + (3 * ddq.array()).colwise() * sdsdd + r.array().colwise() * sd3).matrix();
 }

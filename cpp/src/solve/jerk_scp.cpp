@@ -8,6 +8,7 @@
 #include "base/jerk_interval.hpp"
 #include "base/validate.hpp"
 #include "lp/glpk_lp.hpp"
+#include "solve/jerk_rows.hpp"
 
 namespace pathpace::detail {
 
@@ -15,130 +16,29 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The shape of the profile: which ends are rest ends (base/jerk_interval.hpp), the grid.
-struct Shape {
-  Eigen::Index n = 0;  // intervals
-  Eigen::VectorXd ds;
-  bool rest0 = false, restN = false;
-  bool rest_interval(Eigen::Index k) const { return (k == 0 && rest0) || (k == n - 1 && restN); }
-};
-
-Shape make_shape(const Eigen::VectorXd& s) {
-  Shape sh;
-  sh.n = s.size() - 1;
-  sh.ds = s.tail(sh.n) - s.head(sh.n);
-  return sh;
+// The exact T and its gradient (8-point Gauss-Legendre, base/jerk_interval.hpp) for the GLPK rounds.
+double total_time(const JerkShape& sh, const Eigen::VectorXd& x, Eigen::VectorXd* grad) {
+  if (grad) jerk_quadrature_time(sh, x, grad, nullptr);
+  return jerk_total_time(sh, x);
 }
 
-// T and, if grad, ∂T/∂θ (first n+1) and ∂T/∂b (last n+1).
-double total_time(const Shape& sh, const Eigen::VectorXd& x, Eigen::VectorXd* grad) {
-  const Eigen::Index n = sh.n, nb = n + 1;
-  if (grad) grad->setZero(2 * nb);
-  double T = 0;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double ds = sh.ds[k];
-    if (sh.rest_interval(k)) {
-      const Eigen::Index m = k == 0 && sh.rest0 ? 1 : n - 1;  // the interval's moving end
-      const double th = x[m];
-      if (!(th > 0)) return kInf;
-      T += rest_interval_time(th, ds);
-      if (grad) (*grad)[m] += -1.5 * ds / (th * std::sqrt(th));
-      continue;
-    }
-    const double t = linear_b_time(x[k], x[nb + k], x[nb + k + 1], ds);
-    if (!std::isfinite(t)) return kInf;
-    T += t;
-    if (grad) {
-      double g[3];
-      linear_b_time_gradient(x[k], x[nb + k], x[nb + k + 1], ds, g);
-      (*grad)[k] += g[0];
-      (*grad)[nb + k] += g[1];
-      (*grad)[nb + k + 1] += g[2];
-    }
-  }
-  return T;
-}
-
-// A row Σ coef·x[col] <= rhs in physical units.
-struct Row {
-  int n = 0;
-  int col[6];
-  double val[6];
-  double rhs = 0;
-  void add(int c, double v) {
-    for (int i = 0; i < n; ++i)
-      if (col[i] == c) { val[i] += v; return; }
-    col[n] = c, val[n] = v, ++n;
-  }
-};
-
+// One GLPK LP of the rows linearised at θ̄ (the start, and the fallback rounds).
 class JerkLp {
  public:
-  JerkLp(const JerkInput& in, const Shape& sh, double s_theta, double s_b) : in_(in), sh_(sh), st_(s_theta), sb_(s_b) {
-    nb_ = sh.n + 1;
-  }
+  JerkLp(const JerkInput& in, const JerkShape& sh, double s_theta, double s_b)
+      : sh_(sh), st_(s_theta), sb_(s_b), nb_(sh.n + 1), fixed_(jerk_consistency_rows(sh)),
+        point_(jerk_point_rows(in, sh)), jerk_(jerk_limit_rows(in, sh)) {}
 
   // Builds the LP linearised at theta_bar; bounds lo/hi per column (physical units).
   bool build(const Eigen::VectorXd& theta_bar, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
     lp_.reset(static_cast<int>(2 * nb_));
-    rows_ = 0;
-    const Eigen::Index n = sh_.n;
-    const PathSamples& smp = *in_.samples;
-    // Consistency of each interval, as two rows.
-    for (Eigen::Index k = 0; k < n; ++k) {
-      Row r;
-      const double ds = sh_.ds[k];
-      if (k == 0 && sh_.rest0) {
-        r.add(1, 1.0), r.add(bcol(1), -1.5 * ds);
-      } else if (k == n - 1 && sh_.restN) {
-        r.add(static_cast<int>(n - 1), 1.0), r.add(bcol(n - 1), 1.5 * ds);
-      } else {
-        r.add(static_cast<int>(k + 1), 1.0), r.add(static_cast<int>(k), -1.0), r.add(bcol(k), -ds), r.add(bcol(k + 1), -ds);
-      }
+    for (JerkRow r : fixed_) {  // equalities as two rows
       push(r);
       for (int i = 0; i < r.n; ++i) r.val[i] = -r.val[i];
       push(r);
     }
-    // The constraints' rows at each grid point, with (x, u) = (θ_k, b_k).
-    for (const ConstraintRows& cr : *in_.rows)
-      for (Eigen::Index k = 0; k <= n; ++k)
-        for (Eigen::Index j = 0; j < cr.rows(); ++j) {
-          const double c = cr.c(k, j);
-          if (!(c < kInf)) continue;
-          Row r;
-          if (cr.a(k, j) != 0) r.add(static_cast<int>(k), cr.a(k, j));
-          if (cr.b(k, j) != 0) r.add(bcol(k), cr.b(k, j));
-          r.rhs = c;
-          push(r);
-        }
-    // Jerk rows at each grid point that moves, on each side (the interval's b').
-    const Eigen::Index dof = smp.dof();
-    for (Eigen::Index k = 0; k <= n; ++k) {
-      if ((k == 0 && sh_.rest0) || (k == n && sh_.restN)) continue;
-      const double tb = std::max(theta_bar[k], 1e-300);
-      for (int side = 0; side < 2; ++side) {
-        if ((side == 0 && k == 0) || (side == 1 && k == n)) continue;
-        Row slope;  // b' on this side
-        const Eigen::Index iv = side == 0 ? k - 1 : k;
-        const double ds = sh_.ds[iv];
-        if (iv == 0 && sh_.rest0) slope.add(bcol(1), 1.0 / (3 * ds));
-        else if (iv == n - 1 && sh_.restN) slope.add(bcol(n - 1), -1.0 / (3 * ds));
-        else slope.add(bcol(iv + 1), 1.0 / ds), slope.add(bcol(iv), -1.0 / ds);
-        const Eigen::MatrixXd& p3 = side == 0 ? in_.p3_left : in_.p3_right;
-        for (Eigen::Index j = 0; j < dof; ++j)
-          for (int sign = 1; sign >= -1; sign -= 2) {
-            const double J = sign > 0 ? in_.jmax[j] : -in_.jmin[j];
-            if (!(J < kInf)) continue;
-            Row r;
-            for (int i = 0; i < slope.n; ++i) r.add(slope.col[i], sign * smp.dq(k, j) * slope.val[i]);
-            r.add(bcol(k), sign * 3 * smp.ddq(k, j));
-            // |g| <= J/√θ, inner by the tangent at θ̄: J/√θ >= J (3θ̄ - θ) / (2 θ̄^{3/2}).
-            r.add(static_cast<int>(k), sign * p3(k, j) + J / (2 * tb * std::sqrt(tb)));
-            r.rhs = 1.5 * J / std::sqrt(tb);
-            push(r);
-          }
-      }
-    }
+    for (const JerkRow& r : point_) push(r);
+    for (const JerkLimitRow& r : jerk_) push(r.linearised(theta_bar[r.point]));
     if (!lp_.load()) return false;
     for (Eigen::Index c = 0; c < 2 * nb_; ++c) {
       const double sc = scale(c);
@@ -148,14 +48,14 @@ class JerkLp {
   }
 
   // min cost·x (physical cost per column); x in physical units on success.
-  GlpkLp::Outcome solve(const Eigen::VectorXd& cost, Eigen::VectorXd& x) {
+  GlpkLp::Outcome solve(const Eigen::VectorXd& cost, double tol, Eigen::VectorXd& x) {
     std::vector<double> c(static_cast<size_t>(2 * nb_));
     double big = 0;
     for (Eigen::Index i = 0; i < 2 * nb_; ++i) big = std::max(big, std::abs(cost[i] * scale(i)));
     if (!(big > 0)) big = 1;
     for (Eigen::Index i = 0; i < 2 * nb_; ++i) c[static_cast<size_t>(i)] = cost[i] * scale(i) / big;
     lp_.set_objective(c);
-    const GlpkLp::Outcome out = lp_.solve(in_.lp_tolerance);
+    const GlpkLp::Outcome out = lp_.solve(tol);
     if (out != GlpkLp::Outcome::Optimal) return out;
     std::vector<double> y;
     lp_.column_values(y);
@@ -165,9 +65,8 @@ class JerkLp {
   }
 
  private:
-  int bcol(Eigen::Index k) const { return static_cast<int>(nb_ + k); }
   double scale(Eigen::Index c) const { return c < nb_ ? st_ : sb_; }
-  void push(const Row& r) {
+  void push(const JerkRow& r) {  // GLPK's tolerances are absolute: columns scaled, each row to unit size
     idx_.clear(), val_.clear();
     double size = std::abs(r.rhs);
     for (int i = 0; i < r.n; ++i)
@@ -180,76 +79,21 @@ class JerkLp {
     if (!(size > 0)) size = 1;
     for (double& v : val_) v /= size;
     lp_.add_row_upper(idx_, val_, r.rhs / size);
-    ++rows_;
   }
-  const JerkInput& in_;
-  const Shape& sh_;
+  const JerkShape& sh_;
   double st_, sb_;
   Eigen::Index nb_ = 0;
+  std::vector<JerkRow> fixed_, point_;
+  std::vector<JerkLimitRow> jerk_;
   GlpkLp lp_;
-  int rows_ = 0;
   std::vector<int> idx_;
   std::vector<double> val_;
 };
 
-// Makes (θ, b) exactly consistent: θ by the forward recursion from the LP's b, the last free b absorbing the
-// residual at the end (the LP holds the equalities to its tolerance only).
-void make_consistent(const Shape& sh, Eigen::VectorXd& x, double theta_end, bool zero_b_end) {
-  const Eigen::Index n = sh.n, nb = n + 1;
-  Eigen::Index k = 0;
-  if (sh.rest0) x[1] = 1.5 * sh.ds[0] * x[nb + 1], k = 1;
-  const Eigen::Index stop = sh.restN ? n - 2 : n - 1;  // last interval of the recursion
-  for (; k < stop; ++k) x[k + 1] = x[k] + sh.ds[k] * (x[nb + k] + x[nb + k + 1]);
-  // Interval `stop` closes the chain.
-  if (sh.restN) {
-    // θ_{N-1} = θ_{N-2} + Δs (b_{N-2} + b_{N-1}) and θ_{N-1} = -1.5 Δs' b_{N-1}.
-    const double d = sh.ds[stop], d2 = sh.ds[n - 1];
-    x[nb + n - 1] = -(x[stop] + d * x[nb + stop]) / (d + 1.5 * d2);
-    x[n - 1] = -1.5 * d2 * x[nb + n - 1];
-    x[n] = 0;
-  } else if (zero_b_end) {
-    // b_N = 0: the last two intervals, θ_N = θ_{N-2} + Δs_{N-2} b_{N-2} + (Δs_{N-2} + Δs_{N-1}) b_{N-1}.
-    const double d1 = sh.ds[n - 2], d2 = sh.ds[n - 1];
-    x[nb + n] = 0;
-    x[nb + n - 1] = (theta_end - x[n - 2] - d1 * x[nb + n - 2]) / (d1 + d2);
-    x[n - 1] = x[n - 2] + d1 * (x[nb + n - 2] + x[nb + n - 1]);
-    x[n] = theta_end;
-  } else {
-    x[n] = theta_end;
-    x[nb + n] = (x[n] - x[stop]) / sh.ds[stop] - x[nb + stop];
-  }
-}
-
-// Column bounds: the fixed ends, θ >= 0, and at a rest end the bound that the jerk of its interval (constant
-// s⃛ = (2/9) θ^{3/2}/Δs², times p' there) puts on θ of the interval's moving end.
-void column_bounds(const JerkInput& in, const Shape& sh, Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
-  const PathSamples& smp = *in.samples;
-  const Eigen::Index n = sh.n, nb = n + 1;
-  lo.resize(2 * nb), hi.resize(2 * nb);
-  lo.head(nb).setZero();
-  hi.head(nb).setConstant(kInf);
-  lo.tail(nb).setConstant(-kInf);
-  hi.tail(nb).setConstant(kInf);
-  lo[0] = hi[0] = in.sdot_begin * in.sdot_begin;
-  lo[n] = hi[n] = in.sdot_end * in.sdot_end;
-  if (sh.rest0 || in.zero_sddot_begin) lo[nb] = hi[nb] = 0;
-  if (sh.restN || in.zero_sddot_end) lo[nb + n] = hi[nb + n] = 0;
-  auto rest_cap = [&](Eigen::Index point, Eigen::Index moving, double ds) {
-    for (Eigen::Index j = 0; j < smp.dof(); ++j) {
-      const double d = smp.dq(point, j);
-      if (d == 0) continue;
-      const double J = d > 0 ? in.jmax[j] : -in.jmin[j];
-      if (J < kInf) hi[moving] = std::min(hi[moving], std::pow(4.5 * ds * ds * J / std::abs(d), 2.0 / 3.0));
-    }
-  };
-  if (sh.rest0) rest_cap(0, 1, sh.ds[0]);
-  if (sh.restN) rest_cap(n, n - 1, sh.ds[n - 1]);
-}
-
 // Start: the LP linearised at the second-order optimum (floored), maximising Σ w_k θ_k with the weights of
 // ∂(Σ Δs/√θ)/∂θ there; its solution is feasible (inner rows) whatever the linearisation point. False (and `out`
 // says why) if it fails.
-bool start_point(const JerkInput& in, const Shape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+bool start_point(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                  double s_theta, double s_b, JerkLp& lp, Eigen::VectorXd& x, JerkOutput& out) {
   const Eigen::Index n = sh.n, nb = n + 1;
   const Eigen::VectorXd bar = in.theta_hint.cwiseMax(1e-6 * s_theta);
@@ -266,7 +110,7 @@ bool start_point(const JerkInput& in, const Shape& sh, const Eigen::VectorXd& lo
     return false;
   }
   ++out.lp_solves;
-  const GlpkLp::Outcome o = lp.solve(cost, x);
+  const GlpkLp::Outcome o = lp.solve(cost, in.lp_tolerance, x);
   if (o == GlpkLp::Outcome::Infeasible) {
     out.status = Status::Infeasible;
     out.message = "jerk limits: no timing found whose jerk, linearised at the timing without jerk limits, holds "
@@ -285,56 +129,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-}  // namespace
-
-Eigen::VectorXd jerk_interval_times(const Eigen::VectorXd& s, const Eigen::VectorXd& theta, const Eigen::VectorXd& b) {
-  Shape sh = make_shape(s);
-  sh.rest0 = theta[0] == 0;
-  sh.restN = theta[sh.n] == 0;
-  Eigen::VectorXd out(sh.n);
-  for (Eigen::Index k = 0; k < sh.n; ++k) {
-    if (sh.rest_interval(k)) out[k] = rest_interval_time(theta[k == 0 && sh.rest0 ? 1 : sh.n - 1], sh.ds[k]);
-    else out[k] = linear_b_time(theta[k], b[k], b[k + 1], sh.ds[k]);
-  }
-  return out;
-}
-
-JerkOutput solve_jerk(const JerkInput& in) {
-  const auto t0 = std::chrono::steady_clock::now();
-  JerkOutput out;
-  const PathSamples& smp = *in.samples;
-  Shape sh = make_shape(smp.s);
-  sh.rest0 = in.sdot_begin == 0;
-  sh.restN = in.sdot_end == 0;
+// The fallback where jerk_newton does not apply (an end not at rest) or fails: rounds of one GLPK LP each,
+// linearised at x, minimising ∇T·y in a trust region, then a line search on T.
+void glpk_rounds(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                 double s_theta, double s_b, JerkLp& lp, Eigen::VectorXd& x, double& T, JerkOutput& out,
+                 std::chrono::steady_clock::time_point t0) {
   const Eigen::Index n = sh.n, nb = n + 1;
-  const double th0 = in.sdot_begin * in.sdot_begin, thN = in.sdot_end * in.sdot_end;
-
-  // Scales: GLPK's tolerances are absolute in the variables it is given.
-  const double s_theta = std::max(in.theta_hint.maxCoeff(), std::max(th0, thN));
-  double s_b = 0;
-  for (Eigen::Index k = 0; k < n; ++k)
-    s_b = std::max(s_b, std::abs(in.theta_hint[k + 1] - in.theta_hint[k]) / (2 * sh.ds[k]));
-  s_b = std::max(s_b, s_theta / (smp.s[n] - smp.s[0]));
-  if (!(s_theta > 0) || !std::isfinite(s_theta)) {
-    out.message = "jerk limits: the second-order timing has no speed to start from";
-    return out;
-  }
-
-  Eigen::VectorXd lo, hi;
-  column_bounds(in, sh, lo, hi);
-
-  JerkLp lp(in, sh, s_theta, s_b);
+  const double thN = in.sdot_end * in.sdot_end;
   auto fixed = [&](Eigen::Index c) { return lo[c] == hi[c]; };
-
-  Eigen::VectorXd x;
-  if (!start_point(in, sh, lo, hi, s_theta, s_b, lp, x, out)) return out;
-  make_consistent(sh, x, thN, in.zero_sddot_end);
-  double T = total_time(sh, x, nullptr);
-  if (!std::isfinite(T)) {
-    out.message = "jerk limits: the start has an interval where the speed reaches 0 (no finite time)";
-    return out;
-  }
-
   // Rounds: linearise at x, minimise ∇T·y in a trust region, line search on T (x + α (y - x) stays feasible:
   // both ends satisfy the convex linearised rows, which are inner ones).
   double rho = 0.5;
@@ -350,7 +152,7 @@ JerkOutput solve_jerk(const JerkInput& in) {
     for (Eigen::Index k = 0; k <= n; ++k) h[k] = std::min(h[k], cap);  // hit only if nothing bounds θ
     ++out.lp_solves;
     out.gap = kInf;
-    if (lp.build(at.head(nb), l, h) && lp.solve(gc, yc) == GlpkLp::Outcome::Optimal && yc.head(nb).maxCoeff() < 0.5 * cap)
+    if (lp.build(at.head(nb), l, h) && lp.solve(gc, in.lp_tolerance, yc) == GlpkLp::Outcome::Optimal && yc.head(nb).maxCoeff() < 0.5 * cap)
       out.gap = std::max(0.0, -gc.dot(yc - at)) / total_time(sh, at, nullptr);
     return out.gap;
   };
@@ -380,12 +182,12 @@ JerkOutput solve_jerk(const JerkInput& in) {
     }
     ++out.iterations;
     ++out.lp_solves;
-    if (!lp.build(x.head(nb), l, h) || lp.solve(g, y) != GlpkLp::Outcome::Optimal) {
+    if (!lp.build(x.head(nb), l, h) || lp.solve(g, in.lp_tolerance, y) != GlpkLp::Outcome::Optimal) {
       out.status = Status::NumericalError;
       out.message = "jerk limits: a linearised LP failed";
       break;
     }
-    make_consistent(sh, y, thN, in.zero_sddot_end);
+    jerk_make_consistent(sh, y, thN, in.zero_sddot_end);
     const Eigen::VectorXd d = y - x;
     const double pred = -g.dot(d);
     if (pred <= 0.1 * in.tolerance * T) {
@@ -407,7 +209,7 @@ JerkOutput solve_jerk(const JerkInput& in) {
     }
     x += alpha * d;
     certified = false;
-    make_consistent(sh, x, thN, in.zero_sddot_end);
+    jerk_make_consistent(sh, x, thN, in.zero_sddot_end);
     T = total_time(sh, x, nullptr);
     rho = alpha == 1 ? std::min(2 * rho, 1e3) : std::max(alpha, 0.1) * rho;
   }
@@ -424,10 +226,115 @@ JerkOutput solve_jerk(const JerkInput& in) {
                     " to the linearised problem (above tolerance)";
     }
   }
+}
+
+// The worst violation of the grid rows at x, relative to each row's size: the limits (rows and bounds) and the
+// exact jerk rows |p' b' + 3 p'' b + p''' θ| <= J/√θ.
+double grid_violation(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                      const Eigen::VectorXd& x) {
+  double worst = 0;
+  for (const JerkRow& r : jerk_point_rows(in, sh)) {
+    double size = std::abs(r.rhs);
+    for (int i = 0; i < r.n; ++i) size = std::max(size, std::abs(r.val[i] * x[r.col[i]]));
+    if (size > 0) worst = std::max(worst, (r.dot(x) - r.rhs) / size);
+  }
+  for (const JerkLimitRow& r : jerk_limit_rows(in, sh)) {
+    const double cap = r.J / std::sqrt(std::max(x[r.point], 0.0));
+    worst = std::max(worst, (r.lin.dot(x) - cap) / cap);
+  }
+  for (Eigen::Index c = 0; c < x.size(); ++c) {
+    if (hi[c] < kInf && x[c] > hi[c]) worst = std::max(worst, (x[c] - hi[c]) / std::max(std::abs(hi[c]), 1e-300));
+    if (lo[c] > -kInf && x[c] < lo[c]) worst = std::max(worst, (lo[c] - x[c]) / std::max(std::abs(lo[c]), std::abs(x[c])));
+  }
+  return worst;
+}
+
+// The answer at x: its grid violation, θ, b and exact T.
+JerkOutput& finish(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                   const Eigen::VectorXd& x, JerkOutput& out) {
+  const Eigen::Index nb = sh.n + 1;
+  out.grid_violation = grid_violation(in, sh, lo, hi, x);
   out.theta = x.head(nb);
   out.b = x.tail(nb);
-  out.duration = T;
+  out.duration = jerk_total_time(sh, x);
   return out;
+}
+
+// The structured solve's answer: made exactly consistent; the iterate is strictly feasible and the repair moves
+// it by rounding, so a row violated by more than 1e-10 of its size steps back by slowing (θ, b) -> κ (θ, b)
+// (rest to rest: every fixed value is 0).
+JerkOutput& finish_structured(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo,
+                              const Eigen::VectorXd& hi, Eigen::VectorXd& x, JerkOutput& out) {
+  out.structured = true;
+  out.status = Status::Optimal;
+  out.message.clear();
+  jerk_make_consistent(sh, x, in.sdot_end * in.sdot_end, in.zero_sddot_end);
+  for (int back = 0; back < 8; ++back) {
+    const double v = grid_violation(in, sh, lo, hi, x);
+    if (v <= 1e-10) break;
+    x *= 1 - 2 * v;
+  }
+  return finish(in, sh, lo, hi, x, out);
+}
+
+}  // namespace
+
+Eigen::VectorXd jerk_interval_times(const Eigen::VectorXd& s, const Eigen::VectorXd& theta, const Eigen::VectorXd& b) {
+  const JerkShape sh = jerk_shape(s, theta[0] == 0, theta[s.size() - 1] == 0);
+  Eigen::VectorXd out(sh.n);
+  for (Eigen::Index k = 0; k < sh.n; ++k) {
+    if (sh.rest_interval(k)) out[k] = rest_interval_time(theta[sh.moving_end(k)], sh.ds[k]);
+    else out[k] = linear_b_time(theta[k], b[k], b[k + 1], sh.ds[k]);
+  }
+  return out;
+}
+
+JerkOutput solve_jerk(const JerkInput& in) {
+  const auto t0 = std::chrono::steady_clock::now();
+  JerkOutput out;
+  const PathSamples& smp = *in.samples;
+  const JerkShape sh = jerk_shape(smp.s, in.sdot_begin == 0, in.sdot_end == 0);
+  const Eigen::Index n = sh.n, nb = n + 1;
+  const double th0 = in.sdot_begin * in.sdot_begin, thN = in.sdot_end * in.sdot_end;
+
+  // Scales: GLPK's tolerances are absolute in the variables it is given.
+  const double s_theta = std::max(in.theta_hint.maxCoeff(), std::max(th0, thN));
+  double s_b = 0;
+  for (Eigen::Index k = 0; k < n; ++k)
+    s_b = std::max(s_b, std::abs(in.theta_hint[k + 1] - in.theta_hint[k]) / (2 * sh.ds[k]));
+  s_b = std::max(s_b, s_theta / (smp.s[n] - smp.s[0]));
+  if (!(s_theta > 0) || !std::isfinite(s_theta)) {
+    out.message = "jerk limits: the second-order timing has no speed to start from";
+    return out;
+  }
+
+  Eigen::VectorXd lo, hi;
+  jerk_column_bounds(in, sh, lo, hi);
+  // The box in which the structured solve's certificate holds (every unknown bounded; far from any optimum).
+  Eigen::VectorXd box(2 * nb);
+  box.head(nb).setConstant(1e6 * s_theta);
+  box.tail(nb).setConstant(1e3 * s_b);
+  const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(in.time_limit));
+  // Rest to rest: the structured solve from the scaled start (no LP).
+  Eigen::VectorXd x;
+  if (jerk_scaled_start(in, sh, hi, x) && jerk_newton(in, sh, lo, hi, box, 1.0, x, out, deadline))
+    return finish_structured(in, sh, lo, hi, x, out);
+
+  JerkLp lp(in, sh, s_theta, s_b);
+  if (!start_point(in, sh, lo, hi, s_theta, s_b, lp, x, out)) return out;
+  jerk_make_consistent(sh, x, thN, in.zero_sddot_end);
+  double T = total_time(sh, x, nullptr);
+  if (!std::isfinite(T)) {
+    out.message = "jerk limits: the start has an interval where the speed reaches 0 (no finite time)";
+    return out;
+  }
+  // The start LP's x, slowed by 1 % to be strictly inside (rest to rest), then the structured solve; else the
+  // GLPK rounds.
+  Eigen::VectorXd xs = 0.99 * x;
+  if (jerk_newton(in, sh, lo, hi, box, 0.1, xs, out, deadline)) return finish_structured(in, sh, lo, hi, xs, out);
+  glpk_rounds(in, sh, lo, hi, s_theta, s_b, lp, x, T, out, t0);
+  return finish(in, sh, lo, hi, x, out);
 }
 
 }  // namespace pathpace::detail

@@ -7,7 +7,8 @@
 // convex in θ, so its tangent at the iterate's θ̄ lies below it and the linearised row is an inner one: each LP's
 // solution is feasible for the true rows, and the iterate itself is feasible for the next linearisation (the
 // tangent is exact at θ̄). The objective T = Σ interval times is convex in (θ, b); each round minimises its
-// linearisation over the linearised rows within a trust region, then a line search on T itself.
+// linearisation over the linearised rows within a trust region, then a line search on T itself (the GLPK
+// rounds, the fallback), or (jerk_newton, solve/jerk_rows.hpp) a barrier method with banded Newton steps.
 
 #include <string>
 #include <vector>
@@ -40,9 +41,14 @@ struct JerkOutput {
   Eigen::VectorXd theta, b;  ///< at the grid points, exactly consistent (θ_{k+1} = θ_k + Δs_k (b_k + b_{k+1}))
   double duration = 0;
   int iterations = 0, lp_solves = 0;
-  /// (T - T_lin*) / T bound: T_lin* the optimum of the convex problem linearised at the final iterate
-  /// (Frank-Wolfe gap of its last LP without trust region); +inf if that LP failed.
+  int newton_steps = 0;     ///< of the structured solver (jerk_newton)
+  bool structured = false;  ///< answered by jerk_newton (else by the GLPK rounds, its fallback)
+  /// (T - T_lin*) / T bound: T_lin* the optimum of the convex problem linearised at the final iterate. From the
+  /// barrier's multipliers (jerk_newton; T there by 8-point Gauss-Legendre quadrature) or the Frank-Wolfe gap of
+  /// the last LP without trust region (GLPK rounds); +inf if that failed.
   double gap = std::numeric_limits<double>::infinity();
+  /// Worst violation of a grid row (limits, exact jerk rows, bounds) at the answer, relative to the row's size.
+  double grid_violation = 0;
 };
 
 JerkOutput solve_jerk(const JerkInput& in);

@@ -8,8 +8,6 @@
 
 #include <Eigen/Core>
 
-#include "pathpace/path.hpp"
-
 namespace pathpace {
 
 // docstrings.txt @@ JerkLimits
@@ -28,11 +26,6 @@ class JerkLimits {
   const Eigen::VectorXd& jmin() const { return jmin_; }
   const Eigen::VectorXd& jmax() const { return jmax_; }
   const std::vector<std::string>& joint_names() const { return joint_names_; }
-
-  /// p''' at each s from the left and from the right piece of the path's polynomial() (they differ at a
-  /// breakpoint); InvalidInput naming the path kind when it has no pieces.
-  static void third_derivatives(const Path& path, const Eigen::VectorXd& s, Eigen::MatrixXd& left,
-                                Eigen::MatrixXd& right);
 
  private:
   Eigen::VectorXd jmin_, jmax_;

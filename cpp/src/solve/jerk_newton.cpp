@@ -1,0 +1,416 @@
+// The structured solver of the jerk-limited timing (solve/jerk_scp.hpp, jerk_newton): a primal log-barrier
+// method whose Newton steps solve a banded KKT system, the jerk rows re-linearised at every iterate.
+//
+// Why it converges, and stays feasible. φ_t(x) = t T(x) - Σ log s_r(x) - Σ log(bounds) with the true slacks s_r
+// is the barrier function of the non-convex problem. Replacing each jerk slack J/√θ - g by its tangent in θ at
+// x̄ gives φ_t^x̄ >= φ_t (the tangent lies below J/√θ, so the slack is smaller and -log larger), equal at x̄ with
+// the same gradient: a convex majoriser. Each step is one damped Newton step on φ_t^x̄, so φ_t decreases
+// (majorise-minimise) and every iterate is strictly feasible for the true rows. The same x̄ is then a centre of
+// φ_t^x̄ when it is one of φ_t: at the end the multipliers certify the convex problem linearised there.
+//
+// Why it is O(N) per step. Unknowns ordered θ_0, b_0, ν_0, θ_1, b_1, ν_1, ... (ν_k the multiplier of interval k's
+// consistency θ_{k+1} = θ_k + Δs_k (b_k + b_{k+1})): T couples (θ_k, b_k, b_{k+1}), a jerk row (b_{k±1}, b_k, θ_k),
+// a limit row (θ_k, b_k): the KKT matrix has half-bandwidth 4. It is quasi-definite after a tiny regularisation
+// (H + δI, -δI), so an LDLᵀ without pivoting exists (Vanderbei 1995); two steps of iterative refinement against
+// the unregularised matrix remove δ's error.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "solve/jerk_rows.hpp"
+
+namespace pathpace::detail {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kBand = 4;
+
+// Symmetric band matrix (lower band stored), LDLᵀ in place.
+class BandLdlt {
+ public:
+  explicit BandLdlt(Eigen::Index m) : m_(m), a_(m * (kBand + 1)), f_(m * (kBand + 1)) {}
+  void clear() { std::fill(a_.begin(), a_.end(), 0.0); }
+  void add(Eigen::Index i, Eigen::Index j, double v) {
+    if (i < j) std::swap(i, j);
+    a_[static_cast<size_t>(i * (kBand + 1) + (i - j))] += v;
+  }
+  double at(Eigen::Index i, Eigen::Index j) const {
+    if (i < j) std::swap(i, j);
+    return i - j > kBand ? 0.0 : a_[static_cast<size_t>(i * (kBand + 1) + (i - j))];
+  }
+  // Factors A + diag(reg); false if a pivot is not finite or zero.
+  bool factor(const Eigen::VectorXd& reg) {
+    f_ = a_;
+    for (Eigen::Index i = 0; i < m_; ++i) f_[idx(i, i)] += reg[i];
+    for (Eigen::Index i = 0; i < m_; ++i) {
+      const Eigen::Index j0 = std::max<Eigen::Index>(0, i - kBand);
+      for (Eigen::Index j = j0; j < i; ++j) {
+        double v = f_[idx(i, j)];
+        for (Eigen::Index k = std::max(j0, j - kBand); k < j; ++k) v -= f_[idx(i, k)] * f_[idx(j, k)] * f_[idx(k, k)];
+        f_[idx(i, j)] = v / f_[idx(j, j)];
+      }
+      double d = f_[idx(i, i)];
+      for (Eigen::Index k = j0; k < i; ++k) d -= f_[idx(i, k)] * f_[idx(i, k)] * f_[idx(k, k)];
+      if (!(std::abs(d) > 0) || !std::isfinite(d)) return false;
+      f_[idx(i, i)] = d;
+    }
+    return true;
+  }
+  void solve(Eigen::VectorXd& x) const {
+    for (Eigen::Index i = 0; i < m_; ++i)
+      for (Eigen::Index k = std::max<Eigen::Index>(0, i - kBand); k < i; ++k) x[i] -= f_[idx(i, k)] * x[k];
+    for (Eigen::Index i = 0; i < m_; ++i) x[i] /= f_[idx(i, i)];
+    for (Eigen::Index i = m_ - 1; i >= 0; --i)
+      for (Eigen::Index k = i + 1; k <= std::min(m_ - 1, i + kBand); ++k) x[i] -= f_[idx(k, i)] * x[k];
+  }
+  // y = A x (unregularised).
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    y.setZero(m_);
+    for (Eigen::Index i = 0; i < m_; ++i)
+      for (Eigen::Index j = std::max<Eigen::Index>(0, i - kBand); j <= i; ++j) {
+        const double v = a_[idx(i, j)];
+        y[i] += v * x[j];
+        if (j != i) y[j] += v * x[i];
+      }
+  }
+
+ private:
+  size_t idx(Eigen::Index i, Eigen::Index j) const { return static_cast<size_t>(i * (kBand + 1) + (i - j)); }
+  Eigen::Index m_;
+  std::vector<double> a_, f_;
+};
+
+struct Problem {
+  const JerkShape& sh;
+  Eigen::VectorXd lo, hi;
+  std::vector<char> free;
+  std::vector<JerkRow> point, consistency;
+  std::vector<JerkLimitRow> jerk;
+  Eigen::Index nb = 0;
+  // KKT position of column c (θ_k -> 3k, b_k -> 3k + 1) and of interval k's multiplier.
+  Eigen::Index pos(Eigen::Index c) const { return c < nb ? 3 * c : 3 * (c - nb) + 1; }
+  Eigen::Index nu_pos(Eigen::Index k) const { return 3 * k + 2; }
+  double n_ineq() const {
+    double m = static_cast<double>(point.size() + jerk.size());
+    for (Eigen::Index c = 0; c < 2 * nb; ++c)
+      if (free[static_cast<size_t>(c)]) m += (lo[c] > -kInf) + (hi[c] < kInf);
+    return m;
+  }
+};
+
+// The rows at x̄: the point rows, then the jerk rows linearised at x̄.
+void rows_at(const Problem& p, const Eigen::VectorXd& xbar, std::vector<JerkRow>& rows) {
+  rows.resize(p.point.size() + p.jerk.size());
+  std::copy(p.point.begin(), p.point.end(), rows.begin());
+  for (size_t i = 0; i < p.jerk.size(); ++i) rows[p.point.size() + i] = p.jerk[i].linearised(xbar[p.jerk[i].point]);
+}
+
+bool strictly_inside(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x) {
+  for (Eigen::Index c = 0; c < 2 * p.nb; ++c)
+    if (p.free[static_cast<size_t>(c)] && !(x[c] > p.lo[c] && x[c] < p.hi[c])) return false;
+  for (const JerkRow& r : rows)
+    if (!(r.rhs - r.dot(x) > 0)) return false;
+  return true;
+}
+
+// φ at x for the rows as given (+inf outside).
+double barrier_value(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t) {
+  const double T = jerk_quadrature_time(p.sh, x, nullptr, nullptr);
+  if (!std::isfinite(T)) return kInf;
+  double phi = t * T;
+  for (const JerkRow& r : rows) {
+    const double s = r.rhs - r.dot(x);
+    if (!(s > 0)) return kInf;
+    phi -= std::log(s);
+  }
+  for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
+    if (!p.free[static_cast<size_t>(c)]) continue;
+    if (p.lo[c] > -kInf) {
+      if (!(x[c] > p.lo[c])) return kInf;
+      phi -= std::log(x[c] - p.lo[c]);
+    }
+    if (p.hi[c] < kInf) {
+      if (!(x[c] < p.hi[c])) return kInf;
+      phi -= std::log(p.hi[c] - x[c]);
+    }
+  }
+  return phi;
+}
+
+struct Step {
+  Eigen::VectorXd gT, d, nu;  // ∇T at x̄, the Newton step, the consistency multipliers (of φ / t)
+  double dec2 = 0;            // Newton decrement², -∇φ·d
+};
+
+// The Newton step of φ_t^x̄ at x̄ subject to the consistency rows. False if the factorisation fails.
+bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t, BandLdlt& K,
+                 Step& st) {
+  const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
+  std::vector<double> hT;
+  jerk_quadrature_time(p.sh, x, &st.gT, &hT);
+  Eigen::VectorXd g = t * st.gT;
+  K.clear();
+  auto is_free = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] != 0; };
+  auto addH = [&](Eigen::Index c1, Eigen::Index c2, double v) {
+    if (is_free(c1) && is_free(c2)) K.add(p.pos(c1), p.pos(c2), v);
+  };
+  // t ∇²T (each pair once: the block is symmetric, add() stores the lower triangle).
+  for (Eigen::Index k = 0; k < p.sh.n; ++k) {
+    const double* h = hT.data() + 9 * k;
+    if (p.sh.rest_interval(k)) {
+      const Eigen::Index c = p.sh.moving_end(k);
+      addH(c, c, t * h[0]);
+      continue;
+    }
+    const Eigen::Index c[3] = {k, nb + k, nb + k + 1};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b <= a; ++b) addH(c[a], c[b], t * h[3 * a + b]);
+  }
+  for (const JerkRow& r : rows) {
+    const double w = 1.0 / (r.rhs - r.dot(x));
+    for (int i = 0; i < r.n; ++i) {
+      g[r.col[i]] += w * r.val[i];
+      for (int j = 0; j <= i; ++j) addH(r.col[i], r.col[j], w * w * r.val[i] * r.val[j]);
+    }
+  }
+  for (Eigen::Index c = 0; c < nx; ++c) {
+    if (!is_free(c)) {
+      g[c] = 0;
+      K.add(p.pos(c), p.pos(c), 1.0);
+      continue;
+    }
+    if (p.lo[c] > -kInf) {
+      const double w = 1.0 / (x[c] - p.lo[c]);
+      g[c] -= w, K.add(p.pos(c), p.pos(c), w * w);
+    }
+    if (p.hi[c] < kInf) {
+      const double w = 1.0 / (p.hi[c] - x[c]);
+      g[c] += w, K.add(p.pos(c), p.pos(c), w * w);
+    }
+  }
+  // Consistency rows (E d = 0: x̄ is consistent), symmetric scaling: primal by 1/√H_ii, rows to unit norm.
+  Eigen::VectorXd scale(m), reg(m), rhs = Eigen::VectorXd::Zero(m);
+  for (Eigen::Index c = 0; c < nx; ++c) scale[p.pos(c)] = 1.0 / std::sqrt(std::max(K.at(p.pos(c), p.pos(c)), 1e-300));
+  for (Eigen::Index k = 0; k < p.sh.n; ++k) {
+    const JerkRow& e = p.consistency[static_cast<size_t>(k)];
+    double nrm = 0;
+    for (int i = 0; i < e.n; ++i)
+      if (is_free(e.col[i])) nrm += std::pow(e.val[i] * scale[p.pos(e.col[i])], 2);
+    scale[p.nu_pos(k)] = nrm > 0 ? 1.0 / std::sqrt(nrm) : 1.0;
+    for (int i = 0; i < e.n; ++i)
+      if (is_free(e.col[i])) K.add(p.nu_pos(k), p.pos(e.col[i]), e.val[i]);
+    if (!(nrm > 0)) K.add(p.nu_pos(k), p.nu_pos(k), 1.0);
+  }
+  for (Eigen::Index c = 0; c < nx; ++c) rhs[p.pos(c)] = -g[c];
+  // Scale in place: Â = S A S.
+  BandLdlt Ks(m);
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (Eigen::Index j = std::max<Eigen::Index>(0, i - kBand); j <= i; ++j) Ks.add(i, j, scale[i] * K.at(i, j) * scale[j]);
+  for (Eigen::Index c = 0; c < nx; ++c) reg[p.pos(c)] = 1e-11;
+  for (Eigen::Index k = 0; k < p.sh.n; ++k) reg[p.nu_pos(k)] = -1e-11;
+  if (!Ks.factor(reg)) return false;
+  Eigen::VectorXd b = scale.cwiseProduct(rhs), y = b, r;
+  Ks.solve(y);
+  for (int it = 0; it < 2; ++it) {  // iterative refinement against the unregularised Â
+    Ks.multiply(y, r);
+    Eigen::VectorXd corr = b - r;
+    Ks.solve(corr);
+    y += corr;
+  }
+  y = y.cwiseProduct(scale);
+  st.d.resize(nx);
+  for (Eigen::Index c = 0; c < nx; ++c) st.d[c] = is_free(c) ? y[p.pos(c)] : 0.0;
+  st.nu.resize(p.sh.n);
+  for (Eigen::Index k = 0; k < p.sh.n; ++k) st.nu[k] = y[p.nu_pos(k)] / t;
+  st.dec2 = -g.dot(st.d);
+  return std::isfinite(st.dec2);
+}
+
+// The largest step along d keeping every slack and bound positive.
+double max_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, const Eigen::VectorXd& d) {
+  double amax = kInf;
+  for (const JerkRow& r : rows) {
+    const double ad = r.dot(d);
+    if (ad > 0) amax = std::min(amax, (r.rhs - r.dot(x)) / ad);
+  }
+  for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
+    if (!p.free[static_cast<size_t>(c)]) continue;
+    if (d[c] < 0 && p.lo[c] > -kInf) amax = std::min(amax, (x[c] - p.lo[c]) / -d[c]);
+    if (d[c] > 0 && p.hi[c] < kInf) amax = std::min(amax, (p.hi[c] - x[c]) / d[c]);
+  }
+  return amax;
+}
+
+// Lower bound on min T over the problem linearised at x (convex), from multipliers λ_r >= 0 of its rows and ν of
+// its consistency rows: T(y) >= T(x) + ∇T·(y - x) >= T(x) - ∇T·x - λ·c + Σ_j min_{lo_j <= y_j <= hi_j} coef_j y_j,
+// coef = ∇T + Σ λ_r a_r + Eᵀν. λ_r = (1 + a_r·d / s_r) / (t s_r) (the barrier's multiplier after the step d,
+// to first order; solve/barrier.hpp), clipped at 0.
+double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
+                        double t, const Step& st) {
+  Eigen::VectorXd coef = st.gT;
+  double lower = T - st.gT.dot(x);
+  for (const JerkRow& r : rows) {
+    const double s = r.rhs - r.dot(x);
+    const double lam = std::max(0.0, 1.0 + r.dot(st.d) / s) / (t * s);
+    for (int i = 0; i < r.n; ++i) coef[r.col[i]] += lam * r.val[i];
+    lower -= lam * r.rhs;
+  }
+  for (Eigen::Index k = 0; k < p.sh.n; ++k) {
+    const JerkRow& e = p.consistency[static_cast<size_t>(k)];
+    for (int i = 0; i < e.n; ++i) coef[e.col[i]] += st.nu[k] * e.val[i];
+  }
+  for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
+    const double lo = p.free[static_cast<size_t>(c)] ? p.lo[c] : x[c], hi = p.free[static_cast<size_t>(c)] ? p.hi[c] : x[c];
+    if (coef[c] > 0) lower += coef[c] * lo;
+    else if (coef[c] < 0) lower += coef[c] * hi;
+    if (!std::isfinite(lower)) return -kInf;
+  }
+  return lower;
+}
+
+}  // namespace
+
+bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& hi, Eigen::VectorXd& x) {
+  const Eigen::Index n = sh.n, nb = n + 1;
+  if (!sh.rest0 || !sh.restN || n < 4) return false;
+  // b at the grid points: the mean of the no-jerk optimum's s̈ on the two sides.
+  const Eigen::VectorXd& th = in.theta_hint;
+  Eigen::VectorXd u(n), b = Eigen::VectorXd::Zero(nb), w = Eigen::VectorXd::Zero(nb);
+  for (Eigen::Index k = 0; k < n; ++k) u[k] = (th[k + 1] - th[k]) / (2 * sh.ds[k]);
+  for (Eigen::Index k = 1; k < n; ++k) b[k] = 0.5 * (u[k - 1] + u[k]), w[k] = 1;
+  // θ by the recursion from b; F(b) = θ_{N-1} + 1.5 Δs_{N-1} b_{N-1} is the residual of the last (rest)
+  // interval, linear in b: the shift b + α·1 closes it.
+  auto closure = [&](const Eigen::VectorXd& bb, Eigen::VectorXd* theta) {
+    double t = 1.5 * sh.ds[0] * bb[1];
+    if (theta) theta->setZero(nb), (*theta)[1] = t;
+    for (Eigen::Index k = 1; k < n - 1; ++k) {
+      t += sh.ds[k] * (bb[k] + bb[k + 1]);
+      if (theta) (*theta)[k + 1] = t;
+    }
+    return t + 1.5 * sh.ds[n - 1] * bb[n - 1];
+  };
+  const double fw = closure(w, nullptr);
+  if (!(fw > 0)) return false;
+  b -= (closure(b, nullptr) / fw) * w;
+  Eigen::VectorXd theta;
+  closure(b, &theta);
+  x.resize(2 * nb);
+  x.head(nb) = theta;
+  x.tail(nb) = b;
+  for (Eigen::Index k = 1; k < n; ++k)
+    if (!(theta[k] > 0)) return false;
+  if (!std::isfinite(jerk_quadrature_time(sh, x, nullptr, nullptr))) return false;
+  // The largest κ for which κ x holds every row: the limits scale by κ, the jerk rows' left side by κ and
+  // their right side J/√θ by 1/√κ.
+  double kappa = kInf;
+  for (const JerkRow& r : jerk_point_rows(in, sh)) {
+    const double l = r.dot(x);
+    if (l > 0) kappa = std::min(kappa, r.rhs / l);
+    else if (!(r.rhs > 0)) return false;
+  }
+  for (const JerkLimitRow& r : jerk_limit_rows(in, sh)) {
+    const double g = r.lin.dot(x);
+    if (g > 0) kappa = std::min(kappa, std::pow(r.J / (g * std::sqrt(x[r.point])), 2.0 / 3.0));
+  }
+  for (Eigen::Index k = 0; k < nb; ++k)
+    if (x[k] > 0 && hi[k] < kInf) kappa = std::min(kappa, hi[k] / x[k]);
+  if (!(kappa > 0) || !std::isfinite(kappa)) return false;
+  x *= 0.9 * kappa;
+  return true;
+}
+
+bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                 const Eigen::VectorXd& box, double first_gap, Eigen::VectorXd& x, JerkOutput& out,
+                 std::chrono::steady_clock::time_point deadline) {
+  const Eigen::Index nb = sh.n + 1, nx = 2 * nb;
+  Problem p{sh, lo, hi, std::vector<char>(static_cast<size_t>(nx), 0), {}, jerk_consistency_rows(sh),
+            jerk_limit_rows(in, sh), nb};
+  // Rows of one free unknown are bounds; the box (certificate: every unknown bounded) stays far from the optimum.
+  for (Eigen::Index c = 0; c < nx; ++c) {
+    p.free[static_cast<size_t>(c)] = lo[c] < hi[c];
+    if (p.free[static_cast<size_t>(c)]) p.lo[c] = std::max(p.lo[c], -box[c]), p.hi[c] = std::min(p.hi[c], box[c]);
+  }
+  for (const JerkRow& row : jerk_point_rows(in, sh)) {
+    JerkRow r;  // the fixed unknowns' terms moved to the right-hand side
+    r.rhs = row.rhs;
+    for (int i = 0; i < row.n; ++i) {
+      if (p.free[static_cast<size_t>(row.col[i])]) r.add(row.col[i], row.val[i]);
+      else r.rhs -= row.val[i] * x[row.col[i]];
+    }
+    if (r.n == 0) continue;  // a constant row: grid_violation checks it
+    if (r.n == 1) {
+      const int c = r.col[0];
+      if (r.val[0] > 0) p.hi[c] = std::min(p.hi[c], r.rhs / r.val[0]);
+      else p.lo[c] = std::max(p.lo[c], r.rhs / r.val[0]);
+    } else {
+      p.point.push_back(r);
+    }
+  }
+  // x must be strictly feasible; every fixed value 0 (rest to rest: the starts are slowed by scaling).
+  for (Eigen::Index c = 0; c < nx; ++c)
+    if (!p.free[static_cast<size_t>(c)] && lo[c] != 0) return false;
+  std::vector<JerkRow> rows;
+  const Eigen::VectorXd xs = x;
+  rows_at(p, xs, rows);
+  if (!strictly_inside(p, rows, xs)) return false;
+
+  const double n_ineq = p.n_ineq();
+  double T = jerk_quadrature_time(sh, xs, nullptr, nullptr);
+  if (!std::isfinite(T)) return false;
+  BandLdlt K(3 * nb - 1);
+  Step st;
+  double t = n_ineq / (first_gap * T);
+  const double t_final = n_ineq / (0.25 * in.tolerance * T);  // T here is the start's, above the answer's
+  const int max_steps = 400;
+  int since = 0;
+  Eigen::VectorXd x0 = x;
+  x = xs;
+  for (out.newton_steps = 0; out.newton_steps < max_steps; ++out.newton_steps) {
+    if ((out.newton_steps & 7) == 7 && std::chrono::steady_clock::now() >= deadline) break;
+    rows_at(p, x, rows);
+    if (!newton_step(p, rows, x, t, K, st)) break;
+    const bool final_t = t >= t_final;
+    // At the final t and near its centre the bound is taken at every step (O(rows)): it certifies as soon as
+    // the centring residual allows.
+    if (final_t && st.dec2 <= 1e-2) {
+      const double lower = multiplier_bound(p, rows, x, T, t, st);
+      out.gap = std::max(0.0, T - lower) / T;
+      if (T - lower <= in.tolerance * T) {
+        ++out.newton_steps;
+        return true;
+      }
+      if (st.dec2 <= 1e-9) {  // centred, yet the bound is not there: ask for less gap
+        t *= 4;
+        continue;
+      }
+    }
+    double alpha = std::min(1.0, 0.99 * max_step(p, rows, x, st.d));
+    if (st.dec2 >= 0.1) {
+      const double phi0 = barrier_value(p, rows, x, t);
+      for (int ls = 0; ls < 60; ++ls, alpha *= 0.5)
+        if (barrier_value(p, rows, x + alpha * st.d, t) <= phi0 - 0.25 * alpha * st.dec2) break;
+    }
+    Eigen::VectorXd next = x + alpha * st.d;
+    rows_at(p, next, rows);
+    bool centred = st.dec2 <= 0.5;
+    if (!strictly_inside(p, rows, next) || !std::isfinite(jerk_quadrature_time(sh, next, nullptr, nullptr))) {
+      if (st.dec2 > 1e-3) break;
+      centred = true;  // rounding at a tiny decrement: stay, as if centred
+      if (final_t) t *= 4;
+    } else {
+      x = next;
+      T = jerk_quadrature_time(sh, x, nullptr, nullptr);
+    }
+    ++since;
+    if (!final_t && (centred || since >= 50)) {
+      t = std::min(t * 20, t_final);
+      since = 0;
+    }
+  }
+  x = x0;
+  return false;
+}
+
+}  // namespace pathpace::detail
