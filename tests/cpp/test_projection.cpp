@@ -437,3 +437,41 @@ TEST(Projection, RandomPolytopesGiveTheSamePolygonsWarmAndCold) {
     if (k > 0) EXPECT_GT(a.ranged_certificates, 0);  // the ranging path is among those compared
   }
 }
+
+TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePolytope) {
+  // Random polytopes through a projector with the dense simplex (the default) and one with GLPK alone:
+  // the same polygons (support values to 1e-9 of the size in 256 directions), most LPs solved by the
+  // dense simplex, and every vertex (x, u) extends to a point of the polytope (one LP with (x, u) fixed:
+  // the certificate's primal feasibility, checked by an independent solve).
+  std::mt19937 gen(5);
+  PolytopeProjector with, without, check;
+  without.dense = false;
+  int dense = 0, total = 0;
+  for (int k = 0; k < 10; ++k) {
+    const PolytopeLp lp = random_polytope(gen);
+    const Projection a = with.project(lp), b = without.project(lp);
+    ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
+    ASSERT_EQ(b.outcome, Projection::Outcome::Polygon);
+    ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
+    EXPECT_EQ(b.dense_solves, 0);
+    double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+    for (const Vertex& v : b.vertices) xlo = std::min(xlo, v.x), xhi = std::max(xhi, v.x), ylo = std::min(ylo, v.y), yhi = std::max(yhi, v.y);
+    const double size = std::max(xhi - xlo, yhi - ylo);
+    ASSERT_GT(size, 0.0);
+    for (int d = 0; d < 256; ++d) {
+      const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
+      EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9 * size) << "polytope " << k << " direction " << d;
+    }
+    for (const Vertex& v : a.vertices) {  // within 1e-9 of the size: the projection's own tolerance
+      PolytopeLp near = lp;
+      near.col_lo[0] = v.x - 1e-9 * size, near.col_hi[0] = v.x + 1e-9 * size;
+      near.col_lo[1] = v.y - 1e-9 * size, near.col_hi[1] = v.y + 1e-9 * size;
+      EXPECT_EQ(check.feasible(near), 1) << "polytope " << k << " vertex " << v.x << ", " << v.y;
+    }
+    EXPECT_GE(a.vertices.size(), 8u);
+    EXPECT_EQ(a.by_cause.dense, a.dense_solves);
+    dense += a.dense_solves;
+    total += a.lp_solves;
+  }
+  EXPECT_GT(dense, total / 2);
+}
