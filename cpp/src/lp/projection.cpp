@@ -333,6 +333,11 @@ void PolytopeProjector::Run::range_basis(bool computed) {
   Ranging& rg = last_range_;
   rg = Ranging();
   if (!computed) return;
+  const size_t nonbasic = static_cast<size_t>(cols_);  // rows + cols variables, rows of them basic
+  rg.var.reserve(nonbasic);
+  rg.stat.reserve(nonbasic);
+  rg.A.reserve(nonbasic);
+  rg.B.reserve(nonbasic);
   for (int k = 1; k <= total_; ++k) {
     const signed char st = self_.stat_[static_cast<size_t>(k - 1)];
     if (st == GLP_BS) continue;
