@@ -252,9 +252,13 @@ def part_corpus(args):
     worst over the rows. With --transcription, N = 100 rows are also solved by the direct transcription
     with the same pyramids (T to compare) and with exact cones (time to compare)."""
     print(f"issue 27 corpus, seed {args.seed27}, one thread; wall s of add_contacts + solve")
+    print("LPs/point by cause: initial directions / edge LPs that found a vertex / edge LPs that certified an edge / "
+          "cap growth / cold retries; 'ranged': edges certified by an endpoint's basis, no LP; 'dense': share of the "
+          "LPs the dense simplex solved and certified (fallbacks to GLPK after the slash); pivots per LP")
     print("| robot | path | points | torque scale | margins | edges | N | ε | status | T (s) | T - T(ε=0) | LPs/point | "
+          "by cause | ranged/point | dense (fallbacks) | pivots/LP | "
           "half-planes/point | torque-bound edges | wall (s) | CPU (s) | T direct, pyramids | rel. diff | direct exact cones (s) | speed-up |")
-    print("|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     rows = []
     for case in cc.hard_cases(args.seed27):
         if args.robots and case.robot not in args.robots:
@@ -278,8 +282,16 @@ def part_corpus(args):
             hp = [len(fs.halfplanes) for fs in sets]
             labels = [l for fs in sets for l in fs.labels]
             torque = sum("torque" in l for l in labels) / max(len(labels), 1)
-            row = dict(lps=res.stats["projection_lp_solves"] / (N + 1), hp=statistics.mean(hp),
-                       wall=statistics.median(wall), cpu=statistics.median(cpu), T=res.duration)
+            st = res.stats
+            row = dict(lps=st["projection_lp_solves"] / (N + 1), hp=statistics.mean(hp),
+                       wall=statistics.median(wall), cpu=statistics.median(cpu), T=res.duration,
+                       pivots=st["projection_pivots"] / max(st["projection_lp_solves"], 1))
+            causes = "/".join(f"{st['projection_lps_' + c] / (N + 1):.1f}"
+                              for c in ("initial", "vertex", "certificate", "cap_growth", "cold_retry"))
+            dense = (f"{st['projection_lps_dense'] / max(st['projection_lp_solves'], 1):.0%} "
+                     f"({st['projection_lps_dense_fallback']})")
+            stats_cols = (f"{causes} | {st['projection_ranged_certificates'] / (N + 1):.1f} | {dense} | "
+                          f"{row['pivots']:.1f}")
             direct = ("", "", "", "")
             if args.transcription and N == 100:
                 tp = transcription(h, path, cons, N, margins, cone_edges=k, torque_scale=scale)
@@ -295,10 +307,11 @@ def part_corpus(args):
             ref = exact_T.get((mname, N, k))
             dT = f"{res.duration - ref:+.2e}" if ref is not None and eps > 0.0 else ""
             print(f"| {case.robot} | {case.kind} | {len(cons)} | {scale} | {mname} | {k} | {N} | {eps:g} | {res.status.name} | "
-                  f"{res.duration:.9f} | {dT} | {row['lps']:.1f} | {row['hp']:.1f} | {torque:.0%} | {row['wall']:.3f} | {row['cpu']:.3f} | "
+                  f"{res.duration:.9f} | {dT} | {row['lps']:.1f} | {stats_cols} | {row['hp']:.1f} | {torque:.0%} | {row['wall']:.3f} | {row['cpu']:.3f} | "
                   + " | ".join(direct) + " |", flush=True)
     print("\nover the rows: median (worst)")
-    for key, name, worst in (("lps", "LPs per point", max), ("hp", "half-planes per point", max),
+    for key, name, worst in (("lps", "LPs per point", max), ("pivots", "pivots per LP", max),
+                             ("hp", "half-planes per point", max),
                              ("wall", "wall s", max), ("cpu", "CPU s", max), ("rel", "|T - T direct| / T direct", max),
                              ("speedup", "speed-up over direct, exact cones", min)):
         xs = [r[key] for r in rows if key in r]

@@ -56,6 +56,10 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("jerk_iterations", s.jerk_iterations);
   f("jerk_linearised_gap", s.jerk_linearised_gap);
   f("second_order_duration", s.second_order_duration);
+  f("projection_ranged_certificates", s.projection_ranged_certificates);
+  f("projection_lps_dense", s.projection_lps_dense);
+  f("projection_lps_dense_fallback", s.projection_lps_dense_fallback);
+  f("projection_pivots", s.projection_pivots);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -82,7 +86,9 @@ SolverStats stats_from_state(const py::tuple& st) {
   constexpr size_t kFirstStatsStateSize = 18;   // pickles written before the projection's LP causes
   constexpr size_t kSecondStatsStateSize = 23;  // ... and before the audit's LP and projection counts
   constexpr size_t kThirdStatsStateSize = 26;   // ... and before the jerk statistics
-  if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize && st.size() != kThirdStatsStateSize)
+  constexpr size_t kFourthStatsStateSize = 29;  // ... and before the projection's ranging, dense and pivot counts
+  if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize && st.size() != kThirdStatsStateSize &&
+      st.size() != kFourthStatsStateSize)
     check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;

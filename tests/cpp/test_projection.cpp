@@ -288,10 +288,13 @@ TEST(Projection, A160GonWithMicrometreEdgesSurvivesPruningIntoTheFeasibleSet) {
 TEST(Projection, RangingCertificatesGiveTheSamePolygonsWithAboutOneLpPerEdge) {
   // The 160-gon and a sequence of random lifted polygons (one projector, warm across them), with edges
   // certified by their endpoints' bases (ranging) and each by its own LP: the same vertices, and the
-  // ranging needs about one LP per edge where the LPs alone need about two.
+  // ranging needs about one LP per edge where the LPs alone need about two. GLPK in both (the vertices
+  // are compared to 1e-12: the dense simplex's degenerate optima may be other points of a micrometre
+  // edge); the dense simplex's polygons (the default) match in support value to 1e-9 of the size.
   std::mt19937 gen(27);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
-  PolytopeProjector with, without;
+  PolytopeProjector with, without, dense;
+  with.dense = false;
   without.ranging = false;
   for (int k = 0; k < 12; ++k) {
     std::vector<Vertex> truth;
@@ -329,6 +332,13 @@ TEST(Projection, RangingCertificatesGiveTheSamePolygonsWithAboutOneLpPerEdge) {
     for (size_t i = 0; i < a.vertices.size(); ++i) {
       EXPECT_NEAR(a.vertices[i].x, b.vertices[i].x, 1e-12 * (2.0 + k));
       EXPECT_NEAR(a.vertices[i].y, b.vertices[i].y, 1e-12 * (2.0 + k));
+    }
+    const Projection c = dense.project(lp);
+    ASSERT_TRUE(c.complete) << c.note;
+    EXPECT_GT(c.dense_solves, 0);
+    for (int d = 0; d < 256; ++d) {
+      const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
+      EXPECT_NEAR(support(c, dx, du), support(b, dx, du), 1e-9 * 2.0 * (2.0 + k)) << "polygon " << k << " direction " << d;
     }
     const int edges = static_cast<int>(a.halfplanes.size());
     EXPECT_GT(a.ranged_certificates, edges / 2);
@@ -436,4 +446,42 @@ TEST(Projection, RandomPolytopesGiveTheSamePolygonsWarmAndCold) {
     EXPECT_GE(a.vertices.size(), 8u);
     if (k > 0) EXPECT_GT(a.ranged_certificates, 0);  // the ranging path is among those compared
   }
+}
+
+TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePolytope) {
+  // Random polytopes through a projector with the dense simplex (the default) and one with GLPK alone:
+  // the same polygons (support values to 1e-9 of the size in 256 directions), most LPs solved by the
+  // dense simplex, and every vertex (x, u) extends to a point of the polytope (one LP with (x, u) fixed:
+  // the certificate's primal feasibility, checked by an independent solve).
+  std::mt19937 gen(5);
+  PolytopeProjector with, without, check;
+  without.dense = false;
+  int dense = 0, total = 0;
+  for (int k = 0; k < 10; ++k) {
+    const PolytopeLp lp = random_polytope(gen);
+    const Projection a = with.project(lp), b = without.project(lp);
+    ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
+    ASSERT_EQ(b.outcome, Projection::Outcome::Polygon);
+    ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
+    EXPECT_EQ(b.dense_solves, 0);
+    double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+    for (const Vertex& v : b.vertices) xlo = std::min(xlo, v.x), xhi = std::max(xhi, v.x), ylo = std::min(ylo, v.y), yhi = std::max(yhi, v.y);
+    const double size = std::max(xhi - xlo, yhi - ylo);
+    ASSERT_GT(size, 0.0);
+    for (int d = 0; d < 256; ++d) {
+      const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
+      EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9 * size) << "polytope " << k << " direction " << d;
+    }
+    for (const Vertex& v : a.vertices) {  // within 1e-9 of the size: the projection's own tolerance
+      PolytopeLp near = lp;
+      near.col_lo[0] = v.x - 1e-9 * size, near.col_hi[0] = v.x + 1e-9 * size;
+      near.col_lo[1] = v.y - 1e-9 * size, near.col_hi[1] = v.y + 1e-9 * size;
+      EXPECT_EQ(check.feasible(near), 1) << "polytope " << k << " vertex " << v.x << ", " << v.y;
+    }
+    EXPECT_GE(a.vertices.size(), 8u);
+    EXPECT_EQ(a.by_cause.dense, a.dense_solves);
+    dense += a.dense_solves;
+    total += a.lp_solves;
+  }
+  EXPECT_GT(dense, total / 2);
 }

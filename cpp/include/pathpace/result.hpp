@@ -86,6 +86,13 @@ struct SolverStats {
   int jerk_iterations = 0;
   double jerk_linearised_gap = 0.0;
   double second_order_duration = 0.0;
+  /// Contact projections, beside projection_lp_solves: edges certified by an endpoint's optimal basis (no
+  /// LP), LPs the dense simplex solved and certified, LPs it gave back to GLPK, and the simplex iterations
+  /// of every projection LP.
+  int projection_ranged_certificates = 0;
+  int projection_lps_dense = 0;
+  int projection_lps_dense_fallback = 0;
+  int projection_pivots = 0;
 };
 
 // docstrings.txt @@ Result

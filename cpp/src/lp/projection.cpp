@@ -67,7 +67,8 @@ class PolytopeProjector::Run {
   Step expand();
   Step certify_pending();
   void polygon();
-  int extremize(double vx, double vu, Vertex& p);
+  int extremize(double vx, double vu, Vertex& p, int start_point);
+  bool extremize_dense(double vx, double vu, Vertex& p, int start_point, double angle);
   const Basis* warm_basis(double angle) const;
   struct LpPoint {
     int st = -1;
@@ -105,6 +106,13 @@ class PolytopeProjector::Run {
   bool record_ = false;             // this size keeps its bases for the next grid point (kRestoreColumns)
   std::vector<char> nonempty_col_;  // per column: a nonzero in this grid point's matrix
   Ranging last_range_;              // the ranging of the last LP's optimal basis (empty if not computed)
+  // The dense simplex (dense_simplex.hpp): on for this grid point while the LP is the caller's own
+  // (unscaled, the stand-in bounds not grown); the optimal basis of each support point's LP (empty head:
+  // none) and of the last LP; whether the dense simplex solved the last LP (binding() reads it).
+  bool dense_on_ = false;
+  std::vector<DenseSimplex::State> states_;
+  DenseSimplex::State last_state_;
+  bool last_dense_ = false;
   std::vector<Vertex> points_;      // every support point found
   std::vector<Ranging> ranges_;     // and its LP's ranging
   std::vector<Vertex> support_;     // and the (unit) direction of that LP
@@ -121,7 +129,12 @@ class PolytopeProjector::Run {
 };
 
 Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
-  return Run(*this, in, relative_tolerance, max_lps, approximation).project();
+  Projection p = Run(*this, in, relative_tolerance, max_lps, approximation).project();
+  p.by_cause.ranged = p.ranged_certificates;
+  p.by_cause.dense = p.dense_solves;
+  p.by_cause.dense_fallback = p.dense_fallbacks;
+  p.by_cause.pivots = p.pivots;
+  return p;
 }
 
 // A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
@@ -192,6 +205,8 @@ bool PolytopeProjector::Run::start() {
   self_.tab_ind_.resize(static_cast<size_t>(total_) + 1);
   xlo_ = in_.col_lo[0], xhi_ = in_.col_hi[0], ulo_ = in_.col_lo[1], uhi_ = in_.col_hi[1];
   stand_in_ = in_.stand_in;
+  dense_on_ = self_.dense && self_.ranging && cols_ >= kRangingColumns;
+  if (dense_on_) self_.dense_engine_.load(in_);
   return true;
 }
 
@@ -257,10 +272,13 @@ void PolytopeProjector::Run::solve_lp(double vx, double vu, const signed char* s
   r.ranged = true;
 }
 
-// eq. (19) along (vx, vu): 1 optimal (p its (x, u)), 0 infeasible, -1 failed, -2 a GLPK error.
-int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p) {
+// eq. (19) along (vx, vu): 1 optimal (p its (x, u)), 0 infeasible, -1 failed, -2 a GLPK error. By the dense
+// simplex from the optimal basis of support point `start_point` when it has one, else (or when the dense
+// simplex gives up) by GLPK.
+int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p, int start_point) {
   ++out_.lp_solves;
   const double angle = std::atan2(vu, vx);
+  if (extremize_dense(vx, vu, p, start_point, angle)) return 1;
   const Basis* from = warm_basis(angle);
   const signed char* start = from ? from->stat.data() : nullptr;
   const signed char* fallback =
@@ -268,12 +286,46 @@ int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p) {
   // Ranging only on unscaled columns (its reduced costs are in the LP's own units).
   const bool range = self_.ranging && cols_ >= kRangingColumns && sx_ == 1.0 && su_ == 1.0;
   LpPoint r;
-  if (!guarded([&] { solve_lp(vx, vu, start, fallback, range, r); })) return -2;
+  int iterations = 0;
+  if (!guarded([&] {
+        const int before = glp_get_it_cnt(lp_);
+        solve_lp(vx, vu, start, fallback, range, r);
+        iterations = glp_get_it_cnt(lp_) - before;
+      }))
+    return -2;
+  out_.pivots += std::max(iterations, 0);
   if (r.st != GLP_OPT) return r.st == GLP_NOFEAS ? 0 : -1;
   p = {sx_ * r.px, su_ * r.pu};
   range_basis(r.ranged);
+  // GLPK's optimal basis, for the dense simplex's next LPs (stat_ holds it: range is on with dense_on_).
+  last_state_ = DenseSimplex::State();
+  if (dense_on_ && r.ranged && self_.dense_engine_.set_basis(self_.stat_.data())) last_state_ = self_.dense_engine_.state();
   if (record_) self_.current_.push_back({angle, self_.stat_});
   return 1;
+}
+
+// The dense simplex's LP (see extremize); false: not tried, or given up (counted; GLPK solves it).
+bool PolytopeProjector::Run::extremize_dense(double vx, double vu, Vertex& p, int start_point, double angle) {
+  last_dense_ = false;
+  if (!dense_on_ || start_point < 0 || states_[static_cast<size_t>(start_point)].head.empty()) return false;
+  DenseSimplex& ds = self_.dense_engine_;
+  ds.restore(states_[static_cast<size_t>(start_point)]);
+  const int before = ds.pivots;
+  const int ok = ds.maximize(vx, vu);
+  out_.pivots += ds.pivots - before;
+  if (ok != 1) {
+    ++out_.dense_fallbacks;
+    return false;
+  }
+  ++out_.dense_solves;
+  last_dense_ = true;
+  last_state_ = ds.state();
+  p = {ds.x(), ds.u()};
+  std::copy(last_state_.stat.begin(), last_state_.stat.end(), self_.stat_.begin());
+  ds.tableau_xu(self_.tab_x_.data(), self_.tab_u_.data());
+  range_basis(true);
+  if (record_) self_.current_.push_back({angle, self_.stat_});
+  return true;
 }
 
 // last_range_ from the basis in stat_ and the tableau rows in tab_x_, tab_u_ (see Ranging).
@@ -281,6 +333,11 @@ void PolytopeProjector::Run::range_basis(bool computed) {
   Ranging& rg = last_range_;
   rg = Ranging();
   if (!computed) return;
+  const size_t nonbasic = static_cast<size_t>(cols_);  // rows + cols variables, rows of them basic
+  rg.var.reserve(nonbasic);
+  rg.stat.reserve(nonbasic);
+  rg.A.reserve(nonbasic);
+  rg.B.reserve(nonbasic);
   for (int k = 1; k <= total_; ++k) {
     const signed char st = self_.stat_[static_cast<size_t>(k - 1)];
     if (st == GLP_BS) continue;
@@ -295,6 +352,8 @@ void PolytopeProjector::Run::add_point(const Vertex& p, const Vertex& direction)
   points_.push_back(p);
   ranges_.push_back(std::move(last_range_));
   support_.push_back(direction);
+  states_.push_back(std::move(last_state_));
+  last_state_ = DenseSimplex::State();
 }
 
 // Initial directions: the vertices of an equilateral triangle (sec. IV.C). They positively span the
@@ -305,7 +364,7 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::triangle() {
   for (int i = 0; i < 3; ++i) {
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
-    const int r = extremize(std::cos(ang), std::sin(ang), p);
+    const int r = extremize(std::cos(ang), std::sin(ang), p, static_cast<int>(points_.size()) - 1);
     ++out_.by_cause.initial;
     if (r == -2) return glpk_error();
     if (r == 0 && i == 0 && (capped(xhi_) || capped(ulo_) || capped(uhi_))) return Step::Again;
@@ -333,6 +392,9 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::grow_stand_in() {
                u_hi = capped(uhi_) ? INFINITY : uhi_;
   ++out_.lp_solves;
   ++out_.by_cause.cap_growth;
+  // The LP changes (bounds grown, columns scaled): the dense simplex's bases are not its own any more.
+  dense_on_ = false;
+  for (DenseSimplex::State& st : states_) st = DenseSimplex::State();
   int st = -1;
   double fx = 0.0, fu = 0.0;
   const bool ok = guarded([&] {
@@ -446,6 +508,18 @@ bool PolytopeProjector::Run::within_approximation(const Pending& e) const {
 bool PolytopeProjector::Run::binding(int& code) {
   code = kBindingUnknown;
   const double* norm = row_norm_.data();
+  if (last_dense_) {  // the same rule on the dense simplex's statuses and reduced costs
+    const DenseSimplex& ds = self_.dense_engine_;
+    const std::vector<signed char>& st = ds.state().stat;
+    double best = 0.0;
+    for (int k = 0; k < total_; ++k) {
+      const signed char sk = st[static_cast<size_t>(k)];
+      if (sk == GLP_BS || (k < rows_ && (sk == GLP_NS || in_.row_lo[k] == in_.row_hi[k]))) continue;
+      const double w = std::abs(ds.reduced_cost(k)) * (k < rows_ ? norm[k] : 1.0);
+      if (w > best) best = w, code = k < rows_ ? 2 * k + (sk == GLP_NU ? 1 : 0) : -(k - rows_ + 1);
+    }
+    return true;
+  }
   return guarded([&] {
     double best = 0.0;
     for (int i = 0; i < rows_; ++i) {
@@ -560,7 +634,10 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::certify_pending() {
       return Step::Ok;
     }
     Vertex q;
-    const int r = extremize(d.nx, d.nu, q);
+    // From the endpoint whose support direction is nearer the edge's normal.
+    const Vertex &sa = support_[static_cast<size_t>(d.from)], &sb = support_[static_cast<size_t>(d.to)];
+    const int start = sa.x * d.nx + sa.y * d.nu >= sb.x * d.nx + sb.y * d.nu ? d.from : d.to;
+    const int r = extremize(d.nx, d.nu, q, start);
     if (r != 1) ++out_.by_cause.vertex;
     if (r == -2) return glpk_error();
     if (r != 1) {

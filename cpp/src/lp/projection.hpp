@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include "lp/dense_simplex.hpp"
 #include "lp/glpk_guard.hpp"
 #include "geometry/polygon2d.hpp"
 #include "pathpace/constraints/constraint.hpp"
@@ -60,6 +61,9 @@ struct Projection {
   LpCounts by_cause;
   int ranged_certificates = 0;  ///< edges certified by an endpoint's ranging instead of an LP
   int approximate_edges = 0;    ///< edges final by `approximation` (no LP; binding unknown)
+  int dense_solves = 0;         ///< LPs the dense simplex solved and certified (the rest: GLPK)
+  int dense_fallbacks = 0;      ///< LPs the dense simplex gave up on (GLPK solved them)
+  int pivots = 0;               ///< simplex iterations of every LP (GLPK's and the dense simplex's)
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
@@ -109,7 +113,12 @@ class PolytopeProjector {
   std::vector<int> tab_ind_;  // glp_eval_tab_row scratch
   std::vector<double> tab_val_;
   std::vector<double> tab_x_, tab_u_;  // the tableau rows of x and u, over every variable (1-based)
+  DenseSimplex dense_engine_;
  public:
+  /// Solve the LPs after a grid point's first by the dense simplex (dense_simplex.hpp), warm from an
+  /// endpoint's optimal basis, each optimum certified (GLPK solves any it gives up on). On by default;
+  /// off for tests that compare both.
+  bool dense = true;
   /// Certify an edge without its LP when an endpoint's optimal basis is also optimal along the edge's
   /// normal (see Ranging in the .cpp). On by default; off for tests that compare both.
   bool ranging = true;

@@ -80,6 +80,10 @@ Result with_constraints(const TimeScalingProblem& problem, const std::vector<Con
       res.stats.projection_lps_certificate += by.certificate;
       res.stats.projection_lps_cap_growth += by.cap_growth;
       res.stats.projection_lps_cold_retry += by.cold_retry;
+      res.stats.projection_ranged_certificates += by.ranged;
+      res.stats.projection_lps_dense += by.dense;
+      res.stats.projection_lps_dense_fallback += by.dense_fallback;
+      res.stats.projection_pivots += by.pivots;
     }
   }
   return res;

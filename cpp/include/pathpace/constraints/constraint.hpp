@@ -20,11 +20,16 @@ struct Result;
 /// LPs of contact projections (sec. IV.C) by cause: the initial directions (a triangle), edge LPs that
 /// found a new vertex (or failed), edge LPs that certified an edge, feasibility LPs that grew the stand-in
 /// bounds, and every LP of a grid point projected once more from a cold start.
+/// Beside them (not LPs of their own): edges certified by an endpoint's basis without an LP (ranged), LPs
+/// solved by the dense simplex and those it gave back to GLPK (dense, dense_fallback), and the simplex
+/// iterations of all of them (pivots).
 struct LpCounts {
   int initial = 0, vertex = 0, certificate = 0, cap_growth = 0, cold_retry = 0;
+  int ranged = 0, dense = 0, dense_fallback = 0, pivots = 0;
   LpCounts& operator+=(const LpCounts& o) {
     initial += o.initial, vertex += o.vertex, certificate += o.certificate, cap_growth += o.cap_growth;
     cold_retry += o.cold_retry;
+    ranged += o.ranged, dense += o.dense, dense_fallback += o.dense_fallback, pivots += o.pivots;
     return *this;
   }
 };

@@ -1,0 +1,67 @@
+#pragma once
+// A small dense bounded primal simplex for the projection's support LPs (eq. 19) at one grid point:
+// the constraints stay, only the direction (v_x, v_u) of the objective changes. GLPK copies the problem
+// and factorises its basis on every call; here the explicit inverse of the basis is kept with each
+// support point, so that the LP of an edge starts from an endpoint's optimal basis (primal feasible,
+// nearly optimal) and costs a few rank-one updates. Every optimum is certified from the problem's own
+// data (primal feasibility of the point, each row with a bound on its rounding; dual feasibility of the
+// multipliers), to GLPK's own tolerances; anything else is a failure and the caller falls back to GLPK.
+//
+// Variables in GLPK's numbering, 0-based: k < m the auxiliary of row k (its value A_k z), k >= m the
+// column k - m; the constraint A z - aux = 0. Statuses are GLPK's (GLP_BS, GLP_NL, GLP_NU, GLP_NF,
+// GLP_NS), so that a basis passes between the two solvers.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace pathpace::detail {
+
+struct PolytopeLp;
+
+class DenseSimplex {
+ public:
+  /// A basis and what the simplex keeps with it.
+  struct State {
+    std::vector<int> head;            // basic variable of each basis position
+    std::vector<signed char> stat;    // per variable
+    Eigen::MatrixXd inv;              // B^-1
+    Eigen::VectorXd value;            // per variable (basic: computed, nonbasic: at its bound)
+    int updates = 0;                  // rank-one updates since inv was computed from B
+  };
+
+  /// The problem (kept by reference until the next load: the caller keeps it alive).
+  void load(const PolytopeLp& lp);
+  /// The basis `stat` (GLPK's statuses, rows then columns): false if it is not a basis, singular, or
+  /// not primal feasible.
+  bool set_basis(const signed char* stat);
+  /// Maximise v_x x + v_u u from the current basis (primal feasible). 1: optimal and certified; 0: gave
+  /// up (iteration limit, unbounded, a tiny pivot, a failed certificate: use GLPK).
+  int maximize(double vx, double vu);
+
+  const State& state() const { return s_; }
+  void restore(const State& s) { s_ = s; }
+  double x() const { return s_.value[m_]; }
+  double u() const { return s_.value[m_ + 1]; }
+  /// The reduced cost of variable k at the last optimum (GLPK's row / column dual).
+  double reduced_cost(int k) const { return d_[static_cast<size_t>(k)]; }
+  /// GLPK's tableau rows of x and u (x_B = Σ α x_N), 1-based over every variable, zero where x (u) is
+  /// nonbasic or the variable is basic.
+  void tableau_xu(double* tab_x, double* tab_u) const;
+  int pivots = 0;  ///< since load (statistics)
+
+ private:
+  bool factorize();
+  void compute_values();
+  void column(int k, Eigen::VectorXd& a) const;  // the constraint column of variable k
+  bool certify();
+  const PolytopeLp* lp_ = nullptr;
+  int m_ = 0, n_ = 0;
+  Eigen::VectorXd lo_, hi_;  // per variable
+  State s_;
+  std::vector<double> d_;
+  Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_;
+  Eigen::MatrixXd abs_a_;  // |A|, for the certificate's rounding bound
+};
+
+}  // namespace pathpace::detail
