@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <string>
@@ -105,6 +106,12 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
 }
 
 namespace {
+
+// Knobs (temporary, for measurement).
+double knob(const char* name, double dflt) {
+  const char* v = std::getenv(name);
+  return v ? std::atof(v) : dflt;
+}
 
 // Relative violation of row (a, b, c) at λ on an interval with θ_k = t0, θ_{k+1} = t1, u = (t1 - t0)/(2Δs).
 double violation(double a, double b, double c, double lam, double t0, double t1, double u) {
@@ -245,6 +252,7 @@ void Auditor::audit_constraint(size_t ci) {
   const Constraint* contact = constraints_[ci]->projected() ? constraints_[ci].get() : nullptr;
   if (!contact) coarse_rows(ci);
   const std::vector<Eigen::Index> todo = intervals_to_audit(ci);
+  audit_.intervals += static_cast<int>(todo.size());
   std::vector<double> fc;
   std::vector<size_t> first(todo.size() + 1, 0);
   if (contact) contact_batch(*contact, ci, todo, first, fc);
@@ -254,6 +262,7 @@ void Auditor::audit_constraint(size_t ci) {
   std::vector<Eigen::Index> at;  // per bracket: its interval
   brackets(todo, curvature, cand, at);
   if (cand.empty()) return;
+  const double peak_width = knob("PATHPACE_AUDIT_WIDTH", 0.0);
   // The peak between two samples (solve/brent.hpp), every bracket's evaluations in one batch per step. A
   // bracket is settled early when the bound of bump_bound, from its three points, shows no violation.
   maximize_batch(
@@ -267,6 +276,7 @@ void Auditor::audit_constraint(size_t ci) {
         if (!std::isfinite(c.fa) || !std::isfinite(c.fc)) return false;
         const double K =
             std::max(K_of(at[i], curvature), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
+        if (contact && c.c - c.a < peak_width) return true;
         return c.best() <= tolerance_ && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance_ &&
                bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance_;
       });
@@ -300,7 +310,9 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
   if (contact) {
     Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), lo, hi;
     for (size_t i = 0; i < kk.size(); ++i) u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
-    audit_.lps += contact->slice(ps, u, lo, hi);
+    const int spent = contact->slice(ps, u, lo, hi);
+    audit_.lps += spent;
+    audit_.peak_lps += spent;
     for (size_t i = 0; i < kk.size(); ++i)
       f[i] = slice_violation(x_of(kk[i], ll[i]), lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
     return;
@@ -360,6 +372,7 @@ void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<E
     }
   }
   first[todo.size()] = ks_.size();
+  audit_.samples += static_cast<int>(ks_.size());
   contact_samples(cc, ci, first, todo, f);
 }
 
@@ -402,7 +415,8 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
         }
       }
       const double delta = 1e-4 * (std::abs(u) + (theta_[k] + theta_[k + 1]) / (2.0 * (s_[k + 1] - s_[k])));
-      for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
+      const bool triple = cheb && knob("PATHPACE_AUDIT_DELTA", 1.0) != 0.0;
+      for (int r = triple ? 0 : 1; r <= (triple ? 2 : 1); ++r) {
         bk.push_back(k);
         bl.push_back(ll[i]);
         bu.push_back(u + (r - 1) * delta);
@@ -530,33 +544,53 @@ void Auditor::brackets(const std::vector<Eigen::Index>& todo, double curvature, 
   }
 }
 
-// One cut per interval and round, at its largest violation (cuts at several points of one interval in
-// one round are near-parallel rows that can leave the LPs ill-conditioned): every row broken at the peak,
-// as a row of the interval (exact, see the header), labelled as the problem's own row of that name (the
-// constraint's first row if it has none). For a contact constraint this is the only projection of the
-// audit: one polygon per cut.
-void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at) {
-  ks_.clear();
-  ls_.clear();
-  std::vector<size_t> cuts;
-  std::map<Eigen::Index, size_t> best_of;
-  for (size_t i = 0; i < cand.size(); ++i) {
-    auto it = best_of.emplace(at[i], i).first;
-    if (cand[i].best() > cand[it->second].best()) it->second = i;
+// The cut points of one round: for a constraint with rows of its own (torque, linear), one per interval,
+// at its largest violation (cuts at several points of one interval in one round are near-parallel rows
+// that can leave the LPs ill-conditioned). For a contact constraint every peak above the tolerance, the
+// largest first, that lies at least kSpacing (in λ) from the interval's other cut points of the round.
+// Returns indices into cand.
+std::vector<size_t> cut_points_of_round(const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
+                                        double tolerance, bool several) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < cand.size(); ++i)
+    if (cand[i].best() > tolerance) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](size_t i, size_t j) { return cand[i].best() > cand[j].best(); });
+  const double spacing = several ? knob("PATHPACE_AUDIT_SPACING", 0.1) : 2.0;
+  std::map<Eigen::Index, std::vector<double>> taken;
+  std::vector<size_t> out;
+  for (size_t i : order) {
+    std::vector<double>& t = taken[at[i]];
+    bool near = false;
+    for (double l : t) near = near || std::abs(l - cand[i].at()) < spacing;
+    if (near) continue;
+    t.push_back(cand[i].at());
+    out.push_back(i);
   }
+  std::sort(out.begin(), out.end());  // in the brackets' order (the rows' order in the re-solve)
+  return out;
+}
+
+// Every row broken at a cut point, as a row of the interval (exact, see the header), labelled as the
+// problem's own row of that name (the constraint's first row if it has none). For a contact constraint
+// this is the only projection of the audit: one polygon per cut point.
+void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at) {
   for (size_t i = 0; i < cand.size(); ++i) {
     const double best = cand[i].best();
     double& remembered = memory_.worst[ci][static_cast<size_t>(at[i])];
     audit_.worst = std::max(audit_.worst, best);
     remembered = std::max(remembered, best);
-    if (best_of[at[i]] != i) continue;
-    if (best > tolerance_) {
-      cuts.push_back(i);
-      ks_.push_back(at[i]);
-      ls_.push_back(cand[i].at());
-    }
   }
+  const bool contact = constraints_[ci]->projected();
+  const bool several = contact && knob("PATHPACE_AUDIT_MULTI", 0.0) != 0.0;
+  const double alpha = contact ? knob("PATHPACE_AUDIT_ALPHA", 0.0) : 0.0;
+  const std::vector<size_t> cuts = cut_points_of_round(cand, at, tolerance_, several);
   if (cuts.empty()) return;
+  ks_.clear();
+  ls_.clear();
+  for (size_t i : cuts) {
+    ks_.push_back(at[i]);
+    ls_.push_back(cand[i].at());
+  }
   const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
   audit_.projections += static_cast<int>(cuts.size());
   std::map<std::string, int> named;
@@ -570,8 +604,10 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
     for (Eigen::Index j = 0; j < rr.rows(); ++j) {
       if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)) <= tolerance_) continue;
       const double a = rr.a(r, j), b = rr.b(r, j);
+      const double excess = a * x_of(k, l) + b * u_of(k) - rr.c(r, j);
       const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
-      extra_.rows[static_cast<size_t>(k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
+      extra_.rows[static_cast<size_t>(k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h),
+                                                     rr.c(r, j) - alpha * excess,
                                                      row_offset_[ci] + (id == named.end() ? 0 : id->second)});
       ++audit_.cuts;
     }

@@ -60,6 +60,9 @@ struct Audit {
   int lps = 0;         ///< contact slice LPs (ContactConstraint::slice) spent
   int projections = 0; ///< polygons projected (at cut points)
   int reused = 0;      ///< contact samples settled by the slices kept from an earlier round (no LP)
+  int intervals = 0;   ///< intervals audited (their θ changed since their last audit)
+  int samples = 0;     ///< contact samples asked (before reuse)
+  int peak_lps = 0;    ///< of lps: those of the peak searches
 };
 
 /// Checks every constraint other than velocity and acceleration limits between the grid points of `s` under
