@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <sstream>
 
@@ -161,18 +159,11 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   SolverOptions round_options = options;
   for (;;) {
     round_options.time_limit = std::max(options.time_limit - detail::seconds_since(started), 1e-3);
-    const auto t_solve = std::chrono::steady_clock::now();
     res = solve_rows(rows, &extra, round_options);
     if (!res.ok() || res.status == Status::TimeLimit) break;
     const Eigen::VectorXd theta = res.sdot.array().square();
-    const auto t_audit = std::chrono::steady_clock::now();
     const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, rows_, offset,
                                                       options.audit_points, options.audit_tolerance, extra, memory);
-    if (std::getenv("PATHPACE_AUDIT_TRACE"))  // TRACE (temporary)
-      std::fprintf(stderr, "round %d: solve %.4f s audit %.4f s intervals %d samples %d reused %d lps %d (peak %d) proj %d cuts %d worst %.3g T %.9f\n",
-                   rounds + 1, std::chrono::duration<double>(t_audit - t_solve).count(),
-                   detail::seconds_since(t_audit), audit.intervals, audit.samples, audit.reused, audit.lps, audit.peak_lps,
-                   audit.projections, audit.cuts, audit.worst, res.duration);
     ++rounds;
     cuts += audit.cuts;
     audit_lps += audit.lps;
