@@ -40,7 +40,7 @@ def slice_at(A, lo, hi, bounds, u):
     return out[0], out[1]
 
 
-def dense_excess(h, cons, opts, scale, res, per_interval, seed):
+def dense_excess(h, path, cons, opts, scale, res, per_interval, seed):
     """Largest relative distance of the timing's (x, u) beyond the exact slice, over `per_interval` random
     points of every interval (x relative to max(x, x_hi), as the audit measures it)."""
     rng = np.random.default_rng(seed)
@@ -51,7 +51,7 @@ def dense_excess(h, cons, opts, scale, res, per_interval, seed):
         for lam in rng.uniform(0.0, 1.0, per_interval):
             si = s[k] + lam * (s[k + 1] - s[k])
             x = (1.0 - lam) * theta[k] + lam * theta[k + 1]
-            A, lo, hi, bounds = cc.full_polytope(h, res.path.q(si), res.path.dq(si), res.path.ddq(si), cons, 4,
+            A, lo, hi, bounds = cc.full_polytope(h, path.q(si), path.dq(si), path.ddq(si), cons, 4,
                                                  opts.get("friction_margin", 0.0), opts.get("min_normal_force", 0.0),
                                                  0.0, scale, opts.get("cone_offset", 0.0))
             sl = slice_at(A, lo, hi, bounds, u)
@@ -81,10 +81,10 @@ def test_continuous_contact_solve_holds_a_dense_independent_audit(robot, kind, m
     assert grid.status == cont.status == pp.Status.OPTIMAL, cont.message
     assert cont.duration >= grid.duration * (1 - 1e-9)
     # The grid optimum leaves its polygons between grid points (the audit has something to find) ...
-    assert dense_excess(h, cons, opts, scale, grid, 3, seed=1) > 1e-6
+    assert dense_excess(h, path, cons, opts, scale, grid, 3, seed=1) > 1e-6
     # ... the continuous one does not: within the polygons' own accuracy (exact to 1e-9 of their size,
     # which is up to 1e-8 of x where x is small against the polygon; see test_continuous's rod).
-    assert dense_excess(h, cons, opts, scale, cont, 3, seed=1) <= 1e-7
+    assert dense_excess(h, path, cons, opts, scale, cont, 3, seed=1) <= 1e-7
     # The 1 kHz force distribution of the returned trajectory exists (the contract bench/continuous.py
     # reports): its margin is >= -1e-6 N.
     t = np.append(np.arange(0.0, cont.duration, 1e-3), cont.duration)

@@ -106,16 +106,6 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
 
 namespace {
 
-// A contact constraint's cuts (bench/README.md, "guarantee=continuous on contacts", measured on the hard
-// corpus): each row moves inward by kCutMargin x the timing's excess over it, so that the bumps beside a
-// cut (a quarter of its height where the timing pivots about a tight grid point) are not cut again in the
-// next round (12-14 rounds to 1e-10 without it, 3 with it); every peak of an interval above the
-// tolerance is cut, at least kCutSpacing apart in λ; a peak is located to kPeakWidth in λ (its row is
-// exact wherever it is taken: the cut's margin, not the peak's position, carries the convergence).
-constexpr double kCutMargin = 0.5;
-constexpr double kCutSpacing = 0.1;
-constexpr double kPeakWidth = 1e-3;
-
 // Relative violation of row (a, b, c) at λ on an interval with θ_k = t0, θ_{k+1} = t1, u = (t1 - t0)/(2Δs).
 double violation(double a, double b, double c, double lam, double t0, double t1, double u) {
   if (c == std::numeric_limits<double>::infinity()) return -std::numeric_limits<double>::infinity();
@@ -277,7 +267,6 @@ void Auditor::audit_constraint(size_t ci) {
         if (!std::isfinite(c.fa) || !std::isfinite(c.fc)) return false;
         const double K =
             std::max(K_of(at[i], curvature), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
-        if (contact && c.c - c.a < kPeakWidth) return true;
         return c.best() <= tolerance_ && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance_ &&
                bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance_;
       });
@@ -541,52 +530,33 @@ void Auditor::brackets(const std::vector<Eigen::Index>& todo, double curvature, 
   }
 }
 
-// The cut points of one round: for a constraint with rows of its own (torque, linear), one per interval,
-// at its largest violation (cuts at several points of one interval in one round are near-parallel rows
-// that can leave the LPs ill-conditioned). For a contact constraint every peak above the tolerance, the
-// largest first, that lies at least kCutSpacing (in λ) from the interval's other cut points of the round.
-// Returns indices into cand.
-std::vector<size_t> cut_points_of_round(const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
-                                        double tolerance, bool several) {
-  std::vector<size_t> order;
-  for (size_t i = 0; i < cand.size(); ++i)
-    if (cand[i].best() > tolerance) order.push_back(i);
-  std::stable_sort(order.begin(), order.end(), [&](size_t i, size_t j) { return cand[i].best() > cand[j].best(); });
-  const double spacing = several ? kCutSpacing : 2.0;
-  std::map<Eigen::Index, std::vector<double>> taken;
-  std::vector<size_t> out;
-  for (size_t i : order) {
-    std::vector<double>& t = taken[at[i]];
-    bool near = false;
-    for (double l : t) near = near || std::abs(l - cand[i].at()) < spacing;
-    if (near) continue;
-    t.push_back(cand[i].at());
-    out.push_back(i);
-  }
-  std::sort(out.begin(), out.end());  // in the brackets' order (the rows' order in the re-solve)
-  return out;
-}
-
-// Every row broken at a cut point, as a row of the interval (exact, see the header), labelled as the
-// problem's own row of that name (the constraint's first row if it has none). For a contact constraint
-// this is the only projection of the audit: one polygon per cut point.
+// One cut per interval and round, at its largest violation (cuts at several points of one interval in
+// one round are near-parallel rows that can leave the LPs ill-conditioned): every row broken at the peak,
+// as a row of the interval (exact, see the header), labelled as the problem's own row of that name (the
+// constraint's first row if it has none). For a contact constraint this is the only projection of the
+// audit: one polygon per cut.
 void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at) {
+  ks_.clear();
+  ls_.clear();
+  std::vector<size_t> cuts;
+  std::map<Eigen::Index, size_t> best_of;
+  for (size_t i = 0; i < cand.size(); ++i) {
+    auto it = best_of.emplace(at[i], i).first;
+    if (cand[i].best() > cand[it->second].best()) it->second = i;
+  }
   for (size_t i = 0; i < cand.size(); ++i) {
     const double best = cand[i].best();
     double& remembered = memory_.worst[ci][static_cast<size_t>(at[i])];
     audit_.worst = std::max(audit_.worst, best);
     remembered = std::max(remembered, best);
+    if (best_of[at[i]] != i) continue;
+    if (best > tolerance_) {
+      cuts.push_back(i);
+      ks_.push_back(at[i]);
+      ls_.push_back(cand[i].at());
+    }
   }
-  const bool contact = constraints_[ci]->projected();
-  const double margin = contact ? kCutMargin : 0.0;
-  const std::vector<size_t> cuts = cut_points_of_round(cand, at, tolerance_, contact);
   if (cuts.empty()) return;
-  ks_.clear();
-  ls_.clear();
-  for (size_t i : cuts) {
-    ks_.push_back(at[i]);
-    ls_.push_back(cand[i].at());
-  }
   const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
   audit_.projections += static_cast<int>(cuts.size());
   std::map<std::string, int> named;
@@ -600,10 +570,8 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
     for (Eigen::Index j = 0; j < rr.rows(); ++j) {
       if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)) <= tolerance_) continue;
       const double a = rr.a(r, j), b = rr.b(r, j);
-      const double excess = a * x_of(k, l) + b * u_of(k) - rr.c(r, j);
       const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
-      extra_.rows[static_cast<size_t>(k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h),
-                                                     rr.c(r, j) - margin * excess,
+      extra_.rows[static_cast<size_t>(k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
                                                      row_offset_[ci] + (id == named.end() ? 0 : id->second)});
       ++audit_.cuts;
     }

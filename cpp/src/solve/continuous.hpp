@@ -9,9 +9,7 @@
 // row there, that row is added to its interval: at s = s_k + λΔs_k a row a x + b u <= c reads
 //   (a (1 - λ) - b / (2Δs_k)) θ_k + (a λ + b / (2Δs_k)) θ_{k+1} <= c
 // (θ(s) = (1 - λ)θ_k + λθ_{k+1}, u = (θ_{k+1} - θ_k)/(2Δs_k)): an exact constraint of the timing, not a
-// margin, so the cuts cost T only what the limits between grid points really demand. A contact
-// polygon's cut rows are the exception: moved inward by half the timing's excess over them (c - e/2),
-// which costs T about that much (measured 1e-5 relative on the hard corpus) and saves ~10 rounds.
+// margin, so the cuts cost T only what the limits between grid points really demand.
 
 #include <memory>
 #include <vector>
@@ -69,8 +67,7 @@ struct Audit {
 /// rounds), both grid points and the interval's earlier cut points, then, where a concavity bound from
 /// those samples reaches `tolerance`, at the peak found by parabolic/golden search. Adds to `extra` each
 /// row violated by more than `tolerance` (relative) at the interval's worst point, one point per interval
-/// and round; for a contact constraint at every peak above `tolerance` (0.1 apart in λ), each row moved
-/// inward by half the timing's excess over it (continuous.cpp, kCutMargin: fewer rounds, conservative). Rows are followed by their label (a contact polygon's columns differ from one evaluation to
+/// and round. Rows are followed by their label (a contact polygon's columns differ from one evaluation to
 /// the next); `grid_rows[i]` are constraint i's rows on the grid and `row_offset[i]` the label id of its
 /// first row, which name the cuts.
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
