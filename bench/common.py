@@ -245,7 +245,8 @@ def machine() -> dict:
 
     return {"cpu": cpu, "nproc": nproc, "os": platform.platform(), "python": platform.python_version(),
             "pathpace": version("pathpace"), "toppra": version("toppra"), "numpy": version("numpy"),
-            "scipy": version("scipy"), "pin": version("pin")}
+            "scipy": version("scipy"), "pin": version("pin"),
+            "copp": version("copp-py")}
 
 
 def write_generated_section(section: str, begin: str, end: str, heading: str, path: Path | None = None) -> None:

@@ -18,12 +18,10 @@ import numpy as np
 
 import common
 import pathpace as pp
-from sweep import ARMS, Arm, waypoints
+from sweep import ARMS, Arm, copp_solver, waypoints
 
 
 def solvers(arm, wp, N):
-    import copp_py as copp
-
     grid = np.linspace(0.0, 1.0, N + 1)
     path = pp.CubicSplinePath(wp, knots="uniform", boundary="not-a-knot", s_begin=0.0, s_end=1.0)
     v, a = arm.v, 2.0 * arm.v
@@ -34,17 +32,7 @@ def solvers(arm, wp, N):
         prob.add_acceleration_limits(-a, a)
         return np.asarray(prob.solve().sdot)
 
-    def theirs():
-        q, dq, ddq = path.q(grid), path.dq(grid), path.ddq(grid)
-        robot = copp.Robot(len(v), capacity=N + 1)
-        robot.append_s(grid)
-        robot.set_q(q, dq, ddq, 0)
-        robot.add_velocity_limits(v, -v, start_idx_s=0, length=N + 1)
-        robot.add_acceleration_limits(a, -a, start_idx_s=0, length=N + 1)
-        problem = copp.solver.topp2_ra.Problem(robot.constraints, idx_s_interval=(0, N), a_boundary=(0.0, 0.0))
-        return np.sqrt(np.maximum(copp.solver.topp2_ra.solve(problem), 0.0))
-
-    return grid, {"pathpace": ours, "copp": theirs}
+    return grid, {"pathpace": ours, "copp": copp_solver(path, grid, v, a)}
 
 
 def timed(fns, rounds=5):

@@ -1,4 +1,4 @@
-"""pathpace against toppra over a seeded corpus of random arm paths (never one path).
+"""pathpace against toppra and copp over a seeded corpus of random arm paths (never one path).
 
 Corpus: 4 arms of example-robot-data with 6-7 joints (Franka Panda with the fingers locked, UR5 and UR10 with
 joint limits, xArm7) x 20 seeds. Per seed: 5-8 random waypoints at 10-90 % of each joint's position range,
@@ -19,6 +19,10 @@ unaffected by other processes on a shared machine) and by wall clock (`time.perf
 counts as met only if both meet it. toppra: `TOPPRA(..., solver_wrapper="seidel",
 parametrizer="ParametrizeConstAccel").compute_parameterization(0, 0)` with its default (Interpolation)
 discretisation, which enforces the limits on both sides of every grid point as eq. (26) does.
+copp (copp-py, Rust TOPP2-RA, the fastest compiled peer, issue 25), case (a) only (its torque rows take a Python
+inverse-dynamics callback per sample, which would time the callback): `copp.solver.topp2_ra.solve` with default
+options on the same grid, its p, p', p'' sampled from pathpace's spline inside its timed call (as pathpace
+samples its path inside its own), interleaved with the other two; bench/copp.py is the same comparison alone.
 
 Checked by this script, trusting neither library: T = Σ 2Δs_k / (ṡ_k + ṡ_{k+1}) from each output's ṡ; the
 largest relative excess over the velocity, acceleration (numpy, own not-a-knot spline, s̈ of the interval on
@@ -62,11 +66,13 @@ ARMS = {
 }
 SIZES = (100, 1000, 10000)
 TORQUE_SCALES = (0.6, 0.8, 1.0)
-# Per path: `rounds` rounds of (`block` pathpace calls, 1 toppra call), after one warm-up call of each.
+# Per path: `rounds` rounds of (`block` pathpace calls, 1 toppra call, `block` copp calls), after one warm-up
+# call of each.
 ROUNDS = {100: 5, 1000: 3, 10000: 2}
 BLOCK = {100: 5, 1000: 3, 10000: 2}
 TARGETS = {("a", 100): (10, 5), ("b", 100): (10, 5), ("a", 1000): (25, 10), ("b", 1000): (25, 10),
            ("a", 10000): (20, None), ("b", 10000): (20, None)}  # (median, worst) speed-up
+COPP_TARGETS = (3.0, 1.5)  # issue 25: (median, worst) CPU-time speed-up over copp's TOPP2-RA, case (a)
 
 
 class Arm:
@@ -94,6 +100,34 @@ class Arm:
 
 def waypoints(arm, seed):
     return helpers.random_waypoints(arm.lo, arm.hi, np.random.default_rng(seed))
+
+
+def copp_available():
+    try:
+        import copp_py  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def copp_solver(path, grid, v, a):
+    """copp's TOPP2-RA (velocity + acceleration limits, rest to rest) on `grid`, sampling p, p', p'' from
+    pathpace's `path` inside the call; returns ṡ at the grid points."""
+    import copp_py as copp
+
+    N = len(grid) - 1
+
+    def solve():
+        q, dq, ddq = path.q(grid), path.dq(grid), path.ddq(grid)
+        robot = copp.Robot(len(v), capacity=N + 1)
+        robot.append_s(grid)
+        robot.set_q(q, dq, ddq, 0)
+        robot.add_velocity_limits(v, -v, start_idx_s=0, length=N + 1)
+        robot.add_acceleration_limits(a, -a, start_idx_s=0, length=N + 1)
+        problem = copp.solver.topp2_ra.Problem(robot.constraints, idx_s_interval=(0, N), a_boundary=(0.0, 0.0))
+        return np.sqrt(np.maximum(copp.solver.topp2_ra.solve(problem), 0.0))
+
+    return solve
 
 
 def make(arm, wp, N, scale, **solve_options):
@@ -131,6 +165,11 @@ def make(arm, wp, N, scale, **solve_options):
     return grid, ours, pathpace_solve, toppra_solve
 
 
+def make_copp(arm, path, grid, scale):
+    """copp on make()'s inputs, or None in case (b) (torque) or when copp-py is not installed."""
+    return copp_solver(path, grid, arm.v, 2.0 * arm.v) if scale is None and copp_available() else None
+
+
 def torque_violation(arm, wp, s, sdot, scale):
     ref = common.NotAKnotSpline(np.linspace(0, 1, wp.shape[0]), wp)
     q, dq, ddq = ref(s, 0), ref(s, 1), ref(s, 2)
@@ -154,14 +193,15 @@ def violation(arm, wp, s, sdot, scale):
 
 
 def timed(fns, rounds, block):
-    """Interleaved: each round runs `block` pathpace calls and one toppra call, the order alternating."""
-    out = {"pathpace": [], "toppra": []}
-    cpu = {"pathpace": [], "toppra": []}
+    """Interleaved: each round runs `block` pathpace (and copp) calls and one toppra call, the order reversed
+    every other round."""
+    out = {n: [] for n in fns}
+    cpu = {n: [] for n in fns}
     last = {n: f() for n, f in fns.items()}  # warm-up
     for r in range(rounds):
-        order = ("pathpace", "toppra") if r % 2 == 0 else ("toppra", "pathpace")
+        order = list(fns) if r % 2 == 0 else list(fns)[::-1]
         for n in order:
-            for _ in range(block if n == "pathpace" else 1):
+            for _ in range(1 if n == "toppra" else block):
                 c0, t0 = time.thread_time(), time.perf_counter()
                 last[n] = fns[n]()
                 t1, c1 = time.perf_counter(), time.thread_time()
@@ -172,8 +212,10 @@ def timed(fns, rounds, block):
 
 def run_case(arm, seed, case, N, scale, reps):
     wp = waypoints(arm, seed)
-    grid, _, ours, theirs = make(arm, wp, N, scale)
-    med, cpu, last = timed({"pathpace": ours, "toppra": theirs}, max(1, int(ROUNDS[N] * reps)), BLOCK[N])
+    grid, path, ours, theirs = make(arm, wp, N, scale)
+    copp = make_copp(arm, path, grid, scale)
+    fns = {"pathpace": ours, "toppra": theirs} | ({"copp": copp} if copp else {})
+    med, cpu, last = timed(fns, max(1, int(ROUNDS[N] * reps)), BLOCK[N])
     res, sd = last["pathpace"], last["toppra"]
     row = {"arm": arm.name, "seed": seed, "case": case, "N": N, "scale": scale, "waypoints": int(wp.shape[0]),
            "status": str(res.status).split(".")[-1], "pathpace_ms": 1e3 * med["pathpace"],
@@ -191,6 +233,12 @@ def run_case(arm, seed, case, N, scale, reps):
         sd = np.asarray(sd, float)
         row["T_toppra"] = float(common.times_from_sdot(grid, sd)[-1])
         row["violation_toppra"] = violation(arm, wp, grid, sd, scale)
+    if copp:
+        sd = np.asarray(last["copp"], float)
+        row["copp_cpu_ms"] = 1e3 * cpu["copp"]
+        row["speedup_copp_cpu"] = cpu["copp"] / max(cpu["pathpace"], 1e-9)
+        row["T_copp"] = float(common.times_from_sdot(grid, sd)[-1])
+        row["violation_copp"] = violation(arm, wp, grid, sd, scale)
     return row
 
 
@@ -211,7 +259,8 @@ def random_walk(N, seed=0, K=400):
     arm = Arm("panda")
     wp = helpers.random_walk(arm.lo, arm.hi, np.random.default_rng(seed), K)  # test_optimality_corpus's walk
     # A budget, so that the benchmark ends: the issue's target is 2 s at N = 100000.
-    grid, _, ours, theirs = make(arm, wp, N, None, time_limit=10.0)
+    grid, path, ours, theirs = make(arm, wp, N, None, time_limit=10.0)
+    copp = make_copp(arm, path, grid, None)
     ts, cpu = [], []
     for _ in range(3 if N <= 10000 else 1):
         t0, c0 = time.perf_counter(), time.thread_time()
@@ -222,6 +271,15 @@ def random_walk(N, seed=0, K=400):
            "gap": res.stats["gap"], "newton_steps": res.stats["newton_steps"],
            "T": res.duration, "lp_solves": res.stats["lp_solves"], "windows": res.stats["windows"],
            "window_points": res.stats["window_points"], "time_slp_ms": 1e3 * res.stats["time_slp"]}
+    if copp:
+        ts, cpu = [], []
+        for _ in range(3 if N <= 10000 else 1):
+            t0, c0 = time.perf_counter(), time.thread_time()
+            sd = copp()
+            ts.append(time.perf_counter() - t0)
+            cpu.append(time.thread_time() - c0)
+        row["copp_ms"], row["copp_cpu_ms"] = 1e3 * min(ts), 1e3 * min(cpu)
+        row["T_copp"] = float(common.times_from_sdot(grid, np.asarray(sd, float))[-1])
     if N <= 1000:
         t0 = time.perf_counter()
         sd = theirs()
@@ -261,6 +319,17 @@ def summarize(rows):
                 "sets_ms_median": 1e3 * statistics.median(r["stats"]["time_feasible_sets"] for r in rs),
                 "reach_ms_median": 1e3 * statistics.median(r["stats"]["time_reachability"] for r in rs),
             })
+            rc = [r for r in rows if r["case"] == case and r["N"] == N and "T" in r and "T_copp" in r]
+            if rc:
+                sp = [r["speedup_copp_cpu"] for r in rc]
+                rel = [r["T"] / r["T_copp"] - 1 for r in rc]
+                out[-1]["copp"] = {
+                    "paths": len(rc), "median_cpu": statistics.median(sp), "worst_cpu": min(sp), "best_cpu": max(sp),
+                    "pathpace_cpu_ms_median": statistics.median(r["pathpace_cpu_ms"] for r in rc),
+                    "copp_cpu_ms_median": statistics.median(r["copp_cpu_ms"] for r in rc),
+                    "T_rel_median": statistics.median(rel), "T_rel_min": min(rel), "T_rel_max": max(rel),
+                    "viol_max": max(r["violation"] for r in rc), "viol_copp_max": max(r["violation_copp"] for r in rc),
+                }
     return out
 
 
@@ -282,13 +351,28 @@ def table(summary, walk):
             f"{s['toppra_cpu_ms_median']:.2f} / {s['toppra_ms_median']:.2f} | {100 * s['lp_share']:.0f} % | "
             f"{s['slp_ms_median']:.3f} / {s['slp_ms_max']:.2f} | {s['T_rel_median']:+.1e}, {s['T_rel_min']:+.1e}, "
             f"{s['T_rel_max']:+.1e} | {fmt_e(s['gap_max'])} | {fmt_e(s['viol_max'])} / {fmt_e(s['viol_toppra_max'])} |")
+    copp = [s for s in summary if "copp" in s]
+    if copp:
+        lines += ["", "| against copp (TOPP2-RA): case | N | paths | speed-up CPU: median / worst / best "
+                  "| pathpace ms CPU (median) | copp ms CPU (median) | T / T_copp - 1: median, min, max "
+                  "| grid violation pathpace / copp |", "|---|---|---|---|---|---|---|---|"]
+        for s in copp:
+            c = s["copp"]
+            lines.append(
+                f"| {s['case']} | {s['N']} | {c['paths']} | {c['median_cpu']:.2f}x / {c['worst_cpu']:.2f}x / "
+                f"{c['best_cpu']:.2f}x | {c['pathpace_cpu_ms_median']:.3f} | {c['copp_cpu_ms_median']:.3f} | "
+                f"{c['T_rel_median']:+.1e}, {c['T_rel_min']:+.1e}, {c['T_rel_max']:+.1e} | "
+                f"{fmt_e(c['viol_max'])} / {fmt_e(c['viol_copp_max'])} |")
     if walk:
         lines += ["", "| random walk (Panda, a): waypoints | N | pathpace ms wall / CPU | status | certified gap | LPs | "
-                  "Newton steps | windows (points) | toppra ms |", "|---|---|---|---|---|---|---|---|---|"]
+                  "Newton steps | windows (points) | toppra ms | copp ms wall / CPU | T / T_copp - 1 |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|"]
         for w in walk:
+            cp = (f"{w['copp_ms']:.2f} / {w['copp_cpu_ms']:.2f} | {w['T'] / w['T_copp'] - 1:+.1e}"
+                  if "copp_ms" in w else "- | -")
             lines.append(f"| {w['K']} | {w['N']} | {w['ms']:.2f} / {w['cpu_ms']:.2f} | {w['status']} | {fmt_e(w['gap'])} | "
                          f"{w['lp_solves']} | {w['newton_steps']} | {w['windows']} ({w['window_points']}) | "
-                         f"{w.get('toppra_ms', float('nan')):.1f} |")
+                         f"{w.get('toppra_ms', float('nan')):.1f} | {cp} |")
     return "\n".join(lines)
 
 
@@ -308,6 +392,15 @@ def verdicts(summary, walk, rows):
     nonopt = sum(1 for r in rows if "T" in r and r["status"] != "OPTIMAL")
     out.append(f"- certified gap <= 1e-7: **{'met' if gmax <= 1e-7 and not nonopt else 'NOT met'}** (largest "
                f"{gmax:.1e}; {nonopt} solved paths not OPTIMAL).")
+    med_t, worst_t = COPP_TARGETS
+    for s in summary:
+        if "copp" not in s:
+            continue
+        c = s["copp"]
+        ok = c["median_cpu"] >= med_t and c["worst_cpu"] >= worst_t and c["T_rel_max"] <= 1e-9
+        out.append(f"- ({s['case']}) N = {s['N']} against copp (issue 25): median >= {med_t:g}x, worst >= {worst_t:g}x, "
+                   f"T <= T_copp + 1e-9: **{'met' if ok else 'NOT met'}** (CPU time: {c['median_cpu']:.2f}x, worst "
+                   f"{c['worst_cpu']:.2f}x; largest T / T_copp - 1: {c['T_rel_max']:+.1e}).")
     for w in walk:
         lim = 20.0 if w["N"] == 1000 else (2000.0 if w["N"] == 100000 else None)
         if lim and w["K"] == 400:
@@ -381,11 +474,12 @@ method are described in the script's docstring: 4 arms (Panda, UR5, UR10, xArm7)
 torque limits; identical spline and grid for both libraries, interleaved timing, medians per path.
 Torque scale used in (b), paths: {sc['0.6']} at 0.6 x effort, {sc['0.8']} at 0.8, {sc['1.0']} at 1.0,
 {sc['None']} infeasible at all three (left out). "needed LPs": share of paths on which the relaxation's
-bracket was not within the tolerance, so that SLP ran on windows.
+bracket was not within the tolerance, so that SLP ran on windows. copp-py {mach.get('copp', '?')} (TOPP2-RA)
+in case (a) and the walk: CPU-time ratio copp / pathpace per path, the three libraries interleaved.
 
 {tab}
 
-Targets (issue #8):
+Targets (issue #8; against copp, issue 25):
 {ver}
 
 Per-path rows (status, times, T of both, violations, solver stats): `bench/results/sweep.json`
