@@ -29,7 +29,7 @@ point (phase_grid). --sweep times it at N = 50..800 and plots run time against N
 the hands' balls as ball_links): the N = 100 timing, and the one at SIM_GRID with the motors planned at
 TORQUE_SCALE and SIM_MIN_NORMAL_FORCE per point.
 
-    .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim] [--repeat 5]
+    .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim] [--repeat 5] [--contact-timeconst 0.002]
 """
 
 from __future__ import annotations
@@ -454,6 +454,9 @@ def main(argv: list[str] | None = None) -> dict:
                     help=f"N of the timing that is executed (default {SIM_GRID}; see SIM_GRID)")
     ap.add_argument("--min-normal-force", type=float, default=SIM_MIN_NORMAL_FORCE,
                     help=f"N per point of the executed timing (default {SIM_MIN_NORMAL_FORCE})")
+    ap.add_argument("--contact-timeconst", type=float, default=0.005,
+                    help="MuJoCo's contact time constant in s (default 0.005, the simulator's; 0.002 is the stiffest at "
+                         "its 1 ms step: slip 4.2 mm instead of 8.6 at SIM_GRID, bench/README.md)")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -490,7 +493,7 @@ def main(argv: list[str] | None = None) -> dict:
         plot_sweep(out["sweep"], png)
         print(f"wrote {png}")
     if args.sim:
-        sim = simulator(robot, path)
+        sim = simulator(robot, path, contact_timeconst=args.contact_timeconst)
         options = dict(MARGINS, min_normal_force=args.min_normal_force, torque_scale=TORQUE_SCALE)
         rows = [("N = 100, margins of the timing above", res)]
         rows.append((f"N = {args.sim_grid}, {args.min_normal_force:g} N per point, motors {TORQUE_SCALE} x",
