@@ -6,10 +6,11 @@ floating base, 38 coordinates) starts with both feet on rung 1 and both hands on
 at a time up by one rung, in the order left hand, right foot, right hand, left foot, CYCLES times: 2 cycles
 climb 2 rungs with 8 swings, i.e. 16 contact changes (8 breaks, 8 makes). The hands end on the top rung.
 
-The contacts are frictional points on the rung tops, no adhesion (world normal +z): four points on the
-front half of each sole (a rung is narrower than the sole) and one per hand, the centre of a ball of radius
-BALL that the hand presses on the rung (the simulator's contact sphere; the hand turns on it as the body
-climbs past). The phases, one unit of s each: a shift with all four limbs down (the centre of mass moves
+The contacts are frictional points, no adhesion: four points on the front half of each sole on the rung
+top (world normal +z; a rung is narrower than the sole), and a grip per hand: the centre of a ball of radius
+BALL (the simulator's contact sphere; the hand turns on it as the body climbs past) on the rung top (+z)
+and against a ridge on it that holds it from behind (+x, a pull towards the ladder): two contacts through
+the ball's centre, each with its own friction cone (GRIP). The phases, one unit of s each: a shift with all four limbs down (the centre of mass moves
 over the next support), then the swing of one limb with the other three down; 8 of each and a final
 shift: 17 phases on s in [0, 17].
 
@@ -28,7 +29,7 @@ point (phase_grid). --sweep times it at N = 50..800 and plots run time against N
 the hands' balls as ball_links): the N = 100 timing, and the one at SIM_GRID with the motors planned at
 TORQUE_SCALE and SIM_MIN_NORMAL_FORCE per point.
 
-    .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim] [--repeat 5]
+    .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim] [--repeat 5] [--contact-timeconst 0.002]
 """
 
 from __future__ import annotations
@@ -77,6 +78,24 @@ HAND_POINT = (0.0, 0.0, 0.0)
 # the normal force.
 BALL = 0.005
 HAND_Y = 0.35  # |y| of the hands on the rungs
+# A hand hooks its rung (GRIP): besides the rung top (normal +z) its ball is held from behind by a ridge on the
+# rung top (the fingers behind the rung: a face with normal +x, a frictional point contact through the ball's
+# centre, no adhesion), so a hand can pull the body towards the ladder, not only press down. Not also a face
+# in front (-x): two contacts of one rigid link with opposite normals through one point would let the plan
+# squeeze the ball between them for free (their normal forces cancel in every torque) and so buy any
+# friction it likes, which no rigid hand has (measured: the timing then takes 6.2 s and the robot falls at
+# s = 6.7). The ridge in front stays in the scene (the hand closed around the rung), unused by the plan.
+# RIDGE: the ridges' thickness along x; they are BALL high (up to the ball's centre, where its equator
+# touches them) and 2 RIDGE_Y wide around the hand.
+# Off by default: measured 2026-12-02 (N = 400, 30 N per point, motors 0.8 x) the grip does not help: T =
+# 10.750 s and the robot falls at s = 7.9 (with ṡ = 0 at the breaks too: 11.394 s, falls at s = 7.3); the
+# left hand lands on its ridge at s = 2 (MuJoCo's hand lags the plan's by more than the 0.5 mm play while
+# it comes down from behind), lifted 3 mm, and the right hand then slides. A hook wants the hand to come
+# down onto the rung from above the ridge, which this path does not do (bench/README.md).
+GRIP = False
+GRIP_NORMALS = ((0.0, 0.0, 1.0), (1.0, 0.0, 0.0))  # a hand with grip: the rung top and the ridge behind
+RIDGE, RIDGE_Y = 0.005, 0.04
+RIDGE_GAP = 0.0005  # m between the ball and each ridge where the plan puts it (the grip's play)
 LIMIT_GAP = 0.02  # rad (m) that the IK keeps inside every joint limit
 LIFT = 0.05  # m above the straight line that a swing limb clears
 
@@ -86,20 +105,32 @@ def rung_top(j: int) -> np.ndarray:
     return np.array([X0 + j * RUN, 0.0, j * RISE])
 
 
-def rung_boxes() -> list[dict]:
-    """The rungs as axis-aligned boxes: centre and half sizes (m), for pathpace.sim.Simulator(surfaces=...)."""
+def rung_boxes(grip: bool = GRIP) -> list[dict]:
+    """The rungs as axis-aligned boxes: centre and half sizes (m), for pathpace.sim.Simulator(surfaces=...);
+    with grip, the ridges that hold the hands' balls on the rungs the hands hold (HAND_RUNG to the top)."""
     half = np.array([DEPTH / 2, WIDTH / 2, THICKNESS / 2])
-    return [dict(centre=rung_top(j) - [0.0, 0.0, THICKNESS / 2], half_size=half, name=f"rung_{j}")
-            for j in range(1, RUNGS + 1)]
+    out = [dict(centre=rung_top(j) - [0.0, 0.0, THICKNESS / 2], half_size=half, name=f"rung_{j}")
+           for j in range(1, RUNGS + 1)]
+    if grip:
+        ridge = np.array([RIDGE / 2, RIDGE_Y, BALL / 2])
+        for j in range(HAND_RUNG, RUNGS + 1):
+            for y in (HAND_Y, -HAND_Y):
+                for side, name in ((-1.0, "behind"), (1.0, "front")):
+                    c = rung_top(j) + [side * (BALL + RIDGE_GAP + RIDGE / 2), y, BALL / 2]
+                    out.append(dict(centre=c, half_size=ridge, name=f"rung_{j}_ridge_{name}_{'left' if y > 0 else 'right'}"))
+    return out
 
 
-def limb_contacts(link: str) -> list[pp.Contact]:
-    points = FOOT_POINTS if link in FEET else [HAND_POINT]
-    return [pp.Contact(link, point=p, normal=(0, 0, 1), friction=FRICTION) for p in points]
+def limb_contacts(link: str, grip: bool = GRIP) -> list[pp.Contact]:
+    """A sole's four points on the rung top; a hand's ball centre on the rung top (+z), and with grip
+    against the ridge behind it too (GRIP_NORMALS)."""
+    if link in FEET:
+        return [pp.Contact(link, point=p, normal=(0, 0, 1), friction=FRICTION) for p in FOOT_POINTS]
+    return [pp.Contact(link, point=HAND_POINT, normal=n, friction=FRICTION) for n in (GRIP_NORMALS if grip else GRIP_NORMALS[:1])]
 
 
-def all_contacts() -> list[pp.Contact]:
-    return [c for link in (*FEET, *HANDS) for c in limb_contacts(link)]
+def all_contacts(grip: bool = GRIP) -> list[pp.Contact]:
+    return [c for link in (*FEET, *HANDS) for c in limb_contacts(link, grip)]
 
 
 def schedule(cycles: int = CYCLES) -> list[tuple[float, float, str | None]]:
@@ -113,9 +144,9 @@ def schedule(cycles: int = CYCLES) -> list[tuple[float, float, str | None]]:
     return out
 
 
-def phases(cycles: int = CYCLES) -> list[tuple[float, float, list[pp.Contact]]]:
+def phases(cycles: int = CYCLES, grip: bool = GRIP) -> list[tuple[float, float, list[pp.Contact]]]:
     """The contact phases: every limb's contacts but the swinging one's."""
-    return [(s0, s1, [c for c in all_contacts() if c.link != limb]) for s0, s1, limb in schedule(cycles)]
+    return [(s0, s1, [c for c in all_contacts(grip) if c.link != limb]) for s0, s1, limb in schedule(cycles)]
 
 
 def contact_changes(cycles: int = CYCLES) -> int:
@@ -357,16 +388,16 @@ def timing(robot: pp.RobotModel, path: pp.Path, grid: int, cycles: int = CYCLES,
     return prob, res, t_sets, time.perf_counter() - t0
 
 
-def simulator(robot: pp.RobotModel, path: pp.Path, cycles: int = CYCLES, **options):
+def simulator(robot: pp.RobotModel, path: pp.Path, cycles: int = CYCLES, grip: bool = GRIP, **options):
     """pathpace.sim's Talos on the ladder: every contact a sphere, placed where its first phase makes it, the
     rungs as boxes (humanoid_sim.talos_simulator's URDF and locked grippers)."""
     import humanoid_sim  # noqa: E402  (MuJoCo; imported only here)
     from pathpace.sim import Box, contact_configurations
 
-    contacts = all_contacts()
-    return humanoid_sim.talos_simulator(robot, path, contacts, surfaces=[Box(**b) for b in rung_boxes()],
+    contacts = all_contacts(grip)
+    return humanoid_sim.talos_simulator(robot, path, contacts, surfaces=[Box(**b) for b in rung_boxes(grip)],
                                         ball_links=HANDS, contact_radius=BALL,
-                                        contact_configurations=contact_configurations(path, phases(cycles), contacts),
+                                        contact_configurations=contact_configurations(path, phases(cycles, grip), contacts),
                                         **options)
 
 
@@ -423,6 +454,9 @@ def main(argv: list[str] | None = None) -> dict:
                     help=f"N of the timing that is executed (default {SIM_GRID}; see SIM_GRID)")
     ap.add_argument("--min-normal-force", type=float, default=SIM_MIN_NORMAL_FORCE,
                     help=f"N per point of the executed timing (default {SIM_MIN_NORMAL_FORCE})")
+    ap.add_argument("--contact-timeconst", type=float, default=0.005,
+                    help="MuJoCo's contact time constant in s (default 0.005, the simulator's; 0.002 is the stiffest at "
+                         "its 1 ms step: slip 4.2 mm instead of 8.6 at SIM_GRID, bench/README.md)")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -459,7 +493,7 @@ def main(argv: list[str] | None = None) -> dict:
         plot_sweep(out["sweep"], png)
         print(f"wrote {png}")
     if args.sim:
-        sim = simulator(robot, path)
+        sim = simulator(robot, path, contact_timeconst=args.contact_timeconst)
         options = dict(MARGINS, min_normal_force=args.min_normal_force, torque_scale=TORQUE_SCALE)
         rows = [("N = 100, margins of the timing above", res)]
         rows.append((f"N = {args.sim_grid}, {args.min_normal_force:g} N per point, motors {TORQUE_SCALE} x",

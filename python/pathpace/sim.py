@@ -73,7 +73,7 @@ class Box:
                 n[axis] = sign
                 extent = h.copy()
                 extent[axis] = 0.0
-                yield n, c + sign * h[axis] * n, extent
+                yield n, c + h[axis] * n, extent
 
 
 def contact_configurations(path: _core.Path, phases: Sequence, contacts: Sequence[_core.Contact]) -> list[np.ndarray]:
@@ -451,6 +451,7 @@ class Simulator:
         #: the surface each contact touches: "floor" or a Box's name
         self.contact_surfaces = []
         self.contact_normals = np.zeros((len(self.contacts), 3))
+        ball_geoms: set = set()  # (link, centre) of each ball link's sphere, added once
         for k, c in enumerate(self.contacts):
             if c.other_link is not None:
                 _fail(f"contacts[{k}]: link-to-link contacts ('{c.link}' on '{c.other_link}') are not simulated")
@@ -465,6 +466,13 @@ class Simulator:
             centre = np.asarray(c.point, dtype=float)
             if not ball:
                 centre = centre + contact_radius * (X[:3, :3].T @ n)
+            elif (c.link, tuple(centre)) in ball_geoms:
+                # One ball, several faces (a hand gripping a rung: its top and the sides that hold it): the
+                # ball touches each of them; a second sphere in the same place would double its stiffness.
+                body.add_site(name=f"pathpace_contact_{k}", pos=centre)
+                continue
+            else:
+                ball_geoms.add((c.link, tuple(centre)))
             # priority: the sphere's μ is the contact's μ (MuJoCo would otherwise take the larger one).
             body.add_geom(name=f"pathpace_contact_{k}", type=mj.mjtGeom.mjGEOM_SPHERE, size=[contact_radius, 0, 0],
                           pos=centre, contype=2, conaffinity=0, condim=3, priority=1, friction=[c.friction, 0.0, 0.0],

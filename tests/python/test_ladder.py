@@ -99,3 +99,17 @@ def test_mujoco_execution_verdicts_with_room(ladder):
     # (the simulator's default): tilt 0.13, tracking 0.19 (0.10 and 0.05 with the LP's vertex), slip 1.73:
     # the slip is the open failure (bench/README.md), not asserted.
     assert not out.fell and ratios["tilt"] <= 0.5 and ratios["tracking"] <= 0.5
+
+
+def test_grip_holds_each_hand_on_the_rung_top_and_the_ridge_behind_it(ladder):
+    # The grip option (off by default: it does not execute, bench/README.md): per hand a ball on the rung top
+    # and against the ridge behind it (normals +z and +x through its centre, no opposite pair), one sphere.
+    pytest.importorskip("mujoco")
+    ns, robot, path = ladder["ns"], ladder["robot"], ladder["path"]
+    hand = ns["limb_contacts"](ns["HANDS"][0], grip=True)
+    assert [tuple(c.normal) for c in hand] == [(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)]
+    assert all(np.allclose(c.point, ns["HAND_POINT"]) for c in hand)
+    sim = ns["simulator"](robot, path, grip=True)
+    assert sim.contact_surfaces[8:] == ["rung_6", "rung_6_ridge_behind_left", "rung_6", "rung_6_ridge_behind_right"]
+    spheres = [sim.model.geom(i).name for i in range(sim.model.ngeom) if sim.model.geom(i).name.startswith("pathpace_contact_")]
+    assert len(spheres) == 8 + 2  # one per sole point, one per hand

@@ -174,6 +174,35 @@ def test_ball_links_hold_a_surface_with_their_point_at_the_centre():
         Simulator(robot, urdf, [fist], q, locked_joints=PANDA_LOCKED, surfaces=[low], ball_links=["fist"])
 
 
+def test_a_ball_gripping_a_rung_is_one_sphere_on_three_faces():
+    # A hand's ball on a rung top between two ridges (a grip): contacts with normals +z, +x (the ridge behind
+    # it, whose face looks along +x) and -x (the ridge in front, its face looking along -x). Every face of a
+    # box is where it is: the -x face of the front ridge is at its centre - half size (it once was at + half).
+    robot, urdf, q, p, rung = _panda_on_a_box()
+    r = 0.005
+    low = Box(centre=rung.centre - np.array([0, 0, r]), half_size=rung.half_size, name="rung")
+    top_z = p[2] - r
+    behind = Box(centre=(p[0] - r - 0.0025, p[1], top_z + r / 2), half_size=(0.0025, 0.04, r / 2), name="behind")
+    front = Box(centre=(p[0] + r + 0.0025, p[1], top_z + r / 2), half_size=(0.0025, 0.04, r / 2), name="front")
+    grip = [pp.Contact("panda_hand", normal=n) for n in ((0, 0, 1), (1, 0, 0), (-1, 0, 0))]
+    sim = Simulator(robot, urdf, grip, q, locked_joints=PANDA_LOCKED, surfaces=[low, behind, front], ball_links=["panda_hand"])
+    assert sim.contact_surfaces == ["rung", "behind", "front"]
+    spheres = [sim.model.geom(i).name for i in range(sim.model.ngeom) if sim.model.geom(i).name.startswith("pathpace_contact_")]
+    assert spheres == ["pathpace_contact_0"]  # one ball, not three in the same place
+    assert np.allclose(sim.contact_positions(), p, atol=1e-12)  # each contact's site at the ball's centre
+    # The rung 1 mm higher and each ridge 1 mm closer: the ball touches all three, nothing else touches.
+    sim.model.geom_pos[sim.model.geom("rung").id][2] += 1e-3
+    sim.model.geom_pos[sim.model.geom("behind").id] += [1e-3, 0.0, 1e-3]
+    sim.model.geom_pos[sim.model.geom("front").id] += [-1e-3, 0.0, 1e-3]
+    sim.set_configuration(q)
+    pairs = {tuple(sorted(sim.model.geom(i).name for i in sim.data.contact.geom[k])) for k in range(sim.data.ncon)}
+    assert pairs == {("pathpace_contact_0", "rung"), ("behind", "pathpace_contact_0"), ("front", "pathpace_contact_0")}
+    # The -x contact 2 mm in front of the front ridge's face: on no surface (the face is where the box is).
+    far = Box(centre=(p[0] + r + 0.002 + 0.0025, p[1], top_z + r / 2), half_size=(0.0025, 0.04, r / 2), name="front")
+    with pytest.raises(pp.InvalidInputError, match=r"contacts\[2\] .* on no surface with that normal"):
+        Simulator(robot, urdf, grip, q, locked_joints=PANDA_LOCKED, surfaces=[low, behind, far], ball_links=["panda_hand"])
+
+
 def test_contact_configurations_place_each_contact_where_its_first_phase_makes_it():
     robot, urdf, q, p, rung = _panda_on_a_box()
     q1 = q.copy()
