@@ -421,6 +421,19 @@ PolytopeLp random_polytope(std::mt19937& gen) {
   return lp;
 }
 
+// The larger side of b's bounding box, after checking a's support values against b's in 256 directions to
+// 1e-9 of it (the projection's tolerance relative to the polygon's size).
+double expect_same_support(const Projection& a, const Projection& b, int k) {
+  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+  for (const Vertex& v : b.vertices) xlo = std::min(xlo, v.x), xhi = std::max(xhi, v.x), ylo = std::min(ylo, v.y), yhi = std::max(yhi, v.y);
+  const double size = std::max(xhi - xlo, yhi - ylo);
+  for (int d = 0; d < 256; ++d) {
+    const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
+    EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9 * size) << "polytope " << k << " direction " << d;
+  }
+  return size;
+}
+
 }  // namespace
 
 TEST(Projection, RandomPolytopesGiveTheSamePolygonsWarmAndCold) {
@@ -435,14 +448,8 @@ TEST(Projection, RandomPolytopesGiveTheSamePolygonsWarmAndCold) {
     ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
     ASSERT_EQ(b.outcome, Projection::Outcome::Polygon);
     ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
-    double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
-    for (const Vertex& v : b.vertices) xlo = std::min(xlo, v.x), xhi = std::max(xhi, v.x), ylo = std::min(ylo, v.y), yhi = std::max(yhi, v.y);
-    const double size = std::max(xhi - xlo, yhi - ylo);
+    const double size = expect_same_support(a, b, k);
     ASSERT_GT(size, 0.0);
-    for (int d = 0; d < 256; ++d) {
-      const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
-      EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9 * size) << "polytope " << k << " direction " << d;
-    }
     EXPECT_GE(a.vertices.size(), 8u);
     if (k > 0) EXPECT_GT(a.ranged_certificates, 0);  // the ranging path is among those compared
   }
@@ -464,14 +471,8 @@ TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePoly
     ASSERT_EQ(b.outcome, Projection::Outcome::Polygon);
     ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
     EXPECT_EQ(b.dense_solves, 0);
-    double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
-    for (const Vertex& v : b.vertices) xlo = std::min(xlo, v.x), xhi = std::max(xhi, v.x), ylo = std::min(ylo, v.y), yhi = std::max(yhi, v.y);
-    const double size = std::max(xhi - xlo, yhi - ylo);
+    const double size = expect_same_support(a, b, k);
     ASSERT_GT(size, 0.0);
-    for (int d = 0; d < 256; ++d) {
-      const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
-      EXPECT_NEAR(support(a, dx, du), support(b, dx, du), 1e-9 * size) << "polytope " << k << " direction " << d;
-    }
     for (const Vertex& v : a.vertices) {  // within 1e-9 of the size: the projection's own tolerance
       PolytopeLp near = lp;
       near.col_lo[0] = v.x - 1e-9 * size, near.col_hi[0] = v.x + 1e-9 * size;
