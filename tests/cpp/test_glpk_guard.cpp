@@ -127,7 +127,7 @@ TEST(GlpkGuard, AnErrorAtAnyCallOfAProjectionFailsItAndSparesTheOtherProblems) {
     warm.dense = p.dense = false;
     const Projection first = warm.project(c.lp);
     ASSERT_EQ(first.outcome, Projection::Outcome::Polygon);
-    if (c.lp.A.cols() >= 30) EXPECT_GT(first.ranged_certificates, 0);  // the ranging path is among the calls hit
+    if (c.lp.A.cols() >= 30) EXPECT_GT(first.by_cause.ranged, 0);  // the ranging path is among the calls hit
     ASSERT_EQ(p.project(c.lp).outcome, Projection::Outcome::Polygon);  // p warm too: the error hits a loaded problem
     long k = 0;
     for (;; ++k) {

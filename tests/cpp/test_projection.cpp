@@ -335,17 +335,17 @@ TEST(Projection, RangingCertificatesGiveTheSamePolygonsWithAboutOneLpPerEdge) {
     }
     const Projection c = dense.project(lp);
     ASSERT_TRUE(c.complete) << c.note;
-    EXPECT_GT(c.dense_solves, 0);
+    EXPECT_GT(c.by_cause.dense, 0);
     for (int d = 0; d < 256; ++d) {
       const double dx = std::cos(2 * M_PI * (d + 0.5) / 256), du = std::sin(2 * M_PI * (d + 0.5) / 256);
       EXPECT_NEAR(support(c, dx, du), support(b, dx, du), 1e-9 * 2.0 * (2.0 + k)) << "polygon " << k << " direction " << d;
     }
     const int edges = static_cast<int>(a.halfplanes.size());
-    EXPECT_GT(a.ranged_certificates, edges / 2);
+    EXPECT_GT(a.by_cause.ranged, edges / 2);
     EXPECT_LE(a.lp_solves, edges + 6);
     EXPECT_GE(b.lp_solves, 2 * edges - 3);
     EXPECT_EQ(a.lp_solves, a.by_cause.initial + a.by_cause.vertex + a.by_cause.certificate + a.by_cause.cap_growth);
-    EXPECT_EQ(b.ranged_certificates, 0);
+    EXPECT_EQ(b.by_cause.ranged, 0);
   }
 }
 
@@ -451,7 +451,7 @@ TEST(Projection, RandomPolytopesGiveTheSamePolygonsWarmAndCold) {
     const double size = expect_same_support(a, b, k);
     ASSERT_GT(size, 0.0);
     EXPECT_GE(a.vertices.size(), 8u);
-    if (k > 0) EXPECT_GT(a.ranged_certificates, 0);  // the ranging path is among those compared
+    if (k > 0) EXPECT_GT(a.by_cause.ranged, 0);  // the ranging path is among those compared
   }
 }
 
@@ -470,7 +470,7 @@ TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePoly
     ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
     ASSERT_EQ(b.outcome, Projection::Outcome::Polygon);
     ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
-    EXPECT_EQ(b.dense_solves, 0);
+    EXPECT_EQ(b.by_cause.dense, 0);
     const double size = expect_same_support(a, b, k);
     ASSERT_GT(size, 0.0);
     for (const Vertex& v : a.vertices) {  // within 1e-9 of the size: the projection's own tolerance
@@ -480,8 +480,7 @@ TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePoly
       EXPECT_EQ(check.feasible(near), 1) << "polytope " << k << " vertex " << v.x << ", " << v.y;
     }
     EXPECT_GE(a.vertices.size(), 8u);
-    EXPECT_EQ(a.by_cause.dense, a.dense_solves);
-    dense += a.dense_solves;
+    dense += a.by_cause.dense;
     total += a.lp_solves;
   }
   EXPECT_GT(dense, total / 2);

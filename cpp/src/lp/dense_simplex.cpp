@@ -179,9 +179,9 @@ int DenseSimplex::maximize(double vx, double vu) {
     s_.stat[static_cast<size_t>(q)] = GLP_BS;
     s_.head[static_cast<size_t>(r)] = q;
     // B^-1 of the new basis: row r over alpha_r, the other rows minus alpha_i times it.
-    const Eigen::RowVectorXd pivot_row = s_.inv.row(r) / alpha_[r];
-    s_.inv.noalias() -= alpha_ * pivot_row;
-    s_.inv.row(r) = pivot_row;
+    pivot_row_.noalias() = s_.inv.row(r) / alpha_[r];
+    s_.inv.noalias() -= alpha_ * pivot_row_;
+    s_.inv.row(r) = pivot_row_;
     ++pivots;
     if (++s_.updates >= kRefactor) {
       if (!factorize()) return 0;

@@ -61,6 +61,7 @@ class DenseSimplex {
   State s_;
   std::vector<double> d_;
   Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_;
+  Eigen::RowVectorXd pivot_row_;  // scratch of a pivot's inverse update (no allocation per pivot)
   Eigen::MatrixXd abs_a_;  // |A|, for the certificate's rounding bound
 };
 

@@ -129,12 +129,7 @@ class PolytopeProjector::Run {
 };
 
 Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
-  Projection p = Run(*this, in, relative_tolerance, max_lps, approximation).project();
-  p.by_cause.ranged = p.ranged_certificates;
-  p.by_cause.dense = p.dense_solves;
-  p.by_cause.dense_fallback = p.dense_fallbacks;
-  p.by_cause.pivots = p.pivots;
-  return p;
+  return Run(*this, in, relative_tolerance, max_lps, approximation).project();
 }
 
 // A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
@@ -293,7 +288,7 @@ int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p, int start
         iterations = glp_get_it_cnt(lp_) - before;
       }))
     return -2;
-  out_.pivots += std::max(iterations, 0);
+  out_.by_cause.pivots += std::max(iterations, 0);
   if (r.st != GLP_OPT) return r.st == GLP_NOFEAS ? 0 : -1;
   p = {sx_ * r.px, su_ * r.pu};
   range_basis(r.ranged);
@@ -312,12 +307,12 @@ bool PolytopeProjector::Run::extremize_dense(double vx, double vu, Vertex& p, in
   ds.restore(states_[static_cast<size_t>(start_point)]);
   const int before = ds.pivots;
   const int ok = ds.maximize(vx, vu);
-  out_.pivots += ds.pivots - before;
+  out_.by_cause.pivots += ds.pivots - before;
   if (ok != 1) {
-    ++out_.dense_fallbacks;
+    ++out_.by_cause.dense_fallback;
     return false;
   }
-  ++out_.dense_solves;
+  ++out_.by_cause.dense;
   last_dense_ = true;
   last_state_ = ds.state();
   p = {ds.x(), ds.u()};
@@ -618,7 +613,7 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::certify_pending() {
     int code = kBindingUnknown;
     if (range_certifies(ranges_[static_cast<size_t>(d.from)], d.nx, d.nu, code) ||
         range_certifies(ranges_[static_cast<size_t>(d.to)], d.nx, d.nu, code)) {
-      ++out_.ranged_certificates;
+      ++out_.by_cause.ranged;
       certified_[{d.from, d.to}] = code;
       continue;
     }

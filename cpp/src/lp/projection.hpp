@@ -59,11 +59,7 @@ struct Projection {
   /// lp_solves by cause: the initial triangle, edge LPs that did not certify their edge (a new vertex, or
   /// a failure), edge LPs that certified it, the feasibility LP without the stand-in bounds.
   LpCounts by_cause;
-  int ranged_certificates = 0;  ///< edges certified by an endpoint's ranging instead of an LP
   int approximate_edges = 0;    ///< edges final by `approximation` (no LP; binding unknown)
-  int dense_solves = 0;         ///< LPs the dense simplex solved and certified (the rest: GLPK)
-  int dense_fallbacks = 0;      ///< LPs the dense simplex gave up on (GLPK solved them)
-  int pivots = 0;               ///< simplex iterations of every LP (GLPK's and the dense simplex's)
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
