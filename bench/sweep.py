@@ -252,6 +252,17 @@ def torque_scale(arm, seed):
     return None
 
 
+def best_of(fn, rounds):
+    """(wall ms, thread-CPU ms, last result): the best of `rounds` calls."""
+    ts, cpu = [], []
+    for _ in range(rounds):
+        t0, c0 = time.perf_counter(), time.thread_time()
+        out = fn()
+        ts.append(time.perf_counter() - t0)
+        cpu.append(time.thread_time() - c0)
+    return 1e3 * min(ts), 1e3 * min(cpu), out
+
+
 def random_walk(N, seed=0, K=400):
     """The issue's long path: a K-waypoint (400) random walk of the Panda (steps of 0.2 rad, reflected at 10 %
     and 90 % of each range), velocity + acceleration limits; pathpace only (and toppra at N = 1000). Timed by
@@ -261,24 +272,14 @@ def random_walk(N, seed=0, K=400):
     # A budget, so that the benchmark ends: the issue's target is 2 s at N = 100000.
     grid, path, ours, theirs = make(arm, wp, N, None, time_limit=10.0)
     copp = make_copp(arm, path, grid, None)
-    ts, cpu = [], []
-    for _ in range(3 if N <= 10000 else 1):
-        t0, c0 = time.perf_counter(), time.thread_time()
-        res = ours()
-        ts.append(time.perf_counter() - t0)
-        cpu.append(time.thread_time() - c0)
-    row = {"N": N, "K": K, "ms": 1e3 * min(ts), "cpu_ms": 1e3 * min(cpu), "status": str(res.status).split(".")[-1],
+    rounds = 3 if N <= 10000 else 1
+    ms, cpu_ms, res = best_of(ours, rounds)
+    row = {"N": N, "K": K, "ms": ms, "cpu_ms": cpu_ms, "status": str(res.status).split(".")[-1],
            "gap": res.stats["gap"], "newton_steps": res.stats["newton_steps"],
            "T": res.duration, "lp_solves": res.stats["lp_solves"], "windows": res.stats["windows"],
            "window_points": res.stats["window_points"], "time_slp_ms": 1e3 * res.stats["time_slp"]}
     if copp:
-        ts, cpu = [], []
-        for _ in range(3 if N <= 10000 else 1):
-            t0, c0 = time.perf_counter(), time.thread_time()
-            sd = copp()
-            ts.append(time.perf_counter() - t0)
-            cpu.append(time.thread_time() - c0)
-        row["copp_ms"], row["copp_cpu_ms"] = 1e3 * min(ts), 1e3 * min(cpu)
+        row["copp_ms"], row["copp_cpu_ms"], sd = best_of(copp, rounds)
         row["T_copp"] = float(common.times_from_sdot(grid, np.asarray(sd, float))[-1])
     if N <= 1000:
         t0 = time.perf_counter()
