@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -42,6 +43,64 @@ bool points_nonempty(const std::vector<std::shared_ptr<const Constraint>>& const
   for (const detail::PointSet& p : sets.points)
     if (p.empty) return false;
   return true;
+}
+
+// The problem's constraints with family f ("all": every family, one after the other) widened by `scale`; where
+// rows is given, the widened constraints' rows replace the old ones in it.
+std::vector<std::shared_ptr<const Constraint>> relaxed_constraints(
+    const std::vector<std::shared_ptr<const Constraint>>& constraints, const std::string& f, double scale,
+    const PathSamples& samples, std::vector<ConstraintRows>* rows) {
+  std::vector<std::shared_ptr<const Constraint>> cons = constraints;
+  for (size_t i = 0; i < constraints.size(); ++i) {
+    std::shared_ptr<const Constraint> r;
+    for (const std::string& fi : constraints[i]->families()) {
+      if (f != "all" && fi != f) continue;
+      if (auto next = (r ? r : constraints[i])->relaxed(fi, scale)) r = std::move(next);
+    }
+    if (r) {
+      if (rows) (*rows)[i] = r->evaluate(samples);
+      cons[i] = std::move(r);
+    }
+  }
+  return cons;
+}
+
+using ScaleTest = std::function<bool(double)>;
+
+// Bisection on log(scale) between an infeasible lo and a feasible hi (feasibility grows with the scale: each
+// relaxed set contains the last). Returns the feasible end.
+double bisect_scale(const ScaleTest& ok, double lo, double hi, double rel_tolerance) {
+  while (hi > lo * (1.0 + rel_tolerance)) {
+    const double mid = std::sqrt(lo * hi);
+    (ok(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// From an infeasible lo, grow hi (x 4) until feasible, then bisect; inf if max_scale is infeasible.
+double search_scale(const ScaleTest& ok, double lo, double hi, double max_scale, double rel_tolerance) {
+  while (hi < max_scale && !ok(hi)) {
+    lo = hi;
+    hi = std::min(4.0 * hi, max_scale);
+  }
+  if (hi >= max_scale && !ok(max_scale)) return std::numeric_limits<double>::infinity();
+  return bisect_scale(ok, lo, hi, rel_tolerance);
+}
+
+// Where some grid points' own sets are empty: infeasible on those points at a scale => infeasible there, so
+// their bracket's upper end is the answer when the whole problem is feasible at it (its lower end, infeasible,
+// is within tolerance). Otherwise the answer is usually just above: grow by (1 + tol), (1 + 4 tol), ... before
+// bisecting on the whole problem.
+double scale_from_empty_points(const ScaleTest& points_ok, const ScaleTest& ok, double max_scale,
+                               double rel_tolerance) {
+  double lo = search_scale(points_ok, 1.0, 2.0, max_scale, rel_tolerance);
+  if (!std::isfinite(lo) || ok(lo)) return lo;
+  for (double step = rel_tolerance;; step *= 4.0) {
+    const double hi = std::min(lo * (1.0 + step), max_scale);
+    if (ok(hi)) return bisect_scale(ok, lo, hi, rel_tolerance);
+    if (hi >= max_scale) return std::numeric_limits<double>::infinity();
+    lo = hi;
+  }
 }
 
 }  // namespace
@@ -92,20 +151,7 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
   }
   for (const std::string& f : families) {
     auto relaxed = [&](double scale, std::vector<ConstraintRows>* rows) {
-      std::vector<std::shared_ptr<const Constraint>> cons = constraints_;
-      for (size_t i = 0; i < constraints_.size(); ++i) {
-        // "all": every family of the constraint at once (relaxed one after the other).
-        std::shared_ptr<const Constraint> r;
-        for (const std::string& fi : constraints_[i]->families()) {
-          if (f != "all" && fi != f) continue;
-          if (auto next = (r ? r : constraints_[i])->relaxed(fi, scale)) r = std::move(next);
-        }
-        if (r) {
-          if (rows) (*rows)[i] = r->evaluate(samples_);
-          cons[i] = std::move(r);
-        }
-      }
-      return cons;
+      return relaxed_constraints(constraints_, f, scale, samples_, rows);
     };
     auto feasible = [&](double scale) {
       std::vector<ConstraintRows> rows = rows_;
@@ -113,47 +159,8 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
       return feasible_with(cons, std::move(rows), guarantee);
     };
     auto points_feasible = [&](double scale) { return points_nonempty(relaxed(scale, nullptr), samples_, empty); };
-    // Feasibility grows with the scale (each relaxed set contains the last): from an infeasible lo, grow
-    // hi (x 4) until feasible, then bisect on log(scale). Returns hi, or inf if max_scale is infeasible.
-    auto bisect = [&](const auto& ok, double lo, double hi) {  // lo infeasible, hi feasible
-      while (hi > lo * (1.0 + rel_tolerance)) {
-        const double mid = std::sqrt(lo * hi);
-        (ok(mid) ? hi : lo) = mid;
-      }
-      return hi;
-    };
-    auto search = [&](const auto& ok, double lo, double hi) {
-      while (hi < max_scale && !ok(hi)) {
-        lo = hi;
-        hi = std::min(4.0 * hi, max_scale);
-      }
-      if (hi >= max_scale && !ok(max_scale)) return std::numeric_limits<double>::infinity();
-      return bisect(ok, lo, hi);
-    };
-    if (empty.empty()) {
-      out[f] = search(feasible, 1.0, 2.0);
-      continue;
-    }
-    // Infeasible on the empty points at a scale => infeasible there; their bracket's upper end is the
-    // answer when the whole problem is feasible at it (then its lower end, infeasible, is within tolerance).
-    double lo = search(points_feasible, 1.0, 2.0);
-    if (!std::isfinite(lo) || feasible(lo)) {
-      out[f] = lo;
-      continue;
-    }
-    // Otherwise the answer is usually just above: grow by (1 + tol), (1 + 4 tol), ... before bisecting.
-    double step = rel_tolerance, hi = lo;
-    while (true) {
-      hi = std::min(lo * (1.0 + step), max_scale);
-      if (feasible(hi)) break;
-      if (hi >= max_scale) {
-        hi = std::numeric_limits<double>::infinity();
-        break;
-      }
-      lo = hi;
-      step *= 4.0;
-    }
-    out[f] = std::isfinite(hi) ? bisect(feasible, lo, hi) : hi;
+    out[f] = empty.empty() ? search_scale(feasible, 1.0, 2.0, max_scale, rel_tolerance)
+                           : scale_from_empty_points(points_feasible, feasible, max_scale, rel_tolerance);
   }
   return out;
 }
