@@ -2,9 +2,20 @@
 
 Importable from every test folder: tests/python/conftest.py puts this folder on sys.path."""
 
+import concurrent.futures
+import multiprocessing
+
 import numpy as np
 
 import pathpace as pp
+
+
+def process_pool(workers: int = 2) -> concurrent.futures.ProcessPoolExecutor:
+    """A process pool whose workers are spawned, not forked. Forking the multi-threaded pytest process (the
+    pool's own threads, threads of earlier tests) copies any lock another thread holds at that instant; under
+    the sanitizers' allocator a worker then waits on it forever (a CI run hung so, a worker stuck in ASan's
+    allocator inside solve())."""
+    return concurrent.futures.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"))
 
 
 def kinematic_problem(path, grid, vmin, vmax, amin, amax, **problem_kw):

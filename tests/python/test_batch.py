@@ -1,13 +1,12 @@
 """solve_many: threads by default, any concurrent.futures-style executor, and a local Dask cluster of
 processes (problems and results travel pickled)."""
 
-import concurrent.futures
 
 import numpy as np
 import pytest
 
 import pathpace as pp
-from helpers import kinematic_problem
+from helpers import kinematic_problem, process_pool
 
 
 def corpus(count, N=100, seed=0):
@@ -32,7 +31,7 @@ def test_threads_give_the_sequential_results_in_order(capsys):
 def test_any_executor_with_submit():
     probs = corpus(10, seed=1)
     expected = [p.solve().duration for p in probs]
-    with concurrent.futures.ProcessPoolExecutor(2) as ex:
+    with process_pool(2) as ex:
         res = pp.solve_many(probs, executor=ex, chunksize=3)
     assert [r.duration for r in res] == expected
     assert all(isinstance(r.trajectory(), pp.Trajectory) for r in res)  # the path came back with the result

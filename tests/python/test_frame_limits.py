@@ -659,7 +659,7 @@ def test_check_audits_frame_limits_of_a_problem_file(tmp_path, frames):
 def test_problem_files_with_frame_limits_through_solve_many(tmp_path):
     """Several files: `pathpace solve a b` (solve_many on threads) and solve_many on processes (each problem
     pickled with its robot and FrameLimits) give each file's own solve."""
-    import concurrent.futures
+    from helpers import process_pool
     import json
     import subprocess
     import sys
@@ -674,7 +674,7 @@ def test_problem_files_with_frame_limits_through_solve_many(tmp_path):
     specs = [load_problem(f) for f in files]
     expected = [s.solve().duration for s in specs]
     assert expected[1] > expected[0]  # the slower tool speed binds
-    with concurrent.futures.ProcessPoolExecutor(2) as ex:
+    with process_pool(2) as ex:
         assert [r.duration for r in pp.solve_many([s.problem for s in specs], executor=ex)] == expected
     out = tmp_path / "out"
     p = subprocess.run([sys.executable, "-m", "pathpace.cli", "solve", *map(str, files), "--out-dir", str(out)],

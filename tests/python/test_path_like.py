@@ -3,7 +3,6 @@
 interpolators and plain vectorised callables. Each kind is checked against the same path built by hand as a
 pathpace path, and each kind composes with pickling, solve_many, restart, contacts and the automatic grid."""
 
-import concurrent.futures
 import pickle
 from pathlib import Path
 
@@ -13,6 +12,8 @@ import scipy.interpolate as si
 
 import pathpace as pp
 from pathpace.paths import CallbackPath, InterpolatorPath
+
+from helpers import process_pool
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 V, A = np.array([1.0, 1.5, 2.0]), np.array([2.0, 3.0, 4.0])
@@ -473,7 +474,7 @@ def test_solve_many_on_threads_and_processes():
     probs = [problem_of(p) for p in (spline_values, si.CubicSpline(KNOTS, WAYPOINTS), Counting())]
     expected = [p.solve().duration for p in probs]
     assert [r.duration for r in pp.solve_many(probs, workers=2)] == expected
-    with concurrent.futures.ProcessPoolExecutor(2) as ex:
+    with process_pool(2) as ex:
         res = pp.solve_many(probs[:2], executor=ex)  # a Counting instance pickles too, but once is enough
     assert [r.duration for r in res] == expected[:2]
 

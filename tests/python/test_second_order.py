@@ -9,13 +9,14 @@ friction whose limit surface is checked on the timed trajectory at 1 kHz.
 import math
 import pickle
 import threading
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 import pytest
 
 import pathpace as pp
 from pathpace.robots import example_robot_urdf
+
+from helpers import process_pool
 
 pin = pytest.importorskip("pinocchio")
 
@@ -410,7 +411,7 @@ def test_solve_many_on_threads_and_processes():
     probs = [planar_problem(N=40 + 5 * k) for k in range(4)]
     serial = [ok(p.solve(guarantee="continuous")).duration for p in probs]
     assert [r.duration for r in pp.solve_many(probs, workers=2, guarantee="continuous")] == serial
-    with ProcessPoolExecutor(2) as ex:
+    with process_pool(2) as ex:
         assert [r.duration for r in pp.solve_many(probs, executor=ex)] == [ok(p.solve()).duration for p in probs]
 
 
