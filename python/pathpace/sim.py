@@ -906,7 +906,8 @@ def find_executable_margin(
     contact_options: dict | None = None,
 ) -> MarginSearch:
     """Bisection on one margin of the contact constraint for the smallest value whose time-optimal timing
-    executes in `sim` with room: no fall and every criterion at most `room` times its threshold
+    executes in `sim` with room: no fall and every criterion (slip, lift, tilt, tracking, landing) at most
+    `room` times its threshold
     (`SimResult.worst_criterion`; room = 1 is `SimResult.executed`). A verdict on its threshold flips
     with the CPU or the MuJoCo build; 0.5 leaves it room.
 
