@@ -106,7 +106,8 @@ class SimResult:
     base_height_planned: np.ndarray  #: (m,) z of the root link in the plan (held at the end)
     tilt: np.ndarray  #: (m,) angle between the root link's z axis and the plan's (rad)
     #: (m, contacts) displacement of each contact point along its surface (m; horizontal on the floor or a box
-    #: top); with phases, from where the plan puts it, and nan while its phase does not hold it
+    #: top); with phases, its slide since the point made contact (from where it actually landed, the plan's
+    #: own motion taken off), and nan while its phase does not hold it
     slip: np.ndarray
     lift: np.ndarray  #: (m, contacts) displacement along the contact's normal, away from its surface (m), the same way
     tracking_error: np.ndarray  #: (m,) largest |q - q_planned| over the actuated joints (rad or m)
@@ -116,6 +117,14 @@ class SimResult:
     torque_saturation: float  #: fraction of control steps with some actuator at its torque limit
     criteria: dict  #: the thresholds `executed` applies
     feedforward: str  #: "contact", "inverse_dynamics" or "none"
+    #: (contacts,) with phases, the largest distance along its surface between where a point landed and where
+    #: the plan puts it, over its makes (m; 0 for a point held from the start, and without phases): a tracking
+    #: error of the swing, not a slide
+    landing: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def max_landing_error(self) -> float:
+        return float(np.max(self.landing)) if self.landing.size else 0.0
 
     @property
     def max_slip(self) -> float:
@@ -144,15 +153,18 @@ class SimResult:
         criteria: a sole that pivots on its edge lifts its other edge), base upright, joints tracked?"""
         c = self.criteria
         return (not self.fell and self.max_slip <= c["slip"] and self.max_lift <= c["lift"]
-                and self.max_tilt <= c["tilt"] and self.max_tracking_error <= c["tracking"])
+                and self.max_tilt <= c["tilt"] and self.max_tracking_error <= c["tracking"]
+                and self.max_landing_error <= c["landing"])
 
     @property
     def criterion_ratios(self) -> dict:
-        """Each criterion's worst value over its threshold (slip, lift, tilt, tracking): <= 1 is within it.
-        A verdict with room has every ratio <= 0.5 (executes) or some ratio >= 2 or a fall (does not)."""
+        """Each criterion's worst value over its threshold (slip, lift, tilt, tracking, landing): <= 1 is
+        within it. A verdict with room has every ratio <= 0.5 (executes) or some ratio >= 2 or a fall (does
+        not)."""
         c = self.criteria
         return {"slip": self.max_slip / c["slip"], "lift": self.max_lift / c["lift"],
-                "tilt": self.max_tilt / c["tilt"], "tracking": self.max_tracking_error / c["tracking"]}
+                "tilt": self.max_tilt / c["tilt"], "tracking": self.max_tracking_error / c["tracking"],
+                "landing": self.max_landing_error / c["landing"]}
 
     @property
     def worst_criterion(self) -> tuple[str, float]:
@@ -163,7 +175,8 @@ class SimResult:
     def summary(self) -> str:
         verdict = "fell" if self.fell else ("executed" if self.executed else "stood, but off plan")
         return (f"T = {self.duration:.3f} s: {verdict}; slip {1e3 * self.max_slip:.1f} mm, lift {1e3 * self.max_lift:.1f} mm, "
-                f"tilt {math.degrees(self.max_tilt):.2f} deg, tracking {self.max_tracking_error:.3f}")
+                f"tilt {math.degrees(self.max_tilt):.2f} deg, tracking {self.max_tracking_error:.3f}"
+                + (f", landing {1e3 * self.max_landing_error:.1f} mm" if self.landing.size else ""))
 
 
 def resolve_mesh(filename: str, search: Sequence[_FsPath]) -> _FsPath | None:
@@ -731,10 +744,12 @@ class Simulator:
         s_end, contacts[, options]) each). Then a contact point counts (slip, lift) only while a phase at
         the timing's s(t) holds it (a point of a link and position in that phase's contacts; the later
         phase at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
-        planned is not a lift."""
+        planned is not a lift. Its slip is its slide since it made contact (from the first sample its phase
+        holds it), and where it landed against the plan is `SimResult.landing`, criterion "landing"
+        (default 10 mm: a placement error of the swing, judged like tracking, not a slide of the contact)."""
         mj, model, data = self.mujoco, self.model, self.data
         dt = model.opt.timestep
-        crit = {"slip": 0.005, "lift": 0.005, "tilt": 0.05, "tracking": 0.1}
+        crit = {"slip": 0.005, "lift": 0.005, "tilt": 0.05, "tracking": 0.1, "landing": 0.01}
         for key, value in (criteria or {}).items():
             if key not in crit:
                 _fail(f"criteria['{key}']: unknown; the criteria are {sorted(crit)}")
@@ -805,14 +820,32 @@ class Simulator:
                 saturated += 1
         pos = np.array(rec_pos).reshape(len(rec_pos), len(self.contacts), 3)
         d = pos - p0
+        landing = np.zeros(0)
         if phases is not None:
             d = self._against_plan(traj, np.minimum(np.array(rec_t), T), d, phases)
         lift = np.einsum("mkj,kj->mk", d, self.contact_normals)  # along each contact's normal; +z: d[:, :, 2]
+        along = d - lift[:, :, None] * self.contact_normals
+        if phases is not None:
+            along, landing = _slide_since_make(along)
         return SimResult(
             times=np.array(rec_t), base_height=np.array(rec_z), base_height_planned=np.array(rec_zp),
-            tilt=np.array(rec_tilt), slip=np.linalg.norm(d - lift[:, :, None] * self.contact_normals, axis=2), lift=lift,
+            tilt=np.array(rec_tilt), slip=np.linalg.norm(along, axis=2), lift=lift,
             tracking_error=np.array(rec_err), duration=T, fell=fell, fall_time=fall_time,
-            torque_saturation=saturated / max(1, n_move + n_hold), criteria=crit, feedforward=mode)
+            torque_saturation=saturated / max(1, n_move + n_hold), criteria=crit, feedforward=mode, landing=landing)
+
+
+def _slide_since_make(along: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Tangential offsets from the plan (times x contacts x 3, nan where not held) -> each point's slide
+    since the first sample of each hold, and its largest offset at those first samples (the landing error)."""
+    out = np.full_like(along, np.nan)
+    landing = np.zeros(along.shape[1])
+    held = np.isfinite(along[:, :, 0])
+    for k in range(along.shape[1]):
+        edges = np.flatnonzero(np.diff(np.concatenate(([0], held[:, k].astype(np.int8), [0]))))
+        for begin, end in zip(edges[0::2], edges[1::2]):
+            out[begin:end, k] = along[begin:end, k] - along[begin, k]
+            landing[k] = max(landing[k], float(np.linalg.norm(along[begin, k])))
+    return out, landing
 
 
 # --------------------------------------------------------------------------------------------------
@@ -873,7 +906,8 @@ def find_executable_margin(
     contact_options: dict | None = None,
 ) -> MarginSearch:
     """Bisection on one margin of the contact constraint for the smallest value whose time-optimal timing
-    executes in `sim` with room: no fall and every criterion at most `room` times its threshold
+    executes in `sim` with room: no fall and every criterion (slip, lift, tilt, tracking, landing) at most
+    `room` times its threshold
     (`SimResult.worst_criterion`; room = 1 is `SimResult.executed`). A verdict on its threshold flips
     with the CPU or the MuJoCo build; 0.5 leaves it room.
 

@@ -76,3 +76,34 @@ def test_the_new_contact_options_reach_the_constraint(tmp_path):
     assert load_problem(f).solve().status == pp.Status.INFEASIBLE
     f = rod_file(tmp_path, {"points": [ROD], "cone_edges": 4, "cone_offset": 5.0}, "half.json")[0]
     assert load_problem(f).solve().status == pp.Status.OPTIMAL
+
+
+def test_contact_phases_of_a_file_drive_find_executable_margin(tmp_path):
+    # End to end: the phases a file gives (ProblemSpec.contact_phases) are find_executable_margin's phases;
+    # at the search's lower bound (0 N, no margin) its problem is the file's, and each run gets the phases.
+    from pathpace.sim import find_executable_margin
+    contacts = {"cone_edges": 4, "phases": [{"s": [-0.15, 0.0], "points": [ROD]}, {"s": [0.0, 0.15], "points": [ROD]}]}
+    f, path, th = rod_file(tmp_path, contacts)
+    spec = load_problem(f)
+
+    class Verdict:
+        fell, executed, worst_criterion = False, True, ("stand-in", 0.0)
+
+        def __init__(self, duration):
+            self.duration = duration
+
+        def summary(self):
+            return "stand-in"
+
+    class StandIn:
+        robot, contacts, options = spec.robot, [], []
+
+        def run(self, traj, **options):
+            self.options.append(options)
+            return Verdict(traj.duration)
+
+    sim = StandIn()
+    out = find_executable_margin(sim, path, phases=spec.contact_phases, grid=th, cone_edges=4, lower=0.0, upper=1.0)
+    assert out.margin == 0.0 and out.trials[0].status == "OPTIMAL"
+    assert out.trials[0].duration == pytest.approx(spec.solve().duration, rel=1e-9)
+    assert sim.options and all(o == {"phases": spec.contact_phases} for o in sim.options)

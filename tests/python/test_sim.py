@@ -268,7 +268,7 @@ def test_validation_names_the_argument():
     assert np.allclose(weak.model.actuator_forcerange[:, 1], 0.5 * robot.effort_limits[weak.actuated], rtol=1e-12)
     sim = Simulator(robot, urdf, locked_joints=PANDA_LOCKED)
     traj = pp.Trajectory(pp.CubicSplinePath(np.zeros((2, robot.nq))), [0.0, 1.0], [1.0, 1.0])
-    with pytest.raises(pp.InvalidInputError, match=r"criteria\['slide'\]: unknown; the criteria are \['lift', 'slip'"):
+    with pytest.raises(pp.InvalidInputError, match=r"criteria\['slide'\]: unknown; the criteria are \['landing', 'lift', 'slip'"):
         sim.run(traj, criteria={"slide": 0.01})
     with pytest.raises(pp.InvalidInputError, match="hold = -1 must be >= 0"):
         sim.run(traj, hold=-1)
@@ -437,6 +437,20 @@ def test_run_with_phases_measures_held_points_against_the_plan(sway):
     assert np.all(np.isfinite(part.slip[np.ix_(s < 0.5, right)]))
     with pytest.raises(pp.InvalidInputError, match=r"phases\[0\]: contact on 'left_sole_link'"):
         sim.run(traj, phases=[(0.0, 1.0, [pp.Contact("left_sole_link", (0.3, 0.0, 0.0), (0, 0, 1), 0.5)])])
+    # Held from the start, so nothing landed: no landing error, and the slip counts from the first sample.
+    assert same.landing.shape == (len(contacts),) and same.max_landing_error == 0.0
+    assert "landing" in same.criterion_ratios and plain.criterion_ratios["landing"] == 0.0
+
+
+def test_slide_since_make_splits_landing_from_slide():
+    from pathpace.sim import _slide_since_make
+    nan = np.nan
+    # One point: held, released, landed 3 mm off (x), slides 1 mm more (y), released again.
+    x = np.array([[0, 0, 0], [1e-3, 0, 0], [nan] * 3, [3e-3, 0, 0], [3e-3, 1e-3, 0], [nan] * 3], dtype=float)
+    out, landing = _slide_since_make(x[:, None, :])
+    assert landing.tolist() == [3e-3]
+    assert np.allclose(np.linalg.norm(out[[0, 1, 3, 4], 0], axis=1), [0, 1e-3, 0, 1e-3], atol=1e-15)
+    assert np.all(np.isnan(out[[2, 5], 0]))
 
 
 def test_visual_meshes_resolve_package_paths_and_change_no_dynamics(sway, tmp_path):
