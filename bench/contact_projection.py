@@ -254,7 +254,7 @@ def part_corpus(args):
     print(f"issue 27 corpus, seed {args.seed27}, one thread; wall s of add_contacts + solve")
     print("LPs/point by cause: initial directions / edge LPs that found a vertex / edge LPs that certified an edge / "
           "cap growth / cold retries; 'ranged': edges certified by an endpoint's basis, no LP; 'dense': share of the "
-          "LPs the dense simplex solved and certified (fallbacks to GLPK after the slash); pivots per LP")
+          "LPs the dense simplex solved and certified (fallbacks to GLPK in brackets, by cause: pivot cap/small pivot/unbounded/singular/certificate); pivots per LP")
     print("| robot | path | points | torque scale | margins | edges | N | ε | status | T (s) | T - T(ε=0) | LPs/point | "
           "by cause | ranged/point | dense (fallbacks) | pivots/LP | "
           "half-planes/point | torque-bound edges | wall (s) | CPU (s) | T direct, pyramids | rel. diff | direct exact cones (s) | speed-up |")
@@ -289,7 +289,9 @@ def part_corpus(args):
             causes = "/".join(f"{st['projection_lps_' + c] / (N + 1):.1f}"
                               for c in ("initial", "vertex", "certificate", "cap_growth", "cold_retry"))
             dense = (f"{st['projection_lps_dense'] / max(st['projection_lp_solves'], 1):.0%} "
-                     f"({st['projection_lps_dense_fallback']})")
+                     f"({st['projection_lps_dense_fallback']}: "
+                     + "/".join(str(st['projection_fallback_' + c])
+                                for c in ("cap", "small_pivot", "unbounded", "singular", "certificate")) + ")")
             stats_cols = (f"{causes} | {st['projection_ranged_certificates'] / (N + 1):.1f} | {dense} | "
                           f"{row['pivots']:.1f}")
             direct = ("", "", "", "")

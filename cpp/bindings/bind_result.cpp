@@ -60,6 +60,11 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("projection_lps_dense", s.projection_lps_dense);
   f("projection_lps_dense_fallback", s.projection_lps_dense_fallback);
   f("projection_pivots", s.projection_pivots);
+  f("projection_fallback_cap", s.projection_fallback_cap);
+  f("projection_fallback_small_pivot", s.projection_fallback_small_pivot);
+  f("projection_fallback_unbounded", s.projection_fallback_unbounded);
+  f("projection_fallback_singular", s.projection_fallback_singular);
+  f("projection_fallback_certificate", s.projection_fallback_certificate);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -87,8 +92,9 @@ SolverStats stats_from_state(const py::tuple& st) {
   constexpr size_t kSecondStatsStateSize = 23;  // ... and before the audit's LP and projection counts
   constexpr size_t kThirdStatsStateSize = 26;   // ... and before the jerk statistics
   constexpr size_t kFourthStatsStateSize = 29;  // ... and before the projection's ranging, dense and pivot counts
+  constexpr size_t kFifthStatsStateSize = 33;   // ... and before the dense simplex's fallbacks by cause
   if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize && st.size() != kThirdStatsStateSize &&
-      st.size() != kFourthStatsStateSize)
+      st.size() != kFourthStatsStateSize && st.size() != kFifthStatsStateSize)
     check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include <glpk.h>
+
 #include "geometry/convex_hull.hpp"
 #include "lp/projection.hpp"
 #include "pathpace/pathpace.hpp"
@@ -482,6 +484,95 @@ TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePoly
     EXPECT_GE(a.vertices.size(), 8u);
     dense += a.by_cause.dense;
     total += a.lp_solves;
+    const pathpace::LpCounts& c = a.by_cause;
+    EXPECT_EQ(c.dense_fallback, c.fallback_cap + c.fallback_small_pivot + c.fallback_unbounded +
+                                    c.fallback_singular + c.fallback_certificate);
   }
   EXPECT_GT(dense, total / 2);
+}
+
+TEST(Projection, EveryDenseFallbackIsCountedByItsCauseAndGlpkGivesTheSamePolygon) {
+  // With no pivot allowed the dense simplex gives back every LP that is not optimal at its start: each
+  // counted as a fallback by its cause (the pivot cap), none by another, and GLPK's answers make the
+  // same polygon as GLPK alone.
+  std::mt19937 gen(5);
+  PolytopeProjector capped, without;
+  capped.dense_limits().max_pivots = 0;
+  without.dense = false;
+  int fallbacks = 0;
+  for (int k = 0; k < 5; ++k) {
+    const PolytopeLp lp = random_polytope(gen);
+    const Projection a = capped.project(lp), b = without.project(lp);
+    ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
+    ASSERT_TRUE(a.complete) << a.note;
+    expect_same_support(a, b, k);
+    const pathpace::LpCounts& c = a.by_cause;
+    EXPECT_EQ(c.fallback_cap, c.dense_fallback);
+    EXPECT_EQ(c.fallback_small_pivot + c.fallback_unbounded + c.fallback_singular + c.fallback_certificate, 0);
+    fallbacks += c.dense_fallback;
+  }
+  EXPECT_GT(fallbacks, 0);
+}
+
+namespace {
+// 0 <= x (no upper bound), 0 <= u <= 1, row 0: x + u <= 1.5; the basis: the row's auxiliary basic, x and u
+// at their lower bounds (the point (0, 0)). Variables in GLPK's order: the auxiliary 0, x 1, u 2.
+PolytopeLp wedge() {
+  PolytopeLp lp;
+  lp.A.resize(1, 2);
+  lp.A << 1, 1;
+  lp.row_lo = Eigen::VectorXd::Constant(1, -INFINITY);
+  lp.row_hi = Eigen::VectorXd::Constant(1, 1.5);
+  lp.col_lo = Eigen::Vector2d(0, 0);
+  lp.col_hi = Eigen::Vector2d(INFINITY, 1);
+  return lp;
+}
+const signed char kWedgeStart[] = {GLP_BS, GLP_NL, GLP_NL};
+}  // namespace
+
+TEST(DenseSimplex, FindsAndCertifiesTheWedgesOptimum) {
+  const PolytopeLp lp = wedge();
+  DenseSimplex ds;
+  ds.load(lp);
+  ASSERT_TRUE(ds.set_basis(kWedgeStart));
+  ASSERT_EQ(ds.maximize(0.0, 1.0), DenseSimplex::kOptimal);  // u to its bound 1 (a flip)
+  EXPECT_EQ(ds.u(), 1.0);
+  ASSERT_EQ(ds.maximize(1.0, 0.0), DenseSimplex::kOptimal);  // x to the row's 1.5, u back to 0
+  EXPECT_NEAR(ds.x(), 1.5, 1e-15);
+  EXPECT_NEAR(ds.u(), 0.0, 1e-15);
+  EXPECT_EQ(ds.maximize(1.0, 0.0), DenseSimplex::kOptimal);  // already optimal: no pivot
+}
+
+TEST(DenseSimplex, EachWayOfGivingUpHasItsOwnOutcome) {
+  const PolytopeLp lp = wedge();
+  auto run = [&](auto setup, double vx, double vu) {
+    DenseSimplex ds;
+    ds.load(lp);
+    EXPECT_TRUE(ds.set_basis(kWedgeStart));
+    setup(ds);
+    return ds.maximize(vx, vu);
+  };
+  DenseSimplex none;
+  EXPECT_EQ(none.maximize(1.0, 0.0), DenseSimplex::kNoBasis);
+  // The pivot cap: x must enter, no pivot is allowed.
+  EXPECT_EQ(run([](DenseSimplex& ds) { ds.limits.max_pivots = 0; }, 1.0, 0.0), DenseSimplex::kIterationCap);
+  // A pivot tolerance above the row's coefficient 1: the only row that stops x is passed over.
+  EXPECT_EQ(run([](DenseSimplex& ds) { ds.limits.tol_pivot = 10.0; }, 1.0, 0.0), DenseSimplex::kSmallPivot);
+  // Refactorised after every update, with no condition good enough: singular.
+  EXPECT_EQ(run([](DenseSimplex& ds) { ds.limits.refactor = 1, ds.limits.min_rcond = 2.0; }, 1.0, 0.0),
+            DenseSimplex::kSingular);
+  // A start point outside u's bound (a stale state), already optimal along (-1, -1): the certificate fails.
+  EXPECT_EQ(run([](DenseSimplex& ds) {
+              DenseSimplex::State st = ds.state();
+              st.value[2] = 5.0;
+              ds.restore(st);
+            }, -1.0, -1.0),
+            DenseSimplex::kCertificate);
+  // No row at all on x: a ray.
+  PolytopeLp ray = lp;
+  ray.A << 0, 1;
+  DenseSimplex ds;
+  ds.load(ray);
+  ASSERT_TRUE(ds.set_basis(kWedgeStart));
+  EXPECT_EQ(ds.maximize(1.0, 0.0), DenseSimplex::kUnbounded);
 }

@@ -93,6 +93,13 @@ struct SolverStats {
   int projection_lps_dense = 0;
   int projection_lps_dense_fallback = 0;
   int projection_pivots = 0;
+  /// projection_lps_dense_fallback by cause (LpCounts::fallback_*): the dense simplex's pivot cap, a step
+  /// bounded only by too small pivots, an unbounded ray, a singular refactorisation, a failed certificate.
+  int projection_fallback_cap = 0;
+  int projection_fallback_small_pivot = 0;
+  int projection_fallback_unbounded = 0;
+  int projection_fallback_singular = 0;
+  int projection_fallback_certificate = 0;
 };
 
 // docstrings.txt @@ Result

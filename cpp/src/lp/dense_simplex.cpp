@@ -16,12 +16,12 @@ namespace {
 // certificate holds the optimum to exactly that, so it claims no more than GLPK would; the ratio test
 // keeps half of it in hand. (The first version of this engine certified 1e-9 (1 + |b|): on rows whose
 // bound is a gravity wrench of ~400 N that is 4e-7, 3000 times GLPK's, which put a Talos support point
-// 2e-6 of the polygon's size outside the shadow.) A pivot below kTolPivot is a failure (GLPK then solves).
-constexpr double kTolBnd = 1e-10, kTolDj = 1e-10, kTolPivot = 1e-9;
+// 2e-6 of the polygon's size outside the shadow.) A pivot below Limits::tol_pivot is a failure (GLPK then
+// solves).
+constexpr double kTolBnd = 1e-10, kTolDj = 1e-10;
 inline double bound_tol(double b) { return kTolBnd + 1e-3 * kTolBnd * std::abs(b); }
-// Pivots per LP (an LP from an endpoint's basis takes a few; more means cycling or a far start) and
-// rank-one updates before the inverse is computed again from B.
-constexpr int kMaxPivots = 200, kRefactor = 40;
+// Limits: pivots per LP (an LP from an endpoint's basis takes a few; more means cycling or a far start)
+// and rank-one updates before the inverse is computed again from B.
 }  // namespace
 
 void DenseSimplex::load(const PolytopeLp& lp) {
@@ -58,7 +58,7 @@ bool DenseSimplex::factorize() {
     }
   }
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(B);
-  if (!(lu.rcond() > 1e-12)) return false;
+  if (!(lu.rcond() > limits.min_rcond)) return false;
   s_.inv = lu.inverse();
   s_.updates = 0;
   return true;
@@ -108,10 +108,10 @@ bool DenseSimplex::set_basis(const signed char* stat) {
 }
 
 int DenseSimplex::maximize(double vx, double vu) {
-  if (!lp_ || static_cast<int>(s_.head.size()) != m_) return 0;
+  if (!lp_ || static_cast<int>(s_.head.size()) != m_) return kNoBasis;
   const Eigen::MatrixXd& A = lp_->A;
   const int total = m_ + n_;
-  for (int it = 0; it <= kMaxPivots; ++it) {
+  for (int it = 0; it <= limits.max_pivots; ++it) {
     // Multipliers y = B^-T c_B (only x and u have costs), reduced costs d = c - [A, -I]^T y.
     y_.setZero(m_);
     for (int i = 0; i < m_; ++i) {
@@ -133,17 +133,21 @@ int DenseSimplex::maximize(double vx, double vu) {
                             (st == GLP_NF && std::abs(d) > kTolDj);
       if (improves && std::abs(d) > best) best = std::abs(d), q = k;
     }
-    if (q < 0) return certify() ? 1 : 0;
-    if (it == kMaxPivots) return 0;
+    if (q < 0) return certify() ? kOptimal : kCertificate;
+    if (it == limits.max_pivots) return kIterationCap;
     const double dir = d_[static_cast<size_t>(q)] > 0 ? 1.0 : -1.0;
     column(q, col_);
     alpha_.noalias() = s_.inv * col_;
     // Ratio test (Harris's two passes): x_B changes by -alpha dir t.
     double tmax = INFINITY;
+    bool small = false;  // a bounding row passed over for its tiny pivot
     for (int i = 0; i < m_; ++i) {
       const double delta = -alpha_[i] * dir;
-      if (std::abs(alpha_[i]) < kTolPivot) continue;
       const int k = s_.head[static_cast<size_t>(i)];
+      if (std::abs(alpha_[i]) < limits.tol_pivot) {
+        small = small || (delta < 0 && std::isfinite(lo_[k])) || (delta > 0 && std::isfinite(hi_[k]));
+        continue;
+      }
       const double v = s_.value[k];
       if (delta < 0 && std::isfinite(lo_[k])) tmax = std::min(tmax, (v - lo_[k] + 0.5 * bound_tol(lo_[k])) / -delta);
       if (delta > 0 && std::isfinite(hi_[k])) tmax = std::min(tmax, (hi_[k] - v + 0.5 * bound_tol(hi_[k])) / delta);
@@ -152,7 +156,7 @@ int DenseSimplex::maximize(double vx, double vu) {
     double t = INFINITY, big = 0.0;
     for (int i = 0; i < m_; ++i) {
       const double delta = -alpha_[i] * dir;
-      if (std::abs(alpha_[i]) < kTolPivot) continue;
+      if (std::abs(alpha_[i]) < limits.tol_pivot) continue;
       const int k = s_.head[static_cast<size_t>(i)];
       const double v = s_.value[k];
       double ti = INFINITY;
@@ -163,7 +167,7 @@ int DenseSimplex::maximize(double vx, double vu) {
     const double range = hi_[q] - lo_[q];  // the entering variable's own bound (a flip)
     const bool flip = std::isfinite(range) && range <= t;
     if (flip) t = range;
-    if (!std::isfinite(t)) return 0;  // unbounded along (vx, vu): not a projection LP's answer
+    if (!std::isfinite(t)) return small ? kSmallPivot : kUnbounded;
     for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] -= alpha_[i] * dir * t;
     if (flip) {
       s_.stat[static_cast<size_t>(q)] = dir > 0 ? GLP_NU : GLP_NL;
@@ -183,12 +187,12 @@ int DenseSimplex::maximize(double vx, double vu) {
     s_.inv.noalias() -= alpha_ * pivot_row_;
     s_.inv.row(r) = pivot_row_;
     ++pivots;
-    if (++s_.updates >= kRefactor) {
-      if (!factorize()) return 0;
+    if (++s_.updates >= limits.refactor) {
+      if (!factorize()) return kSingular;
       compute_values();
     }
   }
-  return 0;
+  return kIterationCap;
 }
 
 // The optimum's certificate, from the problem's own data (not from the updated inverse): the point

@@ -35,8 +35,17 @@ class DenseSimplex {
   /// The basis `stat` (GLPK's statuses, rows then columns): false if it is not a basis, singular, or
   /// not primal feasible.
   bool set_basis(const signed char* stat);
-  /// Maximise v_x x + v_u u from the current basis (primal feasible). 1: optimal and certified; 0: gave
-  /// up (iteration limit, unbounded, a tiny pivot, a failed certificate: use GLPK).
+  /// What maximize() found: an optimum it certified, or why it gave up (the caller then uses GLPK).
+  enum Outcome : int {
+    kOptimal = 1,
+    kNoBasis = 0,         ///< no problem loaded or no basis set
+    kIterationCap = -1,   ///< kMaxPivots pivots without an optimum (cycling, or a far start)
+    kSmallPivot = -2,     ///< every row that bounds the step has |alpha| below the pivot tolerance
+    kUnbounded = -3,      ///< no row nor bound stops the step: a ray (not a projection LP's answer)
+    kSingular = -4,       ///< the basis refactorised after kRefactor updates is (nearly) singular
+    kCertificate = -5,    ///< the optimum fails its certificate from the LP's own data
+  };
+  /// Maximise v_x x + v_u u from the current basis (primal feasible): an Outcome.
   int maximize(double vx, double vu);
 
   const State& state() const { return s_; }
@@ -49,6 +58,12 @@ class DenseSimplex {
   /// nonbasic or the variable is basic.
   void tableau_xu(double* tab_x, double* tab_u) const;
   int pivots = 0;  ///< since load (statistics)
+  /// The engine's limits (tests force each Outcome through them): pivots per LP, rank-one updates before
+  /// B^-1 is computed again from B, the smallest pivot, the smallest reciprocal condition of B.
+  struct Limits {
+    int max_pivots = 200, refactor = 40;
+    double tol_pivot = 1e-9, min_rcond = 1e-12;
+  } limits;
 
  private:
   bool factorize();

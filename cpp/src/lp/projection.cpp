@@ -308,8 +308,16 @@ bool PolytopeProjector::Run::extremize_dense(double vx, double vu, Vertex& p, in
   const int before = ds.pivots;
   const int ok = ds.maximize(vx, vu);
   out_.by_cause.pivots += ds.pivots - before;
-  if (ok != 1) {
-    ++out_.by_cause.dense_fallback;
+  if (ok != DenseSimplex::kOptimal) {
+    LpCounts& c = out_.by_cause;
+    ++c.dense_fallback;
+    switch (ok) {
+      case DenseSimplex::kIterationCap: ++c.fallback_cap; break;
+      case DenseSimplex::kSmallPivot: ++c.fallback_small_pivot; break;
+      case DenseSimplex::kUnbounded: ++c.fallback_unbounded; break;
+      case DenseSimplex::kSingular: ++c.fallback_singular; break;
+      default: ++c.fallback_certificate; break;  // kCertificate (kNoBasis is excluded above)
+    }
     return false;
   }
   ++out_.by_cause.dense;

@@ -115,6 +115,8 @@ class PolytopeProjector {
   /// endpoint's optimal basis, each optimum certified (GLPK solves any it gives up on). On by default;
   /// off for tests that compare both.
   bool dense = true;
+  /// The dense simplex's limits (tests force its fallbacks through them).
+  DenseSimplex::Limits& dense_limits() { return dense_engine_.limits; }
   /// Certify an edge without its LP when an endpoint's optimal basis is also optimal along the edge's
   /// normal (see Ranging in the .cpp). On by default; off for tests that compare both.
   bool ranging = true;

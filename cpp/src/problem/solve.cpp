@@ -84,6 +84,11 @@ Result with_constraints(const TimeScalingProblem& problem, const std::vector<Con
       res.stats.projection_lps_dense += by.dense;
       res.stats.projection_lps_dense_fallback += by.dense_fallback;
       res.stats.projection_pivots += by.pivots;
+      res.stats.projection_fallback_cap += by.fallback_cap;
+      res.stats.projection_fallback_small_pivot += by.fallback_small_pivot;
+      res.stats.projection_fallback_unbounded += by.fallback_unbounded;
+      res.stats.projection_fallback_singular += by.fallback_singular;
+      res.stats.projection_fallback_certificate += by.fallback_certificate;
     }
   }
   return res;

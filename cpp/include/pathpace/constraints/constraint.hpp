@@ -22,14 +22,21 @@ struct Result;
 /// bounds, and every LP of a grid point projected once more from a cold start.
 /// Beside them (not LPs of their own): edges certified by an endpoint's basis without an LP (ranged), LPs
 /// solved by the dense simplex and those it gave back to GLPK (dense, dense_fallback), and the simplex
-/// iterations of all of them (pivots).
+/// iterations of all of them (pivots). The dense simplex's fallbacks by cause: its pivot cap, a step
+/// bounded only by pivots below its tolerance, an unbounded ray, a singular refactorisation, a failed
+/// certificate (they add up to dense_fallback).
 struct LpCounts {
   int initial = 0, vertex = 0, certificate = 0, cap_growth = 0, cold_retry = 0;
   int ranged = 0, dense = 0, dense_fallback = 0, pivots = 0;
+  int fallback_cap = 0, fallback_small_pivot = 0, fallback_unbounded = 0, fallback_singular = 0;
+  int fallback_certificate = 0;
   LpCounts& operator+=(const LpCounts& o) {
     initial += o.initial, vertex += o.vertex, certificate += o.certificate, cap_growth += o.cap_growth;
     cold_retry += o.cold_retry;
     ranged += o.ranged, dense += o.dense, dense_fallback += o.dense_fallback, pivots += o.pivots;
+    fallback_cap += o.fallback_cap, fallback_small_pivot += o.fallback_small_pivot;
+    fallback_unbounded += o.fallback_unbounded, fallback_singular += o.fallback_singular;
+    fallback_certificate += o.fallback_certificate;
     return *this;
   }
 };
