@@ -140,15 +140,18 @@ double barrier_value(const Problem& p, const std::vector<JerkRow>& rows, const E
 }
 
 struct Step {
+  explicit Step(Eigen::Index m) : Ks(m) {}
   Eigen::VectorXd gT, d, nu;  // ∇T at x̄, the Newton step, the consistency multipliers (of φ / t)
   double dec2 = 0;            // Newton decrement², -∇φ·d
+  std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the scaled KKT matrix
+  BandLdlt Ks;
 };
 
 // The Newton step of φ_t^x̄ at x̄ subject to the consistency rows. False if the factorisation fails.
 bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t, BandLdlt& K,
                  Step& st) {
   const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
-  std::vector<double> hT;
+  std::vector<double>& hT = st.hT;
   jerk_quadrature_time(p.sh, x, &st.gT, &hT);
   Eigen::VectorXd g = t * st.gT;
   K.clear();
@@ -205,7 +208,8 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
   }
   for (Eigen::Index c = 0; c < nx; ++c) rhs[p.pos(c)] = -g[c];
   // Scale in place: Â = S A S.
-  BandLdlt Ks(m);
+  BandLdlt& Ks = st.Ks;
+  Ks.clear();
   for (Eigen::Index i = 0; i < m; ++i)
     for (Eigen::Index j = std::max<Eigen::Index>(0, i - kBand); j <= i; ++j) Ks.add(i, j, scale[i] * K.at(i, j) * scale[j]);
   for (Eigen::Index c = 0; c < nx; ++c) reg[p.pos(c)] = 1e-11;
@@ -360,12 +364,12 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
   double T = jerk_quadrature_time(sh, xs, nullptr, nullptr);
   if (!std::isfinite(T)) return false;
   BandLdlt K(3 * nb - 1);
-  Step st;
+  Step st(3 * nb - 1);
   double t = n_ineq / (first_gap * T);
   const double t_final = n_ineq / (0.25 * in.tolerance * T);  // T here is the start's, above the answer's
   const int max_steps = 400;
   int since = 0;
-  Eigen::VectorXd x0 = x;
+  Eigen::VectorXd x0 = x, next(nx);
   x = xs;
   for (out.newton_steps = 0; out.newton_steps < max_steps; ++out.newton_steps) {
     if ((out.newton_steps & 7) == 7 && std::chrono::steady_clock::now() >= deadline) break;
@@ -392,16 +396,17 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
       for (int ls = 0; ls < 60; ++ls, alpha *= 0.5)
         if (barrier_value(p, rows, x + alpha * st.d, t) <= phi0 - 0.25 * alpha * st.dec2) break;
     }
-    Eigen::VectorXd next = x + alpha * st.d;
+    next = x + alpha * st.d;
     rows_at(p, next, rows);
     bool centred = st.dec2 <= 0.5;
-    if (!strictly_inside(p, rows, next) || !std::isfinite(jerk_quadrature_time(sh, next, nullptr, nullptr))) {
+    const double T_next = strictly_inside(p, rows, next) ? jerk_quadrature_time(sh, next, nullptr, nullptr) : kInf;
+    if (!std::isfinite(T_next)) {
       if (st.dec2 > 1e-3) break;
       centred = true;  // rounding at a tiny decrement: stay, as if centred
       if (final_t) t *= 4;
     } else {
       x = next;
-      T = jerk_quadrature_time(sh, x, nullptr, nullptr);
+      T = T_next;
     }
     ++since;
     if (!final_t && (centred || since >= 50)) {
