@@ -98,8 +98,9 @@ ContactConstraint::PointCheck ContactConstraint::check_point(const PathSamples& 
   detail::PolytopeProjector solver;
   PointCheck out;
   out.feasible = solver.feasible(lp);
+  // An empty polytope has no rest point either: a second exact confirmation would only repeat the first.
   const double rest[2] = {0.0, 0.0};
-  out.rest_feasible = solver.feasible(lp, rest);
+  out.rest_feasible = out.feasible == 0 ? 0 : solver.feasible(lp, rest);
   return out;
 }
 

@@ -27,26 +27,54 @@ void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vec
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
 }
 
-int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation) {
-  int ret = glp_simplex(lp, &parm);
-  int st = glp_get_status(lp);
-  if (ret != 0 || (st != GLP_OPT && st != GLP_NOFEAS) || (st == GLP_NOFEAS && !exact_confirmation)) {
-    // From the slack basis, with the dual simplex when the primal one stalled (a degenerate cycle
-    // was seen to use the whole iteration limit on a humanoid carrying a box).
-    glp_smcp retry = parm;
-    if (ret != 0) retry.meth = GLP_DUALP;
+namespace {
+
+// One simplex run: GLP_OPT, GLP_NOFEAS, or 0 when it did not finish (an iteration limit, a singular
+// basis, a status neither optimal nor infeasible).
+int simplex_run(glp_prob* lp, const glp_smcp& parm) {
+  const int ret = glp_simplex(lp, &parm);
+  const int st = glp_get_status(lp);
+  return ret == 0 && (st == GLP_OPT || st == GLP_NOFEAS) ? st : 0;
+}
+
+// The exact simplex from the current basis (the last floating-point run's: usually a few rational pivots
+// from the answer), else from the slack basis (many: hundreds of ms on a humanoid's LP).
+int exact_run(glp_prob* lp, const glp_smcp& parm) {
+  if (glp_exact(lp, &parm) != 0) {
     glp_std_basis(lp);
-    ret = glp_simplex(lp, &retry);
-    st = glp_get_status(lp);
+    if (glp_exact(lp, &parm) != 0) return -1;
   }
-  if (ret == 0 && st == GLP_OPT) return GLP_OPT;
-  // Two simplex runs from different bases agree (the warm one and the slack basis): enough for a
-  // projection, whose infeasibility claims solve() re-checks exactly before reporting them.
-  if (ret == 0 && st == GLP_NOFEAS && !exact_confirmation) return GLP_NOFEAS;
-  glp_std_basis(lp);
-  if (glp_exact(lp, &parm) != 0) return -1;
-  st = glp_get_status(lp);
+  const int st = glp_get_status(lp);
   return st == GLP_OPT || st == GLP_NOFEAS ? st : -1;
+}
+
+}  // namespace
+
+int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation) {
+  const int first = simplex_run(lp, parm);
+  if (first == GLP_OPT) return GLP_OPT;
+  if (first == GLP_NOFEAS && exact_confirmation) return exact_run(lp, parm);  // from the basis that found it
+  // From the slack basis, with the dual simplex when the primal one stalled (a degenerate cycle
+  // was seen to use the whole iteration limit on a humanoid carrying a box).
+  glp_smcp retry = parm;
+  if (first == 0) retry.meth = GLP_DUALP;
+  glp_std_basis(lp);
+  int st = simplex_run(lp, retry);
+  if (st == 0) {
+    // Both stalled (phase 1 of a 37 x 154 contact LP at a relaxed torque scale, seen to take the whole
+    // limit from both bases): the textbook pricing and ratio test from the slack basis once more, which
+    // takes another pivot sequence, before the exact simplex.
+    retry.pricing = GLP_PT_STD;
+    retry.r_test = GLP_RT_STD;
+    glp_std_basis(lp);
+    st = simplex_run(lp, retry);
+  }
+  if (st == GLP_OPT) return GLP_OPT;
+  // Two simplex runs from different bases agree (the warm one and the slack basis), or the slack basis's
+  // runs alone after a stall: enough for a projection, whose infeasibility claims solve() re-checks
+  // exactly before reporting them.
+  if (st == GLP_NOFEAS && !exact_confirmation) return GLP_NOFEAS;
+  return exact_run(lp, parm);
 }
 
 }  // namespace pathpace::detail
