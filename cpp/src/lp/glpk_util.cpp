@@ -53,9 +53,11 @@ int exact_run(glp_prob* lp, const glp_smcp& parm) {
 int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation) {
   const int first = simplex_run(lp, parm);
   if (first == GLP_OPT) return GLP_OPT;
-  if (first == GLP_NOFEAS && exact_confirmation) return exact_run(lp, parm);  // from the basis that found it
-  // From the slack basis, with the dual simplex when the primal one stalled (a degenerate cycle
-  // was seen to use the whole iteration limit on a humanoid carrying a box).
+  // Again from the slack basis, after an infeasibility too: a floating-point optimum from either basis
+  // is accepted. A plan point on a torque boundary gives a force LP that is empty by rounding only (the
+  // exact simplex says so), and the force distribution needs the floating-point optimum there. The dual
+  // simplex when the primal one stalled (a degenerate cycle was seen to use the whole iteration limit on
+  // a humanoid carrying a box).
   glp_smcp retry = parm;
   if (first == 0) retry.meth = GLP_DUALP;
   glp_std_basis(lp);

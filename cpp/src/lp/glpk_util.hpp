@@ -19,13 +19,13 @@ void dense_triplets(const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<
 /// glp_load_matrix of such triplets.
 void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vector<int>& ja, const std::vector<double>& ar);
 
-/// The simplex from the current basis (a warm start); if it stalls or fails, again from the slack basis
-/// (and once more with textbook pricing if that stalls too); if that still does not end optimal, in exact
-/// rational arithmetic, which also confirms an infeasibility (a claim about the robot, so it is checked
-/// exactly, starting from the basis the floating-point run ended in). Without exact_confirmation an
-/// infeasibility found from the slack basis is returned as is (exact arithmetic costs many simplex solves
-/// on a humanoid's LP; the projection's emptiness claims are re-checked exactly by solve()). Returns
-/// GLP_OPT, GLP_NOFEAS, or -1 when the solver did not finish.
+/// The simplex from the current basis (a warm start); if it stalls, fails or finds no feasible point, again
+/// from the slack basis (and once more with textbook pricing if that stalls too); if that still does not
+/// end optimal, in exact rational arithmetic, which also confirms an infeasibility (a claim about the
+/// robot, so it is checked exactly, starting from the basis the floating-point run ended in). Without
+/// exact_confirmation an infeasibility found from the slack basis is returned as is (exact arithmetic
+/// costs many simplex solves on a humanoid's LP; the projection's emptiness claims are re-checked exactly
+/// by solve()). Returns GLP_OPT, GLP_NOFEAS, or -1 when the solver did not finish.
 int glpk_solve_robust(glp_prob* lp, const glp_smcp& parm, bool exact_confirmation = true);
 
 /// The simplex parameters of the projection's LPs (rows x cols): no scaling or presolve, an iteration cap,
