@@ -576,3 +576,61 @@ TEST(DenseSimplex, EachWayOfGivingUpHasItsOwnOutcome) {
   ASSERT_TRUE(ds.set_basis(kWedgeStart));
   EXPECT_EQ(ds.maximize(1.0, 0.0), DenseSimplex::kUnbounded);
 }
+
+namespace {
+// x >= 0, 0 <= u <= 1, and p columns w_j fixed at values of about +-1000 (alternating signs: the terms of
+// a gravity row cancel the same way); row 0: x + Σ w_j = b, an equality whose solution x = 1.3 comes out
+// of much larger terms; row 1: x + u <= 5. Basis: x and row 1's auxiliary (rows' and w's nonbasic).
+struct CancellingRow {
+  PolytopeLp lp;
+  std::vector<signed char> start;
+  explicit CancellingRow(int p) {
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> frac(0.0, 1.0);
+    lp.A = Eigen::MatrixXd::Zero(2, 2 + p);
+    lp.A(0, 0) = lp.A(1, 0) = lp.A(1, 1) = 1.0;
+    lp.col_lo = Eigen::VectorXd::Zero(2 + p);
+    lp.col_hi = Eigen::VectorXd::Constant(2 + p, INFINITY);
+    lp.col_hi[1] = 1.0;
+    double sum = 0.0;
+    for (int j = 0; j < p; ++j) {
+      lp.A(0, 2 + j) = 1.0;
+      lp.col_lo[2 + j] = lp.col_hi[2 + j] = (j % 2 ? -1.0 : 1.0) * (1000.0 + frac(gen)) - (j % 2 ? 27.6 : 0.0);
+      sum += lp.col_lo[2 + j];
+    }
+    lp.row_lo = Eigen::Vector2d(sum + 1.3, -INFINITY);
+    lp.row_hi = Eigen::Vector2d(sum + 1.3, 5.0);
+    start.assign(static_cast<size_t>(2 + 2 + p), GLP_NS);
+    start[1] = GLP_BS;  // row 1's auxiliary
+    start[2] = GLP_BS;  // x
+    start[3] = GLP_NL;  // u
+  }
+};
+}  // namespace
+
+TEST(DenseSimplex, AnEqualityRowSummedWithCancellationIsCertifiedAndAViolatedOneIsNot) {
+  // The row's double rounding bound (n + 2) u Σ |a_j z_j| exceeds GLPK's tolerance on its bound
+  // (1e-10 + 1e-13 |b|), so a double evaluation cannot certify any point on it; the extended-precision
+  // look does, and still rejects the row when it is off by 10 times the tolerance.
+  const CancellingRow c(60);
+  const double b = c.lp.row_lo[0], tol = 1e-10 + 1e-13 * std::abs(b);
+  ASSERT_GT(b, -1000.0);
+  ASSERT_LT(b, -600.0);  // a gravity-sized right side
+  double magnitude = 1.3;
+  for (int j = 2; j < c.lp.A.cols(); ++j) magnitude += std::abs(c.lp.col_lo[j]);
+  ASSERT_GT((c.lp.A.cols() + 2) * std::numeric_limits<double>::epsilon() * magnitude, tol);  // the precondition
+  DenseSimplex ds;
+  ds.load(c.lp);
+  ASSERT_TRUE(ds.set_basis(c.start.data()));
+  ASSERT_EQ(ds.maximize(0.0, 1.0), DenseSimplex::kOptimal);  // u to its bound (a flip), then certified
+  EXPECT_EQ(ds.u(), 1.0);
+  EXPECT_NEAR(ds.x(), 1.3, 1e-11);
+  // A stale state whose row 0 sits 10 tolerances off its bound: x follows it, the row does not hold.
+  DenseSimplex off;
+  off.load(c.lp);
+  ASSERT_TRUE(off.set_basis(c.start.data()));
+  DenseSimplex::State st = off.state();
+  st.value[0] = b + 10 * tol;
+  off.restore(st);
+  EXPECT_EQ(off.maximize(0.0, 1.0), DenseSimplex::kCertificate);
+}

@@ -217,7 +217,12 @@ bool DenseSimplex::certify() {
       e = gamma * err_[k];
       if (s_.stat[static_cast<size_t>(k)] == GLP_BS) s_.value[k] = v;
     }
-    if (v - e < lo_[k] - bound_tol(lo_[k]) || v + e > hi_[k] + bound_tol(hi_[k])) return false;
+    const double lo = lo_[k] - bound_tol(lo_[k]), hi = hi_[k] + bound_tol(hi_[k]);
+    if (v - e >= lo && v + e <= hi) continue;
+    // Undecided in double: the row again in extended precision, whose error bound is 2048 times smaller.
+    // An equality row of the gravity wrench, summed from much larger terms with cancellation, has a
+    // double bound above the tolerance itself, which no point can meet.
+    if (k >= m_ || !row_within(k, z, lo, hi)) return false;
   }
   // The multipliers y and reduced costs d of the last pricing (the same basis and inverse): no basic
   // variable keeps a reduced cost (B^T y = c_B: the inverse is still accurate), no nonbasic one has one
@@ -231,6 +236,23 @@ bool DenseSimplex::certify() {
     d_[static_cast<size_t>(k)] = st == GLP_BS ? 0.0 : d;
   }
   return true;
+}
+
+bool DenseSimplex::row_within(int k, const Eigen::VectorXd& z, double lo, double hi) const {
+  // Each product and sum in long double (x87's 64-bit mantissa on x86-64, never contracted into an FMA),
+  // so the computed value is within (n + 1) u Σ_j |a_kj z_j| of the exact one for any summation order,
+  // u = epsilon / 2 of long double; epsilon itself (twice u) and the factor (n + 2) leave room for the
+  // rounding of the sum of magnitudes. Where long double is double the bound is the double one, and the
+  // row fails as before: the check stays rigorous on every platform, only less often conclusive.
+  const Eigen::MatrixXd& A = lp_->A;
+  long double v = 0.0L, mag = 0.0L;
+  for (int j = 0; j < n_; ++j) {
+    const long double t = static_cast<long double>(A(k, j)) * static_cast<long double>(z[j]);
+    v += t;
+    mag += t < 0 ? -t : t;
+  }
+  const long double e = (n_ + 2) * std::numeric_limits<long double>::epsilon() * mag;
+  return v - e >= static_cast<long double>(lo) && v + e <= static_cast<long double>(hi);
 }
 
 void DenseSimplex::tableau_xu(double* tab_x, double* tab_u) const {

@@ -70,6 +70,9 @@ class DenseSimplex {
   void compute_values();
   void column(int k, Eigen::VectorXd& a) const;  // the constraint column of variable k
   bool certify();
+  // Row k's value A_k z, in extended precision with its rounding bound, within [lo, hi] (certify's second
+  // look at a row that the double evaluation leaves undecided).
+  bool row_within(int k, const Eigen::VectorXd& z, double lo, double hi) const;
   const PolytopeLp* lp_ = nullptr;
   int m_ = 0, n_ = 0;
   Eigen::VectorXd lo_, hi_;  // per variable
