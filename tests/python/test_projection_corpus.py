@@ -361,6 +361,39 @@ def test_projection_tolerance_keeps_an_inner_polygon_within_eps_and_T_can_only_g
     assert ra.stats["projection_lp_solves"] < re.stats["projection_lp_solves"]
 
 
+def _rest_slice(fs):
+    """The s̈ interval of a feasible set at ṡ² = 0 (its vertices on x = 0), or None."""
+    v = np.asarray(fs.vertices)
+    at_rest = v[v[:, 0] <= 1e-12 * max(1.0, np.abs(v[:, 0]).max()), 1] if len(v) else v
+    return (at_rest.min(), at_rest.max()) if len(at_rest) else None
+
+
+def test_projection_tolerance_keeps_the_rest_slice_exact():
+    """Where the path can start or stop is the slice of each polygon at ṡ² = 0, often far shorter than
+    the polygon's size. With ε = 1e-4 it stays the exact one at every grid point of a squat whose inner
+    polygons once kept only s̈ < 0 at rest there (seed-27 Talos squat, 8 edges, shifted cone: it became
+    INFEASIBLE), and the timing stays OPTIMAL with T within ε of the exact one."""
+    case = next(c for c in cc.hard_cases() if c.robot == "talos" and c.kind == "squat")
+    h = cc.load("talos")
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["talos"])
+    opts = dict(cone_edges=8, torque_scale=cc.HARD_TORQUE_SCALE[("talos", "squat")], drift_tolerance=1e-4,
+                **cc.SHIFTED_MARGINS["off1.5"])
+    exact, approx = pp.TimeScalingProblem(path, grid=100), pp.TimeScalingProblem(path, grid=100)
+    exact.add_contacts(h.robot, cons, **opts)
+    approx.add_contacts(h.robot, cons, projection_tolerance=1e-4, **opts)
+    for k in range(101):
+        fe, fa = exact.feasible_set(k), approx.feasible_set(k)
+        se, sa = _rest_slice(fe), _rest_slice(fa)
+        assert (se is None) == (sa is None), k
+        if se is not None:
+            scale = max(1.0, np.ptp(np.asarray(fe.vertices)[:, 1]))
+            assert abs(se[0] - sa[0]) <= 1e-9 * scale and abs(se[1] - sa[1]) <= 1e-9 * scale, (k, se, sa)
+    re, ra = exact.solve(), approx.solve()
+    assert re.ok and ra.ok, (re.message, ra.message)
+    assert re.duration * (1 - 1e-12) <= ra.duration <= re.duration * (1 + 1e-4)
+
+
 def test_projection_tolerance_is_validated_named_and_pickled():
     h = cc.load("talos")
     cons = cc.contacts(h, "sway")
@@ -371,14 +404,19 @@ def test_projection_tolerance_is_validated_named_and_pickled():
         with pytest.raises(pp.InvalidInputError, match=r"projection_tolerance = "):
             pp.TimeScalingProblem(path, grid=4).add_contacts(h.robot, cons, projection_tolerance=bad)
     import pickle
-    # N = 8: at N = 4 every edge of these small polygons is certified by an endpoint's basis (ranging, with
-    # the dense simplex's bases), so ε has no edge left to skip there.
+    # The hard lean's polygons (per-point minima, binding torques): on the plain sway's small polygons every
+    # edge is certified by an endpoint's basis (ranging) or touches the rest state x = 0, which the
+    # approximation always solves exactly, so ε has no edge left to skip there.
+    case = next(c for c in cc.hard_cases() if c.robot == "talos" and c.kind == "lean")
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["talos"])
+    opts = dict(torque_scale=cc.HARD_TORQUE_SCALE[("talos", "lean")], **cc.HARD_MARGINS["fn1.5"])
     a, b = (pp.TimeScalingProblem(path, grid=8) for _ in range(2))
-    c = pp.ContactConstraint(h.robot, cons, projection_tolerance=0.05)
+    c = pp.ContactConstraint(h.robot, cons, projection_tolerance=0.05, **opts)
     a.add_constraint(c)
     b.add_constraint(pickle.loads(pickle.dumps(c)))
     exact = pp.TimeScalingProblem(path, grid=8)
-    exact.add_constraint(pp.ContactConstraint(h.robot, cons))
+    exact.add_constraint(pp.ContactConstraint(h.robot, cons, **opts))
     for k in range(9):
         np.testing.assert_array_equal(a.feasible_set(k).vertices, b.feasible_set(k).vertices)
     # The tolerance is what the pickle kept: ε = 0.05 changes a polygon of this path.

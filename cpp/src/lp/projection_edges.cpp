@@ -17,12 +17,18 @@ namespace pathpace::detail {
 // clockwise) leave the triangle a, apex, b; in every direction d between v_a and v_b the shadow's support
 // exceeds the hull's by at most d·(apex - a) (or - b) <= the apex's height above the edge. An edge whose
 // apex lies within `approx` of it is final: the hull stays (an inner set, conservative).
+// Except next to the rest state x = ṡ² = 0: there the slice of s̈ decides whether the path can start or
+// stop at the point at all, and is often far shorter than the polygon's size (which the approximation is
+// relative to). Without it, an inner polygon that kept only s̈ < 0 at rest made a feasible Talos squat
+// infeasible; edges from a vertex at x's lower bound are always solved, so that slice and the edges on
+// either side of it stay exact.
 bool PolytopeProjector::Run::within_approximation(const Pending& e) const {
   if (!(approx_ > 0.0) || e.from == e.to) return false;
   const Vertex &da = support_[static_cast<size_t>(e.from)], &db = support_[static_cast<size_t>(e.to)];
   const double det = da.x * db.y - da.y * db.x;
   if (!(da.x * e.nu - da.y * e.nx > 0.0) || !(e.nx * db.y - e.nu * db.x > 0.0) || !(det > 0.0)) return false;
   const Vertex &a = points_[static_cast<size_t>(e.from)], &b = points_[static_cast<size_t>(e.to)];
+  if (std::isfinite(xlo_) && std::min(a.x, b.x) <= xlo_ + tol_) return false;
   const double ra = da.x * a.x + da.y * a.y, rb = db.x * b.x + db.y * b.y;
   const double px = (ra * db.y - rb * da.y) / det, pu = (da.x * rb - db.x * ra) / det;
   return e.nx * px + e.nu * pu - e.offset <= approx_;
