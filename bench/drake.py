@@ -41,7 +41,10 @@ from __future__ import annotations
 
 import argparse
 import collections
+import importlib.metadata
+import json
 import logging
+import re
 import statistics
 import sys
 import time
@@ -51,6 +54,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import common  # noqa: E402  (first: pins BLAS/OpenMP to one thread before numpy is imported)
 import numpy as np  # noqa: E402
 
+HERE = Path(__file__).resolve().parent
 PATH_TOLERANCE = 1e-10  # relative; the two splines are the same polynomials, agreeing to rounding (~1e-13)
 
 
@@ -205,6 +209,10 @@ def run_path(arm, plant, seed, N, reps, log):
     sd, t = drake_sdot(last["drake"], grid)
     row["T_drake"] = float(common.times_from_sdot(grid, sd)[-1])
     row["T_drake_breaks"] = float(t[-1] - t[0])
+    # Its own s(t) has the s̈ that the checks derive from ṡ: on the last segment, u_{N-1} = -ṡ_{N-1}² / (2Δs).
+    u_last = (sd[-1] ** 2 - sd[-2] ** 2) / (2 * (grid[-1] - grid[-2]))
+    sdd = last["drake"].derivative(2).value(0.5 * (t[-2] + t[-1]))[0, 0]
+    row["last_sdd_rel"] = float(abs(sdd / u_last - 1))
     rows = excess(ref, grid, sd, v, a)
     row["viol_drake"], row["viol_k"], row["viol_side"] = where(rows)
     oracle = common.grid_violation(ref, grid, sd, v, a)[0]
@@ -219,11 +227,10 @@ def fmt_k(k, N):
 
 def report(N, rows):
     ok = [r for r in rows if "T_drake" in r]
-    fails = collections.Counter(r["failure"] for r in rows if "failure" in r)
     line = f"| {N} | {len(ok)} / {len(rows)} | {1e3 * statistics.median(r['pathpace_cpu'] for r in rows):.3f} | "
-    line += f"{1e3 * statistics.median(r['drake_cpu'] for r in rows):.2f} | "
+    line += f"{1e3 * statistics.median(r['drake_cpu'] for r in ok):.2f} | " if ok else "- | "
     if not ok:
-        return line + "- | - | - | - | - |", fails
+        return line + "- | - | - | - | - |"
     ratio = [r["drake_cpu"] / r["pathpace_cpu"] for r in ok]
     wall = [r["drake_wall"] / r["pathpace_wall"] for r in ok]
     dT = [r["T_drake"] / r["T"] - 1 for r in ok]
@@ -235,7 +242,20 @@ def report(N, rows):
              f"({worst['arm']} seed {worst['seed']}) | "
              f"{max(r['viol_drake_inner'] for r in ok):.1e} | "
              + "; ".join(f"{n}: {c}" for c, n in sorted(at.items(), key=lambda x: -x[1])) + " |")
-    return line, fails
+    return line
+
+
+def failures(rows):
+    """Drake's failure messages with the knot index taken out, each with how many paths and where on the path
+    (knot / N) it failed, and Drake's median CPU time to the failure."""
+    out = collections.defaultdict(list)
+    for r in rows:
+        if "failure" in r:
+            m = re.search(r" at knot (\d+)/(\d+)", r["failure"])
+            out[r["failure"].replace(m.group(0), " at knot k/N") if m else r["failure"]].append(
+                (int(m.group(1)) / int(m.group(2)) if m else float("nan"), r["drake_cpu"]))
+    return {msg: f"{len(x)} paths, at k/N = {min(f for f, _ in x):.3f}..{max(f for f, _ in x):.3f}, "
+                 f"{1e3 * statistics.median(c for _, c in x):.1f} ms CPU to fail (median)" for msg, x in out.items()}
 
 
 def main():
@@ -269,15 +289,23 @@ def main():
           "| T_drake / T_pathpace - 1: median / min / max | Drake's worst violation, where | Drake's worst "
           "off the first and last point | paths with a violation > 1e-9, at |")
     print("|---|---|---|---|---|---|---|---|---|")
-    t0 = time.time()
+    t0, everything = time.time(), []
     for N in (int(x) for x in args.N.split(",")):
         rows = [run_path(arms[n], plants[n], seed, N, reps, log) for n in arms for seed in range(seeds)]
-        line, fails = report(N, rows)
+        line = report(N, rows)
         print(line, flush=True)
+        everything += rows
         print(f"N = {N}: largest path difference {max(r['path_diff'] for r in rows):.1e}; pathpace's worst "
               f"violation {max(r['violation'] for r in rows):.1e}; largest |T_drake(breaks) / T_drake - 1| "
               f"{max((abs(r['T_drake_breaks'] / r['T_drake'] - 1) for r in rows if 'T_drake' in r), default=0):.1e}; "
-              f"failures {dict(fails)}; {time.time() - t0:.0f} s", file=sys.stderr, flush=True)
+              f"largest |s̈ of Drake's last segment / u_(N-1) - 1| "
+              f"{max((r['last_sdd_rel'] for r in rows if 'T_drake' in r), default=0):.1e}; failures {failures(rows)}; {time.time() - t0:.0f} s", file=sys.stderr, flush=True)
+
+    (HERE / "results").mkdir(exist_ok=True)
+    with open(HERE / "results" / "drake.json", "w") as f:
+        json.dump({"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "machine": common.machine(),
+                   "build": common.build_info(), "drake": importlib.metadata.version("drake"), "seeds": seeds,
+                   "rows": everything}, f, indent=1)
 
 
 if __name__ == "__main__":
