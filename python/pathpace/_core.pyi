@@ -1998,7 +1998,9 @@ class TimeScalingProblem:
             Relative ε in [0, 1) of a certified approximation of each grid point's polygon (0: exact). The
             polygon is an inner set whose support function is within ε times its size (its larger extent in
             sdot^2 or sddot) of the exact one in every direction: the timing stays executable, only slower
-            (T can only grow). Edges kept by ε are labelled "contact forces" in Result.binding.
+            (T can only grow). The edges at sdot^2 = 0 are always exact, so the rest state's sddot range, where
+            the path can start or stop, is the exact one. Edges kept by ε are labelled "contact forces" in
+            Result.binding.
         """
     def add_contact_phases(
         self,
