@@ -125,17 +125,25 @@ def times_from_sdot(s, sdot):
     return np.concatenate([[0.0], np.cumsum(2 * np.diff(s) / (sdot[:-1] + sdot[1:]))])
 
 
-def grid_violation(ref, s, sdot, v, a):
-    """Largest relative excess max_j (|q̇_j| - v_j)/v_j, (|q̈_j| - a_j)/a_j, clipped at 0, at the grid points:
-    ṡ at the point, and s̈ of the interval on EACH side of it (s̈_k = (ṡ_{k+1}² - ṡ_k²)/(2Δs_k), eq. 26).
-    Returns (overall, velocity, acceleration with the interval after, acceleration with the interval before)."""
+def grid_excess(ref, s, sdot, v, a):
+    """Per grid point, the largest relative excess max_j (|q̇_j| - v_j)/v_j, (|q̈_j| - a_j)/a_j, clipped at 0:
+    rows (velocity, acceleration with the interval after, acceleration with the interval before), ṡ at the
+    point and s̈ of the interval on EACH side of it (s̈_k = (ṡ_{k+1}² - ṡ_k²)/(2Δs_k), eq. 26)."""
     dq, ddq = ref(s, 1), ref(s, 2)
     x = sdot**2
     u = (x[1:] - x[:-1]) / (2 * np.diff(s))
-    vel = (np.abs(dq * sdot[:, None]) / v - 1).max()
-    fwd = (np.abs(ddq[:-1] * x[:-1, None] + dq[:-1] * u[:, None]) / a - 1).max()
-    bwd = (np.abs(ddq[1:] * x[1:, None] + dq[1:] * u[:, None]) / a - 1).max()
-    return max(0.0, vel, fwd, bwd), max(0.0, vel), max(0.0, fwd), max(0.0, bwd)
+    rows = np.full((3, len(s)), -np.inf)
+    rows[0] = (np.abs(dq * sdot[:, None]) / v - 1).max(axis=1)
+    rows[1, :-1] = (np.abs(ddq[:-1] * x[:-1, None] + dq[:-1] * u[:, None]) / a - 1).max(axis=1)
+    rows[2, 1:] = (np.abs(ddq[1:] * x[1:, None] + dq[1:] * u[:, None]) / a - 1).max(axis=1)
+    return np.maximum(rows, 0.0)
+
+
+def grid_violation(ref, s, sdot, v, a):
+    """grid_excess's largest values: (overall, velocity, acceleration with the interval after, acceleration
+    with the interval before)."""
+    vel, fwd, bwd = (float(r.max()) for r in grid_excess(ref, s, sdot, v, a))
+    return max(vel, fwd, bwd), vel, fwd, bwd
 
 
 def dense_times(s, sdot, per_interval=20):
