@@ -24,11 +24,11 @@ namespace pathpace::detail {
 // either side of it stay exact.
 bool PolytopeProjector::Run::within_approximation(const Pending& e) const {
   if (!(approx_ > 0.0) || e.from == e.to) return false;
+  const Vertex &a = points_[static_cast<size_t>(e.from)], &b = points_[static_cast<size_t>(e.to)];
+  if (std::isfinite(xlo_) && std::min(a.x, b.x) <= xlo_ + tol_) return false;
   const Vertex &da = support_[static_cast<size_t>(e.from)], &db = support_[static_cast<size_t>(e.to)];
   const double det = da.x * db.y - da.y * db.x;
   if (!(da.x * e.nu - da.y * e.nx > 0.0) || !(e.nx * db.y - e.nu * db.x > 0.0) || !(det > 0.0)) return false;
-  const Vertex &a = points_[static_cast<size_t>(e.from)], &b = points_[static_cast<size_t>(e.to)];
-  if (std::isfinite(xlo_) && std::min(a.x, b.x) <= xlo_ + tol_) return false;
   const double ra = da.x * a.x + da.y * a.y, rb = db.x * b.x + db.y * b.y;
   const double px = (ra * db.y - rb * da.y) / det, pu = (da.x * rb - db.x * ra) / det;
   return e.nx * px + e.nu * pu - e.offset <= approx_;
