@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "pathpace/pathpace.hpp"
 #include "test_fixtures.hpp"
@@ -108,4 +110,82 @@ TEST(ContactSlice, InactiveSamplesAreUnboundedAndArgumentsAreChecked) {
   PathSamples narrow = ps;
   narrow.q = ps.q.leftCols(3);
   EXPECT_THROW(c.slice(narrow, Eigen::VectorXd::Zero(5), lo, hi), InvalidInput);
+}
+
+// The continuous audit asks for a Chebyshev point at u - δ, u, u + δ in a row: slice() builds that
+// point's LP once and keeps GLPK's matrix for the next two. The answers are those of one call per
+// sample (to the LPs' rounding: a warm GLPK problem keeps its own factorisation), also where a slice
+// is empty (u = ±20) and the next sample at the same point is not.
+TEST(ContactSlice, RepeatedPointsGiveTheSlicesOfOneCallPerSample) {
+  auto model = lifter_with_box();
+  const ContactConstraint c(model, corners(0.5), box_options(0.5));
+  const PathSamples ps = lifter_samples(7);
+  const std::vector<double> us = {-20.0, -3.0, 0.0, 0.7, 4.0, 20.0, 2.0};
+  PathSamples rep;
+  const Eigen::Index m = ps.size() * static_cast<Eigen::Index>(us.size());
+  rep.s.resize(m);
+  rep.q.resize(m, ps.dof());
+  rep.dq.resize(m, ps.dof());
+  rep.ddq.resize(m, ps.dof());
+  Eigen::VectorXd u(m);
+  for (Eigen::Index p = 0, i = 0; p < ps.size(); ++p)
+    for (size_t j = 0; j < us.size(); ++j, ++i) {
+      rep.s[i] = ps.s[p];
+      rep.q.row(i) = ps.q.row(p);
+      rep.dq.row(i) = ps.dq.row(p);
+      rep.ddq.row(i) = ps.ddq.row(p);
+      u[i] = us[(j + static_cast<size_t>(p)) % us.size()];  // every order of empty and non-empty slices
+    }
+  Eigen::VectorXd lo, hi;
+  c.slice(rep, u, lo, hi);
+  int empty = 0, compared = 0;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    PathSamples one;
+    one.s = rep.s.segment(i, 1);
+    one.q = rep.q.row(i);
+    one.dq = rep.dq.row(i);
+    one.ddq = rep.ddq.row(i);
+    Eigen::VectorXd lo1, hi1;
+    c.slice(one, u.segment(i, 1), lo1, hi1);
+    if (lo1[0] > hi1[0]) {
+      EXPECT_GT(lo[i], hi[i]) << "sample " << i << " u " << u[i];
+      ++empty;
+      continue;
+    }
+    for (auto [a, b] : {std::pair{lo[i], lo1[0]}, std::pair{hi[i], hi1[0]}}) {
+      if (std::isinf(b)) EXPECT_EQ(a, b) << "sample " << i;
+      else EXPECT_NEAR(a, b, 1e-9 * std::max(1.0, std::abs(b))) << "sample " << i << " u " << u[i];
+    }
+    ++compared;
+  }
+  EXPECT_GT(empty, 2 * ps.size() - 2);
+  EXPECT_GT(compared, 4 * ps.size());
+}
+
+// With x given: where x is above the slice's top the bottom's LP is skipped (x_lo = -inf), elsewhere the
+// slices are those without x; a wrong-sized x is an input error.
+TEST(ContactSlice, AnXAboveTheTopSkipsTheBottomsLp) {
+  auto model = lifter_with_box();
+  const ContactConstraint c(model, corners(0.5), box_options(0.5));
+  const PathSamples ps = lifter_samples(9);
+  const Eigen::VectorXd u = Eigen::VectorXd::Constant(ps.size(), 0.7);
+  Eigen::VectorXd lo, hi, lo_x, hi_x;
+  const int all = c.slice(ps, u, lo, hi);
+  ASSERT_TRUE((lo.array() <= hi.array()).all());
+  Eigen::VectorXd x = hi;
+  int above = 0;
+  for (Eigen::Index p = 0; p < ps.size(); ++p)
+    if (p % 2 == 0 && std::isfinite(hi[p])) x[p] = 1.5 * hi[p] + 1.0, ++above;
+    else x[p] = 0.5 * (lo[p] + (std::isfinite(hi[p]) ? hi[p] : lo[p] + 1.0));
+  ASSERT_GT(above, 2);
+  EXPECT_EQ(c.slice(ps, u, lo_x, hi_x, &x), all - above);
+  for (Eigen::Index p = 0; p < ps.size(); ++p) {
+    // The same LPs from other warm starts (the bottom's projector skips samples): equal to their rounding.
+    if (std::isinf(hi[p])) EXPECT_EQ(hi_x[p], hi[p]) << p;
+    else EXPECT_NEAR(hi_x[p], hi[p], 1e-9 * std::max(1.0, std::abs(hi[p]))) << p;
+    if (x[p] > hi[p]) EXPECT_TRUE(std::isinf(lo_x[p]) && lo_x[p] < 0) << p;
+    else EXPECT_NEAR(lo_x[p], lo[p], 1e-9 * std::max(1.0, std::abs(lo[p]))) << p;
+  }
+  const Eigen::VectorXd short_x = x.head(3);
+  EXPECT_THROW(c.slice(ps, u, lo_x, hi_x, &short_x), InvalidInput);
 }

@@ -181,3 +181,32 @@ def test_small_or_corner_only_groups_keep_their_rows():
     five = corners[:4] + [pp.Contact(h.soles[0], point=(0.0, 0.0, 0.0), normal=(0, 0, 1), friction=0.5)]
     c = pp.ContactConstraint(h.robot, five, cone_edges=4, min_normal_force=2.0)
     assert c.projected_contacts == list(range(5)) and c.section_contacts == []
+
+
+@pytest.mark.parametrize("robot,kind,margins", [
+    ("talos", "squat", "off1.5"),
+    ("romeo", "lean", "fm0.5+off0.33"),
+])
+def test_shifted_cone_forces_balance_the_base(robot, kind, margins):
+    """The shifted cone's offset wrench (cone_offset · Σ_i J_iᵀ n_i over all 60 sole points, which the LPs move
+    into the torque rows' bounds): the forces reported at the grid times, offsets included, carry the base's
+    six unactuated rows of inverse dynamics with pathpace's rows left out: τ_id = Σ_i J_iᵀ f_i there, with
+    J_i from point_jacobian per point, to 1e-6 of the robot's weight."""
+    h, path, scale = _hard(robot, kind)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot])
+    prob = pp.TimeScalingProblem(path, grid=6)
+    prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4, torque_scale=scale,
+                      **cc.SHIFTED_MARGINS[margins])
+    res = prob.solve()
+    assert res.ok, res.message
+    traj = res.trajectory()
+    fs = traj.contact_forces(res.times, distribution="vertex")
+    q0 = traj.q(0.0)
+    weight = abs(float(h.robot.inverse_dynamics(q0, 0 * q0, 0 * q0)[2]))  # the base's vertical row at rest
+    worst = 0.0
+    for j, t in enumerate(res.times):
+        q = traj.q(t)
+        tau_id = h.robot.inverse_dynamics(q, traj.qd(t), traj.qdd(t))
+        JT = np.hstack([h.robot.point_jacobian(q, c.link, c.point).T for c in cons])
+        worst = max(worst, float(np.max(np.abs(tau_id[:6] - JT[:6] @ fs.forces[j].reshape(-1)))))
+    assert worst <= 1e-6 * weight, (worst, weight)

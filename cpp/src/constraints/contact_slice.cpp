@@ -14,13 +14,15 @@
 namespace pathpace {
 
 int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-                             Eigen::VectorXd& x_hi) const {
+                             Eigen::VectorXd& x_hi, const Eigen::VectorXd* x) const {
   const int n = robot_->nq();
   if (samples.dof() != n)
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
                  std::to_string(n) + " joints");
   if (u.size() != samples.size())
     detail::fail("u has " + std::to_string(u.size()) + " entries, samples has " + std::to_string(samples.size()));
+  if (x && x->size() != samples.size())
+    detail::fail("x has " + std::to_string(x->size()) + " entries, samples has " + std::to_string(samples.size()));
   const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
   x_lo.resize(samples.size());
   x_hi.resize(samples.size());
@@ -34,18 +36,31 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
   // sample's), which is nearly optimal here.
   detail::PolytopeProjector up, down;
   Eigen::VectorXd objective = Eigen::VectorXd::Zero(lp.A.cols()), z;
+  // A sample at the same path point as the one that built `lp` (the continuous audit asks for u - δ,
+  // u, u + δ there) has the same LP but for u's bounds: not built again, and a projector that holds
+  // its matrix keeps it.
+  Eigen::Index built = -1, up_at = -1, down_at = -1;  // the sample `lp` is of; the one each projector holds
+  auto same_point = [&](Eigen::Index p, Eigen::Index o) {
+    return o >= 0 && samples.s[p] == samples.s[o] && samples.q.row(p) == samples.q.row(o) &&
+           samples.dq.row(p) == samples.dq.row(o) && samples.ddq.row(p) == samples.ddq.row(o);
+  };
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     if (!active_at(samples.s[p])) {
       x_lo[p] = -inf;
       x_hi[p] = inf;
       continue;
     }
-    lp_point(reduced_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
+    if (!same_point(p, built)) {
+      lp_point(reduced_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(),
+               c.row(p).transpose(), lp);
+      built = p;
+    }
     lp.col_lo[1] = lp.col_hi[1] = u[p];
     lp.col_hi[0] = !options_.rest_at_begin.empty() && at_active_begin(samples.s[p]) ? 0.0 : options_.cap;
     objective[0] = 1.0;
     ++lps;
-    const int st = up.maximize(lp, objective, z);
+    const int st = up.maximize(lp, objective, z, up_at == built);
+    up_at = built;
     if (st == 0) {
       x_lo[p] = inf;
       x_hi[p] = -inf;
@@ -53,9 +68,14 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
     }
     // On the stand-in cap: no limit on x there (as the projection drops such edges).
     x_hi[p] = st < 0 ? nan : (z[0] >= options_.cap * (1.0 - 1e-9) ? inf : z[0]);
+    if (x && (*x)[p] > x_hi[p]) {  // above the slice: its bottom does not change how far
+      x_lo[p] = -inf;
+      continue;
+    }
     objective[0] = -1.0;
     ++lps;
-    const int sl = down.maximize(lp, objective, z);
+    const int sl = down.maximize(lp, objective, z, down_at == built);
+    down_at = built;
     x_lo[p] = sl == 1 ? z[0] : (sl == 0 ? inf : nan);
   }
   return lps;

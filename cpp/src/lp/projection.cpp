@@ -75,6 +75,7 @@ bool PolytopeProjector::Run::start() {
     return false;
   }
   const int loaded = self_.load(in_);
+  self_.matrix_is_input_ = false;  // its x and u columns may be scaled below
   if (loaded < 0) {
     glpk_error();
     return false;

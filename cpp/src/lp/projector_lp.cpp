@@ -13,7 +13,7 @@ namespace pathpace::detail {
 
 PolytopeProjector::~PolytopeProjector() = default;
 
-int PolytopeProjector::load(const PolytopeLp& in) {
+int PolytopeProjector::load(const PolytopeLp& in, bool keep_matrix) {
   const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
   // A problem freed by a GLPK error (get() == nullptr) is created again, cold.
   const bool warm = lp_.get() != nullptr && rows == rows_ && cols == cols_;
@@ -21,7 +21,12 @@ int PolytopeProjector::load(const PolytopeLp& in) {
     rows_ = cols_ = -1;
     if (!lp_.create()) return -1;
   }
-  dense_triplets(in.A, ia_, ja_, ar_);
+  // The matrix is most of a load (dense_triplets and glp_load_matrix); glp_simplex builds its own
+  // factorisation from the matrix, bounds and basis statuses, so keeping an identical matrix changes
+  // nothing in its answer.
+  const bool reload = !(warm && keep_matrix && matrix_is_input_);
+  matrix_is_input_ = false;
+  if (reload) dense_triplets(in.A, ia_, ja_, ar_);
   glp_prob* lp = lp_.get();
   const bool ok = guarded([&] {
     if (!warm) {
@@ -31,13 +36,14 @@ int PolytopeProjector::load(const PolytopeLp& in) {
     }
     for (int i = 0; i < rows; ++i) glpk_set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
     for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
-    glpk_load_triplets(lp, ia_, ja_, ar_);
+    if (reload) glpk_load_triplets(lp, ia_, ja_, ar_);
     // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
     if (!warm) glp_adv_basis(lp, 0);
   });
   if (!ok) return -1;
   rows_ = rows;
   cols_ = cols;
+  matrix_is_input_ = true;
   return warm ? 1 : 0;
 }
 
@@ -80,9 +86,11 @@ int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
   return st == GLP_OPT ? 1 : st == GLP_NOFEAS ? 0 : -1;
 }
 
-int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z) {
+int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix) {
   glp_smcp parm;
-  if (!projection_simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) || load(in) < 0) return -2;
+  if (!projection_simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) ||
+      load(in, same_matrix) < 0)
+    return -2;
   glp_prob* lp = lp_.get();
   const int cols = cols_;
   z_.resize(static_cast<size_t>(cols));

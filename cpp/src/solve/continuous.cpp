@@ -289,8 +289,8 @@ double Auditor::worst_row(const ConstraintRows& rr, Eigen::Index r, double l, Ei
 }
 
 // The violation at (interval kk[i], λ ll[i]) under θ. A contact constraint is asked only whether the
-// timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, no
-// projection); its violation is x's relative distance beyond the slice. Any other constraint gives its
+// timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, one where x
+// is above the slice's top, no projection); its violation is x's relative distance beyond the slice. Any other constraint gives its
 // rows (cheap: no LPs).
 void Auditor::violations(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& kk,
                          const std::vector<double>& ll, std::vector<double>& f) {
@@ -298,11 +298,14 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
   if (kk.empty()) return;
   const PathSamples ps = samples_at(kk, ll);
   if (contact) {
-    Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), lo, hi;
-    for (size_t i = 0; i < kk.size(); ++i) u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
-    audit_.lps += contact->slice(ps, u, lo, hi);
+    Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), x(u.size()), lo, hi;
+    for (size_t i = 0; i < kk.size(); ++i) {
+      u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
+      x[static_cast<Eigen::Index>(i)] = x_of(kk[i], ll[i]);
+    }
+    audit_.lps += contact->slice(ps, u, lo, hi, &x);
     for (size_t i = 0; i < kk.size(); ++i)
-      f[i] = slice_violation(x_of(kk[i], ll[i]), lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
+      f[i] = slice_violation(x[static_cast<Eigen::Index>(i)], lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
     return;
   }
   const ConstraintRows rr = constraints_[ci]->evaluate(ps);

@@ -227,9 +227,11 @@ class Constraint {
     return {};
   }
   /// For a projected() constraint: per sample p, the smallest and largest x with (x, u[p]) feasible at
-  /// samples.s[p], without projecting; returns the LPs spent (see ContactConstraint::slice).
+  /// samples.s[p], without projecting; returns the LPs spent (see ContactConstraint::slice). With `x`
+  /// (one per sample), x_lo[p] is left at -inf, without its LP, where x[p] > x_hi[p]: x's distance
+  /// beyond the slice is then x[p] - x_hi[p], whatever x_lo[p] is.
   virtual int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-                    Eigen::VectorXd& x_hi) const;
+                    Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr) const;
   /// For a projected() constraint: the stand-in bound on x where nothing else bounds it (its polygons are
   /// cut there; slice reports +inf instead).
   virtual double projection_cap() const { return std::numeric_limits<double>::infinity(); }
