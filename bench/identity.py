@@ -5,7 +5,8 @@ Corpora, all seeded:
           scale sweep.py picks, N = 100, 1000, 10000;
   contact contact_corpus.hard_cases x margins (HARD_MARGINS + SHIFTED_MARGINS) x cone edges 4, 8 x
           projection_tolerance 0, 1e-4, N = 100;
-  extra   the paths the pipeline's other stages see: guarantee="continuous" on arms, restart, contact
+  extra   the paths the pipeline's other stages see: guarantee="continuous" on arms and on two Talos contact
+          cases (the audit's slice LPs), restart, contact
           phases (sway on one foot then two), an infeasible torque scale (its status, index and label).
 
 Each row records the status, T as float.hex (infeasible: index, labels, relaxation), and a hash of ṡ's bytes (reported, not required: the issue asks
@@ -96,6 +97,19 @@ def extra_rows():
         prob = pp.TimeScalingProblem(path, grid=200)
         prob.add_torque_limits(arm.ours, scale=0.05)
         yield f"extra/infeasible/{seed}", record(prob.solve())
+    # guarantee="continuous" on contacts: the audit's slice LPs and cut projections (two rows of the
+    # continuous bench's corpus).
+    for case in cc.hard_cases(27):
+        if case.robot != "talos":
+            continue
+        h = cc.load("talos")
+        cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["talos"])
+        mname = "off1.5" if case.kind == "squat" else "fn1.5"
+        prob = pp.TimeScalingProblem(cc.make_hard_path(h, case), grid=100)
+        prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4,
+                          torque_scale=cc.HARD_TORQUE_SCALE[("talos", case.kind)],
+                          **{**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[mname])
+        yield f"extra/continuous-contacts/talos/{case.kind}/{mname}", record(prob.solve(guarantee="continuous"))
     h = cc.load("talos")
     path = cc.make_path(h, "sway")
     cons = cc.contacts(h, "sway")
