@@ -216,7 +216,8 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
 
 Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   thread_local std::vector<Eigen::Isometry3d> T;
-  thread_local Eigen::MatrixXd J;
+  thread_local Eigen::MatrixXd J, Jg;
+  thread_local Eigen::Matrix3Xd gen;
   // A link's point Jacobian is affine in the point (add_point_jacobian), so the contacts of one link
   // under one world-fixed normal add up to their count times the Jacobian at their mean point: one
   // Jacobian per such group (a sole), not one per point. A contact on two moving bodies keeps its own.
@@ -226,33 +227,33 @@ Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::
     double count;
   };
   thread_local std::vector<Group> groups;
+  thread_local std::vector<int> moving;
   groups.clear();
-  robot_->body_placements(q, T);
-  const int nq = robot_->nq();
-  auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(nq);
+  moving.clear();
   for (size_t i = 0; i < contacts_.size(); ++i) {
-    const int body = body_[i], other = other_body_[i];
-    if (other < 0) {
-      if (body < 0) continue;  // both ends fixed: no torque
+    const int body = body_[i];
+    if (other_body_[i] >= 0) {
+      moving.push_back(static_cast<int>(i));
+    } else if (body >= 0) {  // (both ends fixed: no torque)
       auto g = std::find_if(groups.begin(), groups.end(),
                             [&](const Group& x) { return x.body == body && x.normal == contacts_[i].normal; });
       if (g == groups.end()) groups.push_back({body, contacts_[i].normal, point_in_body_[i], 1.0});
       else g->sum += point_in_body_[i], g->count += 1.0;
-      continue;
     }
-    const Eigen::Vector3d p = pose(body) * point_in_body_[i];
-    J.setZero(3, nq);
-    if (body >= 0) robot_->add_point_jacobian(T, body, p, 1.0, J);
-    robot_->add_point_jacobian(T, other, p, -1.0, J);
+  }
+  contact_jacobians(q, T, J, gen, &moving);  // the body placements, and the moving contacts' Jacobians
+  const int nq = robot_->nq();
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(nq);
+  for (size_t j = 0; j < moving.size(); ++j) {
+    const size_t i = static_cast<size_t>(moving[j]);
     // The normal in the world: other_link's turned into the world.
-    const Eigen::Vector3d n = T[static_cast<size_t>(other)].linear() * other_in_body_[i].linear() * contacts_[i].normal;
-    w.noalias() += J.transpose() * n;
+    const Eigen::Vector3d n = T[static_cast<size_t>(other_body_[i])].linear() * other_in_body_[i].linear() * contacts_[i].normal;
+    w.noalias() += J.middleRows(3 * static_cast<Eigen::Index>(j), 3).transpose() * n;
   }
   for (const Group& g : groups) {
-    J.setZero(3, nq);
-    robot_->add_point_jacobian(T, g.body, pose(g.body) * Eigen::Vector3d(g.sum / g.count), g.count, J);
-    w.noalias() += J.transpose() * g.normal;
+    Jg.setZero(3, nq);
+    robot_->add_point_jacobian(T, g.body, T[static_cast<size_t>(g.body)] * Eigen::Vector3d(g.sum / g.count), g.count, Jg);
+    w.noalias() += Jg.transpose() * g.normal;
   }
   return options_.cone_offset * w;
 }

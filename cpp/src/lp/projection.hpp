@@ -88,7 +88,8 @@ class PolytopeProjector {
   /// (confirmed in exact arithmetic); -1: the solver failed; -2: a GLPK error (see glpk_guard.hpp).
   /// Unbounded is a failure. Warm-started like project() (the same problem, from the last basis).
   /// `same_matrix`: lp.A is, bit for bit, the matrix of this projector's last maximize() (only bounds
-  /// and c differ), so GLPK keeps the matrix it holds instead of loading it again.
+  /// and c differ), so GLPK keeps the matrix it holds instead of loading it again (and its
+  /// factorisation: the answer equals a reloaded one's to rounding, not bit for bit).
   int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix = false);
 
  private:

@@ -21,9 +21,9 @@ int PolytopeProjector::load(const PolytopeLp& in, bool keep_matrix) {
     rows_ = cols_ = -1;
     if (!lp_.create()) return -1;
   }
-  // The matrix is most of a load (dense_triplets and glp_load_matrix); glp_simplex builds its own
-  // factorisation from the matrix, bounds and basis statuses, so keeping an identical matrix changes
-  // nothing in its answer.
+  // The matrix is most of a load (dense_triplets and glp_load_matrix). A kept matrix also keeps GLPK's
+  // factorisation of the last basis (a reload invalidates it), so the next simplex starts from that and
+  // its answer can differ from a reloaded one's by rounding.
   const bool reload = !(warm && keep_matrix && matrix_is_input_);
   matrix_is_input_ = false;
   if (reload) dense_triplets(in.A, ia_, ja_, ar_);

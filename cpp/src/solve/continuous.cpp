@@ -290,8 +290,8 @@ double Auditor::worst_row(const ConstraintRows& rr, Eigen::Index r, double l, Ei
 
 // The violation at (interval kk[i], λ ll[i]) under θ. A contact constraint is asked only whether the
 // timing's own point (x(λ), u) lies in its polygon there (the polygon's slice at u: two LPs, one where x
-// is above the slice's top, no projection); its violation is x's relative distance beyond the slice. Any other constraint gives its
-// rows (cheap: no LPs).
+// is above the slice's top, no projection); its violation is x's relative distance beyond the slice.
+// Any other constraint gives its rows (cheap: no LPs).
 void Auditor::violations(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& kk,
                          const std::vector<double>& ll, std::vector<double>& f) {
   f.resize(kk.size());
