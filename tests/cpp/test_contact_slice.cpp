@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -188,4 +189,64 @@ TEST(ContactSlice, AnXAboveTheTopSkipsTheBottomsLp) {
   }
   const Eigen::VectorXd short_x = x.head(3);
   EXPECT_THROW(c.slice(ps, u, lo_x, hi_x, &short_x), InvalidInput);
+}
+
+// SliceEdges: each end's line is the polygon's boundary, exactly, over its range of u (the end's LP keeps
+// its basis there), and bounds that end from its side everywhere else (x_hi is concave and x_lo convex in
+// u), checked against the slices at 41 other values of u from their own LPs; the labels name a limit of
+// the projected polygon. A range that never left its u, or a line that never bent, would fail the counts.
+TEST(ContactSlice, EdgesAreThePolygonsBoundaryAlongU) {
+  auto model = lifter_with_box();
+  const ContactConstraint c(model, corners(0.5), box_options(0.5));
+  const PathSamples ps = lifter_samples(7);
+  const ConstraintRows rows = c.evaluate(ps);
+  const double inf = std::numeric_limits<double>::infinity();
+  int inside = 0, outside = 0, wide = 0, sloped = 0;
+  for (double u0 : {-3.0, -1.0, 0.0, 0.7, 2.0, 4.0}) {
+    const Eigen::VectorXd uu = Eigen::VectorXd::Constant(ps.size(), u0);
+    Eigen::VectorXd lo, hi;
+    SliceEdges e;
+    e.labels = true;
+    c.slice(ps, uu, lo, hi, nullptr, &e);
+    ASSERT_EQ(e.hi_label.size(), static_cast<size_t>(ps.size()));
+    for (Eigen::Index p = 0; p < ps.size(); ++p) {
+      if (lo[p] > hi[p]) continue;
+      EXPECT_LE(e.hi_from[p], u0);
+      EXPECT_GE(e.hi_to[p], u0);
+      EXPECT_LE(e.lo_from[p], u0);
+      EXPECT_GE(e.lo_to[p], u0);
+      wide += (e.hi_to[p] - e.hi_from[p] > 0.1) + (e.lo_to[p] - e.lo_from[p] > 0.1);
+      sloped += std::abs(e.hi_slope[p]) > 1e-3;
+      if (std::isfinite(hi[p])) {
+        bool named = false;
+        for (const std::string& l : rows.labels) named = named || l.rfind(e.hi_label[static_cast<size_t>(p)], 0) == 0;
+        EXPECT_TRUE(!e.hi_label[static_cast<size_t>(p)].empty() && named) << "'" << e.hi_label[static_cast<size_t>(p)] << "'";
+      }
+      for (int j = 0; j <= 40; ++j) {
+        const double u = -6.0 + 0.3 * j;
+        Eigen::VectorXd lo1, hi1;
+        PathSamples one;
+        one.s = ps.s.segment(p, 1);
+        one.q = ps.q.row(p);
+        one.dq = ps.dq.row(p);
+        one.ddq = ps.ddq.row(p);
+        c.slice(one, Eigen::VectorXd::Constant(1, u), lo1, hi1);
+        if (lo1[0] > hi1[0]) continue;
+        const double line_hi = hi[p] + e.hi_slope[p] * (u - u0), line_lo = lo[p] + e.lo_slope[p] * (u - u0);
+        const double tol = 1e-8 * std::max({1.0, std::abs(hi1[0] == inf ? 0.0 : hi1[0]), std::abs(line_hi)});
+        const bool in_hi = e.hi_from[p] <= u && u <= e.hi_to[p], in_lo = e.lo_from[p] <= u && u <= e.lo_to[p];
+        if (std::isfinite(hi[p])) {
+          if (in_hi) EXPECT_NEAR(hi1[0], line_hi, tol) << "u0 " << u0 << " p " << p << " u " << u;
+          else EXPECT_LE(hi1[0], line_hi + tol) << "u0 " << u0 << " p " << p << " u " << u;
+        }
+        if (in_lo) EXPECT_NEAR(lo1[0], line_lo, tol) << "u0 " << u0 << " p " << p << " u " << u;
+        else EXPECT_GE(lo1[0], line_lo - tol) << "u0 " << u0 << " p " << p << " u " << u;
+        in_hi && in_lo ? ++inside : ++outside;
+      }
+    }
+  }
+  EXPECT_GT(inside, 50);
+  EXPECT_GT(outside, 50);
+  EXPECT_GT(wide, 20);
+  EXPECT_GT(sloped, 10);
 }

@@ -201,11 +201,12 @@ def test_contact_limits_hold_between_grid_points_of_a_coarse_grid(amplitude, N):
         assert rod_excess(cont, lean) <= 1e-7
         t = np.append(np.arange(0.0, cont.duration, 1e-3), cont.duration)
         assert np.min(cont.trajectory().contact_forces(t).margin) >= -1e-6
-        # The audit asks the contact constraint only for the slices at the timing's own s̈ (two LPs per
-        # sample) and projects a polygon only where it cuts (at most one point per interval and round).
+        # The audit asks the contact constraint only for the slices at the timing's own s̈ (at most two LPs
+        # per sample) and cuts along the polygon's edge at a slice's end; it projects a polygon only where a
+        # cut point's slice is empty (at most one point per interval and round).
         assert cont.stats["audit_lps"] > 0
-        assert 1 <= cont.stats["audit_projections"] <= cont.stats["audit_rounds"] * N
-        # Later rounds settle most samples from the slices kept at u ± δ (no LP).
+        assert 0 <= cont.stats["audit_projections"] <= cont.stats["audit_rounds"] * N
+        # Later rounds settle samples from the slices' edges kept from earlier rounds (no LP).
         assert cont.stats["audit_reused"] > 0
 
 

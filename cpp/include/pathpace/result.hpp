@@ -75,10 +75,11 @@ struct SolverStats {
   int projection_lps_cap_growth = 0;
   int projection_lps_cold_retry = 0;
   /// guarantee = continuous: LPs the audits spent on contact constraints (the polygon's slice at the
-  /// timing's own s̈, two per sample point) and polygons they projected (one per cut point).
+  /// timing's own s̈, at most two per sample point, cuts included) and polygons they projected (one per
+  /// cut point whose slice is empty: a cut elsewhere is the polygon's edge from the slice's LP).
   int audit_lps = 0;
   int audit_projections = 0;
-  int audit_reused = 0;  ///< contact samples settled by the slices of an earlier round (no LP)
+  int audit_reused = 0;  ///< contact samples settled by the slice edges of an earlier round (no LP)
   /// Jerk limits (add_jerk_limits): linearisation rounds, the gap bound to the convex problem linearised at the
   /// final timing ((T - T_lin*) / T, see Status::Optimal there), and T of the same problem without jerk limits
   /// (the second-order timing the rounds start from; a lower bound on the continuous-time optimum, not on this

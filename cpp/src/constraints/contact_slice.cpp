@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "lp/projection.hpp"
 #include "base/validate.hpp"
@@ -14,7 +15,7 @@
 namespace pathpace {
 
 int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-                             Eigen::VectorXd& x_hi, const Eigen::VectorXd* x) const {
+                             Eigen::VectorXd& x_hi, const Eigen::VectorXd* x, SliceEdges* edges) const {
   const int n = robot_->nq();
   if (samples.dof() != n)
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
@@ -27,6 +28,26 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
   x_lo.resize(samples.size());
   x_hi.resize(samples.size());
   int lps = 0;
+  const Eigen::Index P = samples.size();
+  std::vector<std::string> what;
+  if (edges) {
+    for (Eigen::VectorXd* v : {&edges->lo_slope, &edges->hi_slope}) v->setZero(P);
+    for (Eigen::VectorXd* v : {&edges->lo_from, &edges->lo_to, &edges->hi_from, &edges->hi_to}) *v = u;
+    edges->lo_label.assign(edges->labels ? static_cast<size_t>(P) : 0, std::string());
+    edges->hi_label = edges->lo_label;
+    if (edges->labels) what = binding_names(reduced_);
+  }
+  detail::PolytopeProjector::FixedColumn fixed;  // u's column: its sensitivity, for `edges`
+  fixed.label = edges && edges->labels;
+  // One end's edge from its LP (sign -1: the bottom, an LP on -x).
+  auto edge = [&](Eigen::Index p, double sign, Eigen::VectorXd& slope, Eigen::VectorXd& from, Eigen::VectorXd& to,
+                  std::vector<std::string>& label) {
+    slope[p] = sign * fixed.slope;
+    from[p] = fixed.from;
+    to[p] = fixed.to;
+    if (fixed.label && fixed.binding != detail::kBindingUnknown)
+      label[static_cast<size_t>(p)] = binding_label(reduced_, what, fixed.binding);
+  };
   detail::PolytopeLp lp;
   lp_structure(reduced_, 0, lp);
   RobotWorkspace ws(*robot_);
@@ -59,7 +80,7 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
     lp.col_hi[0] = !options_.rest_at_begin.empty() && at_active_begin(samples.s[p]) ? 0.0 : options_.cap;
     objective[0] = 1.0;
     ++lps;
-    const int st = up.maximize(lp, objective, z, up_at == built);
+    const int st = up.maximize(lp, objective, z, up_at == built, edges ? &fixed : nullptr);
     up_at = built;
     if (st == 0) {
       x_lo[p] = inf;
@@ -68,15 +89,17 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
     }
     // On the stand-in cap: no limit on x there (as the projection drops such edges).
     x_hi[p] = st < 0 ? nan : (z[0] >= options_.cap * (1.0 - 1e-9) ? inf : z[0]);
+    if (edges && st == 1) edge(p, 1.0, edges->hi_slope, edges->hi_from, edges->hi_to, edges->hi_label);
     if (x && (*x)[p] > x_hi[p]) {  // above the slice: its bottom does not change how far
       x_lo[p] = -inf;
       continue;
     }
     objective[0] = -1.0;
     ++lps;
-    const int sl = down.maximize(lp, objective, z, down_at == built);
+    const int sl = down.maximize(lp, objective, z, down_at == built, edges ? &fixed : nullptr);
     down_at = built;
     x_lo[p] = sl == 1 ? z[0] : (sl == 0 ? inf : nan);
+    if (edges && sl == 1) edge(p, -1.0, edges->lo_slope, edges->lo_from, edges->lo_to, edges->lo_label);
   }
   return lps;
 }

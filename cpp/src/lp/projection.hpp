@@ -84,13 +84,26 @@ class PolytopeProjector {
   /// solver fail (-1)? With `fix` the point (x, u) = (fix[0], fix[1]) is imposed.
   int feasible(const PolytopeLp& lp, const double* fix = nullptr);
 
+  /// What maximize() tells of a column fixed by its bounds (u in the polygon's slices) at an optimum:
+  /// the optimum is c·z + slope (t - t0) for every value t of that column in [from, to] (t0 its value:
+  /// the basis stays primal feasible, hence optimal, there), and the optimal value is concave in t, so
+  /// that line bounds it from above everywhere. from = to = t0 where the column is basic or GLPK kept no
+  /// factorisation; with `label`, `binding` is the constraint with the largest dual other than columns
+  /// 0 and 1 (a Projection::binding code).
+  struct FixedColumn {
+    int column = 1;  // in
+    bool label = false;  // in
+    double slope = 0.0, from = 0.0, to = 0.0;
+    int binding = kBindingUnknown;
+  };
   /// One LP: maximise c·z over the polytope (c one per column). 1: optimal, z its point; 0: empty
   /// (confirmed in exact arithmetic); -1: the solver failed; -2: a GLPK error (see glpk_guard.hpp).
   /// Unbounded is a failure. Warm-started like project() (the same problem, from the last basis).
   /// `same_matrix`: lp.A is, bit for bit, the matrix of this projector's last maximize() (only bounds
   /// and c differ), so GLPK keeps the matrix it holds instead of loading it again (and its
   /// factorisation: the answer equals a reloaded one's to rounding, not bit for bit).
-  int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix = false);
+  int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix = false,
+               FixedColumn* fixed = nullptr);
 
  private:
   // Loads the problem (same shape: the previous basis is kept as the warm start; `keep_matrix`: the

@@ -4,6 +4,7 @@
 
 #include "lp/glpk_util.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -86,7 +87,47 @@ int PolytopeProjector::feasible(const PolytopeLp& in, const double* fix) {
   return st == GLP_OPT ? 1 : st == GLP_NOFEAS ? 0 : -1;
 }
 
-int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix) {
+namespace {
+
+// FixedColumn's ranging (projection.hpp), inside maximize()'s guarded call. The column is nonbasic at
+// its fixed value; glp_analyze_bound moves that value until a basic variable reaches a bound (the basis
+// then stops being primal feasible; its dual feasibility does not depend on bounds), and the objective
+// moves along by the column's reduced cost in between (LP sensitivity to a bound).
+void fixed_column(glp_prob* lp, const PolytopeLp& in, PolytopeProjector::FixedColumn& f) {
+  const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols()), j = f.column + 1;
+  const double t0 = glp_get_col_prim(lp, j);
+  f.slope = 0.0;
+  f.from = f.to = t0;
+  f.binding = kBindingUnknown;
+  if (glp_bf_exists(lp) && glp_get_col_stat(lp, j) != GLP_BS) {
+    double v1 = 0.0, v2 = 0.0;
+    int var1 = 0, var2 = 0;
+    glp_analyze_bound(lp, rows + j, &v1, &var1, &v2, &var2);
+    f.slope = glp_get_col_dual(lp, j);
+    f.from = std::min(v1, t0);  // -DBL_MAX / +DBL_MAX: no basic variable limits the range that way
+    f.to = std::max(v2, t0);
+  }
+  if (!f.label) return;
+  // What stops the optimum: as Run::binding, the largest dual scaled by its row's norm, the structural
+  // equalities and the fixed columns 0 and 1 (x, u) left out.
+  double best = 0.0;
+  for (int i = 0; i < rows; ++i) {
+    const int st = glp_get_row_stat(lp, i + 1);
+    if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
+    const double w = std::abs(glp_get_row_dual(lp, i + 1)) * in.A.row(i).norm();
+    if (w > best) best = w, f.binding = 2 * i + (st == GLP_NU ? 1 : 0);
+  }
+  for (int c = 2; c < cols; ++c) {
+    if (glp_get_col_stat(lp, c + 1) == GLP_BS) continue;
+    const double w = std::abs(glp_get_col_dual(lp, c + 1));
+    if (w > best) best = w, f.binding = -(c + 1);
+  }
+}
+
+}  // namespace
+
+int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix,
+                                FixedColumn* fixed) {
   glp_smcp parm;
   if (!projection_simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) ||
       load(in, same_matrix) < 0)
@@ -100,8 +141,10 @@ int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, 
   const bool ok = guarded([&] {
     for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, cp[j]);
     st = glpk_solve_robust(lp, parm);
-    if (st == GLP_OPT)
+    if (st == GLP_OPT) {
       for (int j = 0; j < cols; ++j) zp[j] = glp_get_col_prim(lp, j + 1);
+      if (fixed) fixed_column(lp, in, *fixed);
+    }
     for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, 0.0);  // project() sets only x's and u's
   });
   if (!ok) return -2;

@@ -180,14 +180,17 @@ class Auditor {
                        const std::vector<Eigen::Index>& todo, std::vector<double>& f);
   void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
                         const std::vector<size_t>& first, const std::vector<double>& fc);
-  double path_curvature(const std::vector<Eigen::Index>& todo) const;
+  void path_curvature(size_t ci, const std::vector<Eigen::Index>& todo);
   double K_of(Eigen::Index k, double curvature) const {
     const double h = s_[k + 1] - s_[k];
     return 4.0 * curvature * h * h;
   }
-  void brackets(const std::vector<Eigen::Index>& todo, double curvature, std::vector<PeakBracket>& cand,
-                std::vector<Eigen::Index>& at) const;
-  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at);
+  void brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBracket>& cand, std::vector<Eigen::Index>& at,
+                std::vector<double>& curvature) const;
+  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
+           const std::vector<std::pair<double, double>>& span);
+  void contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
+                    const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named);
 
   const Path& path_;
   const Eigen::VectorXd& s_;
@@ -205,6 +208,7 @@ class Auditor {
   std::vector<Eigen::Index> ks_;       // a batch of samples: interval ks_[i] at λ ls_[i]
   std::vector<double> ls_;
   std::vector<std::vector<double>> Ls_, Vs_;  // [interval to audit]: its samples, sorted and merged
+  std::vector<double> curvature_;             // [interval to audit]: its bound on -v''(s) (path_curvature)
 };
 
 Audit Auditor::run() {
@@ -236,6 +240,7 @@ void Auditor::size_memory() {
     memory_.cut_points.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   }
   if (memory_.slices.size() != n) memory_.slices.assign(n, {});
+  if (memory_.curvature.size() != n) memory_.curvature.assign(n, std::vector<double>(static_cast<size_t>(N_), 0.0));
 }
 
 // Per interval and constraint, the violation at λ is the largest relative violation over the
@@ -249,11 +254,14 @@ void Auditor::audit_constraint(size_t ci) {
   std::vector<size_t> first(todo.size() + 1, 0);
   if (contact) contact_batch(*contact, ci, todo, first, fc);
   sample_intervals(ci, contact, todo, first, fc);
-  const double curvature = path_curvature(todo);
+  path_curvature(ci, todo);
   std::vector<PeakBracket> cand;
-  std::vector<Eigen::Index> at;  // per bracket: its interval
-  brackets(todo, curvature, cand, at);
+  std::vector<Eigen::Index> at;    // per bracket: its interval
+  std::vector<double> curvature;   // and that interval's curvature bound
+  brackets(todo, cand, at, curvature);
   if (cand.empty()) return;
+  std::vector<std::pair<double, double>> span;  // per bracket: its samples, before the search narrows it
+  for (const PeakBracket& c : cand) span.emplace_back(c.a, c.c);
   // The peak between two samples (solve/brent.hpp), every bracket's evaluations in one batch per step. A
   // bracket is settled early when the bound of bump_bound, from its three points, shows no violation.
   maximize_batch(
@@ -266,11 +274,11 @@ void Auditor::audit_constraint(size_t ci) {
       [&](size_t i, const PeakBracket& c) {
         if (!std::isfinite(c.fa) || !std::isfinite(c.fc)) return false;
         const double K =
-            std::max(K_of(at[i], curvature), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
+            std::max(K_of(at[i], curvature[i]), 4.0 * std::max(0.0, -second_difference(c.a, c.fa, c.b, c.fb, c.c, c.fc)));
         return c.best() <= tolerance_ && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance_ &&
                bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance_;
       });
-  cut(ci, cand, at);
+  cut(ci, cand, at, span);
 }
 
 PathSamples Auditor::samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const {
@@ -367,10 +375,10 @@ void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<E
 }
 
 // A contact constraint's samples (ks_[i], ls_[i]) of the intervals todo[t] (samples first[t] ..
-// first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slices from an
-// earlier round bracket this u, and whose x lies inside their chords, is inside the polygon (an inner
-// slice: x_hi is concave and x_lo convex in u, the polygon being convex); every other sample gets its
-// slice by LPs, a Chebyshev point also at u ± δ (δ = 1e-4 of u's scale) for the rounds after.
+// first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slice edges from an
+// earlier round cover this u (SliceEdges: each end of the slice is exactly linear in u over its range)
+// has its slice without an LP; every other sample gets its slice by LPs (the bottom's skipped where x is
+// above the top), a Chebyshev point with its edges for the rounds after.
 void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
                               const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
   const std::vector<Eigen::Index>& kk = ks_;
@@ -382,59 +390,61 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   const double cap = cc.projection_cap();
   f.assign(kk.size(), nan);
   std::vector<Eigen::Index> bk;
-  std::vector<double> bl, bu;
+  std::vector<double> bl, bu, bx;
   std::vector<size_t> main_of;  // per sample asked: its index in kk
-  std::vector<int> role;        // 1: the sample itself; 0, 2: u - δ, u + δ of a Chebyshev point
   for (size_t t = 0; t < todo.size(); ++t)
     for (size_t i = first[t]; i < first[t + 1]; ++i) {
       const Eigen::Index k = kk[i];
       const double u = u_of(k), x = x_of(k, ll[i]);
-      const bool cheb = i - first[t] < static_cast<size_t>(pts);
-      if (cheb) {
-        const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + (i - first[t])];
-        if (M.valid && M.u[0] <= u && u <= M.u[2]) {
-          const int j = u <= M.u[1] ? 0 : 1;
-          const double w = M.u[j + 1] > M.u[j] ? (u - M.u[j]) / (M.u[j + 1] - M.u[j]) : 0.0;
-          const double hi = (1.0 - w) * M.hi[j] + w * M.hi[j + 1], lo = (1.0 - w) * M.lo[j] + w * M.lo[j + 1];
-          const double v = slice_violation(x, lo, hi >= cap * (1.0 - 1e-9) ? kInf : hi);
-          if (v <= 0.0) {
-            f[i] = v;
+      const size_t m = i - first[t];
+      if (m < static_cast<size_t>(pts)) {
+        const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + m];
+        if (M.hi_from <= u && u <= M.hi_to) {
+          const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
+          const bool bottom = M.lo_from <= u && u <= M.lo_to;
+          if (x > hi || bottom) {  // above the top the bottom does not matter (slice(..., &x))
+            f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
             ++audit_.reused;
             continue;
           }
         }
       }
-      const double delta = 1e-4 * (std::abs(u) + (theta_[k] + theta_[k + 1]) / (2.0 * (s_[k + 1] - s_[k])));
-      for (int r = cheb ? 0 : 1; r <= (cheb ? 2 : 1); ++r) {
-        bk.push_back(k);
-        bl.push_back(ll[i]);
-        bu.push_back(u + (r - 1) * delta);
-        main_of.push_back(i);
-        role.push_back(r);
-      }
+      bk.push_back(k);
+      bl.push_back(ll[i]);
+      bu.push_back(u);
+      bx.push_back(x);
+      main_of.push_back(i);
     }
   if (bk.empty()) return;
   const PathSamples ps = samples_at(bk, bl);
   Eigen::VectorXd lo, hi;
-  audit_.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), static_cast<Eigen::Index>(bu.size())), lo, hi);
-  // The memory of each Chebyshev point asked: valid only if all three slices are non-empty.
+  SliceEdges edges;
+  const Eigen::Index n = static_cast<Eigen::Index>(bu.size());
+  const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(bx.data(), n);
+  audit_.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges);
+  size_t t = 0;
   for (size_t q = 0; q < bk.size(); ++q) {
     const size_t i = main_of[q];
     const Eigen::Index e = static_cast<Eigen::Index>(q);
-    if (role[q] == 1) f[i] = slice_violation(x_of(bk[q], bl[q]), lo[e], hi[e]);
-  }
-  for (size_t q = 0; q + 2 < bk.size(); ++q) {
-    if (role[q] != 0) continue;
-    size_t t = 0;
-    while (first[t + 1] <= main_of[q]) ++t;
-    AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + (main_of[q] - first[t])];
-    M.valid = true;
-    for (int r = 0; r < 3; ++r) {
-      const Eigen::Index e = static_cast<Eigen::Index>(q + static_cast<size_t>(r));
-      M.u[r] = bu[q + static_cast<size_t>(r)];
-      M.lo[r] = lo[e];
-      M.hi[r] = std::min(hi[e], cap);
-      if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) M.valid = false;
+    f[i] = slice_violation(bx[q], lo[e], hi[e]);
+    while (first[t + 1] <= i) ++t;
+    const size_t m = i - first[t];
+    if (m >= static_cast<size_t>(pts)) continue;
+    AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + m];
+    M = AuditMemory::Slices();
+    M.u = bu[q];
+    // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
+    if (std::isnan(hi[e]) || std::isnan(lo[e]) || lo[e] > hi[e]) continue;
+    M.hi_capped = hi[e] == kInf || hi[e] >= cap * (1.0 - 1e-9);
+    M.hi = hi[e];
+    M.hi_slope = edges.hi_slope[e];
+    M.hi_from = edges.hi_from[e];
+    M.hi_to = edges.hi_to[e];
+    if (lo[e] > -kInf) {  // -inf: its LP was skipped (x above the top)
+      M.lo = lo[e];
+      M.lo_slope = edges.lo_slope[e];
+      M.lo_from = edges.lo_from[e];
+      M.lo_to = edges.lo_to[e];
     }
   }
 }
@@ -494,12 +504,21 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
 // Between two samples the violation v(λ) exceeds their chord only where it is concave, by at most
 // K τ (h - τ) / 2 where v'' >= -K. K is not known in closed form (a polygon's edges move with s), so the
 // screen assumes (docs/method.md, "Limits between grid points") that v's concavity in s is at most 4
-// times the largest that the second divided differences of the samples show anywhere on the path in
-// this round (in λ: that times Δs_k², K_of). A path-wide bound, not each interval's own neighbours: one
-// interval whose samples happen to lie on a line (a rounding-level change of its polygons can make them
-// so) does not switch its screen off. Returns the largest -v''(s) seen.
-double Auditor::path_curvature(const std::vector<Eigen::Index>& todo) const {
-  double curvature = 0.0;
+// times the larger of two curvatures that the second divided differences of the samples show: the
+// largest near the limit anywhere on the path in this round (every sample of the triple at v >= -1e-2),
+// and the largest in the interval itself (in λ: that times Δs_k², K_of). Path-wide near the limit, so
+// that an interval whose samples happen to lie on a line (a rounding-level change of its polygons can
+// make them so) does not switch its screen off; not path-wide far from it, where v, a distance relative
+// to x's size, bends with that size (an interval leaving rest, where the top of the slice is many times
+// x, was seen to curve 2500x more than any interval near its limit and to keep most brackets of the
+// path from its screen). An interval's own curvature is the largest of this and every earlier round of
+// the solve (the coarse rod of test_continuous, 1-2 samples per interval, let a 6e-8 excess through
+// where a later round had no triple near its limit and the interval's samples had come to lie on a
+// line). Fills curvature_[t] per interval todo[t].
+void Auditor::path_curvature(size_t ci, const std::vector<Eigen::Index>& todo) {
+  constexpr double kNear = 1e-2;
+  double near = 0.0;
+  curvature_.assign(todo.size(), 0.0);
   for (size_t t = 0; t < todo.size(); ++t) {
     const std::vector<double>& L = Ls_[t];
     const std::vector<double>& V = Vs_[t];
@@ -508,37 +527,52 @@ double Auditor::path_curvature(const std::vector<Eigen::Index>& todo) const {
       if (!std::isfinite(V[j - 1]) || !std::isfinite(V[j]) || !std::isfinite(V[j + 1])) continue;
       // Samples closer than 1 % of the interval amplify the rows' rounding into a curvature.
       if (L[j] - L[j - 1] < 0.01 || L[j + 1] - L[j] < 0.01) continue;
-      curvature = std::max(curvature, -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]) / (h * h));
+      const double cv = -second_difference(L[j - 1], V[j - 1], L[j], V[j], L[j + 1], V[j + 1]) / (h * h);
+      curvature_[t] = std::max(curvature_[t], cv);
+      if (std::min({V[j - 1], V[j], V[j + 1]}) >= -kNear) near = std::max(near, cv);
     }
   }
-  return curvature;
+  for (size_t t = 0; t < todo.size(); ++t) {
+    double& own = memory_.curvature[ci][static_cast<size_t>(todo[t])];  // the interval's largest of every round
+    own = std::max(own, curvature_[t]);
+    curvature_[t] = std::max(own, near);
+  }
 }
 
 // A bracket between every two neighbouring samples whose bump bound does not clear the tolerance; at[i]
 // its interval.
-void Auditor::brackets(const std::vector<Eigen::Index>& todo, double curvature, std::vector<PeakBracket>& cand,
-                       std::vector<Eigen::Index>& at) const {
+void Auditor::brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBracket>& cand, std::vector<Eigen::Index>& at,
+                       std::vector<double>& curvature) const {
   for (size_t t = 0; t < todo.size(); ++t) {
     const Eigen::Index k = todo[t];
     const std::vector<double>& L = Ls_[t];
     const std::vector<double>& V = Vs_[t];
-    const double K = K_of(k, curvature);
+    const double K = K_of(k, curvature_[t]);
     for (size_t i = 0; i + 1 < L.size(); ++i) {
       const double va = V[i], vb = V[i + 1];
       if (va == -kInf && vb == -kInf) continue;
       if (std::isfinite(va) && std::isfinite(vb) && bump_bound(L[i], va, L[i + 1], vb, K) <= tolerance_) continue;
       cand.push_back(golden_bracket(L[i], va, L[i + 1], vb));
       at.push_back(k);
+      curvature.push_back(curvature_[t]);
     }
   }
 }
 
+// Contact cuts per interval and round besides its peak's (contact_cuts): each round's single cut at the
+// peak leaves the peak between two cuts, which quarters the violation from round to round (x(λ) follows
+// the chord of the limit between them); rows at 3 more points of the peak's bracket divide that gap by 4,
+// the violation by 16. On the contact corpus (N = 100, 4 edges) rounds 12-15 -> 7-11, slice LPs -10 %
+// (bench/README.md); T equal to 10 digits.
+constexpr int kSpread = 3;
+
 // One cut per interval and round, at its largest violation (cuts at several points of one interval in
 // one round are near-parallel rows that can leave the LPs ill-conditioned): every row broken at the peak,
 // as a row of the interval (exact, see the header), labelled as the problem's own row of that name (the
-// constraint's first row if it has none). For a contact constraint this is the only projection of the
-// audit: one polygon per cut.
-void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at) {
+// constraint's first row if it has none). A contact constraint's cut is the polygon's edge there
+// (contact_cuts).
+void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
+                  const std::vector<std::pair<double, double>>& span) {
   ks_.clear();
   ls_.clear();
   std::vector<size_t> cuts;
@@ -560,11 +594,14 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
     }
   }
   if (cuts.empty()) return;
-  const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
-  audit_.projections += static_cast<int>(cuts.size());
   std::map<std::string, int> named;
   const ConstraintRows& grid = grid_rows_[ci];
   for (size_t j = 0; j < grid.labels.size(); ++j) named.emplace(grid.labels[j], static_cast<int>(j));
+  if (constraints_[ci]->projected()) {
+    contact_cuts(ci, cuts, at, span, named);
+    return;
+  }
+  const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
   for (size_t q = 0; q < cuts.size(); ++q) {
     const Eigen::Index k = at[cuts[q]];
     const double l = ls_[q], h = s_[k + 1] - s_[k];
@@ -578,6 +615,73 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
                                                      row_offset_[ci] + (id == named.end() ? 0 : id->second)});
       ++audit_.cuts;
     }
+  }
+}
+
+// A contact constraint's cuts at the peaks (ks_, ls_) of the brackets cuts[q]: the polygon's edge through
+// the end of its slice that the timing's (x, u) is beyond (SliceEdges; the polygon lies on its side of
+// that line, so the row is exact), one LP per end instead of a projection of the polygon. A slice that
+// is empty there (u outside the polygon) or whose LP failed has no such edge: that point's polygon is
+// projected, and its broken rows cut. Besides the peak, the top edges at kSpread points evenly inside
+// the peak's bracket (span: its samples), broken or not.
+void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
+                           const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named) {
+  std::vector<Eigen::Index> ks;
+  std::vector<char> spread;  // per point: 0 a peak, 1 a spread point
+  for (size_t q = 0; q < cuts.size(); ++q) {
+    ks.push_back(at[cuts[q]]);
+    spread.push_back(0);
+  }
+  for (size_t q = 0; q < cuts.size(); ++q) {
+    const auto [a, c] = span[cuts[q]];
+    for (int j = 1; j <= kSpread; ++j) {
+      const double l = a + (c - a) * j / (kSpread + 1.0);
+      if (std::abs(l - ls_[q]) < 1e-2 * (c - a)) continue;  // the peak's own
+      ks.push_back(at[cuts[q]]);
+      ls_.push_back(l);
+      spread.push_back(1);
+    }
+  }
+  const Constraint& cc = *constraints_[ci];
+  Eigen::VectorXd u(static_cast<Eigen::Index>(ks.size())), lo, hi;
+  for (size_t q = 0; q < ks.size(); ++q) u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
+  SliceEdges edges;
+  edges.labels = true;
+  audit_.lps += cc.slice(samples_at(ks, ls_), u, lo, hi, nullptr, &edges);
+  const double cap = cc.projection_cap();
+  std::vector<Eigen::Index> pk;  // the points to project
+  std::vector<double> pl;
+  auto add = [&](Eigen::Index k, double l, double a, double b, double c, const std::string& label) {
+    const double h = s_[k + 1] - s_[k];
+    const auto id = named.find(label);
+    extra_.rows[static_cast<size_t>(k)].push_back(
+        {a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), c, row_offset_[ci] + (id == named.end() ? 0 : id->second)});
+    ++audit_.cuts;
+  };
+  for (size_t q = 0; q < ks.size(); ++q) {
+    const Eigen::Index k = ks[q], e = static_cast<Eigen::Index>(q);
+    const double l = ls_[q], x = x_of(k, l), uq = u[e];
+    if (!spread[q]) memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, {}, {}, {}});
+    if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) {
+      if (spread[q]) continue;
+      pk.push_back(k);
+      pl.push_back(l);
+      continue;
+    }
+    // x <= hi + s (u' - u) and x >= lo + s' (u' - u), as rows a x + b u' <= c.
+    if (hi[e] < cap * (1.0 - 1e-9) && (spread[q] || violation(1.0, 0.0, hi[e], 0.0, x, x, 0.0) > tolerance_))
+      add(k, l, 1.0, -edges.hi_slope[e], hi[e] - edges.hi_slope[e] * uq, edges.hi_label[static_cast<size_t>(q)]);
+    if (violation(-1.0, 0.0, -lo[e], 0.0, x, x, 0.0) > tolerance_)
+      add(k, l, -1.0, edges.lo_slope[e], edges.lo_slope[e] * uq - lo[e], edges.lo_label[static_cast<size_t>(q)]);
+  }
+  if (pk.empty()) return;
+  const ConstraintRows rr = cc.evaluate(samples_at(pk, pl));
+  audit_.projections += static_cast<int>(pk.size());
+  for (size_t q = 0; q < pk.size(); ++q) {
+    const Eigen::Index k = pk[q], r = static_cast<Eigen::Index>(q);
+    for (Eigen::Index j = 0; j < rr.rows(); ++j)
+      if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), pl[q], theta_[k], theta_[k + 1], u_of(k)) > tolerance_)
+        add(k, pl[q], rr.a(r, j), rr.b(r, j), rr.c(r, j), rr.labels[static_cast<size_t>(j)]);
   }
 }
 

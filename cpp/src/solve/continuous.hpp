@@ -43,15 +43,19 @@ struct AuditMemory {
     Eigen::VectorXd a, b, c;
   };
   std::vector<std::vector<std::vector<Point>>> cut_points;
-  /// [constraint][k·points + m]: a contact polygon's slice at its Chebyshev point m of interval k, at
-  /// three values of u about the one it was audited at (x_hi concave and x_lo convex in u, so their
-  /// chords bound an inner slice for any u between: a later round whose u lies there and whose x is
-  /// inside needs no LP).
+  /// [constraint][k·points + m]: a contact polygon's slice at its Chebyshev point m of interval k, as the
+  /// edges through its ends (SliceEdges: each end is linear in u, exactly, over its range), from the last
+  /// round that solved its LPs: a later round whose u lies in the ranges has the slice without an LP.
   struct Slices {
-    double u[3] = {0.0, 0.0, 0.0}, lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0};
-    bool valid = false;
+    double u = 0.0;                                    // the u it was solved at
+    double hi = 0.0, hi_slope = 0.0, hi_from = 1.0, hi_to = 0.0;  // hi_from > hi_to: the top unknown
+    double lo = 0.0, lo_slope = 0.0, lo_from = 1.0, lo_to = 0.0;  // the bottom (its LP is skipped above the top)
+    bool hi_capped = false;                            // the top is the stand-in cap (no limit)
   };
   std::vector<std::vector<Slices>> slices;
+  /// [constraint][interval]: the largest concavity of v in s that the interval's samples showed in any
+  /// round (part of the screen's bound, kept from round to round).
+  std::vector<std::vector<double>> curvature;
 };
 
 struct Audit {
@@ -59,7 +63,7 @@ struct Audit {
   int cuts = 0;        ///< rows added to `extra`
   int lps = 0;         ///< contact slice LPs (ContactConstraint::slice) spent
   int projections = 0; ///< polygons projected (at cut points)
-  int reused = 0;      ///< contact samples settled by the slices kept from an earlier round (no LP)
+  int reused = 0;      ///< contact samples settled by the slices' edges kept from an earlier round (no LP)
 };
 
 /// Checks every constraint other than velocity and acceleration limits between the grid points of `s` under

@@ -109,6 +109,17 @@ struct PointCheck {
   int rest_feasible = -1;
 };
 
+/// The edges of a projected constraint's polygon at the ends of its slices (Constraint::slice): per sample
+/// p, x_hi(t) = x_hi[p] + hi_slope[p] (t - u[p]) exactly for every s̈ t in [hi_from[p], hi_to[p]] (the
+/// end's LP keeps its optimal basis there), and x_hi(t) <= that line for every t (x_hi is concave in t);
+/// likewise x_lo with >= (convex). from = to = u[p] where that end is not known (no LP, or an empty
+/// slice). With `labels` asked, *_label[p] names what binds each end, as the constraint's rows are named.
+struct SliceEdges {
+  bool labels = false;
+  Eigen::VectorXd lo_slope, lo_from, lo_to, hi_slope, hi_from, hi_to;
+  std::vector<std::string> lo_label, hi_label;
+};
+
 // docstrings.txt @@ Constraint
 /// @brief Base of all constraints: half-planes a·x + b·u <= c per grid point, x = ṡ², u = s̈ (eq. 9).
 ///
@@ -229,9 +240,10 @@ class Constraint {
   /// For a projected() constraint: per sample p, the smallest and largest x with (x, u[p]) feasible at
   /// samples.s[p], without projecting; returns the LPs spent (see ContactConstraint::slice). With `x`
   /// (one per sample), x_lo[p] is left at -inf, without its LP, where x[p] > x_hi[p]: x's distance
-  /// beyond the slice is then x[p] - x_hi[p], whatever x_lo[p] is.
+  /// beyond the slice is then x[p] - x_hi[p], whatever x_lo[p] is. With `edges`, also the polygon's
+  /// edges through the slice's ends (SliceEdges).
   virtual int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-                    Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr) const;
+                    Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr, SliceEdges* edges = nullptr) const;
   /// For a projected() constraint: the stand-in bound on x where nothing else bounds it (its polygons are
   /// cut there; slice reports +inf instead).
   virtual double projection_cap() const { return std::numeric_limits<double>::infinity(); }

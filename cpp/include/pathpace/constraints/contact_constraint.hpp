@@ -185,10 +185,11 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// sample). This is how guarantee = continuous audits the timing's own (x(s), u(s)) between grid
   /// points (the membership of one point, not the whole polygon). x_hi = +inf where only the stand-in
   /// cap bounds x; an empty slice gives x_lo = +inf, x_hi = -inf; inactive samples (a phase) give
-  /// [-inf, +inf]; NaN where an LP failed; with `x`, x_lo = -inf without its LP where x > x_hi.
-  /// Returns the number of LPs solved.
+  /// [-inf, +inf]; NaN where an LP failed; with `x`, x_lo = -inf without its LP where x > x_hi; with
+  /// `edges`, each end's edge from its LP's sensitivity to u's bound (no further LP). Returns the number
+  /// of LPs solved.
   int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-            Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr) const override;
+            Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr, SliceEdges* edges = nullptr) const override;
 
   // docstrings.txt @@ ContactConstraint.projected_contacts
   /// Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull
