@@ -99,11 +99,13 @@ void fixed_column(glp_prob* lp, const PolytopeLp& in, PolytopeProjector::FixedCo
   f.slope = 0.0;
   f.from = f.to = t0;
   f.binding = kBindingUnknown;
+  // The reduced cost bounds the optimum at every value by weak duality (the dual solution stays feasible
+  // whatever the column's bound), also where the range is not known.
+  f.slope = glp_get_col_dual(lp, j);
   if (glp_bf_exists(lp) && glp_get_col_stat(lp, j) != GLP_BS) {
     double v1 = 0.0, v2 = 0.0;
     int var1 = 0, var2 = 0;
     glp_analyze_bound(lp, rows + j, &v1, &var1, &v2, &var2);
-    f.slope = glp_get_col_dual(lp, j);
     f.from = std::min(v1, t0);  // -DBL_MAX / +DBL_MAX: no basic variable limits the range that way
     f.to = std::max(v2, t0);
   }
