@@ -2167,7 +2167,7 @@ class TimeScalingProblem:
         lp_feasibility_tolerance: float = 1e-9,
         explain: bool = True,
         guarantee: str = "grid",
-        audit_points: int = 8,
+        audit_points: int = 4,
         audit_tolerance: float = 1e-10,
         max_audit_rounds: int = 30,
         time_limit: float = 60.0,

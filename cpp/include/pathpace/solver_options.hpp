@@ -42,7 +42,7 @@ struct SolverOptions {
   /// it feasible (Result::relaxation; costs a few dozen reachability analyses).
   bool explain = true;
   Guarantee guarantee = Guarantee::Grid;
-  int audit_points = 8;            ///< interior points per interval audited (guarantee = continuous)
+  int audit_points = 4;            ///< interior points per interval audited (guarantee = continuous)
   /// Relative violation the audit accepts, relative to the row's own terms (max(|c|, |a x| + |b u|)), which
   /// can be larger than the limit itself: 1e-10 keeps violations of the limits below 1e-9 relative.
   double audit_tolerance = 1e-10;
