@@ -176,6 +176,12 @@ class Auditor {
   std::vector<Eigen::Index> intervals_to_audit(size_t ci);
   void contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo, std::vector<size_t>& first,
                      std::vector<double>& f);
+  // The kept slice of interval k's sample m (contact_batch's order: Chebyshev points, then cut points).
+  AuditMemory::Slices& slice_memo(size_t ci, Eigen::Index k, size_t m) {
+    const size_t pts = static_cast<size_t>(points_);
+    return m < pts ? memory_.slices[ci][static_cast<size_t>(k) * pts + m]
+                   : memory_.cut_points[ci][static_cast<size_t>(k)][m - pts].slice;
+  }
   void contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
                        const std::vector<Eigen::Index>& todo, std::vector<double>& f);
   void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
@@ -378,18 +384,17 @@ void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<E
 }
 
 // A contact constraint's samples (ks_[i], ls_[i]) of the intervals todo[t] (samples first[t] ..
-// first[t + 1]: `points` Chebyshev points, then cut points): a Chebyshev point whose slice edges from an
-// earlier round cover this u (SliceEdges: each end of the slice is exactly linear in u over its range)
-// has its slice without an LP; every other sample gets its slice by LPs (the bottom's skipped where x is
-// above the top), a Chebyshev point with its edges for the rounds after.
+// first[t + 1]: `points` Chebyshev points, then cut points): a sample whose slice edges from an earlier
+// round cover this u (SliceEdges: each end of the slice is exactly linear in u over its range) has its
+// slice without an LP; every other sample gets its slice by LPs (the bottom's skipped where x is above
+// the top), with its edges kept for the rounds after.
 void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
                               const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
   const std::vector<Eigen::Index>& kk = ks_;
   const std::vector<double>& ll = ls_;
-  const int pts = points_;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto& memo = memory_.slices[ci];
-  if (memo.size() != static_cast<size_t>(N_ * pts)) memo.assign(static_cast<size_t>(N_ * pts), {});
+  if (memo.size() != static_cast<size_t>(N_ * points_)) memo.assign(static_cast<size_t>(N_ * points_), {});
   const double cap = cc.projection_cap();
   f.assign(kk.size(), nan);
   std::vector<Eigen::Index> bk;
@@ -399,9 +404,8 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
     for (size_t i = first[t]; i < first[t + 1]; ++i) {
       const Eigen::Index k = kk[i];
       const double u = u_of(k), x = x_of(k, ll[i]);
-      const size_t m = i - first[t];
-      if (m < static_cast<size_t>(pts)) {
-        const AuditMemory::Slices& M = memo[static_cast<size_t>(k * pts) + m];
+      {
+        const AuditMemory::Slices& M = slice_memo(ci, k, i - first[t]);
         if (M.hi_from <= u && u <= M.hi_to) {
           const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
           const bool bottom = M.lo_from <= u && u <= M.lo_to;
@@ -431,9 +435,7 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
     const Eigen::Index e = static_cast<Eigen::Index>(q);
     f[i] = slice_violation(bx[q], lo[e], hi[e]);
     while (first[t + 1] <= i) ++t;
-    const size_t m = i - first[t];
-    if (m >= static_cast<size_t>(pts)) continue;
-    AuditMemory::Slices& M = memo[static_cast<size_t>(bk[q] * pts) + m];
+    AuditMemory::Slices& M = slice_memo(ci, bk[q], i - first[t]);
     M = AuditMemory::Slices();
     M.u = bu[q];
     // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
@@ -609,7 +611,7 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
     const Eigen::Index k = at[cuts[q]];
     const double l = ls_[q], h = s_[k + 1] - s_[k];
     const Eigen::Index r = static_cast<Eigen::Index>(q);
-    memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose()});
+    memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose(), {}});
     for (Eigen::Index j = 0; j < rr.rows(); ++j) {
       if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)) <= tolerance_) continue;
       const double a = rr.a(r, j), b = rr.b(r, j);
@@ -664,7 +666,7 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
   for (size_t q = 0; q < ks.size(); ++q) {
     const Eigen::Index k = ks[q], e = static_cast<Eigen::Index>(q);
     const double l = ls_[q], x = x_of(k, l), uq = u[e];
-    if (!spread[q]) memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, {}, {}, {}});
+    if (!spread[q]) memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, {}, {}, {}, {}});
     if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) {
       if (spread[q]) continue;
       pk.push_back(k);

@@ -37,12 +37,6 @@ struct AuditMemory {
   /// [constraint]: its rows at the audit's Chebyshev points of every interval (row k·points + m), which do
   /// not depend on the timing: evaluated in the first round only.
   std::vector<ConstraintRows> coarse;
-  /// [constraint][interval]: the rows at each point where the interval was cut.
-  struct Point {
-    double lam;
-    Eigen::VectorXd a, b, c;
-  };
-  std::vector<std::vector<std::vector<Point>>> cut_points;
   /// [constraint][k·points + m]: a contact polygon's slice at its Chebyshev point m of interval k, as the
   /// edges through its ends (SliceEdges: each end is linear in u, exactly, over its range), from the last
   /// round that solved its LPs: a later round whose u lies in the ranges has the slice without an LP.
@@ -53,6 +47,13 @@ struct AuditMemory {
     bool hi_capped = false;                            // the top is the stand-in cap (no limit)
   };
   std::vector<std::vector<Slices>> slices;
+  /// [constraint][interval]: the rows at each point where the interval was cut.
+  struct Point {
+    double lam;
+    Eigen::VectorXd a, b, c;
+    Slices slice;  // a contact constraint's slice there (as at a Chebyshev point)
+  };
+  std::vector<std::vector<std::vector<Point>>> cut_points;
   /// [constraint][interval]: the largest concavity of v in s that the interval's samples showed in any
   /// round (part of the screen's bound, kept from round to round).
   std::vector<std::vector<double>> curvature;
