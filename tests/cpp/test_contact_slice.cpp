@@ -113,8 +113,8 @@ TEST(ContactSlice, InactiveSamplesAreUnboundedAndArgumentsAreChecked) {
   EXPECT_THROW(c.slice(narrow, Eigen::VectorXd::Zero(5), lo, hi), InvalidInput);
 }
 
-// The continuous audit asks for a Chebyshev point at u - δ, u, u + δ in a row: slice() builds that
-// point's LP once and keeps GLPK's matrix for the next two. The answers are those of one call per
+// Several s̈ asked at one path point in a row (as the continuous audit once asked u - δ, u, u + δ):
+// slice() builds that point's LP once and keeps GLPK's matrix for the next ones. The answers are those of one call per
 // sample (to the LPs' rounding: a warm GLPK problem keeps its own factorisation), also where a slice
 // is empty (u = ±20) and the next sample at the same point is not.
 TEST(ContactSlice, RepeatedPointsGiveTheSlicesOfOneCallPerSample) {

@@ -57,9 +57,8 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
   // sample's), which is nearly optimal here.
   detail::PolytopeProjector up, down;
   Eigen::VectorXd objective = Eigen::VectorXd::Zero(lp.A.cols()), z;
-  // A sample at the same path point as the one that built `lp` (the continuous audit asks for u - δ,
-  // u, u + δ there) has the same LP but for u's bounds: not built again, and a projector that holds
-  // its matrix keeps it.
+  // A sample at the same path point as the one that built `lp` (a caller asking several s̈ at one point)
+  // has the same LP but for u's bounds: not built again, and a projector that holds its matrix keeps it.
   Eigen::Index built = -1, up_at = -1, down_at = -1;  // the sample `lp` is of; the one each projector holds
   auto same_point = [&](Eigen::Index p, Eigen::Index o) {
     return o >= 0 && samples.s[p] == samples.s[o] && samples.q.row(p) == samples.q.row(o) &&
