@@ -149,7 +149,6 @@ double second_difference(double la, double va, double lb, double vb, double lc, 
   return 2.0 * ((vc - vb) / (lc - lb) - (vb - va) / (lb - la)) / (lc - la);
 }
 
-
 // One audit_and_cut call: the data its stages share. Per constraint (audit_constraint): the intervals
 // whose speeds changed, their samples (contact slices in one batch), the path-wide concavity bound, the
 // brackets it does not clear, their peaks (maximize_batch), and the cuts there.
@@ -453,7 +452,6 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
     }
   }
 }
-
 
 // Each interval's samples: both grid points (the grid's own rows), the Chebyshev points, and the points
 // where the interval was cut before (the timing is tight there, and a violation next to one would lie
