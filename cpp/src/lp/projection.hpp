@@ -116,6 +116,7 @@ class PolytopeProjector {
   std::vector<double> ar_;
   std::vector<signed char> stat_;  // an LP's final basis, before it is kept
   std::vector<double> z_;          // an LP's point
+  Eigen::VectorXd row_norm_;       // the rows' norms, for a FixedColumn's label
   struct Basis {  // an LP's final basis: its direction, then GLPK's row and column statuses
     double angle = 0.0;
     std::vector<signed char> stat;

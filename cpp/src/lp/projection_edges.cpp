@@ -52,27 +52,31 @@ bool PolytopeProjector::Run::binding(int& code) {
     }
     return true;
   }
-  return guarded([&] {
-    double best = 0.0;
-    for (int i = 0; i < rows_; ++i) {
-      const int st = glp_get_row_stat(lp_, i + 1);
-      // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
-      if (st == GLP_BS || st == GLP_NS || in_.row_lo[i] == in_.row_hi[i]) continue;
-      const double w = std::abs(glp_get_row_dual(lp_, i + 1)) * norm[i];
-      if (w > best) {
-        best = w;
-        code = 2 * i + (st == GLP_NU ? 1 : 0);
-      }
+  return guarded([&] { code = glpk_binding(lp_, in_, norm, 0); });
+}
+
+int glpk_binding(glp_prob* lp, const PolytopeLp& in, const double* row_norm, int first_column) {
+  int code = kBindingUnknown;
+  double best = 0.0;
+  for (int i = 0; i < static_cast<int>(in.A.rows()); ++i) {
+    const int st = glp_get_row_stat(lp, i + 1);
+    // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
+    if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
+    const double w = std::abs(glp_get_row_dual(lp, i + 1)) * row_norm[i];
+    if (w > best) {
+      best = w;
+      code = 2 * i + (st == GLP_NU ? 1 : 0);
     }
-    for (int j = 0; j < cols_; ++j) {
-      if (glp_get_col_stat(lp_, j + 1) == GLP_BS) continue;
-      const double w = std::abs(glp_get_col_dual(lp_, j + 1));
-      if (w > best) {
-        best = w;
-        code = -(j + 1);
-      }
+  }
+  for (int j = first_column; j < static_cast<int>(in.A.cols()); ++j) {
+    if (glp_get_col_stat(lp, j + 1) == GLP_BS) continue;
+    const double w = std::abs(glp_get_col_dual(lp, j + 1));
+    if (w > best) {
+      best = w;
+      code = -(j + 1);
     }
-  });
+  }
+  return code;
 }
 
 // Ranging's certificate (see Ranging): the basis of rg is optimal along (nx, nu), to 1e-11 in every

@@ -27,6 +27,12 @@ struct PolytopeProjector::Ranging {
   std::vector<double> A, B;
 };
 
+// GLPK's side of Run::binding, inside a guarded call at an optimum of `in`: the inequality row (its dual
+// per unit of its normalised row, row_norm) or the bound of a column from `first_column` on with the
+// largest dual, as a Projection::binding code (kBindingUnknown: none). Equalities are structure, not
+// limits one could relax. maximize() leaves out the slices' fixed x and u columns (first_column 2).
+int glpk_binding(glp_prob* lp, const PolytopeLp& in, const double* row_norm, int first_column);
+
 // One call of project(): the data its stages share. The stages: the initial triangle of directions (with
 // the stand-in bounds grown and the triangle started again when they hide the whole shadow), the
 // expansion of uncertified hull edges until each is certified, and the polygon's half-planes.

@@ -1,6 +1,7 @@
 // PolytopeProjector's single LPs on the projection's polytope (eq. 19): loading it into GLPK, a feasibility
 // LP, and one maximisation along a direction. projection.cpp runs them in the recursive expansion (sec. IV.C).
 #include "lp/projection.hpp"
+#include "lp/projection_run.hpp"
 
 #include "lp/glpk_util.hpp"
 
@@ -92,16 +93,15 @@ namespace {
 // FixedColumn's ranging (projection.hpp), inside maximize()'s guarded call. The column is nonbasic at
 // its fixed value; glp_analyze_bound moves that value until a basic variable reaches a bound (the basis
 // then stops being primal feasible; its dual feasibility does not depend on bounds), and the objective
-// moves along by the column's reduced cost in between (LP sensitivity to a bound).
-void fixed_column(glp_prob* lp, const PolytopeLp& in, PolytopeProjector::FixedColumn& f) {
-  const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols()), j = f.column + 1;
+// moves along by the column's reduced cost in between (LP sensitivity to a bound). `row_norm`: in.A's
+// row norms, for the label (computed outside the guarded call).
+void fixed_column(glp_prob* lp, const PolytopeLp& in, const double* row_norm, PolytopeProjector::FixedColumn& f) {
+  const int rows = static_cast<int>(in.A.rows()), j = f.column + 1;
   const double t0 = glp_get_col_prim(lp, j);
-  f.slope = 0.0;
-  f.from = f.to = t0;
-  f.binding = kBindingUnknown;
   // The reduced cost bounds the optimum at every value by weak duality (the dual solution stays feasible
   // whatever the column's bound), also where the range is not known.
   f.slope = glp_get_col_dual(lp, j);
+  f.from = f.to = t0;
   if (glp_bf_exists(lp) && glp_get_col_stat(lp, j) != GLP_BS) {
     double v1 = 0.0, v2 = 0.0;
     int var1 = 0, var2 = 0;
@@ -109,21 +109,8 @@ void fixed_column(glp_prob* lp, const PolytopeLp& in, PolytopeProjector::FixedCo
     f.from = std::min(v1, t0);  // -DBL_MAX / +DBL_MAX: no basic variable limits the range that way
     f.to = std::max(v2, t0);
   }
-  if (!f.label) return;
-  // What stops the optimum: as Run::binding, the largest dual scaled by its row's norm, the structural
-  // equalities and the fixed columns 0 and 1 (x, u) left out.
-  double best = 0.0;
-  for (int i = 0; i < rows; ++i) {
-    const int st = glp_get_row_stat(lp, i + 1);
-    if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
-    const double w = std::abs(glp_get_row_dual(lp, i + 1)) * in.A.row(i).norm();
-    if (w > best) best = w, f.binding = 2 * i + (st == GLP_NU ? 1 : 0);
-  }
-  for (int c = 2; c < cols; ++c) {
-    if (glp_get_col_stat(lp, c + 1) == GLP_BS) continue;
-    const double w = std::abs(glp_get_col_dual(lp, c + 1));
-    if (w > best) best = w, f.binding = -(c + 1);
-  }
+  // What stops the optimum, the fixed columns 0 and 1 (x, u) left out.
+  f.binding = f.label ? glpk_binding(lp, in, row_norm, 2) : kBindingUnknown;
 }
 
 }  // namespace
@@ -137,6 +124,8 @@ int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, 
   glp_prob* lp = lp_.get();
   const int cols = cols_;
   z_.resize(static_cast<size_t>(cols));
+  if (fixed && fixed->label) row_norm_ = in.A.rowwise().norm();
+  const double* norm = row_norm_.data();
   double* zp = z_.data();
   const double* cp = c.data();
   int st = -1;
@@ -145,7 +134,7 @@ int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, 
     st = glpk_solve_robust(lp, parm);
     if (st == GLP_OPT) {
       for (int j = 0; j < cols; ++j) zp[j] = glp_get_col_prim(lp, j + 1);
-      if (fixed) fixed_column(lp, in, *fixed);
+      if (fixed) fixed_column(lp, in, norm, *fixed);
     }
     for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, 0.0);  // project() sets only x's and u's
   });

@@ -196,6 +196,10 @@ class Auditor {
            const std::vector<std::pair<double, double>>& span);
   void contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
                     const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named);
+  void add_cut(size_t ci, Eigen::Index k, double l, double a, double b, double c, const std::string& label,
+               const std::map<std::string, int>& named);
+  void add_broken_rows(size_t ci, const ConstraintRows& rr, Eigen::Index r, Eigen::Index k, double l,
+                       const std::map<std::string, int>& named);
 
   const Path& path_;
   const Eigen::VectorXd& s_;
@@ -278,7 +282,7 @@ void Auditor::audit_constraint(size_t ci) {
       },
       [&](size_t i, const PeakBracket& c) {
         // A bracket already broken is cut anyway: narrowed to half its span, not to its peak (the spread
-        // cuts of contact_cuts cover the rest of it; a full search cost a third of the slice LPs).
+        // cuts of contact_cuts cover the rest of it).
         if (c.best() > tolerance_ && c.c - c.a < 0.5 * (span[i].second - span[i].first)) return true;
         if (!std::isfinite(c.fa) || !std::isfinite(c.fc)) return false;
         const double K =
@@ -403,16 +407,14 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
     for (size_t i = first[t]; i < first[t + 1]; ++i) {
       const Eigen::Index k = kk[i];
       const double u = u_of(k), x = x_of(k, ll[i]);
-      {
-        const AuditMemory::Slices& M = slice_memo(ci, k, i - first[t]);
-        if (M.hi_from <= u && u <= M.hi_to) {
-          const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
-          const bool bottom = M.lo_from <= u && u <= M.lo_to;
-          if (x > hi || bottom) {  // above the top the bottom does not matter (slice(..., &x))
-            f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
-            ++audit_.reused;
-            continue;
-          }
+      const AuditMemory::Slices& M = slice_memo(ci, k, i - first[t]);
+      if (M.hi_from <= u && u <= M.hi_to) {
+        const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
+        const bool bottom = M.lo_from <= u && u <= M.lo_to;
+        if (x > hi || bottom) {  // above the top the bottom does not matter (slice(..., &x))
+          f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
+          ++audit_.reused;
+          continue;
         }
       }
       bk.push_back(k);
@@ -512,12 +514,11 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
 // and the largest in the interval itself (in λ: that times Δs_k², K_of). Path-wide near the limit, so
 // that an interval whose samples happen to lie on a line (a rounding-level change of its polygons can
 // make them so) does not switch its screen off; not path-wide far from it, where v, a distance relative
-// to x's size, bends with that size (an interval leaving rest, where the top of the slice is many times
-// x, was seen to curve 2500x more than any interval near its limit and to keep most brackets of the
-// path from its screen). An interval's own curvature is the largest of this and every earlier round of
-// the solve (the coarse rod of test_continuous, 1-2 samples per interval, let a 6e-8 excess through
-// where a later round had no triple near its limit and the interval's samples had come to lie on a
-// line). Fills curvature_[t] per interval todo[t].
+// to x's size, bends with that size (an interval leaving rest, whose slice top is many times x, would
+// keep the whole path's tight brackets from the screen). An interval's own curvature is the largest of
+// this and every earlier round of the solve: a later round may have no triple near its limit while the
+// interval's samples have come to lie on a line (the coarse rod of test_continuous, 1-2 samples per
+// interval; docs/method.md). Fills curvature_[t] per interval todo[t].
 void Auditor::path_curvature(size_t ci, const std::vector<Eigen::Index>& todo) {
   constexpr double kNear = 1e-2;
   double near = 0.0;
@@ -565,15 +566,14 @@ void Auditor::brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBr
 // Contact cuts per interval and round besides its peak's (contact_cuts): each round's single cut at the
 // peak leaves the peak between two cuts, which quarters the violation from round to round (x(λ) follows
 // the chord of the limit between them); rows at 3 more points of the peak's bracket divide that gap by 4,
-// the violation by 16. On the contact corpus (N = 100, 4 edges) rounds 12-15 -> 7-11, slice LPs -10 %
-// (bench/README.md); T equal to 10 digits.
+// the violation by 16 (measured in bench/README.md, issue 27).
 constexpr int kSpread = 3;
 
-// One cut per interval and round, at its largest violation (cuts at several points of one interval in
-// one round are near-parallel rows that can leave the LPs ill-conditioned): every row broken at the peak,
-// as a row of the interval (exact, see the header), labelled as the problem's own row of that name (the
-// constraint's first row if it has none). A contact constraint's cut is the polygon's edge there
-// (contact_cuts).
+// One cut per interval and round, at its largest violation: every row broken at the peak, as a row of the
+// interval (exact, see the header), labelled as the problem's own row of that name (the constraint's
+// first row if it has none). A contact constraint's cut is the polygon's edge there, with kSpread more
+// (contact_cuts); other constraints' rows are cheap to evaluate, and one row per round keeps the rows of
+// an interval from crowding near-parallel.
 void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
                   const std::vector<std::pair<double, double>>& span) {
   ks_.clear();
@@ -606,19 +606,29 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
   }
   const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
   for (size_t q = 0; q < cuts.size(); ++q) {
-    const Eigen::Index k = at[cuts[q]];
-    const double l = ls_[q], h = s_[k + 1] - s_[k];
-    const Eigen::Index r = static_cast<Eigen::Index>(q);
-    memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose(), {}});
-    for (Eigen::Index j = 0; j < rr.rows(); ++j) {
-      if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)) <= tolerance_) continue;
-      const double a = rr.a(r, j), b = rr.b(r, j);
-      const auto id = named.find(rr.labels[static_cast<size_t>(j)]);
-      extra_.rows[static_cast<size_t>(k)].push_back({a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), rr.c(r, j),
-                                                     row_offset_[ci] + (id == named.end() ? 0 : id->second)});
-      ++audit_.cuts;
-    }
+    const Eigen::Index k = at[cuts[q]], r = static_cast<Eigen::Index>(q);
+    memory_.cut_points[ci][static_cast<size_t>(k)].push_back({ls_[q], rr.a.row(r).transpose(), rr.b.row(r).transpose(), rr.c.row(r).transpose(), {}});
+    add_broken_rows(ci, rr, r, k, ls_[q], named);
   }
+}
+
+// Row a x + b u <= c at λ l of interval k as a row of the interval (see the header), named as the
+// problem's row `label` (the constraint's first row if it has none).
+void Auditor::add_cut(size_t ci, Eigen::Index k, double l, double a, double b, double c, const std::string& label,
+                      const std::map<std::string, int>& named) {
+  const double h = s_[k + 1] - s_[k];
+  const auto id = named.find(label);
+  extra_.rows[static_cast<size_t>(k)].push_back(
+      {a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), c, row_offset_[ci] + (id == named.end() ? 0 : id->second)});
+  ++audit_.cuts;
+}
+
+// Every row of rr's sample r (at λ l of interval k) that the timing breaks there, as a cut.
+void Auditor::add_broken_rows(size_t ci, const ConstraintRows& rr, Eigen::Index r, Eigen::Index k, double l,
+                              const std::map<std::string, int>& named) {
+  for (Eigen::Index j = 0; j < rr.rows(); ++j)
+    if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), l, theta_[k], theta_[k + 1], u_of(k)) > tolerance_)
+      add_cut(ci, k, l, rr.a(r, j), rr.b(r, j), rr.c(r, j), rr.labels[static_cast<size_t>(j)], named);
 }
 
 // A contact constraint's cuts at the peaks (ks_, ls_) of the brackets cuts[q]: the polygon's edge through
@@ -654,13 +664,6 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
   const double cap = cc.projection_cap();
   std::vector<Eigen::Index> pk;  // the points to project
   std::vector<double> pl;
-  auto add = [&](Eigen::Index k, double l, double a, double b, double c, const std::string& label) {
-    const double h = s_[k + 1] - s_[k];
-    const auto id = named.find(label);
-    extra_.rows[static_cast<size_t>(k)].push_back(
-        {a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), c, row_offset_[ci] + (id == named.end() ? 0 : id->second)});
-    ++audit_.cuts;
-  };
   for (size_t q = 0; q < ks.size(); ++q) {
     const Eigen::Index k = ks[q], e = static_cast<Eigen::Index>(q);
     const double l = ls_[q], x = x_of(k, l), uq = u[e];
@@ -673,19 +676,14 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
     }
     // x <= hi + s (u' - u) and x >= lo + s' (u' - u), as rows a x + b u' <= c.
     if (hi[e] < cap * (1.0 - 1e-9) && (spread[q] || violation(1.0, 0.0, hi[e], 0.0, x, x, 0.0) > tolerance_))
-      add(k, l, 1.0, -edges.hi_slope[e], hi[e] - edges.hi_slope[e] * uq, edges.hi_label[static_cast<size_t>(q)]);
+      add_cut(ci, k, l, 1.0, -edges.hi_slope[e], hi[e] - edges.hi_slope[e] * uq, edges.hi_label[static_cast<size_t>(q)], named);
     if (violation(-1.0, 0.0, -lo[e], 0.0, x, x, 0.0) > tolerance_)
-      add(k, l, -1.0, edges.lo_slope[e], edges.lo_slope[e] * uq - lo[e], edges.lo_label[static_cast<size_t>(q)]);
+      add_cut(ci, k, l, -1.0, edges.lo_slope[e], edges.lo_slope[e] * uq - lo[e], edges.lo_label[static_cast<size_t>(q)], named);
   }
   if (pk.empty()) return;
   const ConstraintRows rr = cc.evaluate(samples_at(pk, pl));
   audit_.projections += static_cast<int>(pk.size());
-  for (size_t q = 0; q < pk.size(); ++q) {
-    const Eigen::Index k = pk[q], r = static_cast<Eigen::Index>(q);
-    for (Eigen::Index j = 0; j < rr.rows(); ++j)
-      if (violation(rr.a(r, j), rr.b(r, j), rr.c(r, j), pl[q], theta_[k], theta_[k + 1], u_of(k)) > tolerance_)
-        add(k, pl[q], rr.a(r, j), rr.b(r, j), rr.c(r, j), rr.labels[static_cast<size_t>(j)]);
-  }
+  for (size_t q = 0; q < pk.size(); ++q) add_broken_rows(ci, rr, static_cast<Eigen::Index>(q), pk[q], pl[q], named);
 }
 
 }  // namespace
