@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lp/projection.hpp"
+#include "lp/slice_lp.hpp"
 #include "base/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
 #include "pathpace/robot_workspace.hpp"
@@ -53,13 +54,10 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
   RobotWorkspace ws(*robot_);
   Eigen::MatrixXd a, b, c;  // eq. (12) at every sample
   robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
-  // One GLPK problem per direction: each warm-starts from its own previous optimum (a neighbouring
-  // sample's), which is nearly optimal here.
-  detail::PolytopeProjector up, down;
-  Eigen::VectorXd objective = Eigen::VectorXd::Zero(lp.A.cols()), z;
+  detail::SliceLp solver;
   // A sample at the same path point as the one that built `lp` (a caller asking several s̈ at one point)
-  // has the same LP but for u's bounds: not built again, and a projector that holds its matrix keeps it.
-  Eigen::Index built = -1, up_at = -1, down_at = -1;  // the sample `lp` is of; the one each projector holds
+  // has the same LP but for u's bounds: not built again.
+  Eigen::Index built = -1;
   auto same_point = [&](Eigen::Index p, Eigen::Index o) {
     return o >= 0 && samples.s[p] == samples.s[o] && samples.q.row(p) == samples.q.row(o) &&
            samples.dq.row(p) == samples.dq.row(o) && samples.ddq.row(p) == samples.ddq.row(o);
@@ -77,27 +75,25 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
     }
     lp.col_lo[1] = lp.col_hi[1] = u[p];
     lp.col_hi[0] = !options_.rest_at_begin.empty() && at_active_begin(samples.s[p]) ? 0.0 : options_.cap;
-    objective[0] = 1.0;
+    solver.load(lp);
+    double top = 0.0, bottom = 0.0;
     ++lps;
-    const int st = up.maximize(lp, objective, z, up_at == built, edges ? &fixed : nullptr);
-    up_at = built;
+    const int st = solver.extreme(1.0, top, edges ? &fixed : nullptr);
     if (st == 0) {
       x_lo[p] = inf;
       x_hi[p] = -inf;
       continue;
     }
     // On the stand-in cap: no limit on x there (as the projection drops such edges).
-    x_hi[p] = st < 0 ? nan : (z[0] >= options_.cap * (1.0 - 1e-9) ? inf : z[0]);
+    x_hi[p] = st < 0 ? nan : (top >= options_.cap * (1.0 - 1e-9) ? inf : top);
     if (edges && st == 1) edge(p, 1.0, edges->hi_slope, edges->hi_from, edges->hi_to, edges->hi_label);
     if (x && (*x)[p] > x_hi[p]) {  // above the slice: its bottom does not change how far
       x_lo[p] = -inf;
       continue;
     }
-    objective[0] = -1.0;
     ++lps;
-    const int sl = down.maximize(lp, objective, z, down_at == built, edges ? &fixed : nullptr);
-    down_at = built;
-    x_lo[p] = sl == 1 ? z[0] : (sl == 0 ? inf : nan);
+    const int sl = solver.extreme(-1.0, bottom, edges ? &fixed : nullptr);
+    x_lo[p] = sl == 1 ? bottom : (sl == 0 ? inf : nan);
     if (edges && sl == 1) edge(p, -1.0, edges->lo_slope, edges->lo_from, edges->lo_to, edges->lo_label);
   }
   return lps;

@@ -46,20 +46,45 @@ void DenseSimplex::column(int k, Eigen::VectorXd& a) const {
   }
 }
 
+// B's columns are -e_k for a basic auxiliary k and A's column j for a basic structural j. With R the rows
+// whose auxiliary is nonbasic and S the basic structurals (as many: s), B w = r reads A[R,S] w_S = r_R on
+// R and w_k = A[k,S] w_S - r_k on each other row k, so B^-1 follows from the s x s matrix A[R,S]^-1 alone:
+// s^3 instead of m^3, and a projection LP's basis is mostly the slacks of torque rows that do not bind.
 bool DenseSimplex::factorize() {
-  Eigen::MatrixXd B(m_, m_);
+  const Eigen::MatrixXd& A = lp_->A;
+  std::vector<int> spos, scol, rows;
+  std::vector<char> aux_basic(static_cast<size_t>(m_), 0);
   for (int i = 0; i < m_; ++i) {
     const int k = s_.head[static_cast<size_t>(i)];
-    if (k < m_) {
-      B.col(i).setZero();
-      B(k, i) = -1.0;
-    } else {
-      B.col(i) = lp_->A.col(k - m_);
-    }
+    if (k < m_) aux_basic[static_cast<size_t>(k)] = 1;
+    else spos.push_back(i), scol.push_back(k - m_);
   }
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu(B);
-  if (!(lu.rcond() > limits.min_rcond)) return false;
-  s_.inv = lu.inverse();
+  for (int r = 0; r < m_; ++r)
+    if (!aux_basic[static_cast<size_t>(r)]) rows.push_back(r);
+  const int s = static_cast<int>(scol.size());
+  if (static_cast<int>(rows.size()) != s) return false;  // an auxiliary twice: not a basis
+  s_.inv.setZero(m_, m_);
+  Eigen::MatrixXd M;  // A[R,S]^-1
+  if (s > 0) {
+    Eigen::MatrixXd C(s, s);
+    for (int b = 0; b < s; ++b)
+      for (int a = 0; a < s; ++a) C(a, b) = A(rows[static_cast<size_t>(a)], scol[static_cast<size_t>(b)]);
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(C);
+    if (!(lu.rcond() > limits.min_rcond)) return false;
+    M = lu.inverse();
+    for (int b = 0; b < s; ++b)
+      for (int a = 0; a < s; ++a) s_.inv(spos[static_cast<size_t>(b)], rows[static_cast<size_t>(a)]) = M(b, a);
+  }
+  Eigen::RowVectorXd arow(s);
+  for (int i = 0; i < m_; ++i) {
+    const int k = s_.head[static_cast<size_t>(i)];
+    if (k >= m_) continue;
+    s_.inv(i, k) = -1.0;
+    if (s == 0) continue;
+    for (int b = 0; b < s; ++b) arow[b] = A(k, scol[static_cast<size_t>(b)]);
+    const Eigen::RowVectorXd w = arow * M;
+    for (int a = 0; a < s; ++a) s_.inv(i, rows[static_cast<size_t>(a)]) = w[a];
+  }
   s_.updates = 0;
   return true;
 }
@@ -79,7 +104,7 @@ void DenseSimplex::compute_values() {
   for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] = xb[i];
 }
 
-bool DenseSimplex::set_basis(const signed char* stat) {
+bool DenseSimplex::set_basis(const signed char* stat, bool primal_feasible) {
   if (!lp_) return false;
   s_.stat.assign(stat, stat + m_ + n_);
   s_.head.clear();
@@ -99,6 +124,7 @@ bool DenseSimplex::set_basis(const signed char* stat) {
   }
   if (static_cast<int>(s_.head.size()) != m_ || !factorize()) return false;
   compute_values();
+  if (!primal_feasible) return true;
   for (int i = 0; i < m_; ++i) {
     const int k = s_.head[static_cast<size_t>(i)];
     const double v = s_.value[k];
@@ -107,27 +133,130 @@ bool DenseSimplex::set_basis(const signed char* stat) {
   return true;
 }
 
+void DenseSimplex::price(double vx, double vu) {
+  // Multipliers y = B^-T c_B (only x and u have costs), reduced costs d = c - [A, -I]^T y.
+  y_.setZero(m_);
+  for (int i = 0; i < m_; ++i) {
+    const int k = s_.head[static_cast<size_t>(i)];
+    if (k == m_) y_.noalias() += vx * s_.inv.row(i).transpose();
+    else if (k == m_ + 1) y_.noalias() += vu * s_.inv.row(i).transpose();
+  }
+  dstruct_.noalias() = -(lp_->A.transpose() * y_);
+  dstruct_[0] += vx;
+  dstruct_[1] += vu;
+  for (int k = 0; k < m_ + n_; ++k)
+    d_[static_cast<size_t>(k)] = s_.stat[static_cast<size_t>(k)] == GLP_BS ? 0.0 : k < m_ ? y_[k] : dstruct_[k - m_];
+}
+
+// Basis position r leaves for variable q (alpha_ = B^-1 a_q, the values already moved), `leave_at_lo`
+// its bound; B^-1 of the new basis by a rank-one update: row r over alpha_r, the other rows minus alpha_i
+// times it. False if the refactorisation that follows every Limits::refactor updates finds B singular.
+bool DenseSimplex::replace(int r, int q, bool leave_at_lo) {
+  const int leave = s_.head[static_cast<size_t>(r)];
+  s_.value[leave] = leave_at_lo ? lo_[leave] : hi_[leave];
+  s_.stat[static_cast<size_t>(leave)] = lo_[leave] == hi_[leave] ? GLP_NS : leave_at_lo ? GLP_NL : GLP_NU;
+  s_.stat[static_cast<size_t>(q)] = GLP_BS;
+  s_.head[static_cast<size_t>(r)] = q;
+  pivot_row_.noalias() = s_.inv.row(r) / alpha_[r];
+  s_.inv.noalias() -= alpha_ * pivot_row_;
+  s_.inv.row(r) = pivot_row_;
+  ++pivots;
+  if (++s_.updates >= limits.refactor) {
+    if (!factorize()) return false;
+    compute_values();
+  }
+  return true;
+}
+
+int DenseSimplex::worst_infeasible(double& target) const {
+  int r = -1;
+  double worst = 0.0;
+  for (int i = 0; i < m_; ++i) {
+    const int k = s_.head[static_cast<size_t>(i)];
+    const double v = s_.value[k];
+    const double below = lo_[k] - bound_tol(lo_[k]) - v, above = v - hi_[k] - bound_tol(hi_[k]);
+    if (below > worst) worst = below, r = i, target = lo_[k];
+    if (above > worst) worst = above, r = i, target = hi_[k];
+  }
+  return r;
+}
+
+// The dual simplex (bounded variables, Harris's two-pass ratio test on the reduced costs): the basic
+// variable furthest outside its bounds leaves at that bound, and the nonbasic variable that moves it back
+// at the least cost in the objective enters, so the reduced costs keep their signs; repeated until every
+// basic variable is within GLPK's tolerance of its bounds. A slice LP's previous optimum stays dual
+// feasible when the path moves a little (only its point leaves the polytope), so this is a few pivots;
+// maximize() then goes on with the primal simplex and the certificate.
+int DenseSimplex::dual_phase(double vx, double vu) {
+  const Eigen::MatrixXd& A = lp_->A;
+  for (int it = 0;; ++it) {
+    double target = 0.0;
+    const int r = worst_infeasible(target);
+    if (r < 0) return kOptimal;
+    if (it == limits.max_pivots) return kIterationCap;
+    // The reduced costs from y, at the start and after a refactorisation; a pivot updates them (below).
+    if (it == 0 || s_.updates == 0) price(vx, vu);
+    if (it == 0)
+      for (int k = 0; k < m_ + n_; ++k) {
+        const double d = d_[static_cast<size_t>(k)];
+        const signed char st = s_.stat[static_cast<size_t>(k)];
+        if ((st == GLP_NL && d > kTolDj) || (st == GLP_NU && d < -kTolDj) || (st == GLP_NF && std::abs(d) > kTolDj))
+          return kNotDualFeasible;
+      }
+    // Row r of the tableau: x_B[r] moves by -w_j per unit of nonbasic x_j, w_j = (B^-1 a_j)_r.
+    wstruct_.noalias() = A.transpose() * s_.inv.row(r).transpose();
+    const int leave = s_.head[static_cast<size_t>(r)];
+    const double up = target > s_.value[leave] ? 1.0 : -1.0;  // the direction x_B[r] must move
+    auto w_of = [&](int k) { return k < m_ ? -s_.inv(r, k) : wstruct_[k - m_]; };
+    // x_j may move by sign(j) > 0 in its own direction: NL up, NU down, NF either.
+    auto eligible = [&](int k, double& w) {
+      const signed char st = s_.stat[static_cast<size_t>(k)];
+      if (st == GLP_BS || st == GLP_NS) return false;
+      w = w_of(k);
+      const double gain = -w * up;  // x_B[r]'s move per unit increase of x_j, in the direction it must go
+      return std::abs(w) >= limits.tol_pivot && (st == GLP_NF || (st == GLP_NL && gain > 0) || (st == GLP_NU && gain < 0));
+    };
+    double tmax = INFINITY;
+    for (int k = 0; k < m_ + n_; ++k) {
+      double w = 0.0;
+      if (eligible(k, w)) tmax = std::min(tmax, (std::abs(d_[static_cast<size_t>(k)]) + 0.5 * kTolDj) / std::abs(w));
+    }
+    int q = -1;
+    double big = 0.0;
+    for (int k = 0; k < m_ + n_; ++k) {
+      double w = 0.0;
+      if (eligible(k, w) && std::abs(d_[static_cast<size_t>(k)]) / std::abs(w) <= tmax && std::abs(w) > big)
+        big = std::abs(w), q = k;
+    }
+    if (q < 0) return kDualRay;
+    // d_j -= δ w_j with δ = d_q / w_q (y moves by δ times row r of B^-1): d_q becomes 0, and the leaving
+    // variable (w = 1, d = 0 while basic) takes -δ.
+    const double delta = d_[static_cast<size_t>(q)] / w_of(q);
+    for (int k = 0; k < m_ + n_; ++k)
+      if (s_.stat[static_cast<size_t>(k)] != GLP_BS) d_[static_cast<size_t>(k)] -= delta * w_of(k);
+    d_[static_cast<size_t>(q)] = 0.0;
+    d_[static_cast<size_t>(leave)] = -delta;
+    column(q, col_);
+    alpha_.noalias() = s_.inv * col_;
+    const double step = (target - s_.value[leave]) / -alpha_[r];  // x_q's move that puts x_B[r] on its bound
+    for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] -= alpha_[i] * step;
+    s_.value[q] += step;
+    if (!replace(r, q, target == lo_[leave])) return kSingular;
+  }
+}
+
 int DenseSimplex::maximize(double vx, double vu) {
   if (!lp_ || static_cast<int>(s_.head.size()) != m_) return kNoBasis;
-  const Eigen::MatrixXd& A = lp_->A;
+  const int dual = dual_phase(vx, vu);
+  if (dual != kOptimal) return dual;
   const int total = m_ + n_;
   for (int it = 0; it <= limits.max_pivots; ++it) {
-    // Multipliers y = B^-T c_B (only x and u have costs), reduced costs d = c - [A, -I]^T y.
-    y_.setZero(m_);
-    for (int i = 0; i < m_; ++i) {
-      const int k = s_.head[static_cast<size_t>(i)];
-      if (k == m_) y_.noalias() += vx * s_.inv.row(i).transpose();
-      else if (k == m_ + 1) y_.noalias() += vu * s_.inv.row(i).transpose();
-    }
-    dstruct_.noalias() = -(A.transpose() * y_);
-    dstruct_[0] += vx;
-    dstruct_[1] += vu;
+    price(vx, vu);
     int q = -1;
     double best = 0.0;
     for (int k = 0; k < total; ++k) {
       const signed char st = s_.stat[static_cast<size_t>(k)];
-      const double d = k < m_ ? y_[k] : dstruct_[k - m_];
-      d_[static_cast<size_t>(k)] = st == GLP_BS ? 0.0 : d;
+      const double d = d_[static_cast<size_t>(k)];
       if (st == GLP_BS || st == GLP_NS) continue;
       const bool improves = (st == GLP_NL && d > kTolDj) || (st == GLP_NU && d < -kTolDj) ||
                             (st == GLP_NF && std::abs(d) > kTolDj);
@@ -176,23 +305,31 @@ int DenseSimplex::maximize(double vx, double vu) {
       continue;
     }
     s_.value[q] += dir * t;
-    const int leave = s_.head[static_cast<size_t>(r)];
-    const bool to_lo = -alpha_[r] * dir < 0;
-    s_.value[leave] = to_lo ? lo_[leave] : hi_[leave];
-    s_.stat[static_cast<size_t>(leave)] = lo_[leave] == hi_[leave] ? GLP_NS : to_lo ? GLP_NL : GLP_NU;
-    s_.stat[static_cast<size_t>(q)] = GLP_BS;
-    s_.head[static_cast<size_t>(r)] = q;
-    // B^-1 of the new basis: row r over alpha_r, the other rows minus alpha_i times it.
-    pivot_row_.noalias() = s_.inv.row(r) / alpha_[r];
-    s_.inv.noalias() -= alpha_ * pivot_row_;
-    s_.inv.row(r) = pivot_row_;
-    ++pivots;
-    if (++s_.updates >= limits.refactor) {
-      if (!factorize()) return kSingular;
-      compute_values();
-    }
+    if (!replace(r, q, -alpha_[r] * dir < 0)) return kSingular;
   }
   return kIterationCap;
+}
+
+void DenseSimplex::bound_range(int k, double& from, double& to) {
+  from = to = s_.value[k];
+  if (s_.stat[static_cast<size_t>(k)] == GLP_BS) return;
+  column(k, col_);
+  alpha_.noalias() = s_.inv * col_;
+  // x_k = t0 + t moves x_B by -alpha t; each basic variable's bounds limit t (a coefficient at rounding
+  // level moves its variable by less than the bound tolerance over any range the audit reuses).
+  double lo = -INFINITY, hi = INFINITY;
+  for (int i = 0; i < m_; ++i) {
+    const double a = alpha_[i];
+    if (std::abs(a) < 1e-12) continue;
+    const int b = s_.head[static_cast<size_t>(i)];
+    const double v = s_.value[b];
+    const double down = (v - lo_[b]) / a, up = (v - hi_[b]) / a;  // t at which x_b reaches lo, hi
+    const double t_lo = std::min(down, up), t_hi = std::max(down, up);
+    lo = std::max(lo, std::min(t_lo, 0.0));
+    hi = std::min(hi, std::max(t_hi, 0.0));
+  }
+  from += lo;
+  to += hi;
 }
 
 // The optimum's certificate, from the problem's own data (not from the updated inverse): the point

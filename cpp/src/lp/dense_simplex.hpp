@@ -32,9 +32,10 @@ class DenseSimplex {
 
   /// The problem (kept by reference until the next load: the caller keeps it alive).
   void load(const PolytopeLp& lp);
-  /// The basis `stat` (GLPK's statuses, rows then columns): false if it is not a basis, singular, or
-  /// not primal feasible.
-  bool set_basis(const signed char* stat);
+  /// The basis `stat` (GLPK's statuses, rows then columns): false if it is not a basis, singular, or,
+  /// with `primal_feasible`, not primal feasible. A basis whose point lies outside the polytope (the
+  /// previous sample's optimum in a slice LP) is brought back by maximize(), by dual simplex pivots.
+  bool set_basis(const signed char* stat, bool primal_feasible = true);
   /// What maximize() found: an optimum it certified, or why it gave up (the caller then uses GLPK).
   enum Outcome : int {
     kOptimal = 1,
@@ -44,9 +45,16 @@ class DenseSimplex {
     kUnbounded = -3,      ///< no row nor bound stops the step: a ray (not a projection LP's answer)
     kSingular = -4,       ///< the basis refactorised after kRefactor updates is (nearly) singular
     kCertificate = -5,    ///< the optimum fails its certificate from the LP's own data
+    kNotDualFeasible = -6,  ///< a start outside the polytope whose reduced costs are not dual feasible
+    kDualRay = -7,        ///< a basic variable outside its bounds that no nonbasic one can move back
   };
-  /// Maximise v_x x + v_u u from the current basis (primal feasible): an Outcome.
+  /// Maximise v_x x + v_u u from the current basis: an Outcome. A basis outside the polytope is first
+  /// made primal feasible by the dual simplex, if its reduced costs along (v_x, v_u) are dual feasible.
   int maximize(double vx, double vu);
+  /// The values of nonbasic variable k (0-based, as in reduced_cost) for which the current basis stays
+  /// primal feasible, hence optimal (glp_analyze_bound's range): [from, to] around its value, ±infinity
+  /// where no basic variable limits it. Basic k: its value twice.
+  void bound_range(int k, double& from, double& to);
 
   const State& state() const { return s_; }
   void restore(const State& s) { s_ = s; }
@@ -68,6 +76,10 @@ class DenseSimplex {
  private:
   bool factorize();
   void compute_values();
+  void price(double vx, double vu);
+  bool replace(int r, int q, bool leave_at_lo);  // the basis change of a pivot  // y_, dstruct_, d_ for the objective v_x x + v_u u
+  int dual_phase(double vx, double vu);  // kOptimal once the basis is primal feasible, else an Outcome
+  int worst_infeasible(double& target) const;  // the basis position furthest outside its bounds, or -1
   void column(int k, Eigen::VectorXd& a) const;  // the constraint column of variable k
   bool certify();
   // Row k's value A_k z, in extended precision with its rounding bound, within [lo, hi] (certify's second
@@ -78,7 +90,7 @@ class DenseSimplex {
   Eigen::VectorXd lo_, hi_;  // per variable
   State s_;
   std::vector<double> d_;
-  Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_;
+  Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_, wstruct_;
   Eigen::RowVectorXd pivot_row_;  // scratch of a pivot's inverse update (no allocation per pivot)
   Eigen::MatrixXd abs_a_;  // |A|, for the certificate's rounding bound
 };

@@ -27,6 +27,11 @@ void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vec
   glp_load_matrix(lp, static_cast<int>(ar.size()) - 1, ia.data(), ja.data(), ar.data());
 }
 
+void glpk_get_basis(glp_prob* lp, int rows, int cols, signed char* stat) {
+  for (int i = 0; i < rows; ++i) stat[i] = static_cast<signed char>(glp_get_row_stat(lp, i + 1));
+  for (int j = 0; j < cols; ++j) stat[rows + j] = static_cast<signed char>(glp_get_col_stat(lp, j + 1));
+}
+
 namespace {
 
 // One simplex run: GLP_OPT, GLP_NOFEAS, or 0 when it did not finish (an iteration limit, a singular

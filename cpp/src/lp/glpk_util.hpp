@@ -19,6 +19,9 @@ void dense_triplets(const Eigen::MatrixXd& A, std::vector<int>& ia, std::vector<
 /// glp_load_matrix of such triplets.
 void glpk_load_triplets(glp_prob* lp, const std::vector<int>& ia, const std::vector<int>& ja, const std::vector<double>& ar);
 
+/// The statuses of the current basis (GLP_BS, GLP_NL, ...): rows' into stat[0, rows), columns' after them.
+void glpk_get_basis(glp_prob* lp, int rows, int cols, signed char* stat);
+
 /// The simplex from the current basis (a warm start); if it stalls, fails or finds no feasible point, again
 /// from the slack basis (and once more with textbook pricing if that stalls too); if that still does not
 /// end optimal, in exact rational arithmetic, which also confirms an infeasibility (a claim about the

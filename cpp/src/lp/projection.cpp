@@ -75,7 +75,6 @@ bool PolytopeProjector::Run::start() {
     return false;
   }
   const int loaded = self_.load(in_);
-  self_.matrix_is_input_ = false;  // its x and u columns may be scaled below
   if (loaded < 0) {
     glpk_error();
     return false;
@@ -154,8 +153,7 @@ void PolytopeProjector::Run::solve_lp(double vx, double vu, const signed char* s
   r.pu = glp_get_col_prim(lp_, 2);
   if (!record_ && !range) return;
   signed char* stat = self_.stat_.data();
-  for (int i = 0; i < rows_; ++i) stat[i] = static_cast<signed char>(glp_get_row_stat(lp_, i + 1));
-  for (int j = 0; j < cols_; ++j) stat[rows_ + j] = static_cast<signed char>(glp_get_col_stat(lp_, j + 1));
+  glpk_get_basis(lp_, rows_, cols_, stat);
   if (!range || !glp_bf_exists(lp_)) return;
   // The tableau rows of x and u (zero where that column is nonbasic: its reduced cost is then v's own).
   int* tab_ind = self_.tab_ind_.data();

@@ -99,19 +99,16 @@ class PolytopeProjector {
   /// One LP: maximise c·z over the polytope (c one per column). 1: optimal, z its point; 0: empty
   /// (confirmed in exact arithmetic); -1: the solver failed; -2: a GLPK error (see glpk_guard.hpp).
   /// Unbounded is a failure. Warm-started like project() (the same problem, from the last basis).
-  /// `same_matrix`: lp.A is, bit for bit, the matrix of this projector's last maximize() (only bounds
-  /// and c differ), so GLPK keeps the matrix it holds instead of loading it again (and its
-  /// factorisation: the answer equals a reloaded one's to rounding, not bit for bit).
-  int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix = false,
-               FixedColumn* fixed = nullptr);
+  /// `basis`: at an optimum, its statuses (GLPK's, rows then columns), e.g. for the dense simplex.
+  int maximize(const PolytopeLp& lp, const Eigen::VectorXd& c, Eigen::VectorXd& z, FixedColumn* fixed = nullptr,
+               std::vector<signed char>* basis = nullptr);
 
  private:
-  // Loads the problem (same shape: the previous basis is kept as the warm start; `keep_matrix`: the
-  // matrix too, if GLPK still holds lp.A). -1: a GLPK error; else 1 if warm, 0 if cold.
-  int load(const PolytopeLp& lp, bool keep_matrix = false);
+  // Loads the problem (same shape: the previous basis is kept as the warm start). -1: a GLPK error; else
+  // 1 if warm, 0 if cold.
+  int load(const PolytopeLp& lp);
   GlpkProblem lp_;
   int rows_ = -1, cols_ = -1;
-  bool matrix_is_input_ = false;  // GLPK's matrix is the last load()'s lp.A, unscaled (project() scales it)
   std::vector<int> ia_, ja_;  // matrix-loading scratch
   std::vector<double> ar_;
   std::vector<signed char> stat_;  // an LP's final basis, before it is kept

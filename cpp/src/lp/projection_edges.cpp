@@ -1,6 +1,7 @@
 // PolytopeProjector::Run's edge expansion (sec. IV.C): the hull's uncertified edges, each certified by an
 // endpoint's ranging, by the approximation or by its LP, and what binds there.
 #include "lp/projection_run.hpp"
+#include "lp/binding_rule.hpp"
 
 #include "lp/glpk_util.hpp"
 
@@ -43,40 +44,19 @@ bool PolytopeProjector::Run::binding(int& code) {
   if (last_dense_) {  // the same rule on the dense simplex's statuses and reduced costs
     const DenseSimplex& ds = self_.dense_engine_;
     const std::vector<signed char>& st = ds.state().stat;
-    double best = 0.0;
-    for (int k = 0; k < total_; ++k) {
-      const signed char sk = st[static_cast<size_t>(k)];
-      if (sk == GLP_BS || (k < rows_ && (sk == GLP_NS || in_.row_lo[k] == in_.row_hi[k]))) continue;
-      const double w = std::abs(ds.reduced_cost(k)) * (k < rows_ ? norm[k] : 1.0);
-      if (w > best) best = w, code = k < rows_ ? 2 * k + (sk == GLP_NU ? 1 : 0) : -(k - rows_ + 1);
-    }
+    code = binding_rule(in_, norm, 0, [&](int k) { return st[static_cast<size_t>(k)]; },
+                        [&](int k) { return ds.reduced_cost(k); });
     return true;
   }
   return guarded([&] { code = glpk_binding(lp_, in_, norm, 0); });
 }
 
 int glpk_binding(glp_prob* lp, const PolytopeLp& in, const double* row_norm, int first_column) {
-  int code = kBindingUnknown;
-  double best = 0.0;
-  for (int i = 0; i < static_cast<int>(in.A.rows()); ++i) {
-    const int st = glp_get_row_stat(lp, i + 1);
-    // An equality (e.g. Newton's law on an unactuated base) is structure, not a limit one could relax.
-    if (st == GLP_BS || st == GLP_NS || in.row_lo[i] == in.row_hi[i]) continue;
-    const double w = std::abs(glp_get_row_dual(lp, i + 1)) * row_norm[i];
-    if (w > best) {
-      best = w;
-      code = 2 * i + (st == GLP_NU ? 1 : 0);
-    }
-  }
-  for (int j = first_column; j < static_cast<int>(in.A.cols()); ++j) {
-    if (glp_get_col_stat(lp, j + 1) == GLP_BS) continue;
-    const double w = std::abs(glp_get_col_dual(lp, j + 1));
-    if (w > best) {
-      best = w;
-      code = -(j + 1);
-    }
-  }
-  return code;
+  const int rows = static_cast<int>(in.A.rows());
+  return binding_rule(
+      in, row_norm, first_column,
+      [&](int k) { return k < rows ? glp_get_row_stat(lp, k + 1) : glp_get_col_stat(lp, k - rows + 1); },
+      [&](int k) { return k < rows ? glp_get_row_dual(lp, k + 1) : glp_get_col_dual(lp, k - rows + 1); });
 }
 
 // Ranging's certificate (see Ranging): the basis of rg is optimal along (nx, nu), to 1e-11 in every

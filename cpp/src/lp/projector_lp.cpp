@@ -15,7 +15,7 @@ namespace pathpace::detail {
 
 PolytopeProjector::~PolytopeProjector() = default;
 
-int PolytopeProjector::load(const PolytopeLp& in, bool keep_matrix) {
+int PolytopeProjector::load(const PolytopeLp& in) {
   const int rows = static_cast<int>(in.A.rows()), cols = static_cast<int>(in.A.cols());
   // A problem freed by a GLPK error (get() == nullptr) is created again, cold.
   const bool warm = lp_.get() != nullptr && rows == rows_ && cols == cols_;
@@ -23,12 +23,7 @@ int PolytopeProjector::load(const PolytopeLp& in, bool keep_matrix) {
     rows_ = cols_ = -1;
     if (!lp_.create()) return -1;
   }
-  // The matrix is most of a load (dense_triplets and glp_load_matrix). A kept matrix also keeps GLPK's
-  // factorisation of the last basis (a reload invalidates it), so the next simplex starts from that and
-  // its answer can differ from a reloaded one's by rounding.
-  const bool reload = !(warm && keep_matrix && matrix_is_input_);
-  matrix_is_input_ = false;
-  if (reload) dense_triplets(in.A, ia_, ja_, ar_);
+  dense_triplets(in.A, ia_, ja_, ar_);
   glp_prob* lp = lp_.get();
   const bool ok = guarded([&] {
     if (!warm) {
@@ -38,14 +33,13 @@ int PolytopeProjector::load(const PolytopeLp& in, bool keep_matrix) {
     }
     for (int i = 0; i < rows; ++i) glpk_set_bounds(lp, true, i + 1, in.row_lo[i], in.row_hi[i]);
     for (int j = 0; j < cols; ++j) glpk_set_bounds(lp, false, j + 1, in.col_lo[j], in.col_hi[j]);
-    if (reload) glpk_load_triplets(lp, ia_, ja_, ar_);
+    glpk_load_triplets(lp, ia_, ja_, ar_);
     // A new problem starts from an advanced basis; a reloaded one keeps the previous point's statuses.
     if (!warm) glp_adv_basis(lp, 0);
   });
   if (!ok) return -1;
   rows_ = rows;
   cols_ = cols;
-  matrix_is_input_ = true;
   return warm ? 1 : 0;
 }
 
@@ -115,16 +109,16 @@ void fixed_column(glp_prob* lp, const PolytopeLp& in, const double* row_norm, Po
 
 }  // namespace
 
-int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z, bool same_matrix,
-                                FixedColumn* fixed) {
+int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, Eigen::VectorXd& z, FixedColumn* fixed,
+                                std::vector<signed char>* basis) {
   glp_smcp parm;
-  if (!projection_simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) ||
-      load(in, same_matrix) < 0)
+  if (!projection_simplex_parameters(static_cast<int>(in.A.rows()), static_cast<int>(in.A.cols()), parm) || load(in) < 0)
     return -2;
   glp_prob* lp = lp_.get();
-  const int cols = cols_;
+  const int rows = rows_, cols = cols_;
   z_.resize(static_cast<size_t>(cols));
   if (fixed && fixed->label) row_norm_ = in.A.rowwise().norm();
+  if (basis) basis->resize(static_cast<size_t>(rows + cols));
   const double* norm = row_norm_.data();
   double* zp = z_.data();
   const double* cp = c.data();
@@ -135,6 +129,7 @@ int PolytopeProjector::maximize(const PolytopeLp& in, const Eigen::VectorXd& c, 
     if (st == GLP_OPT) {
       for (int j = 0; j < cols; ++j) zp[j] = glp_get_col_prim(lp, j + 1);
       if (fixed) fixed_column(lp, in, norm, *fixed);
+      if (basis) glpk_get_basis(lp, rows, cols, basis->data());
     }
     for (int j = 0; j < cols; ++j) glp_set_obj_coef(lp, j + 1, 0.0);  // project() sets only x's and u's
   });
