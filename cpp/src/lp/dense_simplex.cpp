@@ -34,6 +34,7 @@ void DenseSimplex::load(const PolytopeLp& lp) {
   hi_ << lp.row_hi, lp.col_hi;
   d_.assign(static_cast<size_t>(m_ + n_), 0.0);
   abs_a_ = lp.A.cwiseAbs();
+  at_ = lp.A.transpose();
   s_ = State();
 }
 
@@ -133,6 +134,14 @@ bool DenseSimplex::set_basis(const signed char* stat, bool primal_feasible) {
   return true;
 }
 
+// out = A^T v over v's nonzeros only: y and the rows of B^-1 are exactly zero on the rows whose slack is
+// basic (factorize() leaves them so and a pivot keeps them so: 0 - α 0), most rows of a projection LP.
+void DenseSimplex::transposed_times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+  out.setZero(n_);
+  for (int i = 0; i < m_; ++i)
+    if (v[i] != 0.0) out.noalias() += v[i] * at_.col(i);
+}
+
 void DenseSimplex::price(double vx, double vu) {
   // Multipliers y = B^-T c_B (only x and u have costs), reduced costs d = c - [A, -I]^T y.
   y_.setZero(m_);
@@ -141,7 +150,8 @@ void DenseSimplex::price(double vx, double vu) {
     if (k == m_) y_.noalias() += vx * s_.inv.row(i).transpose();
     else if (k == m_ + 1) y_.noalias() += vu * s_.inv.row(i).transpose();
   }
-  dstruct_.noalias() = -(lp_->A.transpose() * y_);
+  transposed_times(y_, dstruct_);
+  dstruct_ = -dstruct_;
   dstruct_[0] += vx;
   dstruct_[1] += vu;
   for (int k = 0; k < m_ + n_; ++k)
@@ -188,7 +198,6 @@ int DenseSimplex::worst_infeasible(double& target) const {
 // feasible when the path moves a little (only its point leaves the polytope), so this is a few pivots;
 // maximize() then goes on with the primal simplex and the certificate.
 int DenseSimplex::dual_phase(double vx, double vu) {
-  const Eigen::MatrixXd& A = lp_->A;
   for (int it = 0;; ++it) {
     double target = 0.0;
     const int r = worst_infeasible(target);
@@ -204,7 +213,8 @@ int DenseSimplex::dual_phase(double vx, double vu) {
           return kNotDualFeasible;
       }
     // Row r of the tableau: x_B[r] moves by -w_j per unit of nonbasic x_j, w_j = (B^-1 a_j)_r.
-    wstruct_.noalias() = A.transpose() * s_.inv.row(r).transpose();
+    rho_ = s_.inv.row(r).transpose();
+    transposed_times(rho_, wstruct_);
     const int leave = s_.head[static_cast<size_t>(r)];
     const double up = target > s_.value[leave] ? 1.0 : -1.0;  // the direction x_B[r] must move
     auto w_of = [&](int k) { return k < m_ ? -s_.inv(r, k) : wstruct_[k - m_]; };

@@ -90,9 +90,11 @@ class DenseSimplex {
   Eigen::VectorXd lo_, hi_;  // per variable
   State s_;
   std::vector<double> d_;
-  Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_, wstruct_;
+  void transposed_times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
+  Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_, wstruct_, rho_;
   Eigen::RowVectorXd pivot_row_;  // scratch of a pivot's inverse update (no allocation per pivot)
   Eigen::MatrixXd abs_a_;  // |A|, for the certificate's rounding bound
+  Eigen::MatrixXd at_;     // A^T: its column i is A's row i, contiguous
 };
 
 }  // namespace pathpace::detail
