@@ -33,17 +33,27 @@ void DenseSimplex::load(const PolytopeLp& lp) {
   lo_ << lp.row_lo, lp.col_lo;
   hi_ << lp.row_hi, lp.col_hi;
   d_.assign(static_cast<size_t>(m_ + n_), 0.0);
-  abs_a_ = lp.A.cwiseAbs();
   at_ = lp.A.transpose();
+  abs_at_ = at_.cwiseAbs();
+  row_max_ = abs_at_.colwise().maxCoeff().transpose();
   s_ = State();
 }
 
-void DenseSimplex::column(int k, Eigen::VectorXd& a) const {
+// alpha_ = B^-1 a_k. An auxiliary's a_k is -e_k: minus column k of B^-1. A structural's is A's column,
+// and B^-1's column i is -e_(its position) wherever auxiliary i is basic (see replace()), so only the
+// columns of the rows whose auxiliary is nonbasic (a basis's binding rows, few) are multiplied.
+void DenseSimplex::solve_column(int k) {
   if (k < m_) {
-    a.setZero(m_);
-    a[k] = -1.0;
-  } else {
-    a = lp_->A.col(k - m_);
+    alpha_ = -s_.inv.col(k);
+    return;
+  }
+  const auto a = lp_->A.col(k - m_);
+  alpha_.setZero(m_);
+  for (int i = 0; i < m_; ++i)
+    if (a[i] != 0.0 && s_.stat[static_cast<size_t>(i)] != GLP_BS) alpha_.noalias() += a[i] * s_.inv.col(i);
+  for (int i = 0; i < m_; ++i) {
+    const int b = s_.head[static_cast<size_t>(i)];
+    if (b < m_) alpha_[i] -= a[b];
   }
 }
 
@@ -167,9 +177,17 @@ bool DenseSimplex::replace(int r, int q, bool leave_at_lo) {
   s_.stat[static_cast<size_t>(leave)] = lo_[leave] == hi_[leave] ? GLP_NS : leave_at_lo ? GLP_NL : GLP_NU;
   s_.stat[static_cast<size_t>(q)] = GLP_BS;
   s_.head[static_cast<size_t>(r)] = q;
+  // B^-1 <- E B^-1 over the columns where row r is nonzero only: the column of a basic auxiliary k at
+  // position i is exactly -e_i (B^-1 (-e_k) = e_i), zero in row r unless k is the one leaving. The
+  // entering auxiliary's column is set to exactly -e_r, which the rank-one update gives only to rounding.
   pivot_row_.noalias() = s_.inv.row(r) / alpha_[r];
-  s_.inv.noalias() -= alpha_ * pivot_row_;
+  for (int k = 0; k < m_; ++k)
+    if (pivot_row_[k] != 0.0) s_.inv.col(k).noalias() -= pivot_row_[k] * alpha_;
   s_.inv.row(r) = pivot_row_;
+  if (q < m_) {
+    s_.inv.col(q).setZero();
+    s_.inv(r, q) = -1.0;
+  }
   ++pivots;
   if (++s_.updates >= limits.refactor) {
     if (!factorize()) return false;
@@ -246,8 +264,7 @@ int DenseSimplex::dual_phase(double vx, double vu) {
       if (s_.stat[static_cast<size_t>(k)] != GLP_BS) d_[static_cast<size_t>(k)] -= delta * w_of(k);
     d_[static_cast<size_t>(q)] = 0.0;
     d_[static_cast<size_t>(leave)] = -delta;
-    column(q, col_);
-    alpha_.noalias() = s_.inv * col_;
+    solve_column(q);
     const double step = (target - s_.value[leave]) / -alpha_[r];  // x_q's move that puts x_B[r] on its bound
     for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] -= alpha_[i] * step;
     s_.value[q] += step;
@@ -260,8 +277,10 @@ int DenseSimplex::maximize(double vx, double vu) {
   const int dual = dual_phase(vx, vu);
   if (dual != kOptimal) return dual;
   const int total = m_ + n_;
+  bool priced = false;  // y and d are of the current basis (a bound flip keeps both)
   for (int it = 0; it <= limits.max_pivots; ++it) {
-    price(vx, vu);
+    if (!priced) price(vx, vu);
+    priced = false;
     int q = -1;
     double best = 0.0;
     for (int k = 0; k < total; ++k) {
@@ -275,8 +294,7 @@ int DenseSimplex::maximize(double vx, double vu) {
     if (q < 0) return certify() ? kOptimal : kCertificate;
     if (it == limits.max_pivots) return kIterationCap;
     const double dir = d_[static_cast<size_t>(q)] > 0 ? 1.0 : -1.0;
-    column(q, col_);
-    alpha_.noalias() = s_.inv * col_;
+    solve_column(q);
     // Ratio test (Harris's two passes): x_B changes by -alpha dir t.
     double tmax = INFINITY;
     bool small = false;  // a bounding row passed over for its tiny pivot
@@ -312,6 +330,7 @@ int DenseSimplex::maximize(double vx, double vu) {
       s_.stat[static_cast<size_t>(q)] = dir > 0 ? GLP_NU : GLP_NL;
       s_.value[q] = dir > 0 ? hi_[q] : lo_[q];
       ++pivots;
+      priced = true;
       continue;
     }
     s_.value[q] += dir * t;
@@ -323,8 +342,7 @@ int DenseSimplex::maximize(double vx, double vu) {
 void DenseSimplex::bound_range(int k, double& from, double& to) {
   from = to = s_.value[k];
   if (s_.stat[static_cast<size_t>(k)] == GLP_BS) return;
-  column(k, col_);
-  alpha_.noalias() = s_.inv * col_;
+  solve_column(k);
   // x_k = t0 + t moves x_B by -alpha t; each basic variable's bounds limit t (a coefficient at rounding
   // level moves its variable by less than the bound tolerance over any range the audit reuses).
   double lo = -INFINITY, hi = INFINITY;
@@ -355,16 +373,20 @@ bool DenseSimplex::certify() {
   // (or plus) that bound still meets its bound within the tolerance. A basic auxiliary takes the value,
   // a nonbasic one keeps its bound (its row then holds to the tolerance).
   rows_.noalias() = A * z;
-  err_.noalias() = abs_a_ * z.cwiseAbs();
+  const Eigen::VectorXd abs_z = z.cwiseAbs();
   const double gamma = (n_ + 2) * std::numeric_limits<double>::epsilon();
+  // Σ_j |a_kj z_j| <= max_j |a_kj| ||z||_1 (rounded up by the factor 1 + 1e-12, far above the rounding of
+  // these two products): a row well inside its bounds is decided without its exact sum.
+  const double z1 = abs_z.sum() * (1.0 + 1e-12);
   for (int k = 0; k < m_ + n_; ++k) {
     double v = s_.value[k], e = 0.0;
+    const double lo = lo_[k] - bound_tol(lo_[k]), hi = hi_[k] + bound_tol(hi_[k]);
     if (k < m_) {
       v = rows_[k];
-      e = gamma * err_[k];
       if (s_.stat[static_cast<size_t>(k)] == GLP_BS) s_.value[k] = v;
+      e = gamma * row_max_[k] * z1;
+      if (!(v - e >= lo && v + e <= hi)) e = gamma * abs_at_.col(k).dot(abs_z);
     }
-    const double lo = lo_[k] - bound_tol(lo_[k]), hi = hi_[k] + bound_tol(hi_[k]);
     if (v - e >= lo && v + e <= hi) continue;
     // Undecided in double: the row again in extended precision, whose error bound is 2048 times smaller.
     // An equality row of the gravity wrench, summed from much larger terms with cancellation, has a
@@ -402,7 +424,7 @@ bool DenseSimplex::row_within(int k, const Eigen::VectorXd& z, double lo, double
   return v - e >= static_cast<long double>(lo) && v + e <= static_cast<long double>(hi);
 }
 
-void DenseSimplex::tableau_xu(double* tab_x, double* tab_u) const {
+void DenseSimplex::tableau_xu(double* tab_x, double* tab_u) {
   const int total = m_ + n_;
   for (int k = 0; k <= total; ++k) tab_x[k] = tab_u[k] = 0.0;
   for (int i = 0; i < m_; ++i) {
@@ -410,10 +432,11 @@ void DenseSimplex::tableau_xu(double* tab_x, double* tab_u) const {
     if (b != m_ && b != m_ + 1) continue;
     double* out = b == m_ ? tab_x : tab_u;
     // x_B = -B^-1 (N x_N): α_k = -(B^-1 a_k)_i; a_k = -e_k for an auxiliary, A's column for a structural.
-    const Eigen::VectorXd w = -(lp_->A.transpose() * s_.inv.row(i).transpose());
+    rho_ = s_.inv.row(i).transpose();
+    transposed_times(rho_, wstruct_);
     for (int k = 0; k < total; ++k) {
       if (s_.stat[static_cast<size_t>(k)] == GLP_BS) continue;
-      out[k + 1] = k < m_ ? s_.inv(i, k) : w[k - m_];
+      out[k + 1] = k < m_ ? s_.inv(i, k) : -wstruct_[k - m_];
     }
   }
 }

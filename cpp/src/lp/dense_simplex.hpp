@@ -64,7 +64,7 @@ class DenseSimplex {
   double reduced_cost(int k) const { return d_[static_cast<size_t>(k)]; }
   /// GLPK's tableau rows of x and u (x_B = Σ α x_N), 1-based over every variable, zero where x (u) is
   /// nonbasic or the variable is basic.
-  void tableau_xu(double* tab_x, double* tab_u) const;
+  void tableau_xu(double* tab_x, double* tab_u);
   int pivots = 0;  ///< since load (statistics)
   /// The engine's limits (tests force each Outcome through them): pivots per LP, rank-one updates before
   /// B^-1 is computed again from B, the smallest pivot, the smallest reciprocal condition of B.
@@ -80,7 +80,7 @@ class DenseSimplex {
   bool replace(int r, int q, bool leave_at_lo);  // the basis change of a pivot  // y_, dstruct_, d_ for the objective v_x x + v_u u
   int dual_phase(double vx, double vu);  // kOptimal once the basis is primal feasible, else an Outcome
   int worst_infeasible(double& target) const;  // the basis position furthest outside its bounds, or -1
-  void column(int k, Eigen::VectorXd& a) const;  // the constraint column of variable k
+  void solve_column(int k);  // alpha_ = B^-1 a_k, a_k the constraint column of variable k
   bool certify();
   // Row k's value A_k z, in extended precision with its rounding bound, within [lo, hi] (certify's second
   // look at a row that the double evaluation leaves undecided).
@@ -91,10 +91,11 @@ class DenseSimplex {
   State s_;
   std::vector<double> d_;
   void transposed_times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
-  Eigen::VectorXd y_, alpha_, col_, dstruct_, rows_, err_, wstruct_, rho_;
+  Eigen::VectorXd y_, alpha_, dstruct_, rows_, wstruct_, rho_;
   Eigen::RowVectorXd pivot_row_;  // scratch of a pivot's inverse update (no allocation per pivot)
-  Eigen::MatrixXd abs_a_;  // |A|, for the certificate's rounding bound
-  Eigen::MatrixXd at_;     // A^T: its column i is A's row i, contiguous
+  Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous
+  Eigen::MatrixXd abs_at_;  // |A|^T, for the certificate's rounding bound
+  Eigen::VectorXd row_max_;  // max_j |a_ij| per row
 };
 
 }  // namespace pathpace::detail
