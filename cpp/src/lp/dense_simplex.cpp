@@ -235,7 +235,7 @@ int DenseSimplex::dual_phase(double vx, double vu) {
     transposed_times(rho_, wstruct_);
     const int leave = s_.head[static_cast<size_t>(r)];
     const double up = target > s_.value[leave] ? 1.0 : -1.0;  // the direction x_B[r] must move
-    auto w_of = [&](int k) { return k < m_ ? -s_.inv(r, k) : wstruct_[k - m_]; };
+    auto w_of = [&](int k) { return k < m_ ? -rho_[k] : wstruct_[k - m_]; };
     // x_j may move by sign(j) > 0 in its own direction: NL up, NU down, NF either.
     auto eligible = [&](int k, double& w) {
       const signed char st = s_.stat[static_cast<size_t>(k)];

@@ -64,7 +64,7 @@ bool chain_simplex_window(const WindowData& w, const WindowPolicy& policy, Eigen
   gradient(ds, theta, floor, g);
   bool warm = false;
   for (int fw = 0; fw < policy.chain_frank_wolfe; ++fw) {
-    const double gap = cs.gap(theta, g, policy.chain_pivots, warm);
+    const double gap = cs.gap(theta, g, chain_pivot_budget(policy, w.cols), warm);
     if (!std::isfinite(gap)) break;
     ++out.lp_solves;  // an LP, solved without GLPK
     out.lower = std::max(out.lower, out.T - gap);

@@ -24,7 +24,12 @@ struct WindowPolicy {
   /// SLP goes on only if the barrier fails).
   int slp_before_barrier = 2;
   int barrier_steps = 300;     ///< the barrier's Newton step budget (then GLPK SLP goes on)
-  int chain_pivots = 64;       ///< the chain simplex's pivot budget per LP (then the barrier or GLPK)
+  /// The chain simplex's pivot budget per LP (then the barrier or GLPK): this many, or chain_pivots_per_point
+  /// per free point if more. A cold start (the greedy vertex) of a window that every point's row presses
+  /// takes about one pivot per point: a guarantee="continuous" round, whose cuts reach most of the path,
+  /// needed 92 on a 91-point window and went to GLPK SLP at a fixed 64. Each pivot is one banded solve.
+  int chain_pivots = 64;
+  double chain_pivots_per_point = 2.0;
   int chain_frank_wolfe = 6;   ///< its Frank-Wolfe iterations (then the barrier or GLPK)
 };
 
@@ -54,6 +59,9 @@ bool barrier_first(const WindowPolicy& policy, const WindowProgress& progress);
 /// barrier_first); then the barrier if barrier_first or far_start; then GLPK SLP, interrupted once after
 /// slp_before_barrier iterations for the barrier; Done when GLPK SLP has spent max_iterations.
 WindowSolver next_solver(const WindowPolicy& policy, const WindowProgress& progress);
+
+/// The chain simplex's pivot budget per LP on a window of `free_points` unknowns.
+int chain_pivot_budget(const WindowPolicy& policy, int free_points);
 
 /// The iteration count at which GLPK SLP, when it runs, hands back to the policy.
 int slp_pause(const WindowPolicy& policy, const WindowProgress& progress);
