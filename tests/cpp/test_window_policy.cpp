@@ -113,3 +113,13 @@ TEST(WindowPolicy, FarStartIsTheRelativeBracket) {
   EXPECT_FALSE(far_start(policy, 1.0, std::numeric_limits<double>::infinity()));
   EXPECT_FALSE(far_start(policy, 1.0, std::nan("")));
 }
+
+// The chain simplex's pivot budget: the fixed floor on small windows, two pivots per free point on large ones
+// (a cold start takes about one per point).
+TEST(WindowPolicy, ChainPivotBudgetGrowsWithTheWindow) {
+  const WindowPolicy policy;
+  EXPECT_EQ(chain_pivot_budget(policy, 1), policy.chain_pivots);
+  EXPECT_EQ(chain_pivot_budget(policy, 32), policy.chain_pivots);
+  EXPECT_EQ(chain_pivot_budget(policy, 91), 182);
+  EXPECT_EQ(chain_pivot_budget(policy, 1999), 3998);
+}

@@ -89,3 +89,23 @@ def test_continuous_contact_solve_holds_a_dense_independent_audit(robot, kind, m
     # reports): its margin is >= -1e-6 N.
     t = np.append(np.arange(0.0, cont.duration, 1e-3), cont.duration)
     assert np.min(cont.trajectory().contact_forces(t).margin) >= -1e-6
+
+
+def test_a_continuous_round_is_certified_by_the_chain_simplex():
+    # The Romeo lean's audit rounds cut most of its 101 points: each round's window starts cold from the greedy
+    # vertex and its chain simplex needs about one pivot per point (92 on this 91-point window), which a fixed
+    # budget of 64 sent to GLPK SLP from the sixth round on. The last round's window is certified by the chain
+    # simplex alone (no SLP iteration), to the solver's tolerance. (The chain simplex against GLPK on random
+    # chains: tests/cpp/test_chain_simplex.cpp.)
+    case = next(c for c in cc.hard_cases() if (c.robot, c.kind) == ("romeo", "lean"))
+    h = cc.load("romeo")
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["romeo"])
+    prob = pp.TimeScalingProblem(path, grid=100)
+    prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4,
+                      torque_scale=cc.HARD_TORQUE_SCALE[("romeo", "lean")], **cc.HARD_MARGINS["fn1.5"])
+    grid, cont = prob.solve(), prob.solve(guarantee="continuous")
+    assert cont.status == pp.Status.OPTIMAL, cont.message
+    assert cont.stats["audit_rounds"] >= 6 and cont.stats["audit_cuts"] >= 100
+    assert cont.stats["slp_iterations"] == 0 and cont.stats["gap"] <= 1e-7
+    assert cont.duration >= grid.duration * (1 - 1e-9)
