@@ -250,3 +250,45 @@ TEST(ContactSlice, EdgesAreThePolygonsBoundaryAlongU) {
   EXPECT_GT(wide, 20);
   EXPECT_GT(sloped, 10);
 }
+
+// Warm starts across calls (SliceStarts): a call's samples started from the optimal bases another call found
+// at other points, from bases that do not fit (the wrong size, or no basis at all), or from none, give the
+// same slices; found holds a basis per end that had an optimum.
+TEST(ContactSlice, StartsFromAnotherCallGiveTheSameSlices) {
+  auto model = lifter_with_box();
+  const ContactConstraint c(model, corners(0.5), box_options(0.5));
+  const PathSamples first = lifter_samples(6), second = lifter_samples(11);
+  const Eigen::VectorXd u1 = Eigen::VectorXd::LinSpaced(first.size(), -2.0, 3.0);
+  const Eigen::VectorXd u2 = Eigen::VectorXd::LinSpaced(second.size(), 3.5, -2.5);
+  Eigen::VectorXd lo, hi, lo_ref, hi_ref, lo_w, hi_w;
+  SliceStarts found;
+  c.slice(first, u1, lo, hi, nullptr, nullptr, &found);
+  int kept = 0;
+  for (int end = 0; end < 2; ++end) {
+    ASSERT_EQ(found.found[end].size(), static_cast<size_t>(first.size()));
+    for (Eigen::Index p = 0; p < first.size(); ++p) {
+      const bool optimum = end == 0 ? std::isfinite(hi[p]) : std::isfinite(lo[p]);
+      if (optimum && lo[p] <= hi[p]) EXPECT_FALSE(found.found[end][static_cast<size_t>(p)].empty()) << p;
+      kept += !found.found[end][static_cast<size_t>(p)].empty();
+    }
+  }
+  EXPECT_GT(kept, first.size());
+  c.slice(second, u2, lo_ref, hi_ref);
+  // The second call's samples in reverse order of s against the first's: each starts from the first call's
+  // basis at the nearest point, every third from a start of the wrong size, every fifth from a non-basis.
+  SliceStarts warm;
+  for (int end = 0; end < 2; ++end)
+    for (Eigen::Index p = 0; p < second.size(); ++p) {
+      const Eigen::Index near = std::min<Eigen::Index>(first.size() - 1, (second.size() - 1 - p) / 2);
+      std::vector<signed char> b = found.found[end][static_cast<size_t>(near)];
+      if (p % 3 == 2) b.push_back(1);
+      if (p % 5 == 4) b.assign(b.size(), 1);
+      warm.start[end].push_back(b);
+    }
+  c.slice(second, u2, lo_w, hi_w, nullptr, nullptr, &warm);
+  for (Eigen::Index p = 0; p < second.size(); ++p)
+    for (auto [a, b] : {std::pair{lo_w[p], lo_ref[p]}, std::pair{hi_w[p], hi_ref[p]}}) {
+      if (std::isinf(b)) EXPECT_EQ(a, b) << "sample " << p;
+      else EXPECT_NEAR(a, b, 1e-9 * std::max(1.0, std::abs(b))) << "sample " << p << " u " << u2[p];
+    }
+}

@@ -15,7 +15,8 @@ std::shared_ptr<const Constraint> Constraint::at_grid_points(const std::vector<E
 }
 
 int Constraint::slice(const PathSamples& /*samples*/, const Eigen::VectorXd& /*u*/, Eigen::VectorXd& /*x_lo*/,
-                      Eigen::VectorXd& /*x_hi*/, const Eigen::VectorXd* /*x*/, SliceEdges* /*edges*/) const {
+                      Eigen::VectorXd& /*x_hi*/, const Eigen::VectorXd* /*x*/, SliceEdges* /*edges*/,
+                      SliceStarts* /*starts*/) const {
   throw Error("constraint '" + name() + "' is not a projection (projected is false)");
 }
 

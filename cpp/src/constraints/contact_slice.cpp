@@ -16,7 +16,8 @@
 namespace pathpace {
 
 int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-                             Eigen::VectorXd& x_hi, const Eigen::VectorXd* x, SliceEdges* edges) const {
+                             Eigen::VectorXd& x_hi, const Eigen::VectorXd* x, SliceEdges* edges,
+                             SliceStarts* starts) const {
   const int n = robot_->nq();
   if (samples.dof() != n)
     detail::fail("path has " + std::to_string(samples.dof()) + " coordinates, robot '" + robot_->name() + "' has " +
@@ -55,6 +56,21 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
   Eigen::MatrixXd a, b, c;  // eq. (12) at every sample
   robot_->path_torque_coefficients_batch(ws, samples.q, samples.dq, samples.ddq, a, b, c);
   detail::SliceLp solver;
+  // Each end starts from the caller's basis for the sample if it has one (an earlier call's, nearby: a peak
+  // search's samples lie in intervals far apart, each near its own interval's earlier samples), else from
+  // the sample before.
+  const bool have_starts = starts && starts->start[0].size() == static_cast<size_t>(P) &&
+                           starts->start[1].size() == static_cast<size_t>(P);
+  if (starts)
+    for (auto& f : starts->found) f.assign(static_cast<size_t>(P), {});
+  auto start_of = [&](int end, Eigen::Index p) -> const std::vector<signed char>* {
+    if (!have_starts) return nullptr;
+    const std::vector<signed char>& b = starts->start[end][static_cast<size_t>(p)];
+    return b.empty() ? nullptr : &b;
+  };
+  auto keep = [&](int end, Eigen::Index p, int st) {
+    if (starts && st == 1) starts->found[end][static_cast<size_t>(p)] = solver.basis(end);
+  };
   // A sample at the same path point as the one that built `lp` (a caller asking several s̈ at one point)
   // has the same LP but for u's bounds: not built again.
   Eigen::Index built = -1;
@@ -78,7 +94,8 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
     solver.load(lp);
     double top = 0.0, bottom = 0.0;
     ++lps;
-    const int st = solver.extreme(1.0, top, edges ? &fixed : nullptr);
+    const int st = solver.extreme(1.0, top, edges ? &fixed : nullptr, start_of(0, p));
+    keep(0, p, st);
     if (st == 0) {
       x_lo[p] = inf;
       x_hi[p] = -inf;
@@ -92,7 +109,8 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
       continue;
     }
     ++lps;
-    const int sl = solver.extreme(-1.0, bottom, edges ? &fixed : nullptr);
+    const int sl = solver.extreme(-1.0, bottom, edges ? &fixed : nullptr, start_of(1, p));
+    keep(1, p, sl);
     x_lo[p] = sl == 1 ? bottom : (sl == 0 ? inf : nan);
     if (edges && sl == 1) edge(p, -1.0, edges->lo_slope, edges->lo_from, edges->lo_to, edges->lo_label);
   }

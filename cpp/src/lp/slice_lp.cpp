@@ -10,12 +10,15 @@ void SliceLp::load(const PolytopeLp& lp) {
   norms_ = false;
 }
 
-int SliceLp::extreme(double sign, double& x, PolytopeProjector::FixedColumn* fixed) {
+int SliceLp::extreme(double sign, double& x, PolytopeProjector::FixedColumn* fixed,
+                     const std::vector<signed char>* start) {
   const PolytopeLp& lp = *lp_;
   const int end = sign > 0 ? 0 : 1, rows = static_cast<int>(lp.A.rows());
   std::vector<signed char>& basis = basis_[end];
   if (fixed && fixed->label && !norms_) row_norm_ = lp.A.rowwise().norm(), norms_ = true;
-  if (!basis.empty() && dense_.set_basis(basis.data(), false) &&
+  const size_t total = static_cast<size_t>(rows + lp.A.cols());
+  if (start && start->size() == total) basis = *start;
+  if (basis.size() == total && dense_.set_basis(basis.data(), false) &&
       dense_.maximize(sign, 0.0) == DenseSimplex::kOptimal) {
     ++dense;
     const std::vector<signed char>& stat = dense_.state().stat;

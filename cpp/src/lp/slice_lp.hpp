@@ -22,8 +22,12 @@ class SliceLp {
   /// The next sample's LP, its bounds final (kept by reference until the next load).
   void load(const PolytopeLp& lp);
   /// Maximise sign x (+1: the slice's top, -1: its bottom). 1: optimal, x the optimum's x (not times
-  /// sign) and `fixed` (if given) u's column; 0: the slice is empty; -1: the solver failed.
-  int extreme(double sign, double& x, PolytopeProjector::FixedColumn* fixed);
+  /// sign) and `fixed` (if given) u's column; 0: the slice is empty; -1: the solver failed. The dense
+  /// simplex starts from `start` if given (a basis of this LP's shape), else from this end's last optimum.
+  int extreme(double sign, double& x, PolytopeProjector::FixedColumn* fixed,
+              const std::vector<signed char>* start = nullptr);
+  /// This end's last optimal basis (0 the top, 1 the bottom; empty: none).
+  const std::vector<signed char>& basis(int end) const { return basis_[end]; }
   int dense = 0, glpk = 0;  ///< LPs each engine answered (statistics)
 
  private:

@@ -1,4 +1,5 @@
 #include "solve/continuous.hpp"
+#include "solve/auditor.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -104,30 +105,26 @@ void add_kinematic_continuous_rows(const Path& path, const PathSamples& samples,
   }
 }
 
-namespace {
-
-// Relative violation of row (a, b, c) at λ on an interval with θ_k = t0, θ_{k+1} = t1, u = (t1 - t0)/(2Δs).
 double violation(double a, double b, double c, double lam, double t0, double t1, double u) {
   if (c == std::numeric_limits<double>::infinity()) return -std::numeric_limits<double>::infinity();
   const double ax = a * ((1.0 - lam) * t0 + lam * t1), bu = b * u;
   return (ax + bu - c) / std::max({std::abs(c), std::abs(ax) + std::abs(bu), 1e-300});
 }
 
-// An upper bound of v on [la, lb] from its end values, if v'' >= -K there: the chord plus K τ (h - τ) / 2.
-double bump_bound(double la, double va, double lb, double vb, double K) {
-  const double h = lb - la, slope = (vb - va) / h;
-  const double tau = K > 0.0 ? std::clamp(0.5 * h + slope / K, 0.0, h) : (slope > 0.0 ? h : 0.0);
-  return va + slope * tau + 0.5 * K * tau * (h - tau);
-}
-
-// A contact constraint's violation at one point: x beyond the polygon's slice [lo, hi] at the timing's u,
-// relative to x's own size (as a row's violation is relative to its terms); an empty slice (no x at
-// all fits this u) or a failed LP counts as a full violation, which the cut's projection then settles.
 double slice_violation(double x, double lo, double hi) {
   if (std::isnan(lo) || std::isnan(hi) || lo > hi) return 1.0;
   const double over = std::max(x - hi, lo - x);
   if (over == -std::numeric_limits<double>::infinity()) return over;
   return over / std::max({std::abs(x), std::isfinite(hi) ? std::abs(hi) : 0.0, 1e-300});
+}
+
+namespace {
+
+// An upper bound of v on [la, lb] from its end values, if v'' >= -K there: the chord plus K τ (h - τ) / 2.
+double bump_bound(double la, double va, double lb, double vb, double K) {
+  const double h = lb - la, slope = (vb - va) / h;
+  const double tau = K > 0.0 ? std::clamp(0.5 * h + slope / K, 0.0, h) : (slope > 0.0 ? h : 0.0);
+  return va + slope * tau + 0.5 * K * tau * (h - tau);
 }
 
 // The same from a polygon's rows (row r of `rows`): the slice at u is where every row a x + b u <= c holds.
@@ -149,76 +146,7 @@ double second_difference(double la, double va, double lb, double vb, double lc, 
   return 2.0 * ((vc - vb) / (lc - lb) - (vb - va) / (lb - la)) / (lc - la);
 }
 
-// One audit_and_cut call: the data its stages share. Per constraint (audit_constraint): the intervals
-// whose speeds changed, their samples (contact slices in one batch), the path-wide concavity bound, the
-// brackets it does not clear, their peaks (maximize_batch), and the cuts there.
-class Auditor {
- public:
-  Auditor(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
-          const std::vector<std::shared_ptr<const Constraint>>& constraints, const std::vector<ConstraintRows>& grid_rows,
-          const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra, AuditMemory& memory)
-      : path_(path), s_(s), theta_(theta), constraints_(constraints), grid_rows_(grid_rows), row_offset_(row_offset),
-        points_(points), tolerance_(tolerance), extra_(extra), memory_(memory), N_(s.size() - 1) {}
-  Audit run();
-
- private:
-  static constexpr double kInf = std::numeric_limits<double>::infinity();
-  void size_memory();
-  void audit_constraint(size_t ci);
-  PathSamples samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const;
-  double u_of(Eigen::Index k) const { return (theta_[k + 1] - theta_[k]) / (2.0 * (s_[k + 1] - s_[k])); }
-  double x_of(Eigen::Index k, double l) const { return (1.0 - l) * theta_[k] + l * theta_[k + 1]; }
-  double worst_row(const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) const;
-  void violations(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& kk,
-                  const std::vector<double>& ll, std::vector<double>& f);
-  void coarse_rows(size_t ci);
-  std::vector<Eigen::Index> intervals_to_audit(size_t ci);
-  void contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo, std::vector<size_t>& first,
-                     std::vector<double>& f);
-  // The kept slice of interval k's sample m (contact_batch's order: Chebyshev points, then cut points).
-  AuditMemory::Slices& slice_memo(size_t ci, Eigen::Index k, size_t m) {
-    const size_t pts = static_cast<size_t>(points_);
-    return m < pts ? memory_.slices[ci][static_cast<size_t>(k) * pts + m]
-                   : memory_.cut_points[ci][static_cast<size_t>(k)][m - pts].slice;
-  }
-  void contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
-                       const std::vector<Eigen::Index>& todo, std::vector<double>& f);
-  void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
-                        const std::vector<size_t>& first, const std::vector<double>& fc);
-  void path_curvature(size_t ci, const std::vector<Eigen::Index>& todo);
-  double K_of(Eigen::Index k, double curvature) const {
-    const double h = s_[k + 1] - s_[k];
-    return 4.0 * curvature * h * h;
-  }
-  void brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBracket>& cand, std::vector<Eigen::Index>& at,
-                std::vector<double>& curvature) const;
-  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
-           const std::vector<std::pair<double, double>>& span);
-  void contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
-                    const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named);
-  void add_cut(size_t ci, Eigen::Index k, double l, double a, double b, double c, const std::string& label,
-               const std::map<std::string, int>& named);
-  void add_broken_rows(size_t ci, const ConstraintRows& rr, Eigen::Index r, Eigen::Index k, double l,
-                       const std::map<std::string, int>& named);
-
-  const Path& path_;
-  const Eigen::VectorXd& s_;
-  const Eigen::VectorXd& theta_;
-  const std::vector<std::shared_ptr<const Constraint>>& constraints_;
-  const std::vector<ConstraintRows>& grid_rows_;
-  const std::vector<int>& row_offset_;
-  const int points_;
-  const double tolerance_;
-  IntervalExtra& extra_;
-  AuditMemory& memory_;
-  const Eigen::Index N_;
-  Audit audit_;
-  std::vector<double> lam_;            // the Chebyshev points in λ
-  std::vector<Eigen::Index> ks_;       // a batch of samples: interval ks_[i] at λ ls_[i]
-  std::vector<double> ls_;
-  std::vector<std::vector<double>> Ls_, Vs_;  // [interval to audit]: its samples, sorted and merged
-  std::vector<double> curvature_;             // [interval to audit]: its bound on -v''(s) (path_curvature)
-};
+}  // namespace
 
 Audit Auditor::run() {
   std::vector<size_t> which;
@@ -250,6 +178,7 @@ void Auditor::size_memory() {
   }
   if (memory_.slices.size() != n) memory_.slices.assign(n, {});
   if (memory_.curvature.size() != n) memory_.curvature.assign(n, std::vector<double>(static_cast<size_t>(N_), 0.0));
+  if (memory_.bases.size() != n) memory_.bases.assign(n, std::vector<std::array<std::vector<signed char>, 2>>(static_cast<size_t>(N_)));
 }
 
 // Per interval and constraint, the violation at λ is the largest relative violation over the
@@ -323,7 +252,9 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
       u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
       x[static_cast<Eigen::Index>(i)] = x_of(kk[i], ll[i]);
     }
-    audit_.lps += contact->slice(ps, u, lo, hi, &x);
+    SliceStarts st = starts_for(ci, kk);
+    audit_.lps += contact->slice(ps, u, lo, hi, &x, nullptr, &st);
+    keep_bases(ci, kk, st);
     for (size_t i = 0; i < kk.size(); ++i)
       f[i] = slice_violation(x[static_cast<Eigen::Index>(i)], lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
     return;
@@ -363,97 +294,6 @@ std::vector<Eigen::Index> Auditor::intervals_to_audit(size_t ci) {
   return todo;
 }
 
-// A contact constraint's samples, all in one batch (one warm-started LP sequence): the Chebyshev points
-// and the earlier cut points of every interval to audit, into (ks_, ls_), interval todo[t]'s from
-// first[t] to first[t + 1]; f their violations.
-void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo,
-                            std::vector<size_t>& first, std::vector<double>& f) {
-  ks_.clear();
-  ls_.clear();
-  for (size_t t = 0; t < todo.size(); ++t) {
-    const Eigen::Index k = todo[t];
-    first[t] = ks_.size();
-    for (int m = 0; m < points_; ++m) {
-      ks_.push_back(k);
-      ls_.push_back(lam_[static_cast<size_t>(m)]);
-    }
-    for (const AuditMemory::Point& pt : memory_.cut_points[ci][static_cast<size_t>(k)]) {
-      ks_.push_back(k);
-      ls_.push_back(pt.lam);
-    }
-  }
-  first[todo.size()] = ks_.size();
-  contact_samples(cc, ci, first, todo, f);
-}
-
-// A contact constraint's samples (ks_[i], ls_[i]) of the intervals todo[t] (samples first[t] ..
-// first[t + 1]: `points` Chebyshev points, then cut points): a sample whose slice edges from an earlier
-// round cover this u (SliceEdges: each end of the slice is exactly linear in u over its range) has its
-// slice without an LP; every other sample gets its slice by LPs (the bottom's skipped where x is above
-// the top), with its edges kept for the rounds after.
-void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
-                              const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
-  const std::vector<Eigen::Index>& kk = ks_;
-  const std::vector<double>& ll = ls_;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto& memo = memory_.slices[ci];
-  if (memo.size() != static_cast<size_t>(N_ * points_)) memo.assign(static_cast<size_t>(N_ * points_), {});
-  const double cap = cc.projection_cap();
-  f.assign(kk.size(), nan);
-  std::vector<Eigen::Index> bk;
-  std::vector<double> bl, bu, bx;
-  std::vector<size_t> main_of;  // per sample asked: its index in kk
-  for (size_t t = 0; t < todo.size(); ++t)
-    for (size_t i = first[t]; i < first[t + 1]; ++i) {
-      const Eigen::Index k = kk[i];
-      const double u = u_of(k), x = x_of(k, ll[i]);
-      const AuditMemory::Slices& M = slice_memo(ci, k, i - first[t]);
-      if (M.hi_from <= u && u <= M.hi_to) {
-        const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
-        const bool bottom = M.lo_from <= u && u <= M.lo_to;
-        if (x > hi || bottom) {  // above the top the bottom does not matter (slice(..., &x))
-          f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
-          ++audit_.reused;
-          continue;
-        }
-      }
-      bk.push_back(k);
-      bl.push_back(ll[i]);
-      bu.push_back(u);
-      bx.push_back(x);
-      main_of.push_back(i);
-    }
-  if (bk.empty()) return;
-  const PathSamples ps = samples_at(bk, bl);
-  Eigen::VectorXd lo, hi;
-  SliceEdges edges;
-  const Eigen::Index n = static_cast<Eigen::Index>(bu.size());
-  const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(bx.data(), n);
-  audit_.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges);
-  size_t t = 0;
-  for (size_t q = 0; q < bk.size(); ++q) {
-    const size_t i = main_of[q];
-    const Eigen::Index e = static_cast<Eigen::Index>(q);
-    f[i] = slice_violation(bx[q], lo[e], hi[e]);
-    while (first[t + 1] <= i) ++t;
-    AuditMemory::Slices& M = slice_memo(ci, bk[q], i - first[t]);
-    M = AuditMemory::Slices();
-    M.u = bu[q];
-    // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
-    if (std::isnan(hi[e]) || std::isnan(lo[e]) || lo[e] > hi[e]) continue;
-    M.hi_capped = hi[e] == kInf || hi[e] >= cap * (1.0 - 1e-9);
-    M.hi = hi[e];
-    M.hi_slope = edges.hi_slope[e];
-    M.hi_from = edges.hi_from[e];
-    M.hi_to = edges.hi_to[e];
-    if (lo[e] > -kInf) {  // -inf: its LP was skipped (x above the top)
-      M.lo = lo[e];
-      M.lo_slope = edges.lo_slope[e];
-      M.lo_from = edges.lo_from[e];
-      M.lo_to = edges.lo_to[e];
-    }
-  }
-}
 
 // Each interval's samples: both grid points (the grid's own rows), the Chebyshev points, and the points
 // where the interval was cut before (the timing is tight there, and a violation next to one would lie
@@ -563,12 +403,6 @@ void Auditor::brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBr
   }
 }
 
-// Contact cuts per interval and round besides its peak's (contact_cuts): each round's single cut at the
-// peak leaves the peak between two cuts, which quarters the violation from round to round (x(λ) follows
-// the chord of the limit between them); rows at 3 more points of the peak's bracket divide that gap by 4,
-// the violation by 16 (measured in bench/README.md, issue 27).
-constexpr int kSpread = 3;
-
 // One cut per interval and round, at its largest violation: every row broken at the peak, as a row of the
 // interval (exact, see the header), labelled as the problem's own row of that name (the constraint's
 // first row if it has none). A contact constraint's cut is the polygon's edge there, with kSpread more
@@ -631,62 +465,7 @@ void Auditor::add_broken_rows(size_t ci, const ConstraintRows& rr, Eigen::Index 
       add_cut(ci, k, l, rr.a(r, j), rr.b(r, j), rr.c(r, j), rr.labels[static_cast<size_t>(j)], named);
 }
 
-// A contact constraint's cuts at the peaks (ks_, ls_) of the brackets cuts[q]: the polygon's edge through
-// the end of its slice that the timing's (x, u) is beyond (SliceEdges; the polygon lies on its side of
-// that line, so the row is exact), one LP per end instead of a projection of the polygon. A slice that
-// is empty there (u outside the polygon) or whose LP failed has no such edge: that point's polygon is
-// projected, and its broken rows cut. Besides the peak, the top edges at kSpread points evenly inside
-// the peak's bracket (span: its samples), broken or not.
-void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
-                           const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named) {
-  std::vector<Eigen::Index> ks;
-  std::vector<char> spread;  // per point: 0 a peak, 1 a spread point
-  for (size_t q = 0; q < cuts.size(); ++q) {
-    ks.push_back(at[cuts[q]]);
-    spread.push_back(0);
-  }
-  for (size_t q = 0; q < cuts.size(); ++q) {
-    const auto [a, c] = span[cuts[q]];
-    for (int j = 1; j <= kSpread; ++j) {
-      const double l = a + (c - a) * j / (kSpread + 1.0);
-      if (std::abs(l - ls_[q]) < 1e-2 * (c - a)) continue;  // the peak's own
-      ks.push_back(at[cuts[q]]);
-      ls_.push_back(l);
-      spread.push_back(1);
-    }
-  }
-  const Constraint& cc = *constraints_[ci];
-  Eigen::VectorXd u(static_cast<Eigen::Index>(ks.size())), lo, hi;
-  for (size_t q = 0; q < ks.size(); ++q) u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
-  SliceEdges edges;
-  edges.labels = true;
-  audit_.lps += cc.slice(samples_at(ks, ls_), u, lo, hi, nullptr, &edges);
-  const double cap = cc.projection_cap();
-  std::vector<Eigen::Index> pk;  // the points to project
-  std::vector<double> pl;
-  for (size_t q = 0; q < ks.size(); ++q) {
-    const Eigen::Index k = ks[q], e = static_cast<Eigen::Index>(q);
-    const double l = ls_[q], x = x_of(k, l), uq = u[e];
-    if (!spread[q]) memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, {}, {}, {}, {}});
-    if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) {
-      if (spread[q]) continue;
-      pk.push_back(k);
-      pl.push_back(l);
-      continue;
-    }
-    // x <= hi + s (u' - u) and x >= lo + s' (u' - u), as rows a x + b u' <= c.
-    if (hi[e] < cap * (1.0 - 1e-9) && (spread[q] || violation(1.0, 0.0, hi[e], 0.0, x, x, 0.0) > tolerance_))
-      add_cut(ci, k, l, 1.0, -edges.hi_slope[e], hi[e] - edges.hi_slope[e] * uq, edges.hi_label[static_cast<size_t>(q)], named);
-    if (violation(-1.0, 0.0, -lo[e], 0.0, x, x, 0.0) > tolerance_)
-      add_cut(ci, k, l, -1.0, edges.lo_slope[e], edges.lo_slope[e] * uq - lo[e], edges.lo_label[static_cast<size_t>(q)], named);
-  }
-  if (pk.empty()) return;
-  const ConstraintRows rr = cc.evaluate(samples_at(pk, pl));
-  audit_.projections += static_cast<int>(pk.size());
-  for (size_t q = 0; q < pk.size(); ++q) add_broken_rows(ci, rr, static_cast<Eigen::Index>(q), pk[q], pl[q], named);
-}
 
-}  // namespace
 
 Audit audit_and_cut(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
                     const std::vector<std::shared_ptr<const Constraint>>& constraints,

@@ -11,6 +11,7 @@
 // (θ(s) = (1 - λ)θ_k + λθ_{k+1}, u = (θ_{k+1} - θ_k)/(2Δs_k)): an exact constraint of the timing, not a
 // margin, so the cuts cost T only what the limits between grid points really demand.
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -57,6 +58,9 @@ struct AuditMemory {
   /// [constraint][interval]: the largest concavity of v in s that the interval's samples showed in any
   /// round (part of the screen's bound, kept from round to round).
   std::vector<std::vector<double>> curvature;
+  /// [constraint][interval]: the last optimal bases of a contact constraint's slice LPs in the interval
+  /// (top, bottom), the warm starts of its next samples there (SliceStarts).
+  std::vector<std::vector<std::array<std::vector<signed char>, 2>>> bases;
 };
 
 struct Audit {

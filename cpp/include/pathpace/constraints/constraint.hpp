@@ -120,6 +120,15 @@ struct SliceEdges {
   std::vector<std::string> lo_label, hi_label;
 };
 
+/// Warm starts of a projected constraint's slice LPs across calls (Constraint::slice): per sample p and end
+/// (0 the top, 1 the bottom), start[end][p] (in, if sized to the samples) is an optimal basis that an earlier
+/// call found at a nearby sample, empty for none, and found[end][p] (out) the optimal basis of this one's LP,
+/// empty where that end had no LP or the LP failed. A basis is the constraint's own code, meaningful only to
+/// the constraint that wrote it; a start that does not fit is ignored.
+struct SliceStarts {
+  std::vector<std::vector<signed char>> start[2], found[2];
+};
+
 // docstrings.txt @@ Constraint
 /// @brief Base of all constraints: half-planes a·x + b·u <= c per grid point, x = ṡ², u = s̈ (eq. 9).
 ///
@@ -241,9 +250,10 @@ class Constraint {
   /// samples.s[p], without projecting; returns the LPs spent (see ContactConstraint::slice). With `x`
   /// (one per sample), x_lo[p] is left at -inf, without its LP, where x[p] > x_hi[p]: x's distance
   /// beyond the slice is then x[p] - x_hi[p], whatever x_lo[p] is. With `edges`, also the polygon's
-  /// edges through the slice's ends (SliceEdges).
+  /// edges through the slice's ends (SliceEdges); with `starts`, its LPs' warm starts (SliceStarts).
   virtual int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-                    Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr, SliceEdges* edges = nullptr) const;
+                    Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr, SliceEdges* edges = nullptr,
+                    SliceStarts* starts = nullptr) const;
   /// For a projected() constraint: the stand-in bound on x where nothing else bounds it (its polygons are
   /// cut there; slice reports +inf instead).
   virtual double projection_cap() const { return std::numeric_limits<double>::infinity(); }

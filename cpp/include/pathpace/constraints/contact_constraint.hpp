@@ -189,7 +189,8 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// `edges`, each end's edge from its LP's sensitivity to u's bound (no further LP). Returns the number
   /// of LPs solved.
   int slice(const PathSamples& samples, const Eigen::VectorXd& u, Eigen::VectorXd& x_lo,
-            Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr, SliceEdges* edges = nullptr) const override;
+            Eigen::VectorXd& x_hi, const Eigen::VectorXd* x = nullptr, SliceEdges* edges = nullptr,
+            SliceStarts* starts = nullptr) const override;
 
   // docstrings.txt @@ ContactConstraint.projected_contacts
   /// Indices of the contacts whose cone weights enter the projection LPs: all of them, or the convex-hull

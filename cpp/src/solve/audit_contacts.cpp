@@ -1,0 +1,175 @@
+// The continuous audit's contact part (see solve/auditor.hpp): a contact constraint's samples by slice LPs
+// (ContactConstraint::slice), warm-started per interval across calls and rounds, and its cuts from the slices'
+// edges.
+#include "solve/auditor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pathpace::detail {
+
+// Warm starts of the slice LPs at samples in intervals ks: each interval's last optimal bases.
+SliceStarts Auditor::starts_for(size_t ci, const std::vector<Eigen::Index>& ks) const {
+  SliceStarts st;
+  for (int end = 0; end < 2; ++end) {
+    st.start[end].reserve(ks.size());
+    for (Eigen::Index k : ks) st.start[end].push_back(memory_.bases[ci][static_cast<size_t>(k)][static_cast<size_t>(end)]);
+  }
+  return st;
+}
+
+void Auditor::keep_bases(size_t ci, const std::vector<Eigen::Index>& ks, const SliceStarts& st) {
+  for (int end = 0; end < 2; ++end)
+    for (size_t q = 0; q < ks.size() && q < st.found[end].size(); ++q)
+      if (!st.found[end][q].empty()) memory_.bases[ci][static_cast<size_t>(ks[q])][static_cast<size_t>(end)] = st.found[end][q];
+}
+// A contact constraint's samples, all in one batch (one warm-started LP sequence): the Chebyshev points
+// and the earlier cut points of every interval to audit, into (ks_, ls_), interval todo[t]'s from
+// first[t] to first[t + 1]; f their violations.
+void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo,
+                            std::vector<size_t>& first, std::vector<double>& f) {
+  ks_.clear();
+  ls_.clear();
+  for (size_t t = 0; t < todo.size(); ++t) {
+    const Eigen::Index k = todo[t];
+    first[t] = ks_.size();
+    for (int m = 0; m < points_; ++m) {
+      ks_.push_back(k);
+      ls_.push_back(lam_[static_cast<size_t>(m)]);
+    }
+    for (const AuditMemory::Point& pt : memory_.cut_points[ci][static_cast<size_t>(k)]) {
+      ks_.push_back(k);
+      ls_.push_back(pt.lam);
+    }
+  }
+  first[todo.size()] = ks_.size();
+  contact_samples(cc, ci, first, todo, f);
+}
+
+// A contact constraint's samples (ks_[i], ls_[i]) of the intervals todo[t] (samples first[t] ..
+// first[t + 1]: `points` Chebyshev points, then cut points): a sample whose slice edges from an earlier
+// round cover this u (SliceEdges: each end of the slice is exactly linear in u over its range) has its
+// slice without an LP; every other sample gets its slice by LPs (the bottom's skipped where x is above
+// the top), with its edges kept for the rounds after.
+void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
+                              const std::vector<Eigen::Index>& todo, std::vector<double>& f) {
+  const std::vector<Eigen::Index>& kk = ks_;
+  const std::vector<double>& ll = ls_;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto& memo = memory_.slices[ci];
+  if (memo.size() != static_cast<size_t>(N_ * points_)) memo.assign(static_cast<size_t>(N_ * points_), {});
+  const double cap = cc.projection_cap();
+  f.assign(kk.size(), nan);
+  std::vector<Eigen::Index> bk;
+  std::vector<double> bl, bu, bx;
+  std::vector<size_t> main_of;  // per sample asked: its index in kk
+  for (size_t t = 0; t < todo.size(); ++t)
+    for (size_t i = first[t]; i < first[t + 1]; ++i) {
+      const Eigen::Index k = kk[i];
+      const double u = u_of(k), x = x_of(k, ll[i]);
+      const AuditMemory::Slices& M = slice_memo(ci, k, i - first[t]);
+      if (M.hi_from <= u && u <= M.hi_to) {
+        const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
+        const bool bottom = M.lo_from <= u && u <= M.lo_to;
+        if (x > hi || bottom) {  // above the top the bottom does not matter (slice(..., &x))
+          f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
+          ++audit_.reused;
+          continue;
+        }
+      }
+      bk.push_back(k);
+      bl.push_back(ll[i]);
+      bu.push_back(u);
+      bx.push_back(x);
+      main_of.push_back(i);
+    }
+  if (bk.empty()) return;
+  const PathSamples ps = samples_at(bk, bl);
+  Eigen::VectorXd lo, hi;
+  SliceEdges edges;
+  const Eigen::Index n = static_cast<Eigen::Index>(bu.size());
+  const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(bx.data(), n);
+  SliceStarts st = starts_for(ci, bk);
+  audit_.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges, &st);
+  keep_bases(ci, bk, st);
+  size_t t = 0;
+  for (size_t q = 0; q < bk.size(); ++q) {
+    const size_t i = main_of[q];
+    const Eigen::Index e = static_cast<Eigen::Index>(q);
+    f[i] = slice_violation(bx[q], lo[e], hi[e]);
+    while (first[t + 1] <= i) ++t;
+    AuditMemory::Slices& M = slice_memo(ci, bk[q], i - first[t]);
+    M = AuditMemory::Slices();
+    M.u = bu[q];
+    // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
+    if (std::isnan(hi[e]) || std::isnan(lo[e]) || lo[e] > hi[e]) continue;
+    M.hi_capped = hi[e] == kInf || hi[e] >= cap * (1.0 - 1e-9);
+    M.hi = hi[e];
+    M.hi_slope = edges.hi_slope[e];
+    M.hi_from = edges.hi_from[e];
+    M.hi_to = edges.hi_to[e];
+    if (lo[e] > -kInf) {  // -inf: its LP was skipped (x above the top)
+      M.lo = lo[e];
+      M.lo_slope = edges.lo_slope[e];
+      M.lo_from = edges.lo_from[e];
+      M.lo_to = edges.lo_to[e];
+    }
+  }
+}
+// A contact constraint's cuts at the peaks (ks_, ls_) of the brackets cuts[q]: the polygon's edge through
+// the end of its slice that the timing's (x, u) is beyond (SliceEdges; the polygon lies on its side of
+// that line, so the row is exact), one LP per end instead of a projection of the polygon. A slice that
+// is empty there (u outside the polygon) or whose LP failed has no such edge: that point's polygon is
+// projected, and its broken rows cut. Besides the peak, the top edges at kSpread points evenly inside
+// the peak's bracket (span: its samples), broken or not.
+void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
+                           const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named) {
+  std::vector<Eigen::Index> ks;
+  std::vector<char> spread;  // per point: 0 a peak, 1 a spread point
+  for (size_t q = 0; q < cuts.size(); ++q) {
+    ks.push_back(at[cuts[q]]);
+    spread.push_back(0);
+  }
+  for (size_t q = 0; q < cuts.size(); ++q) {
+    const auto [a, c] = span[cuts[q]];
+    for (int j = 1; j <= kSpread; ++j) {
+      const double l = a + (c - a) * j / (kSpread + 1.0);
+      if (std::abs(l - ls_[q]) < 1e-2 * (c - a)) continue;  // the peak's own
+      ks.push_back(at[cuts[q]]);
+      ls_.push_back(l);
+      spread.push_back(1);
+    }
+  }
+  const Constraint& cc = *constraints_[ci];
+  Eigen::VectorXd u(static_cast<Eigen::Index>(ks.size())), lo, hi;
+  for (size_t q = 0; q < ks.size(); ++q) u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
+  SliceEdges edges;
+  edges.labels = true;
+  SliceStarts st = starts_for(ci, ks);
+  audit_.lps += cc.slice(samples_at(ks, ls_), u, lo, hi, nullptr, &edges, &st);
+  keep_bases(ci, ks, st);
+  const double cap = cc.projection_cap();
+  std::vector<Eigen::Index> pk;  // the points to project
+  std::vector<double> pl;
+  for (size_t q = 0; q < ks.size(); ++q) {
+    const Eigen::Index k = ks[q], e = static_cast<Eigen::Index>(q);
+    const double l = ls_[q], x = x_of(k, l), uq = u[e];
+    if (!spread[q]) memory_.cut_points[ci][static_cast<size_t>(k)].push_back({l, {}, {}, {}, {}});
+    if (std::isnan(lo[e]) || std::isnan(hi[e]) || lo[e] > hi[e]) {
+      if (spread[q]) continue;
+      pk.push_back(k);
+      pl.push_back(l);
+      continue;
+    }
+    // x <= hi + s (u' - u) and x >= lo + s' (u' - u), as rows a x + b u' <= c.
+    if (hi[e] < cap * (1.0 - 1e-9) && (spread[q] || violation(1.0, 0.0, hi[e], 0.0, x, x, 0.0) > tolerance_))
+      add_cut(ci, k, l, 1.0, -edges.hi_slope[e], hi[e] - edges.hi_slope[e] * uq, edges.hi_label[static_cast<size_t>(q)], named);
+    if (violation(-1.0, 0.0, -lo[e], 0.0, x, x, 0.0) > tolerance_)
+      add_cut(ci, k, l, -1.0, edges.lo_slope[e], edges.lo_slope[e] * uq - lo[e], edges.lo_label[static_cast<size_t>(q)], named);
+  }
+  if (pk.empty()) return;
+  const ConstraintRows rr = cc.evaluate(samples_at(pk, pl));
+  audit_.projections += static_cast<int>(pk.size());
+  for (size_t q = 0; q < pk.size(); ++q) add_broken_rows(ci, rr, static_cast<Eigen::Index>(q), pk[q], pl[q], named);
+}
+}  // namespace pathpace::detail

@@ -1,0 +1,107 @@
+// The continuous audit's stages (solve/continuous.hpp, audit_and_cut), shared by continuous.cpp (the
+// samples, the screen, the peaks, the cuts) and audit_contacts.cpp (a contact constraint's slice LPs there).
+// Private to solve/.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solve/brent.hpp"
+#include "solve/continuous.hpp"
+
+namespace pathpace::detail {
+
+// Relative violation of row (a, b, c) at λ on an interval with θ_k = t0, θ_{k+1} = t1, u = (t1 - t0)/(2Δs).
+double violation(double a, double b, double c, double lam, double t0, double t1, double u);
+// A contact constraint's violation at one point: x beyond the polygon's slice [lo, hi] at the timing's u,
+// relative to x's own size (as a row's violation is relative to its terms); an empty slice (no x at
+// all fits this u) or a failed LP counts as a full violation, which the cut's projection then settles.
+double slice_violation(double x, double lo, double hi);
+
+// Contact cuts per interval and round besides its peak's (contact_cuts): each round's single cut at the
+// peak leaves the peak between two cuts, which quarters the violation from round to round (x(λ) follows
+// the chord of the limit between them); rows at 3 more points of the peak's bracket divide that gap by 4,
+// the violation by 16 (measured in bench/README.md, issue 27).
+constexpr int kSpread = 3;
+
+// One audit_and_cut call: the data its stages share. Per constraint (audit_constraint): the intervals
+// whose speeds changed, their samples (contact slices in one batch), the path-wide concavity bound, the
+// brackets it does not clear, their peaks (maximize_batch), and the cuts there.
+class Auditor {
+ public:
+  Auditor(const Path& path, const Eigen::VectorXd& s, const Eigen::VectorXd& theta,
+          const std::vector<std::shared_ptr<const Constraint>>& constraints, const std::vector<ConstraintRows>& grid_rows,
+          const std::vector<int>& row_offset, int points, double tolerance, IntervalExtra& extra, AuditMemory& memory)
+      : path_(path), s_(s), theta_(theta), constraints_(constraints), grid_rows_(grid_rows), row_offset_(row_offset),
+        points_(points), tolerance_(tolerance), extra_(extra), memory_(memory), N_(s.size() - 1) {}
+  Audit run();
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  void size_memory();
+  void audit_constraint(size_t ci);
+  PathSamples samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const;
+  double u_of(Eigen::Index k) const { return (theta_[k + 1] - theta_[k]) / (2.0 * (s_[k + 1] - s_[k])); }
+  double x_of(Eigen::Index k, double l) const { return (1.0 - l) * theta_[k] + l * theta_[k + 1]; }
+  double worst_row(const ConstraintRows& rr, Eigen::Index r, double l, Eigen::Index k) const;
+  void violations(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& kk,
+                  const std::vector<double>& ll, std::vector<double>& f);
+  void coarse_rows(size_t ci);
+  std::vector<Eigen::Index> intervals_to_audit(size_t ci);
+  void contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo, std::vector<size_t>& first,
+                     std::vector<double>& f);
+  // The kept slice of interval k's sample m (contact_batch's order: Chebyshev points, then cut points).
+  AuditMemory::Slices& slice_memo(size_t ci, Eigen::Index k, size_t m) {
+    const size_t pts = static_cast<size_t>(points_);
+    return m < pts ? memory_.slices[ci][static_cast<size_t>(k) * pts + m]
+                   : memory_.cut_points[ci][static_cast<size_t>(k)][m - pts].slice;
+  }
+  SliceStarts starts_for(size_t ci, const std::vector<Eigen::Index>& ks) const;
+  void keep_bases(size_t ci, const std::vector<Eigen::Index>& ks, const SliceStarts& st);
+  void contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
+                       const std::vector<Eigen::Index>& todo, std::vector<double>& f);
+  void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
+                        const std::vector<size_t>& first, const std::vector<double>& fc);
+  void path_curvature(size_t ci, const std::vector<Eigen::Index>& todo);
+  double K_of(Eigen::Index k, double curvature) const {
+    const double h = s_[k + 1] - s_[k];
+    return 4.0 * curvature * h * h;
+  }
+  void brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBracket>& cand, std::vector<Eigen::Index>& at,
+                std::vector<double>& curvature) const;
+  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
+           const std::vector<std::pair<double, double>>& span);
+  void contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
+                    const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named);
+  void add_cut(size_t ci, Eigen::Index k, double l, double a, double b, double c, const std::string& label,
+               const std::map<std::string, int>& named);
+  void add_broken_rows(size_t ci, const ConstraintRows& rr, Eigen::Index r, Eigen::Index k, double l,
+                       const std::map<std::string, int>& named);
+
+  const Path& path_;
+  const Eigen::VectorXd& s_;
+  const Eigen::VectorXd& theta_;
+  const std::vector<std::shared_ptr<const Constraint>>& constraints_;
+  const std::vector<ConstraintRows>& grid_rows_;
+  const std::vector<int>& row_offset_;
+  const int points_;
+  const double tolerance_;
+  IntervalExtra& extra_;
+  AuditMemory& memory_;
+  const Eigen::Index N_;
+  Audit audit_;
+  std::vector<double> lam_;            // the Chebyshev points in λ
+  std::vector<Eigen::Index> ks_;       // a batch of samples: interval ks_[i] at λ ls_[i]
+  std::vector<double> ls_;
+  std::vector<std::vector<double>> Ls_, Vs_;  // [interval to audit]: its samples, sorted and merged
+  std::vector<double> curvature_;             // [interval to audit]: its bound on -v''(s) (path_curvature)
+};
+
+}  // namespace pathpace::detail
