@@ -63,38 +63,40 @@ void DenseSimplex::solve_column(int k) {
 // s^3 instead of m^3, and a projection LP's basis is mostly the slacks of torque rows that do not bind.
 bool DenseSimplex::factorize() {
   const Eigen::MatrixXd& A = lp_->A;
-  std::vector<int> spos, scol, rows;
-  std::vector<char> aux_basic(static_cast<size_t>(m_), 0);
+  std::vector<int>& spos = f_spos_;  // scratch kept between calls: a slice LP factorises at every sample
+  std::vector<int>& scol = f_scol_;
+  std::vector<int>& rows = f_rows_;
+  std::vector<int>& apos = f_apos_;  // the positions of the basic auxiliaries, and (f_arow_) their rows
+  std::vector<int>& arow = f_arow_;
+  spos.clear(), scol.clear(), rows.clear(), apos.clear(), arow.clear();
+  f_aux_basic_.assign(static_cast<size_t>(m_), 0);
   for (int i = 0; i < m_; ++i) {
     const int k = s_.head[static_cast<size_t>(i)];
-    if (k < m_) aux_basic[static_cast<size_t>(k)] = 1;
+    if (k < m_) f_aux_basic_[static_cast<size_t>(k)] = 1, apos.push_back(i), arow.push_back(k);
     else spos.push_back(i), scol.push_back(k - m_);
   }
   for (int r = 0; r < m_; ++r)
-    if (!aux_basic[static_cast<size_t>(r)]) rows.push_back(r);
-  const int s = static_cast<int>(scol.size());
+    if (!f_aux_basic_[static_cast<size_t>(r)]) rows.push_back(r);
+  const int s = static_cast<int>(scol.size()), na = static_cast<int>(apos.size());
   if (static_cast<int>(rows.size()) != s) return false;  // an auxiliary twice: not a basis
   s_.inv.setZero(m_, m_);
-  Eigen::MatrixXd M;  // A[R,S]^-1
+  for (int t = 0; t < na; ++t) s_.inv(apos[static_cast<size_t>(t)], arow[static_cast<size_t>(t)]) = -1.0;
   if (s > 0) {
-    Eigen::MatrixXd C(s, s);
+    f_c_.resize(s, s);
     for (int b = 0; b < s; ++b)
-      for (int a = 0; a < s; ++a) C(a, b) = A(rows[static_cast<size_t>(a)], scol[static_cast<size_t>(b)]);
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(C);
-    if (!(lu.rcond() > limits.min_rcond)) return false;
-    M = lu.inverse();
+      for (int a = 0; a < s; ++a) f_c_(a, b) = A(rows[static_cast<size_t>(a)], scol[static_cast<size_t>(b)]);
+    f_lu_.compute(f_c_);
+    if (!(f_lu_.rcond() > limits.min_rcond)) return false;
+    f_m_ = f_lu_.inverse();  // A[R,S]^-1
     for (int b = 0; b < s; ++b)
-      for (int a = 0; a < s; ++a) s_.inv(spos[static_cast<size_t>(b)], rows[static_cast<size_t>(a)]) = M(b, a);
-  }
-  Eigen::RowVectorXd arow(s);
-  for (int i = 0; i < m_; ++i) {
-    const int k = s_.head[static_cast<size_t>(i)];
-    if (k >= m_) continue;
-    s_.inv(i, k) = -1.0;
-    if (s == 0) continue;
-    for (int b = 0; b < s; ++b) arow[b] = A(k, scol[static_cast<size_t>(b)]);
-    const Eigen::RowVectorXd w = arow * M;
-    for (int a = 0; a < s; ++a) s_.inv(i, rows[static_cast<size_t>(a)]) = w[a];
+      for (int a = 0; a < s; ++a) s_.inv(spos[static_cast<size_t>(b)], rows[static_cast<size_t>(a)]) = f_m_(b, a);
+    // Each basic auxiliary's row: A[k,S] A[R,S]^-1, all of them in one product.
+    f_ak_.resize(na, s);
+    for (int b = 0; b < s; ++b)
+      for (int t = 0; t < na; ++t) f_ak_(t, b) = A(arow[static_cast<size_t>(t)], scol[static_cast<size_t>(b)]);
+    f_w_.noalias() = f_ak_ * f_m_;
+    for (int a = 0; a < s; ++a)
+      for (int t = 0; t < na; ++t) s_.inv(apos[static_cast<size_t>(t)], rows[static_cast<size_t>(a)]) = f_w_(t, a);
   }
   s_.updates = 0;
   return true;
@@ -103,16 +105,18 @@ bool DenseSimplex::factorize() {
 // x_B = -B^-1 N x_N from the nonbasic values (exactly at their bounds).
 void DenseSimplex::compute_values() {
   const Eigen::MatrixXd& A = lp_->A;
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(n_);
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(m_);
+  Eigen::VectorXd& z = cv_z_;
+  Eigen::VectorXd& r = cv_r_;
+  z.setZero(n_);
+  r.setZero(m_);
   for (int k = 0; k < m_ + n_; ++k) {
     if (s_.stat[static_cast<size_t>(k)] == GLP_BS) continue;
     if (k < m_) r[k] -= s_.value[k];
     else z[k - m_] = s_.value[k];
   }
   r.noalias() += A * z;
-  const Eigen::VectorXd xb = -(s_.inv * r);
-  for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] = xb[i];
+  cv_xb_.noalias() = s_.inv * r;
+  for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] = -cv_xb_[i];
 }
 
 bool DenseSimplex::set_basis(const signed char* stat, bool primal_feasible) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 namespace pathpace::detail {
 
@@ -93,6 +94,12 @@ class DenseSimplex {
   void transposed_times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
   Eigen::VectorXd y_, alpha_, dstruct_, rows_, wstruct_, rho_;
   Eigen::RowVectorXd pivot_row_;  // scratch of a pivot's inverse update (no allocation per pivot)
+  // factorize()'s and compute_values()'s scratch (no allocation per call once sized).
+  std::vector<int> f_spos_, f_scol_, f_rows_, f_apos_, f_arow_;
+  std::vector<char> f_aux_basic_;
+  Eigen::MatrixXd f_c_, f_m_, f_ak_, f_w_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> f_lu_;
+  Eigen::VectorXd cv_z_, cv_r_, cv_xb_;
   Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous
   Eigen::MatrixXd abs_at_;  // |A|^T, for the certificate's rounding bound
   Eigen::VectorXd row_max_;  // max_j |a_ij| per row
