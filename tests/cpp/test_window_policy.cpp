@@ -115,11 +115,15 @@ TEST(WindowPolicy, FarStartIsTheRelativeBracket) {
 }
 
 // The chain simplex's pivot budget: the fixed floor on small windows, two pivots per free point on large ones
-// (a cold start takes about one per point).
-TEST(WindowPolicy, ChainPivotBudgetGrowsWithTheWindow) {
+// (a cold start takes about one per point), the floor alone on a far start that the barrier may take.
+TEST(WindowPolicy, ChainPivotBudgetGrowsWithTheWindowUnlessTheStartIsFar) {
   const WindowPolicy policy;
-  EXPECT_EQ(chain_pivot_budget(policy, 1), policy.chain_pivots);
-  EXPECT_EQ(chain_pivot_budget(policy, 32), policy.chain_pivots);
-  EXPECT_EQ(chain_pivot_budget(policy, 91), 182);
-  EXPECT_EQ(chain_pivot_budget(policy, 1999), 3998);
+  for (bool barrier : {true, false}) {
+    EXPECT_EQ(chain_pivot_budget(policy, window(1, barrier, false)), policy.chain_pivots);
+    EXPECT_EQ(chain_pivot_budget(policy, window(32, barrier, false)), policy.chain_pivots);
+    EXPECT_EQ(chain_pivot_budget(policy, window(91, barrier, false)), 182);
+    EXPECT_EQ(chain_pivot_budget(policy, window(1999, barrier, false)), 3998);
+  }
+  EXPECT_EQ(chain_pivot_budget(policy, window(999, true, true)), policy.chain_pivots);
+  EXPECT_EQ(chain_pivot_budget(policy, window(999, false, true)), 1998);  // without the barrier: no one else
 }

@@ -93,7 +93,7 @@ WindowResult slp_window(const WindowShared& shared, const WindowSpan& span, Glpk
     const WindowSolver next = next_solver(policy, progress);
     if (next == WindowSolver::ChainSimplex) {
       progress.chain_tried = true;
-      if (chain_simplex_window(w, policy, theta, out)) return out;
+      if (chain_simplex_window(w, policy, progress, theta, out)) return out;
       continue;
     }
     if (next == WindowSolver::Done) {

@@ -54,8 +54,8 @@ double line_search(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, cons
 // the bound is computed at the new iterate whatever vertex the simplex stands on. An interior optimum on a
 // face of low dimension (a coupling row traded between its two points) is then typically certified by the
 // second check, with a few pivots.
-bool chain_simplex_window(const WindowData& w, const WindowPolicy& policy, Eigen::VectorXd& theta,
-                          WindowResult& out) {
+bool chain_simplex_window(const WindowData& w, const WindowPolicy& policy, const WindowProgress& progress,
+                          Eigen::VectorXd& theta, WindowResult& out) {
   const Eigen::Index m = w.m;
   const Eigen::VectorXd& ds = w.ds;
   const double floor = w.floor, rel_target = w.rel_target;
@@ -64,7 +64,7 @@ bool chain_simplex_window(const WindowData& w, const WindowPolicy& policy, Eigen
   gradient(ds, theta, floor, g);
   bool warm = false;
   for (int fw = 0; fw < policy.chain_frank_wolfe; ++fw) {
-    const double gap = cs.gap(theta, g, chain_pivot_budget(policy, w.cols), warm);
+    const double gap = cs.gap(theta, g, chain_pivot_budget(policy, progress), warm);
     if (!std::isfinite(gap)) break;
     ++out.lp_solves;  // an LP, solved without GLPK
     out.lower = std::max(out.lower, out.T - gap);

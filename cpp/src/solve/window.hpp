@@ -48,9 +48,9 @@ double line_search(const Eigen::VectorXd& ds, const Eigen::VectorXd& theta, cons
                    Eigen::VectorXd& tmp, Eigen::VectorXd& g);
 
 /// Frank-Wolfe iterations whose LPs the chain simplex solves (policy.chain_frank_wolfe of them,
-/// policy.chain_pivots pivots each); true if they certified the window. theta and out follow the iterate.
-bool chain_simplex_window(const WindowData& w, const WindowPolicy& policy, Eigen::VectorXd& theta,
-                          WindowResult& out);
+/// chain_pivot_budget pivots each); true if they certified the window. theta and out follow the iterate.
+bool chain_simplex_window(const WindowData& w, const WindowPolicy& policy, const WindowProgress& progress,
+                          Eigen::VectorXd& theta, WindowResult& out);
 
 /// The rows of the window's intervals that can bind in its LPs (the others are implied by these and the
 /// column bounds), in the barrier's form.

@@ -9,8 +9,9 @@ bool far_start(const WindowPolicy& policy, double T_start, double T_hi) {
   return std::isfinite(T_hi) && T_start - T_hi > policy.barrier_first_bracket * T_start;
 }
 
-int chain_pivot_budget(const WindowPolicy& policy, int free_points) {
-  return std::max(policy.chain_pivots, static_cast<int>(std::ceil(policy.chain_pivots_per_point * free_points)));
+int chain_pivot_budget(const WindowPolicy& policy, const WindowProgress& progress) {
+  if (progress.barrier_allowed && progress.far_start) return policy.chain_pivots;
+  return std::max(policy.chain_pivots, static_cast<int>(std::ceil(policy.chain_pivots_per_point * progress.free_points)));
 }
 
 bool barrier_first(const WindowPolicy& policy, const WindowProgress& progress) {

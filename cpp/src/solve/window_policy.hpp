@@ -60,8 +60,11 @@ bool barrier_first(const WindowPolicy& policy, const WindowProgress& progress);
 /// slp_before_barrier iterations for the barrier; Done when GLPK SLP has spent max_iterations.
 WindowSolver next_solver(const WindowPolicy& policy, const WindowProgress& progress);
 
-/// The chain simplex's pivot budget per LP on a window of `free_points` unknowns.
-int chain_pivot_budget(const WindowPolicy& policy, int free_points);
+/// The chain simplex's pivot budget per LP on the window: chain_pivots on a far start that the barrier may
+/// take (its optimum is likely interior, where Frank-Wolfe crawls: a long random walk's 999-point window
+/// spent six LPs of up to 2n pivots there, then the barrier), else the larger of that and
+/// chain_pivots_per_point per free point.
+int chain_pivot_budget(const WindowPolicy& policy, const WindowProgress& progress);
 
 /// The iteration count at which GLPK SLP, when it runs, hands back to the policy.
 int slp_pause(const WindowPolicy& policy, const WindowProgress& progress);
