@@ -167,3 +167,47 @@ TEST(DenseSimplex, ADualPhaseGivesUpOnAStartThatIsNotDualFeasibleAndOnAnEmptyRow
   EXPECT_NEAR(ds.x(), 0.5, 1e-15);
   EXPECT_EQ(ds.pivots - before, 1);
 }
+
+// The explicit inverse's structure that pricing and the pivots rely on (DenseSimplex::solve_column, replace):
+// after primal and dual pivots, the column of B^-1 of every basic auxiliary is exactly -e at its position (not
+// to rounding: the pivots skip the columns where the pivot row is zero), and B^-1 is the inverse of B.
+TEST(DenseSimplex, ABasicAuxiliarysColumnOfTheInverseStaysExactlyAUnitVector) {
+  int pivots = 0, checked = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const MovingPolytope mp(seed, 6, 10, 24);
+    const PolytopeLp lp0 = mp.at(0.0, 0.1);
+    PolytopeProjector oracle;
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(lp0.A.cols()), z;
+    c[0] = 1.0;
+    std::vector<signed char> basis;
+    ASSERT_EQ(oracle.maximize(lp0, c, z, nullptr, &basis), 1);
+    DenseSimplex ds;
+    std::vector<PolytopeLp> lps;
+    for (int k = 0; k < 8; ++k) lps.push_back(mp.at(0.01 * k, 0.1 + 0.05 * std::sin(k)));
+    for (const PolytopeLp& lp : lps) {
+      ds.load(lp);
+      if (!ds.set_basis(basis.data(), false)) continue;
+      for (double sign : {-1.0, 1.0, -1.0}) {
+        if (ds.maximize(sign, 0.0) != DenseSimplex::kOptimal) break;
+        const DenseSimplex::State& s = ds.state();
+        const int m = static_cast<int>(lp.A.rows());
+        Eigen::MatrixXd B(m, m);
+        for (int i = 0; i < m; ++i) {
+          const int k = s.head[static_cast<size_t>(i)];
+          if (k < m) {
+            B.col(i) = -Eigen::VectorXd::Unit(m, k);
+            for (int r = 0; r < m; ++r) ASSERT_EQ(s.inv(r, k), r == i ? -1.0 : 0.0) << "seed " << seed << " aux " << k;
+          } else {
+            B.col(i) = lp.A.col(k - m);
+          }
+        }
+        EXPECT_LE((s.inv * B - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff(), 1e-9) << "seed " << seed;
+        basis = s.stat;
+        ++checked;
+      }
+    }
+    pivots += ds.pivots;
+  }
+  EXPECT_GT(checked, 60);
+  EXPECT_GT(pivots, 100);
+}

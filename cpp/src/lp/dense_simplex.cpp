@@ -182,16 +182,13 @@ bool DenseSimplex::replace(int r, int q, bool leave_at_lo) {
   s_.stat[static_cast<size_t>(q)] = GLP_BS;
   s_.head[static_cast<size_t>(r)] = q;
   // B^-1 <- E B^-1 over the columns where row r is nonzero only: the column of a basic auxiliary k at
-  // position i is exactly -e_i (B^-1 (-e_k) = e_i), zero in row r unless k is the one leaving. The
-  // entering auxiliary's column is set to exactly -e_r, which the rank-one update gives only to rounding.
+  // position i is exactly -e_i (B^-1 (-e_k) = e_i), zero in row r unless k is the one leaving. An entering
+  // auxiliary's column becomes exactly -e_r too, with or without FMA: alpha is minus that column, so the
+  // pivot row's entry there is v / -v = -1 and the column less -1 times alpha is 0 but in row r.
   pivot_row_.noalias() = s_.inv.row(r) / alpha_[r];
   for (int k = 0; k < m_; ++k)
     if (pivot_row_[k] != 0.0) s_.inv.col(k).noalias() -= pivot_row_[k] * alpha_;
   s_.inv.row(r) = pivot_row_;
-  if (q < m_) {
-    s_.inv.col(q).setZero();
-    s_.inv(r, q) = -1.0;
-  }
   ++pivots;
   if (++s_.updates >= limits.refactor) {
     if (!factorize()) return false;
