@@ -181,8 +181,10 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
   lp.A.col(0).head(n) = a;  // the minimum-normal-force rows below n keep zeros in x and u
   lp.A.col(1).head(n) = b;
   contact_jacobians(q, T, J, gen, &layout.jacobians);
+  // Products of inner dimension 3, one per contact: coefficient-wise (lazyProduct), not Eigen's blocked GEMM,
+  // whose set-up costs more than these few multiplications.
   for (int i = 0; i < m; ++i)
-    lp.A.block(0, 2 + i * k, n, k).noalias() = -J.middleRows(3 * i, 3).transpose() * gen.middleCols(i * k, k);
+    lp.A.block(0, 2 + i * k, n, k).noalias() = -(J.middleRows(3 * i, 3).transpose().lazyProduct(gen.middleCols(i * k, k)));
   lp.row_lo.head(n) = tau_min_ - c;
   lp.row_hi.head(n) = tau_max_ - c;
   if (options_.cone_offset > 0.0) {
@@ -202,8 +204,9 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
       const size_t u = static_cast<size_t>(layout.section[j]);
       const auto Ji = J.middleRows(3 * (m + static_cast<Eigen::Index>(j)), 3);
       const Eigen::Matrix3d R = normal_frame(u, T);
-      lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h).noalias() = -d * (Ji.transpose() * (R * local_half_edges_[u]));
-      w.noalias() += Ji.transpose() * (R * contacts_[u].normal);
+      const Eigen::Matrix3Xd edges = R * local_half_edges_[u];
+      lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h).noalias() = -d * Ji.transpose().lazyProduct(edges);
+      w.noalias() += Ji.transpose().lazyProduct(R * contacts_[u].normal);
     }
     lp.row_lo.head(n) += d * w;
     lp.row_hi.head(n) += d * w;
