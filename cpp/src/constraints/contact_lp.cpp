@@ -175,7 +175,7 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
                                  const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const {
   thread_local std::vector<Eigen::Isometry3d> T;
   thread_local Eigen::MatrixXd J;
-  thread_local Eigen::Matrix3Xd gen;
+  thread_local Eigen::Matrix3Xd gen, edges;
   const int n = robot_->nq(), m = static_cast<int>(layout.cone.size()), k = options_.cone_edges, h = k / 2;
   // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
   lp.A.col(0).head(n) = a;  // the minimum-normal-force rows below n keep zeros in x and u
@@ -204,7 +204,7 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
       const size_t u = static_cast<size_t>(layout.section[j]);
       const auto Ji = J.middleRows(3 * (m + static_cast<Eigen::Index>(j)), 3);
       const Eigen::Matrix3d R = normal_frame(u, T);
-      const Eigen::Matrix3Xd edges = R * local_half_edges_[u];
+      edges.noalias() = R * local_half_edges_[u];
       lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h).noalias() = -d * Ji.transpose().lazyProduct(edges);
       w.noalias() += Ji.transpose().lazyProduct(R * contacts_[u].normal);
     }

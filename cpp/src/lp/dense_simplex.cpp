@@ -69,14 +69,13 @@ bool DenseSimplex::factorize() {
   std::vector<int>& apos = f_apos_;  // the positions of the basic auxiliaries, and (f_arow_) their rows
   std::vector<int>& arow = f_arow_;
   spos.clear(), scol.clear(), rows.clear(), apos.clear(), arow.clear();
-  f_aux_basic_.assign(static_cast<size_t>(m_), 0);
   for (int i = 0; i < m_; ++i) {
     const int k = s_.head[static_cast<size_t>(i)];
-    if (k < m_) f_aux_basic_[static_cast<size_t>(k)] = 1, apos.push_back(i), arow.push_back(k);
+    if (k < m_) apos.push_back(i), arow.push_back(k);
     else spos.push_back(i), scol.push_back(k - m_);
   }
   for (int r = 0; r < m_; ++r)
-    if (!f_aux_basic_[static_cast<size_t>(r)]) rows.push_back(r);
+    if (s_.stat[static_cast<size_t>(r)] != GLP_BS) rows.push_back(r);
   const int s = static_cast<int>(scol.size()), na = static_cast<int>(apos.size());
   if (static_cast<int>(rows.size()) != s) return false;  // an auxiliary twice: not a basis
   s_.inv.setZero(m_, m_);
@@ -368,13 +367,15 @@ void DenseSimplex::bound_range(int k, double& from, double& to) {
 bool DenseSimplex::certify() {
   compute_values();
   const Eigen::MatrixXd& A = lp_->A;
-  const Eigen::VectorXd z = s_.value.tail(n_);
+  Eigen::VectorXd& z = cv_z_;  // compute_values() is done with it
+  z = s_.value.tail(n_);
   // Every row's value from the point, against the row's bounds: the computed value v is within
   // (n + 2) u Σ_j |a_ij z_j| of the exact one (u the unit roundoff), so the row is certified when v less
   // (or plus) that bound still meets its bound within the tolerance. A basic auxiliary takes the value,
   // a nonbasic one keeps its bound (its row then holds to the tolerance).
   rows_.noalias() = A * z;
-  const Eigen::VectorXd abs_z = z.cwiseAbs();
+  Eigen::VectorXd& abs_z = cv_r_;
+  abs_z = z.cwiseAbs();
   const double gamma = (n_ + 2) * std::numeric_limits<double>::epsilon();
   // Σ_j |a_kj z_j| <= max_j |a_kj| ||z||_1 (rounded up by the factor 1 + 1e-12, far above the rounding of
   // these two products): a row well inside its bounds is decided without its exact sum.

@@ -96,7 +96,6 @@ class DenseSimplex {
   Eigen::RowVectorXd pivot_row_;  // scratch of a pivot's inverse update (no allocation per pivot)
   // factorize()'s and compute_values()'s scratch (no allocation per call once sized).
   std::vector<int> f_spos_, f_scol_, f_rows_, f_apos_, f_arow_;
-  std::vector<char> f_aux_basic_;
   Eigen::MatrixXd f_c_, f_m_, f_ak_, f_w_;
   Eigen::PartialPivLU<Eigen::MatrixXd> f_lu_;
   Eigen::VectorXd cv_z_, cv_r_, cv_xb_;

@@ -17,8 +17,8 @@ int SliceLp::extreme(double sign, double& x, PolytopeProjector::FixedColumn* fix
   std::vector<signed char>& basis = basis_[end];
   if (fixed && fixed->label && !norms_) row_norm_ = lp.A.rowwise().norm(), norms_ = true;
   const size_t total = static_cast<size_t>(rows + lp.A.cols());
-  if (start && start->size() == total) basis = *start;
-  if (basis.size() == total && dense_.set_basis(basis.data(), false) &&
+  const std::vector<signed char>& from = start && start->size() == total ? *start : basis;
+  if (from.size() == total && dense_.set_basis(from.data(), false) &&
       dense_.maximize(sign, 0.0) == DenseSimplex::kOptimal) {
     ++dense;
     const std::vector<signed char>& stat = dense_.state().stat;

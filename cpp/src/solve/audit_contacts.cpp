@@ -8,20 +8,21 @@
 
 namespace pathpace::detail {
 
-// Warm starts of the slice LPs at samples in intervals ks: each interval's last optimal bases.
-SliceStarts Auditor::starts_for(size_t ci, const std::vector<Eigen::Index>& ks) const {
+// Constraint::slice at samples in intervals ks, each LP warm-started from its interval's last optimal
+// bases (SliceStarts), which the LPs' own optima then replace; the LPs spent go to audit_.lps.
+void Auditor::warm_slice(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& ks, const PathSamples& ps,
+                         const Eigen::VectorXd& u, Eigen::VectorXd& lo, Eigen::VectorXd& hi, const Eigen::VectorXd* x,
+                         SliceEdges* edges) {
+  auto& bases = memory_.bases[ci];
   SliceStarts st;
   for (int end = 0; end < 2; ++end) {
     st.start[end].reserve(ks.size());
-    for (Eigen::Index k : ks) st.start[end].push_back(memory_.bases[ci][static_cast<size_t>(k)][static_cast<size_t>(end)]);
+    for (Eigen::Index k : ks) st.start[end].push_back(bases[static_cast<size_t>(k)][static_cast<size_t>(end)]);
   }
-  return st;
-}
-
-void Auditor::keep_bases(size_t ci, const std::vector<Eigen::Index>& ks, const SliceStarts& st) {
+  audit_.lps += cc.slice(ps, u, lo, hi, x, edges, &st);
   for (int end = 0; end < 2; ++end)
     for (size_t q = 0; q < ks.size() && q < st.found[end].size(); ++q)
-      if (!st.found[end][q].empty()) memory_.bases[ci][static_cast<size_t>(ks[q])][static_cast<size_t>(end)] = st.found[end][q];
+      if (!st.found[end][q].empty()) bases[static_cast<size_t>(ks[q])][static_cast<size_t>(end)] = std::move(st.found[end][q]);
 }
 // A contact constraint's samples, all in one batch (one warm-started LP sequence): the Chebyshev points
 // and the earlier cut points of every interval to audit, into (ks_, ls_), interval todo[t]'s from
@@ -89,9 +90,7 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   SliceEdges edges;
   const Eigen::Index n = static_cast<Eigen::Index>(bu.size());
   const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(bx.data(), n);
-  SliceStarts st = starts_for(ci, bk);
-  audit_.lps += cc.slice(ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges, &st);
-  keep_bases(ci, bk, st);
+  warm_slice(cc, ci, bk, ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges);
   size_t t = 0;
   for (size_t q = 0; q < bk.size(); ++q) {
     const size_t i = main_of[q];
@@ -145,9 +144,7 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
   for (size_t q = 0; q < ks.size(); ++q) u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
   SliceEdges edges;
   edges.labels = true;
-  SliceStarts st = starts_for(ci, ks);
-  audit_.lps += cc.slice(samples_at(ks, ls_), u, lo, hi, nullptr, &edges, &st);
-  keep_bases(ci, ks, st);
+  warm_slice(cc, ci, ks, samples_at(ks, ls_), u, lo, hi, nullptr, &edges);
   const double cap = cc.projection_cap();
   std::vector<Eigen::Index> pk;  // the points to project
   std::vector<double> pl;

@@ -63,8 +63,9 @@ class Auditor {
     return m < pts ? memory_.slices[ci][static_cast<size_t>(k) * pts + m]
                    : memory_.cut_points[ci][static_cast<size_t>(k)][m - pts].slice;
   }
-  SliceStarts starts_for(size_t ci, const std::vector<Eigen::Index>& ks) const;
-  void keep_bases(size_t ci, const std::vector<Eigen::Index>& ks, const SliceStarts& st);
+  void warm_slice(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& ks, const PathSamples& ps,
+                  const Eigen::VectorXd& u, Eigen::VectorXd& lo, Eigen::VectorXd& hi, const Eigen::VectorXd* x,
+                  SliceEdges* edges);
   void contact_samples(const Constraint& cc, size_t ci, const std::vector<size_t>& first,
                        const std::vector<Eigen::Index>& todo, std::vector<double>& f);
   void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,

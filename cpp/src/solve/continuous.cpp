@@ -252,9 +252,7 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
       u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
       x[static_cast<Eigen::Index>(i)] = x_of(kk[i], ll[i]);
     }
-    SliceStarts st = starts_for(ci, kk);
-    audit_.lps += contact->slice(ps, u, lo, hi, &x, nullptr, &st);
-    keep_bases(ci, kk, st);
+    warm_slice(*contact, ci, kk, ps, u, lo, hi, &x, nullptr);
     for (size_t i = 0; i < kk.size(); ++i)
       f[i] = slice_violation(x[static_cast<Eigen::Index>(i)], lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
     return;
