@@ -577,6 +577,34 @@ TEST(DenseSimplex, EachWayOfGivingUpHasItsOwnOutcome) {
   EXPECT_EQ(ds.maximize(1.0, 0.0), DenseSimplex::kUnbounded);
 }
 
+// A basis of three binding equality rows and three basic columns: B^-1 is A's own inverse, and A's zero
+// diagonal makes the elimination exchange rows at every step (factorize's Gauss-Jordan inverse, with its
+// column unscrambling); with A's third column the sum of the other two the basis is refused.
+TEST(DenseSimplex, TheInverseOfABasisThatNeedsRowExchangesAndASingularOneRefused) {
+  PolytopeLp lp;
+  lp.A.resize(3, 3);
+  lp.A << 0, 1, 2,
+          1, 0, 3,
+          4, 5, 0;
+  lp.row_lo = lp.row_hi = Eigen::Vector3d(1, 2, 3);
+  lp.col_lo = Eigen::Vector3d(0, -10, -INFINITY);
+  lp.col_hi = Eigen::Vector3d(INFINITY, 10, INFINITY);
+  const signed char stat[] = {GLP_NS, GLP_NS, GLP_NS, GLP_BS, GLP_BS, GLP_BS};
+  DenseSimplex ds;
+  ds.load(lp);
+  ASSERT_TRUE(ds.set_basis(stat, false));
+  const Eigen::MatrixXd I = ds.state().inv * lp.A;
+  EXPECT_LT((I - Eigen::MatrixXd::Identity(3, 3)).cwiseAbs().maxCoeff(), 1e-15);
+  // The basic values solve A z = b.
+  const Eigen::Vector3d z(ds.state().value[3], ds.state().value[4], ds.state().value[5]);
+  EXPECT_LT((lp.A * z - lp.row_lo).cwiseAbs().maxCoeff(), 1e-14);
+  PolytopeLp singular = lp;
+  singular.A.col(2) = singular.A.col(0) + singular.A.col(1);
+  DenseSimplex ds2;
+  ds2.load(singular);
+  EXPECT_FALSE(ds2.set_basis(stat, false));
+}
+
 namespace {
 // x >= 0, 0 <= u <= 1, and p columns w_j fixed at values of about +-1000 (alternating signs: the terms of
 // a gravity row cancel the same way); row 0: x + Σ w_j = b, an equality whose solution x = 1.3 comes out

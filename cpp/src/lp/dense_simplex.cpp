@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/LU>
 #include <glpk.h>
 
 #include "lp/projection.hpp"
@@ -84,9 +83,7 @@ bool DenseSimplex::factorize() {
     f_c_.resize(s, s);
     for (int b = 0; b < s; ++b)
       for (int a = 0; a < s; ++a) f_c_(a, b) = A(rows[static_cast<size_t>(a)], scol[static_cast<size_t>(b)]);
-    f_lu_.compute(f_c_);
-    if (!(f_lu_.rcond() > limits.min_rcond)) return false;
-    f_m_ = f_lu_.inverse();  // A[R,S]^-1
+    if (!invert_small(f_c_, f_m_)) return false;  // A[R,S]^-1
     for (int b = 0; b < s; ++b)
       for (int a = 0; a < s; ++a) s_.inv(spos[static_cast<size_t>(b)], rows[static_cast<size_t>(a)]) = f_m_(b, a);
     // Each basic auxiliary's row: A[k,S] A[R,S]^-1, all of them in one product.
@@ -99,6 +96,43 @@ bool DenseSimplex::factorize() {
   }
   s_.updates = 0;
   return true;
+}
+
+// X = C^-1 by Gauss-Jordan elimination with partial pivoting, in place: s^3 multiply-adds in column
+// sweeps, where an LU and its inverse take 2 s^3 (and a condition estimate more solves); the condition is
+// then exact, ||C||_1 ||C^-1||_1, from the explicit inverse. false if C is (nearly) singular, 1 / that
+// condition not above limits.min_rcond. A pivot's small size is caught by the condition; the optimum's
+// certificate (certify) is what the answer rests on either way.
+bool DenseSimplex::invert_small(const Eigen::MatrixXd& C, Eigen::MatrixXd& X) {
+  const Eigen::Index s = C.rows();
+  X = C;
+  const double norm_c = C.cwiseAbs().colwise().sum().maxCoeff();
+  f_piv_.resize(static_cast<size_t>(s));
+  f_col_.resize(s);
+  for (Eigen::Index k = 0; k < s; ++k) {
+    Eigen::Index p = k;
+    X.col(k).tail(s - k).cwiseAbs().maxCoeff(&p);
+    p += k;
+    if (!(std::abs(X(p, k)) > 0.0)) return false;
+    f_piv_[static_cast<size_t>(k)] = static_cast<int>(p);
+    if (p != k) X.row(p).swap(X.row(k));
+    const double inv_pivot = 1.0 / X(k, k);
+    f_col_ = X.col(k);
+    f_col_[k] = 0.0;
+    X.col(k).setZero();
+    X(k, k) = 1.0;
+    X.row(k) *= inv_pivot;
+    for (Eigen::Index j = 0; j < s; ++j) {
+      const double xkj = X(k, j);
+      if (xkj != 0.0) X.col(j).noalias() -= xkj * f_col_;
+    }
+  }
+  for (Eigen::Index k = s - 1; k >= 0; --k) {
+    const Eigen::Index p = f_piv_[static_cast<size_t>(k)];
+    if (p != k) X.col(p).swap(X.col(k));
+  }
+  const double norm_x = X.cwiseAbs().colwise().sum().maxCoeff();
+  return std::isfinite(norm_x) && 1.0 / (norm_c * norm_x) > limits.min_rcond;
 }
 
 // x_B = -B^-1 N x_N from the nonbasic values (exactly at their bounds).

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 namespace pathpace::detail {
 
@@ -97,7 +96,9 @@ class DenseSimplex {
   // factorize()'s and compute_values()'s scratch (no allocation per call once sized).
   std::vector<int> f_spos_, f_scol_, f_rows_, f_apos_, f_arow_;
   Eigen::MatrixXd f_c_, f_m_, f_ak_, f_w_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> f_lu_;
+  bool invert_small(const Eigen::MatrixXd& C, Eigen::MatrixXd& X);  // factorize()'s A[R,S]^-1
+  std::vector<int> f_piv_;
+  Eigen::VectorXd f_col_;
   Eigen::VectorXd cv_z_, cv_r_, cv_xb_;
   Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous
   Eigen::MatrixXd abs_at_;  // |A|^T, for the certificate's rounding bound
