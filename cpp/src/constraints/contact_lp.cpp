@@ -97,9 +97,10 @@ Eigen::Matrix3d ContactConstraint::normal_frame(size_t i, const std::vector<Eige
 }
 
 void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
-                                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use) const {
+                                          Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use,
+                                          bool placed) const {
   const int m = use ? static_cast<int>(use->size()) : static_cast<int>(contacts_.size()), k = options_.cone_edges;
-  robot_->body_placements(q, T);
+  if (!placed) robot_->body_placements(q, T);
   J.setZero(3 * m, robot_->nq());
   gen.resize(3, m * k);
   auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
@@ -191,7 +192,7 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
     // The shifted cone: f_i = cone_offset n_i + Σ_e λ_ie g_ie at every contact, reduced or not, so that
     // τ = a x + b u + c - w - Σ J_iᵀ G_i λ_i with the constant w = cone_offset Σ_i J_iᵀ n_i (eq. 17),
     // moved into the row bounds like c.
-    const Eigen::VectorXd w = offset_torques(q);
+    const Eigen::VectorXd w = offset_torques(q, &T);
     lp.row_lo.head(n) += w;
     lp.row_hi.head(n) += w;
   }
@@ -217,8 +218,9 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
   lp.A.topRows(n) = (lp.A.topRows(n).array().abs() < tiny).select(0.0, lp.A.topRows(n));
 }
 
-Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-  thread_local std::vector<Eigen::Isometry3d> T;
+Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                                  const std::vector<Eigen::Isometry3d>* placed) const {
+  thread_local std::vector<Eigen::Isometry3d> own;
   thread_local Eigen::MatrixXd J, Jg;
   thread_local Eigen::Matrix3Xd gen;
   // A link's point Jacobian is affine in the point (add_point_jacobian), so the contacts of one link
@@ -244,7 +246,9 @@ Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::
       else g->sum += point_in_body_[i], g->count += 1.0;
     }
   }
-  contact_jacobians(q, T, J, gen, &moving);  // the body placements, and the moving contacts' Jacobians
+  if (placed) own = *placed;
+  std::vector<Eigen::Isometry3d>& T = own;
+  contact_jacobians(q, T, J, gen, &moving, placed != nullptr);  // the placements (unless given), the moving contacts' Jacobians
   const int nq = robot_->nq();
   Eigen::VectorXd w = Eigen::VectorXd::Zero(nq);
   for (size_t j = 0; j < moving.size(); ++j) {

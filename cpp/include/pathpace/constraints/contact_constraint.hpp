@@ -230,8 +230,10 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   // evaluate() on every sample of `samples`, without the phase's range, prefix or rest row.
   ConstraintRows project(const PathSamples& samples) const;
   std::string binding_label(const LpLayout& layout, const std::vector<std::string>& names, int code) const;
+  // `placed`: T already holds q's body placements (not computed again).
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
-                         Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr) const;
+                         Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use = nullptr,
+                         bool placed = false) const;
   // Every contact with its cone weights, no reduction (the force distribution, the infeasibility check);
   // every_point_row: a per-point row even where min_normal_force is 0 (the force distribution's margin
   // counts each point's normal force).
@@ -242,7 +244,9 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   // (zero, free) after them.
   void lp_structure(const LpLayout& layout, int extra, detail::PolytopeLp& lp) const;
   /// cone_offset Σ_i J_iᵀ n_i over every contact at q: the generalized force of the shifted cones' offsets.
-  Eigen::VectorXd offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// `placed`: q's body placements if the caller has them (lp_point's), else computed here.
+  Eigen::VectorXd offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const std::vector<Eigen::Isometry3d>* placed = nullptr) const;
   void lp_point(const LpLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
