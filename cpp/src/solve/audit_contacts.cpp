@@ -24,24 +24,57 @@ void Auditor::warm_slice(const Constraint& cc, size_t ci, const std::vector<Eige
     for (size_t q = 0; q < ks.size() && q < st.found[end].size(); ++q)
       if (!st.found[end][q].empty()) bases[static_cast<size_t>(ks[q])][static_cast<size_t>(end)] = std::move(st.found[end][q]);
 }
-// A contact constraint's samples, all in one batch (one warm-started LP sequence): the Chebyshev points
-// and the earlier cut points of every interval to audit, into (ks_, ls_), interval todo[t]'s from
-// first[t] to first[t + 1]; f their violations.
+bool Auditor::covers(const AuditMemory::Slices& M, double x, double u) {
+  if (!(M.hi_from <= u && u <= M.hi_to)) return false;
+  return (!M.hi_capped && x > M.hi + M.hi_slope * (u - M.u)) || (M.lo_from <= u && u <= M.lo_to);
+}
+
+void Auditor::keep_slice(AuditMemory::Slices& M, double u, double lo, double hi, const SliceEdges& edges,
+                         Eigen::Index e, double cap) {
+  M = AuditMemory::Slices();
+  M.u = u;
+  // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
+  if (std::isnan(hi) || std::isnan(lo) || lo > hi) return;
+  M.hi_capped = hi == kInf || hi >= cap * (1.0 - 1e-9);
+  M.hi = hi;
+  M.hi_slope = edges.hi_slope[e];
+  M.hi_from = edges.hi_from[e];
+  M.hi_to = edges.hi_to[e];
+  if (lo > -kInf) {  // -inf: its LP was skipped (x above the top)
+    M.lo = lo;
+    M.lo_slope = edges.lo_slope[e];
+    M.lo_from = edges.lo_from[e];
+    M.lo_to = edges.lo_to[e];
+  }
+}
+
+// A contact constraint's samples, all in one batch (one warm-started LP sequence): the Chebyshev points,
+// the earlier cut points and the earlier peak search's points whose slices still cover the timing (the
+// rest dropped) of every interval to audit, into (ks_, ls_, memo_of_), interval todo[t]'s from first[t]
+// to first[t + 1]; f their violations.
 void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo,
                             std::vector<size_t>& first, std::vector<double>& f) {
+  auto& memo = memory_.slices[ci];
+  if (memo.size() != static_cast<size_t>(N_ * points_)) memo.assign(static_cast<size_t>(N_ * points_), {});
   ks_.clear();
   ls_.clear();
+  memo_of_.clear();
   for (size_t t = 0; t < todo.size(); ++t) {
     const Eigen::Index k = todo[t];
+    const size_t kk = static_cast<size_t>(k);
     first[t] = ks_.size();
-    for (int m = 0; m < points_; ++m) {
+    auto add = [&](double l, AuditMemory::Slices* M) {
       ks_.push_back(k);
-      ls_.push_back(lam_[static_cast<size_t>(m)]);
-    }
-    for (const AuditMemory::Point& pt : memory_.cut_points[ci][static_cast<size_t>(k)]) {
-      ks_.push_back(k);
-      ls_.push_back(pt.lam);
-    }
+      ls_.push_back(l);
+      memo_of_.push_back(M);
+    };
+    for (int m = 0; m < points_; ++m) add(lam_[static_cast<size_t>(m)], &memo[kk * static_cast<size_t>(points_) + static_cast<size_t>(m)]);
+    for (AuditMemory::Point& pt : memory_.cut_points[ci][kk]) add(pt.lam, &pt.slice);
+    auto& probes = memory_.probes[ci][kk];
+    probes.erase(std::remove_if(probes.begin(), probes.end(),
+                                [&](const AuditMemory::Point& pt) { return !covers(pt.slice, x_of(k, pt.lam), u_of(k)); }),
+                 probes.end());
+    for (AuditMemory::Point& pt : probes) add(pt.lam, &pt.slice);
   }
   first[todo.size()] = ks_.size();
   contact_samples(cc, ci, first, todo, f);
@@ -57,8 +90,6 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   const std::vector<Eigen::Index>& kk = ks_;
   const std::vector<double>& ll = ls_;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto& memo = memory_.slices[ci];
-  if (memo.size() != static_cast<size_t>(N_ * points_)) memo.assign(static_cast<size_t>(N_ * points_), {});
   const double cap = cc.projection_cap();
   f.assign(kk.size(), nan);
   std::vector<Eigen::Index> bk;
@@ -68,15 +99,13 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
     for (size_t i = first[t]; i < first[t + 1]; ++i) {
       const Eigen::Index k = kk[i];
       const double u = u_of(k), x = x_of(k, ll[i]);
-      const AuditMemory::Slices& M = slice_memo(ci, k, i - first[t]);
-      if (M.hi_from <= u && u <= M.hi_to) {
+      const AuditMemory::Slices& M = *memo_of_[i];
+      if (covers(M, x, u)) {
         const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
         const bool bottom = M.lo_from <= u && u <= M.lo_to;
-        if (x > hi || bottom) {  // above the top the bottom does not matter (slice(..., &x))
-          f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
-          ++audit_.reused;
-          continue;
-        }
+        f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
+        ++audit_.reused;
+        continue;
       }
       bk.push_back(k);
       bl.push_back(ll[i]);
@@ -91,28 +120,10 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   const Eigen::Index n = static_cast<Eigen::Index>(bu.size());
   const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(bx.data(), n);
   warm_slice(cc, ci, bk, ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges);
-  size_t t = 0;
   for (size_t q = 0; q < bk.size(); ++q) {
-    const size_t i = main_of[q];
     const Eigen::Index e = static_cast<Eigen::Index>(q);
-    f[i] = slice_violation(bx[q], lo[e], hi[e]);
-    while (first[t + 1] <= i) ++t;
-    AuditMemory::Slices& M = slice_memo(ci, bk[q], i - first[t]);
-    M = AuditMemory::Slices();
-    M.u = bu[q];
-    // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
-    if (std::isnan(hi[e]) || std::isnan(lo[e]) || lo[e] > hi[e]) continue;
-    M.hi_capped = hi[e] == kInf || hi[e] >= cap * (1.0 - 1e-9);
-    M.hi = hi[e];
-    M.hi_slope = edges.hi_slope[e];
-    M.hi_from = edges.hi_from[e];
-    M.hi_to = edges.hi_to[e];
-    if (lo[e] > -kInf) {  // -inf: its LP was skipped (x above the top)
-      M.lo = lo[e];
-      M.lo_slope = edges.lo_slope[e];
-      M.lo_from = edges.lo_from[e];
-      M.lo_to = edges.lo_to[e];
-    }
+    f[main_of[q]] = slice_violation(bx[q], lo[e], hi[e]);
+    keep_slice(*memo_of_[main_of[q]], bu[q], lo[e], hi[e], edges, e, cap);
   }
 }
 // A contact constraint's cuts at the peaks (ks_, ls_) of the brackets cuts[q]: the polygon's edge through

@@ -57,12 +57,12 @@ class Auditor {
   std::vector<Eigen::Index> intervals_to_audit(size_t ci);
   void contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo, std::vector<size_t>& first,
                      std::vector<double>& f);
-  // The kept slice of interval k's sample m (contact_batch's order: Chebyshev points, then cut points).
-  AuditMemory::Slices& slice_memo(size_t ci, Eigen::Index k, size_t m) {
-    const size_t pts = static_cast<size_t>(points_);
-    return m < pts ? memory_.slices[ci][static_cast<size_t>(k) * pts + m]
-                   : memory_.cut_points[ci][static_cast<size_t>(k)][m - pts].slice;
-  }
+  // Whether a kept slice gives the violation at (x, u) without an LP: u within its top's range, and x
+  // above the top or u within its bottom's range too.
+  static bool covers(const AuditMemory::Slices& M, double x, double u);
+  // M from a slice solved at u (lo, hi its ends, edges' row e their edges).
+  static void keep_slice(AuditMemory::Slices& M, double u, double lo, double hi, const SliceEdges& edges,
+                         Eigen::Index e, double cap);
   void warm_slice(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& ks, const PathSamples& ps,
                   const Eigen::VectorXd& u, Eigen::VectorXd& lo, Eigen::VectorXd& hi, const Eigen::VectorXd* x,
                   SliceEdges* edges);
@@ -101,6 +101,7 @@ class Auditor {
   std::vector<double> lam_;            // the Chebyshev points in λ
   std::vector<Eigen::Index> ks_;       // a batch of samples: interval ks_[i] at λ ls_[i]
   std::vector<double> ls_;
+  std::vector<AuditMemory::Slices*> memo_of_;  // contact_batch's samples: each one's kept slice
   std::vector<std::vector<double>> Ls_, Vs_;  // [interval to audit]: its samples, sorted and merged
   std::vector<double> curvature_;             // [interval to audit]: its bound on -v''(s) (path_curvature)
 };

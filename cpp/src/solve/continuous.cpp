@@ -177,6 +177,7 @@ void Auditor::size_memory() {
     memory_.cut_points.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   }
   if (memory_.slices.size() != n) memory_.slices.assign(n, {});
+  if (memory_.probes.size() != n) memory_.probes.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   if (memory_.curvature.size() != n) memory_.curvature.assign(n, std::vector<double>(static_cast<size_t>(N_), 0.0));
   if (memory_.bases.size() != n) memory_.bases.assign(n, std::vector<std::array<std::vector<signed char>, 2>>(static_cast<size_t>(N_)));
 }
@@ -252,9 +253,17 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
       u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
       x[static_cast<Eigen::Index>(i)] = x_of(kk[i], ll[i]);
     }
-    warm_slice(*contact, ci, kk, ps, u, lo, hi, &x, nullptr);
-    for (size_t i = 0; i < kk.size(); ++i)
-      f[i] = slice_violation(x[static_cast<Eigen::Index>(i)], lo[static_cast<Eigen::Index>(i)], hi[static_cast<Eigen::Index>(i)]);
+    SliceEdges edges;
+    warm_slice(*contact, ci, kk, ps, u, lo, hi, &x, &edges);
+    const double cap = contact->projection_cap();
+    for (size_t i = 0; i < kk.size(); ++i) {
+      const Eigen::Index e = static_cast<Eigen::Index>(i);
+      f[i] = slice_violation(x[e], lo[e], hi[e]);
+      auto& probes = memory_.probes[ci][static_cast<size_t>(kk[i])];
+      if (probes.size() >= AuditMemory::kProbes) probes.erase(probes.begin());
+      probes.push_back({ll[i], {}, {}, {}, {}});
+      keep_slice(probes.back().slice, u[e], lo[e], hi[e], edges, e, cap);
+    }
     return;
   }
   const ConstraintRows rr = constraints_[ci]->evaluate(ps);

@@ -55,6 +55,11 @@ struct AuditMemory {
     Slices slice;  // a contact constraint's slice there (as at a Chebyshev point)
   };
   std::vector<std::vector<std::vector<Point>>> cut_points;
+  /// [constraint][interval]: a contact constraint's points of the peak search (a, b, c empty), with their
+  /// slices: later rounds sample them again where the slices' edges cover the new u (no LP), so that the
+  /// brackets start between them and most close by the bump bound, not by new LPs. At most kProbes each.
+  std::vector<std::vector<std::vector<Point>>> probes;
+  static constexpr size_t kProbes = 16;
   /// [constraint][interval]: the largest concavity of v in s that the interval's samples showed in any
   /// round (part of the screen's bound, kept from round to round).
   std::vector<std::vector<double>> curvature;
