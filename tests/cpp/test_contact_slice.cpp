@@ -254,6 +254,37 @@ TEST(ContactSlice, EdgesAreThePolygonsBoundaryAlongU) {
 // Warm starts across calls (SliceStarts): a call's samples started from the optimal bases another call found
 // at other points, from bases that do not fit (the wrong size, or no basis at all), or from none, give the
 // same slices; found holds a basis per end that had an optimum.
+TEST(ContactSlice, StartsAreUsedAndTheGlpkLpsCounted) {
+  // A call without starts: GLPK answers the first sample (no basis nearby yet), the dense simplex then
+  // restarts from the previous sample's. The same samples again, each end started from its own optimal
+  // basis of the first call: GLPK answers only what has no such basis (an empty slice or a failed LP), so
+  // the starts are used, not only harmless (the test below), and glpk_lps counts what GLPK did.
+  auto model = lifter_with_box();
+  const ContactConstraint c(model, corners(0.5), box_options(0.5));
+  const PathSamples samples = lifter_samples(9);
+  const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(samples.size(), -2.0, 3.0);
+  Eigen::VectorXd lo, hi, lo_w, hi_w;
+  SliceStarts cold;
+  const int lps = c.slice(samples, u, lo, hi, nullptr, nullptr, &cold);
+  EXPECT_GE(cold.glpk_lps, 1);
+  EXPECT_LE(cold.glpk_lps, lps);
+  SliceStarts warm;
+  int without = 0;
+  for (int end = 0; end < 2; ++end) {
+    warm.start[end] = cold.found[end];
+    for (const auto& b : cold.found[end]) without += b.empty();
+  }
+  const int lps_w = c.slice(samples, u, lo_w, hi_w, nullptr, nullptr, &warm);
+  EXPECT_EQ(lps_w, lps);
+  EXPECT_LT(without, lps);  // most LPs have a start
+  EXPECT_LE(warm.glpk_lps, without);
+  for (Eigen::Index p = 0; p < samples.size(); ++p)
+    for (auto [a, b] : {std::pair{lo_w[p], lo[p]}, std::pair{hi_w[p], hi[p]}}) {
+      if (std::isinf(b)) EXPECT_EQ(a, b) << "sample " << p;
+      else EXPECT_NEAR(a, b, 1e-9 * std::max(1.0, std::abs(b))) << "sample " << p;
+    }
+}
+
 TEST(ContactSlice, StartsFromAnotherCallGiveTheSameSlices) {
   auto model = lifter_with_box();
   const ContactConstraint c(model, corners(0.5), box_options(0.5));

@@ -101,6 +101,9 @@ struct SolverStats {
   int projection_fallback_unbounded = 0;
   int projection_fallback_singular = 0;
   int projection_fallback_certificate = 0;
+  /// Of audit_lps, the slice LPs GLPK answered: a call's first sample per constraint and what the dense
+  /// simplex, warm-started from a nearby sample's optimal basis, gave up on (lp/slice_lp.hpp).
+  int audit_lps_glpk = 0;
 };
 
 // docstrings.txt @@ Result

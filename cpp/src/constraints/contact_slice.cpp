@@ -114,6 +114,7 @@ int ContactConstraint::slice(const PathSamples& samples, const Eigen::VectorXd& 
     x_lo[p] = sl == 1 ? bottom : (sl == 0 ? inf : nan);
     if (edges && sl == 1) edge(p, -1.0, edges->lo_slope, edges->lo_from, edges->lo_to, edges->lo_label);
   }
+  if (starts) starts->glpk_lps = solver.glpk;
   return lps;
 }
 

@@ -161,7 +161,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     id += static_cast<int>(cr.rows());
   }
   Result res;
-  int rounds = 0, cuts = 0, audit_lps = 0, audit_projections = 0, audit_reused = 0;
+  int rounds = 0, cuts = 0, audit_lps = 0, audit_lps_glpk = 0, audit_projections = 0, audit_reused = 0;
   detail::AuditMemory memory;
   // The time budget covers all rounds: each solve gets what is left.
   const auto started = std::chrono::steady_clock::now();
@@ -176,6 +176,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     ++rounds;
     cuts += audit.cuts;
     audit_lps += audit.lps;
+    audit_lps_glpk += audit.glpk_lps;
     audit_projections += audit.projections;
     audit_reused += audit.reused;
     res.stats.audit_worst = audit.worst;
@@ -191,6 +192,7 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   res.stats.audit_rounds = rounds;
   res.stats.audit_cuts = cuts;
   res.stats.audit_lps = audit_lps;
+  res.stats.audit_lps_glpk = audit_lps_glpk;
   res.stats.audit_projections = audit_projections;
   res.stats.audit_reused = audit_reused;
   return with_drift_note(std::move(res));

@@ -20,6 +20,7 @@ void Auditor::warm_slice(const Constraint& cc, size_t ci, const std::vector<Eige
     for (Eigen::Index k : ks) st.start[end].push_back(bases[static_cast<size_t>(k)][static_cast<size_t>(end)]);
   }
   audit_.lps += cc.slice(ps, u, lo, hi, x, edges, &st);
+  audit_.glpk_lps += st.glpk_lps;
   for (int end = 0; end < 2; ++end)
     for (size_t q = 0; q < ks.size() && q < st.found[end].size(); ++q)
       if (!st.found[end][q].empty()) bases[static_cast<size_t>(ks[q])][static_cast<size_t>(end)] = std::move(st.found[end][q]);

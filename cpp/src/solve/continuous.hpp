@@ -72,6 +72,7 @@ struct Audit {
   double worst = 0.0;  ///< largest violation found, relative to max(|c|, |a θ(s)| + |b u|) (<= 0: none)
   int cuts = 0;        ///< rows added to `extra`
   int lps = 0;         ///< contact slice LPs (ContactConstraint::slice) spent
+  int glpk_lps = 0;    ///< of which GLPK answered (the rest: the warm-started dense simplex)
   int projections = 0; ///< polygons projected (at cut points whose slice is empty)
   int reused = 0;      ///< contact samples settled by the slices' edges kept from an earlier round (no LP)
 };

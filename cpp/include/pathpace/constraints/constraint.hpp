@@ -124,9 +124,11 @@ struct SliceEdges {
 /// (0 the top, 1 the bottom), start[end][p] (in, if sized to the samples) is an optimal basis that an earlier
 /// call found at a nearby sample, empty for none, and found[end][p] (out) the optimal basis of this one's LP,
 /// empty where that end had no LP or the LP failed. A basis is the constraint's own code, meaningful only to
-/// the constraint that wrote it; a start that does not fit is ignored.
+/// the constraint that wrote it; a start that does not fit is ignored. glpk_lps (out): how many of the
+/// call's LPs the general solver answered (a first sample, or one the warm-started simplex gave up on).
 struct SliceStarts {
   std::vector<std::vector<signed char>> start[2], found[2];
+  int glpk_lps = 0;
 };
 
 // docstrings.txt @@ Constraint
