@@ -100,11 +100,24 @@ struct Problem {
   }
 };
 
-// The rows at x̄: the point rows, then the jerk rows linearised at x̄.
+// The rows at x̄: the point rows, then the jerk rows linearised at x̄. The point rows do not depend on x̄, nor
+// does a jerk row but for its θ coefficient and right-hand side: once `rows` holds them, only those two are
+// written (JerkLimitRow::relinearise), √θ̄ once per grid point (a step re-linearises every row twice).
 void rows_at(const Problem& p, const Eigen::VectorXd& xbar, std::vector<JerkRow>& rows) {
-  rows.resize(p.point.size() + p.jerk.size());
-  std::copy(p.point.begin(), p.point.end(), rows.begin());
-  for (size_t i = 0; i < p.jerk.size(); ++i) rows[p.point.size() + i] = p.jerk[i].linearised(xbar[p.jerk[i].point]);
+  const size_t np = p.point.size();
+  if (rows.size() != np + p.jerk.size()) {
+    rows.resize(np + p.jerk.size());
+    std::copy(p.point.begin(), p.point.end(), rows.begin());
+    for (size_t i = 0; i < p.jerk.size(); ++i) rows[np + i] = p.jerk[i].linearised(xbar[p.jerk[i].point]);
+    return;
+  }
+  Eigen::Index at = -1;
+  double tb = 0.0, root = 0.0;
+  for (size_t i = 0; i < p.jerk.size(); ++i) {
+    const JerkLimitRow& j = p.jerk[i];
+    if (j.point != at) at = j.point, tb = std::max(xbar[at], 1e-300), root = std::sqrt(tb);
+    j.relinearise(rows[np + i], tb, root);
+  }
 }
 
 bool strictly_inside(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x) {
@@ -115,35 +128,68 @@ bool strictly_inside(const Problem& p, const std::vector<JerkRow>& rows, const E
   return true;
 }
 
+// Σ log s over positive s as the log of their product, one log per 8 factors: the product's exponent is taken
+// out (frexp) after every 8, so that it neither overflows nor underflows for factors within 1e±38 of one, and a
+// factor outside that, which the product could lose, takes its own log. The barrier's line search evaluates
+// ~10^4-10^5 slacks per trial; a log per slack was the largest part of a Newton step. The product's relative
+// rounding (one ulp per factor) is of the order of a plain sum of the logs' own.
+class LogSum {
+ public:
+  void add(double s) {
+    if (!(s > 1e-38 && s < 1e38)) {
+      sum_ += std::log(s);
+      return;
+    }
+    product_ *= s;
+    if (++count_ == 8) flush();
+  }
+  double value() {
+    flush();
+    return sum_ + std::log(product_) + exponent_ * M_LN2;
+  }
+
+ private:
+  void flush() {
+    int e = 0;
+    product_ = std::frexp(product_, &e);
+    exponent_ += e;
+    count_ = 0;
+  }
+  double product_ = 1.0, sum_ = 0.0;
+  long exponent_ = 0;
+  int count_ = 0;
+};
+
 // φ at x for the rows as given (+inf outside).
 double barrier_value(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t) {
   const double T = jerk_quadrature_time(p.sh, x, nullptr, nullptr);
   if (!std::isfinite(T)) return kInf;
-  double phi = t * T;
+  LogSum logs;
   for (const JerkRow& r : rows) {
     const double s = r.rhs - r.dot(x);
     if (!(s > 0)) return kInf;
-    phi -= std::log(s);
+    logs.add(s);
   }
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
     if (!p.free[static_cast<size_t>(c)]) continue;
     if (p.lo[c] > -kInf) {
       if (!(x[c] > p.lo[c])) return kInf;
-      phi -= std::log(x[c] - p.lo[c]);
+      logs.add(x[c] - p.lo[c]);
     }
     if (p.hi[c] < kInf) {
       if (!(x[c] < p.hi[c])) return kInf;
-      phi -= std::log(p.hi[c] - x[c]);
+      logs.add(p.hi[c] - x[c]);
     }
   }
-  return phi;
+  return t * T - logs.value();
 }
 
 struct Step {
   explicit Step(Eigen::Index m) : Ks(m) {}
   Eigen::VectorXd gT, d, nu;  // ∇T at x̄, the Newton step, the consistency multipliers (of φ / t)
   double dec2 = 0;            // Newton decrement², -∇φ·d
-  std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the scaled KKT matrix
+  std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, the scaled KKT matrix
+  std::vector<double> inv_slack;
   BandLdlt Ks;
 };
 
@@ -171,8 +217,15 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b <= a; ++b) addH(c[a], c[b], t * h[3 * a + b]);
   }
-  for (const JerkRow& r : rows) {
-    const double w = 1.0 / (r.rhs - r.dot(x));
+  // The rows' 1 / slack first, in a pass of their own: each a division whose latency the assembly below
+  // would wait for row by row.
+  std::vector<double>& inv = st.inv_slack;
+  inv.resize(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) inv[k] = rows[k].rhs - rows[k].dot(x);
+  for (double& v : inv) v = 1.0 / v;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const JerkRow& r = rows[k];
+    const double w = inv[k];
     for (int i = 0; i < r.n; ++i) {
       g[r.col[i]] += w * r.val[i];
       for (int j = 0; j <= i; ++j) addH(r.col[i], r.col[j], w * w * r.val[i] * r.val[j]);

@@ -22,13 +22,13 @@ JerkShape jerk_shape(const Eigen::VectorXd& s, bool rest0, bool restN) {
 }
 
 JerkRow JerkLimitRow::linearised(double theta_bar) const {
-  // J/√θ >= J (3θ̄ - θ) / (2 θ̄^{3/2}).
   const double tb = std::max(theta_bar, 1e-300);
   JerkRow r = lin;
-  r.add(static_cast<int>(point), J / (2 * tb * std::sqrt(tb)));
-  r.rhs = 1.5 * J / std::sqrt(tb);
+  r.add(static_cast<int>(point), 0.0);  // the θ column, if lin has none
+  relinearise(r, tb, std::sqrt(tb));
   return r;
 }
+
 
 double jerk_total_time(const JerkShape& sh, const Eigen::VectorXd& x) {
   const Eigen::Index n = sh.n, nb = n + 1;

@@ -52,6 +52,18 @@ struct JerkLimitRow {
   double J = 0;
   /// The row linearised at θ̄ (the tangent of J/√θ, which lies below it: an inner row, exact at θ̄).
   JerkRow linearised(double theta_bar) const;
+  /// r, a linearised() of this row, linearised again at tb (θ̄ clamped as linearised() does) with root = √tb:
+  /// only its θ coefficient and right-hand side depend on θ̄, and the rows of one grid point share the root.
+  void relinearise(JerkRow& r, double tb, double root) const {
+    // J/√θ >= J (3θ̄ - θ) / (2 θ̄^{3/2}): lin's θ coefficient plus the tangent's slope, 1.5 J / √θ̄ on the right.
+    // jerk_limit_rows adds the θ column last; any other place is searched for.
+    const int c = static_cast<int>(point);
+    int i = r.n - 1, l = lin.n - 1;
+    while (i >= 0 && r.col[i] != c) --i;
+    while (l >= 0 && lin.col[l] != c) --l;
+    if (i >= 0) r.val[i] = (l >= 0 ? lin.val[l] : 0.0) + J / (2 * tb * root);
+    r.rhs = 1.5 * J / root;
+  }
 };
 
 /// Exact time of the profile (+inf where θ reaches 0 inside an interval).
