@@ -2178,7 +2178,8 @@ class TimeScalingProblem:
         ----------
         method : {'auto', 'slp'}
             'auto': reachability analysis, exact when the feasible set has a greatest element, SLP otherwise;
-            'slp': always run sequential linear programming.
+            'slp': always run sequential linear programming. With jerk limits, 'auto' tries the primal-dual
+            interior-point method before the barrier path, 'slp' runs the barrier path alone.
         max_iterations : int
             SLP iterations.
         tolerance : float

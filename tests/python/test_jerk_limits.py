@@ -10,6 +10,8 @@ interval the jerk ramp itself (see docs/method.md, "Jerk limits"). The tolerance
 """
 
 import pickle
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -407,7 +409,13 @@ def linearised_optimum(s, theta_bar, b_bar, path, d3, v, a, j):
         arg = th[k] + b[k] * (2 * sg - sg**2 / ds[k]) + b[k + 1] * (sg**2 / ds[k])
         T += cp.sum(cp.multiply(w, cp.power(arg, -0.5)))
     pr = cp.Problem(cp.Minimize(T), cons)
-    pr.solve(solver="CLARABEL", tol_gap_abs=1e-9, tol_gap_rel=1e-9, tol_feas=1e-9, max_iter=500)
+    # Tight tolerances; where Clarabel stops "optimal_inaccurate" (seen on seed 0 at the primal-dual method's
+    # answer, whose active jerk rows are met more tightly than the barrier's), once more with a larger static
+    # regularisation (Clarabel's default is 1e-8), at the same tolerances.
+    for extra in ({}, {"static_regularization_constant": 1e-7}):
+        pr.solve(solver="CLARABEL", tol_gap_abs=1e-9, tol_gap_rel=1e-9, tol_feas=1e-9, max_iter=500, **extra)
+        if pr.status == "optimal":
+            break
     assert pr.status == "optimal"
     return pr.value
 
@@ -424,10 +432,13 @@ def grid_violation(s, theta, b, dq, ddq, dddq, v, a, j):
     return max(worst, 0.0)
 
 
+# Both engines of the structured solve: method="auto" tries the primal-dual interior-point method first (the
+# barrier path where it does not certify), method="slp" runs the barrier path alone.
+@pytest.mark.parametrize("method", ["auto", "slp"])
 @pytest.mark.parametrize("seed", [0, 1, 2])
-def test_structured_solve_matches_clarabel(seed):
+def test_structured_solve_matches_clarabel(seed, method):
     prob, path, d3, v, a, j = quartic_problem(seed, 40)
-    res = prob.solve()
+    res = prob.solve(method=method)
     assert res.status == pp.Status.OPTIMAL, res.message
     s, theta, b = np.asarray(res.s), np.asarray(res.sdot) ** 2, np.asarray(res.sddot_points)
     assert res.duration > res.stats["second_order_duration"]  # the jerk limits bind
@@ -436,3 +447,32 @@ def test_structured_solve_matches_clarabel(seed):
     T_cvx = linearised_optimum(s, theta, b, path, d3, v, a, j)
     assert abs(Tq / T_cvx - 1) <= 1e-7
     assert grid_violation(s, theta, b, path.dq(s), path.ddq(s), d3(s), v, a, j) <= 1e-9
+
+
+def test_primal_dual_and_barrier_certify_the_same_optimum_in_fewer_steps():
+    """method="auto" (primal-dual first) and "slp" (the barrier alone) on the sweep arms' paths: both OPTIMAL with
+    a certified gap to the linearised problem below the tolerance, T equal to it, within the limits at the grid
+    points; the primal-dual iterations (stats["jerk_iterations"]) a fraction of the barrier's Newton steps
+    (measured: 11-13 against 58-63 at N = 100, 25-40 against 82-92 at N = 1000; bench/README.md)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+    from sweep import Arm, waypoints
+
+    steps = {"auto": [], "slp": []}
+    for name, seed in (("panda", 0), ("ur10", 1), ("xarm7", 2)):
+        arm = Arm(name)
+        path = pp.CubicSplinePath(waypoints(arm, seed), knots="uniform", boundary="not-a-knot", s_begin=0.0, s_end=1.0)
+        v, a = arm.v, 2.0 * arm.v
+        prob = pp.TimeScalingProblem(path, grid=np.linspace(0.0, 1.0, 101))
+        prob.add_velocity_limits(-v, v)
+        prob.add_acceleration_limits(-a, a)
+        prob.add_jerk_limits(-10 * a, 10 * a)
+        res = {m: prob.solve(method=m) for m in steps}
+        for m, r in res.items():
+            assert r.status == pp.Status.OPTIMAL, (name, m, r.message)
+            assert r.stats["jerk_linearised_gap"] <= 1e-7
+            steps[m].append(r.stats["jerk_iterations"])
+            s, theta, b = np.asarray(r.s), np.asarray(r.sdot) ** 2, np.asarray(r.sddot_points)
+            assert np.max(np.abs(path.dq(s) * np.sqrt(theta)[:, None]) / v) <= 1 + 1e-9
+            assert np.max(np.abs(path.ddq(s) * theta[:, None] + path.dq(s) * b[:, None]) / a) <= 1 + 1e-9
+        assert res["auto"].duration == pytest.approx(res["slp"].duration, rel=2e-7)
+    assert np.median(steps["auto"]) <= 0.5 * np.median(steps["slp"])

@@ -12,9 +12,11 @@ enum class Method {
   /// relaxation without those rows brackets the optimum; if the bracket exceeds the tolerance, SLP runs
   /// on windows around the intervals where the relaxation's greatest element breaks a coupling row, the
   /// rest of the grid keeping that element (see docs/method.md: the result is the global optimum).
+  /// With jerk limits: the primal-dual interior-point method first, the barrier path where it does not
+  /// certify (docs/method.md, "Jerk limits").
   Auto,
   /// Always run SLP over the whole chain from the reachability start (for checking, or if the
-  /// shortcuts are not wanted).
+  /// shortcuts are not wanted). With jerk limits: the barrier path alone.
   Slp,
 };
 

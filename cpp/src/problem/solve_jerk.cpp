@@ -99,6 +99,7 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
   in.zero_sddot_end = zero_sddot_end_;
   in.theta_hint = res.sdot.array().square();
   in.max_iterations = options.max_iterations;
+  in.primal_dual = options.method == Method::Auto;
   in.tolerance = options.tolerance;
   in.lp_tolerance = options.lp_feasibility_tolerance;
   in.time_limit = options.time_limit;

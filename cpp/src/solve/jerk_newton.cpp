@@ -190,16 +190,66 @@ struct Step {
   double dec2 = 0;            // Newton decrement², -∇φ·d
   std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, the scaled KKT matrix
   std::vector<double> inv_slack;
+  Eigen::VectorXd scale;      // the KKT matrix's symmetric scaling (solve_kkt)
   BandLdlt Ks;
 };
 
-// The Newton step of φ_t^x̄ at x̄ subject to the consistency rows. False if the factorisation fails.
+// The primal-dual method's terms in place of the barrier's (jerk_primal_dual): per row the Hessian weight λ_r / s_r
+// (the barrier's 1 / s_r²) and the gradient's γ_r / s_r (the barrier's 1 / s_r), and the same per bound.
+struct PdTerms {
+  std::vector<double> hess_row, grad_row;
+  Eigen::VectorXd hess_lo, hess_hi, grad_lo, grad_hi;
+};
+
+// ∇φ at x̄: t ∇T plus each row's and bound's γ / slack along its normal (γ = 1: the barrier's).
+void kkt_gradient(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t,
+                  const std::vector<double>& inv, const PdTerms* pd, const Eigen::VectorXd& gT, Eigen::VectorXd& g) {
+  g = t * gT;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const JerkRow& r = rows[k];
+    const double w = pd ? pd->grad_row[k] * inv[k] : inv[k];
+    for (int i = 0; i < r.n; ++i) g[r.col[i]] += w * r.val[i];
+  }
+  for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
+    if (!p.free[static_cast<size_t>(c)]) {
+      g[c] = 0;
+      continue;
+    }
+    if (p.lo[c] > -kInf) g[c] -= (pd ? pd->grad_lo[c] : 1.0) / (x[c] - p.lo[c]);
+    if (p.hi[c] < kInf) g[c] += (pd ? pd->grad_hi[c] : 1.0) / (p.hi[c] - x[c]);
+  }
+}
+
+// The KKT system's solution for the gradient g with the factorisation of newton_step: st.d, st.nu (of φ / t), dec2.
+bool solve_kkt(const Problem& p, const Eigen::VectorXd& g, double t, Step& st) {
+  const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m);
+  for (Eigen::Index c = 0; c < nx; ++c) rhs[p.pos(c)] = -g[c];
+  const BandLdlt& Ks = st.Ks;
+  Eigen::VectorXd b = st.scale.cwiseProduct(rhs), y = b, r;
+  Ks.solve(y);
+  for (int it = 0; it < 2; ++it) {  // iterative refinement against the unregularised Â
+    Ks.multiply(y, r);
+    Eigen::VectorXd corr = b - r;
+    Ks.solve(corr);
+    y += corr;
+  }
+  y = y.cwiseProduct(st.scale);
+  st.d.resize(nx);
+  for (Eigen::Index c = 0; c < nx; ++c) st.d[c] = p.free[static_cast<size_t>(c)] ? y[p.pos(c)] : 0.0;
+  st.nu.resize(p.sh.n);
+  for (Eigen::Index k = 0; k < p.sh.n; ++k) st.nu[k] = y[p.nu_pos(k)] / t;
+  st.dec2 = -g.dot(st.d);
+  return std::isfinite(st.dec2);
+}
+
+// The Newton step of φ_t^x̄ at x̄ subject to the consistency rows (with `pd`, the primal-dual system of the same
+// shape). False if the factorisation fails.
 bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t, BandLdlt& K,
-                 Step& st) {
+                 Step& st, const PdTerms* pd = nullptr) {
   const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
   std::vector<double>& hT = st.hT;
   jerk_quadrature_time(p.sh, x, &st.gT, &hT);
-  Eigen::VectorXd g = t * st.gT;
   K.clear();
   auto is_free = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] != 0; };
   auto addH = [&](Eigen::Index c1, Eigen::Index c2, double v) {
@@ -225,29 +275,28 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
   for (double& v : inv) v = 1.0 / v;
   for (size_t k = 0; k < rows.size(); ++k) {
     const JerkRow& r = rows[k];
-    const double w = inv[k];
-    for (int i = 0; i < r.n; ++i) {
-      g[r.col[i]] += w * r.val[i];
-      for (int j = 0; j <= i; ++j) addH(r.col[i], r.col[j], w * w * r.val[i] * r.val[j]);
-    }
+    const double w2 = pd ? pd->hess_row[k] : inv[k] * inv[k];
+    for (int i = 0; i < r.n; ++i)
+      for (int j = 0; j <= i; ++j) addH(r.col[i], r.col[j], w2 * r.val[i] * r.val[j]);
   }
   for (Eigen::Index c = 0; c < nx; ++c) {
     if (!is_free(c)) {
-      g[c] = 0;
       K.add(p.pos(c), p.pos(c), 1.0);
       continue;
     }
     if (p.lo[c] > -kInf) {
       const double w = 1.0 / (x[c] - p.lo[c]);
-      g[c] -= w, K.add(p.pos(c), p.pos(c), w * w);
+      K.add(p.pos(c), p.pos(c), pd ? pd->hess_lo[c] : w * w);
     }
     if (p.hi[c] < kInf) {
       const double w = 1.0 / (p.hi[c] - x[c]);
-      g[c] += w, K.add(p.pos(c), p.pos(c), w * w);
+      K.add(p.pos(c), p.pos(c), pd ? pd->hess_hi[c] : w * w);
     }
   }
   // Consistency rows (E d = 0: x̄ is consistent), symmetric scaling: primal by 1/√H_ii, rows to unit norm.
-  Eigen::VectorXd scale(m), reg(m), rhs = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd& scale = st.scale;
+  Eigen::VectorXd reg(m);
+  scale.resize(m);
   for (Eigen::Index c = 0; c < nx; ++c) scale[p.pos(c)] = 1.0 / std::sqrt(std::max(K.at(p.pos(c), p.pos(c)), 1e-300));
   for (Eigen::Index k = 0; k < p.sh.n; ++k) {
     const JerkRow& e = p.consistency[static_cast<size_t>(k)];
@@ -259,7 +308,6 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
       if (is_free(e.col[i])) K.add(p.nu_pos(k), p.pos(e.col[i]), e.val[i]);
     if (!(nrm > 0)) K.add(p.nu_pos(k), p.nu_pos(k), 1.0);
   }
-  for (Eigen::Index c = 0; c < nx; ++c) rhs[p.pos(c)] = -g[c];
   // Scale in place: Â = S A S.
   BandLdlt& Ks = st.Ks;
   Ks.clear();
@@ -268,21 +316,9 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
   for (Eigen::Index c = 0; c < nx; ++c) reg[p.pos(c)] = 1e-11;
   for (Eigen::Index k = 0; k < p.sh.n; ++k) reg[p.nu_pos(k)] = -1e-11;
   if (!Ks.factor(reg)) return false;
-  Eigen::VectorXd b = scale.cwiseProduct(rhs), y = b, r;
-  Ks.solve(y);
-  for (int it = 0; it < 2; ++it) {  // iterative refinement against the unregularised Â
-    Ks.multiply(y, r);
-    Eigen::VectorXd corr = b - r;
-    Ks.solve(corr);
-    y += corr;
-  }
-  y = y.cwiseProduct(scale);
-  st.d.resize(nx);
-  for (Eigen::Index c = 0; c < nx; ++c) st.d[c] = is_free(c) ? y[p.pos(c)] : 0.0;
-  st.nu.resize(p.sh.n);
-  for (Eigen::Index k = 0; k < p.sh.n; ++k) st.nu[k] = y[p.nu_pos(k)] / t;
-  st.dec2 = -g.dot(st.d);
-  return std::isfinite(st.dec2);
+  Eigen::VectorXd g;
+  kkt_gradient(p, rows, x, t, inv, pd, st.gT, g);
+  return solve_kkt(p, g, t, st);
 }
 
 // The largest step along d keeping every slack and bound positive.
@@ -302,21 +338,19 @@ double max_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen:
 
 // Lower bound on min T over the problem linearised at x (convex), from multipliers λ_r >= 0 of its rows and ν of
 // its consistency rows: T(y) >= T(x) + ∇T·(y - x) >= T(x) - ∇T·x - λ·c + Σ_j min_{lo_j <= y_j <= hi_j} coef_j y_j,
-// coef = ∇T + Σ λ_r a_r + Eᵀν. λ_r = (1 + a_r·d / s_r) / (t s_r) (the barrier's multiplier after the step d,
-// to first order; solve/barrier.hpp), clipped at 0.
-double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
-                        double t, const Step& st) {
-  Eigen::VectorXd coef = st.gT;
-  double lower = T - st.gT.dot(x);
-  for (const JerkRow& r : rows) {
-    const double s = r.rhs - r.dot(x);
-    const double lam = std::max(0.0, 1.0 + r.dot(st.d) / s) / (t * s);
-    for (int i = 0; i < r.n; ++i) coef[r.col[i]] += lam * r.val[i];
-    lower -= lam * r.rhs;
+// coef = ∇T + Σ λ_r a_r + Eᵀν (weak duality: any λ >= 0 and ν give a bound, the closer to optimal the tighter).
+double lagrangian_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
+                        const Eigen::VectorXd& gT, const Eigen::VectorXd& nu, const std::vector<double>& lam) {
+  Eigen::VectorXd coef = gT;
+  double lower = T - gT.dot(x);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const JerkRow& r = rows[k];
+    for (int i = 0; i < r.n; ++i) coef[r.col[i]] += lam[k] * r.val[i];
+    lower -= lam[k] * r.rhs;
   }
   for (Eigen::Index k = 0; k < p.sh.n; ++k) {
     const JerkRow& e = p.consistency[static_cast<size_t>(k)];
-    for (int i = 0; i < e.n; ++i) coef[e.col[i]] += st.nu[k] * e.val[i];
+    for (int i = 0; i < e.n; ++i) coef[e.col[i]] += nu[k] * e.val[i];
   }
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
     const double lo = p.free[static_cast<size_t>(c)] ? p.lo[c] : x[c], hi = p.free[static_cast<size_t>(c)] ? p.hi[c] : x[c];
@@ -325,6 +359,151 @@ double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, cons
     if (!std::isfinite(lower)) return -kInf;
   }
   return lower;
+}
+
+// The barrier's bound: λ_r = (1 + a_r·d / s_r) / (t s_r) (the barrier's multiplier after the step d, to first
+// order; solve/barrier.hpp), clipped at 0.
+double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
+                        double t, const Step& st) {
+  std::vector<double> lam(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const JerkRow& r = rows[k];
+    const double s = r.rhs - r.dot(x);
+    lam[k] = std::max(0.0, 1.0 + r.dot(st.d) / s) / (t * s);
+  }
+  return lagrangian_bound(p, rows, x, T, st.gT, st.nu, lam);
+}
+
+// The primal-dual interior-point method (Mehrotra's predictor-corrector), tried before the barrier path: on the
+// same banded KKT matrix, with the rows' Hessian weights λ_r / s_r of its own multipliers λ instead of the
+// barrier's 1 / (t s_r²), it follows the central path without the barrier's inner centring (the barrier took
+// 70-90 damped steps at N = 1000, 10-14 after each of its 20x increases of t). Feasible: x stays strictly inside
+// the rows linearised at it (fraction to the boundary), so inside the true rows, and the jerk rows are
+// linearised again at each iterate (their slacks only grow: the tangent lies below J/√θ). Its answer is certified
+// like the barrier's, by weak duality with its own λ and ν (lagrangian_bound); where it does not certify within
+// its iterations, or a step fails, the barrier path runs from the same start. True: x certified to `tolerance`.
+bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& x, double tolerance, JerkOutput& out,
+                 std::chrono::steady_clock::time_point deadline) {
+  const Eigen::Index nb = p.nb, nx = 2 * nb;
+  const size_t R = rows.size();
+  BandLdlt K(3 * nb - 1);
+  Step st(3 * nb - 1);
+  PdTerms pd;
+  pd.hess_row.resize(R), pd.grad_row.resize(R);
+  for (Eigen::VectorXd* v : {&pd.hess_lo, &pd.hess_hi, &pd.grad_lo, &pd.grad_hi}) v->setZero(nx);
+  // Slacks (rows, then each finite bound of a free unknown) and their multipliers; g_lo, g_hi 0 where no bound.
+  std::vector<double> s(R), lam(R), ds(R), dlam(R), ds_aff(R), dlam_aff(R), lam_full(R);
+  Eigen::VectorXd glo = Eigen::VectorXd::Zero(nx), ghi = glo, zlo = glo, zhi = glo, zlo_aff = glo, zhi_aff = glo;
+  auto has_lo = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] && p.lo[c] > -kInf; };
+  auto has_hi = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] && p.hi[c] < kInf; };
+  auto slacks = [&]() {
+    for (size_t k = 0; k < R; ++k) s[k] = rows[k].rhs - rows[k].dot(x);
+    for (Eigen::Index c = 0; c < nx; ++c) {
+      if (has_lo(c)) glo[c] = x[c] - p.lo[c];
+      if (has_hi(c)) ghi[c] = p.hi[c] - x[c];
+    }
+  };
+  slacks();
+  double m = static_cast<double>(R);
+  for (Eigen::Index c = 0; c < nx; ++c) m += has_lo(c) + has_hi(c);
+  double T = jerk_quadrature_time(p.sh, x, nullptr, nullptr);
+  const double mu0 = T / m;  // the barrier's first centre: a duality gap of T
+  for (size_t k = 0; k < R; ++k) lam[k] = mu0 / s[k];
+  for (Eigen::Index c = 0; c < nx; ++c) {
+    if (has_lo(c)) zlo[c] = mu0 / glo[c];
+    if (has_hi(c)) zhi[c] = mu0 / ghi[c];
+  }
+  // The multipliers' step for the primal step dx from the complementarity rows λ ds + s dλ = γ - λ s (ds = -a·dx;
+  // γ of pd's gradient terms: 0 for the predictor), and the largest primal and dual steps keeping s, λ > 0.
+  auto directions = [&](const Eigen::VectorXd& dx, std::vector<double>& dsv, std::vector<double>& dl,
+                        Eigen::VectorXd& dzlo, Eigen::VectorXd& dzhi, double& ap, double& ad) {
+    ap = ad = kInf;
+    for (size_t k = 0; k < R; ++k) {
+      dsv[k] = -rows[k].dot(dx);
+      dl[k] = (pd.grad_row[k] - lam[k] * s[k] - lam[k] * dsv[k]) / s[k];
+      if (dsv[k] < 0) ap = std::min(ap, -s[k] / dsv[k]);
+      if (dl[k] < 0) ad = std::min(ad, -lam[k] / dl[k]);
+    }
+    for (Eigen::Index c = 0; c < nx; ++c) {
+      if (has_lo(c)) {
+        dzlo[c] = (pd.grad_lo[c] - zlo[c] * glo[c] - zlo[c] * dx[c]) / glo[c];
+        if (dx[c] < 0) ap = std::min(ap, -glo[c] / dx[c]);
+        if (dzlo[c] < 0) ad = std::min(ad, -zlo[c] / dzlo[c]);
+      }
+      if (has_hi(c)) {
+        dzhi[c] = (pd.grad_hi[c] - zhi[c] * ghi[c] + zhi[c] * dx[c]) / ghi[c];
+        if (dx[c] > 0) ap = std::min(ap, ghi[c] / dx[c]);
+        if (dzhi[c] < 0) ad = std::min(ad, -zhi[c] / dzhi[c]);
+      }
+    }
+  };
+  auto gap_mu = [&](double ap, double ad, const std::vector<double>& dsv, const std::vector<double>& dl,
+                    const Eigen::VectorXd& dx, const Eigen::VectorXd& dzlo, const Eigen::VectorXd& dzhi) {
+    double sum = 0;
+    for (size_t k = 0; k < R; ++k) sum += (s[k] + ap * dsv[k]) * (lam[k] + ad * dl[k]);
+    for (Eigen::Index c = 0; c < nx; ++c) {
+      if (has_lo(c)) sum += (glo[c] + ap * dx[c]) * (zlo[c] + ad * dzlo[c]);
+      if (has_hi(c)) sum += (ghi[c] - ap * dx[c]) * (zhi[c] + ad * dzhi[c]);
+    }
+    return sum / m;
+  };
+  const int max_iterations = 60;
+  int stalled = 0;
+  Eigen::VectorXd dx_aff, g, dzlo(nx), dzhi(nx), next;
+  for (int it = 0; it < max_iterations; ++it) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    // The predictor: γ = 0.
+    for (size_t k = 0; k < R; ++k) pd.hess_row[k] = lam[k] / s[k], pd.grad_row[k] = 0.0;
+    for (Eigen::Index c = 0; c < nx; ++c) {
+      pd.hess_lo[c] = has_lo(c) ? zlo[c] / glo[c] : 0.0;
+      pd.hess_hi[c] = has_hi(c) ? zhi[c] / ghi[c] : 0.0;
+      pd.grad_lo[c] = pd.grad_hi[c] = 0.0;
+    }
+    if (!newton_step(p, rows, x, 1.0, K, st, &pd)) return false;
+    ++out.newton_steps;
+    dx_aff = st.d;
+    double ap = 0, ad = 0;
+    directions(dx_aff, ds_aff, dlam_aff, zlo_aff, zhi_aff, ap, ad);
+    const double mu = gap_mu(0, 0, ds_aff, dlam_aff, dx_aff, zlo_aff, zhi_aff);
+    const double mu_aff = gap_mu(std::min(1.0, ap), std::min(1.0, ad), ds_aff, dlam_aff, dx_aff, zlo_aff, zhi_aff);
+    const double sigma = std::pow(std::min(1.0, mu_aff / mu), 3);
+    // The corrector: γ = σμ less the predictor's second-order term, on the same factorisation.
+    for (size_t k = 0; k < R; ++k) pd.grad_row[k] = sigma * mu - ds_aff[k] * dlam_aff[k];
+    for (Eigen::Index c = 0; c < nx; ++c) {
+      if (has_lo(c)) pd.grad_lo[c] = sigma * mu - dx_aff[c] * zlo_aff[c];
+      if (has_hi(c)) pd.grad_hi[c] = sigma * mu + dx_aff[c] * zhi_aff[c];
+    }
+    kkt_gradient(p, rows, x, 1.0, st.inv_slack, &pd, st.gT, g);
+    if (!solve_kkt(p, g, 1.0, st)) return false;
+    const Eigen::VectorXd dx = st.d;
+    directions(dx, ds, dlam, dzlo, dzhi, ap, ad);
+    // The certificate at x, as the barrier's: the multipliers after the full step (λ + dλ, clipped at 0) and the
+    // step's ν satisfy ∇T(x) + ∇²T dx + Aᵀλ + Eᵀν = 0, so the bound is tight as dx vanishes.
+    for (size_t k = 0; k < R; ++k) lam_full[k] = std::max(0.0, lam[k] + dlam[k]);
+    const double lower = lagrangian_bound(p, rows, x, T, st.gT, st.nu, lam_full);
+    out.gap = std::max(0.0, T - lower) / T;
+    if (T - lower <= tolerance * T) return true;
+    ap = std::min(1.0, 0.995 * ap), ad = std::min(1.0, 0.995 * ad);
+    // Back from a step whose θ reaches 0 between grid points (T infinite; the rows hold only at the grid points).
+    // A primal step that stays tiny is a stall (the implicit bound θ > 0 inside an interval, which the
+    // complementarity does not see): the barrier path then takes over.
+    double T_next = kInf;
+    for (int back = 0;; ++back) {
+      next = x + ap * dx;
+      rows_at(p, next, rows);
+      T_next = strictly_inside(p, rows, next) ? jerk_quadrature_time(p.sh, next, nullptr, nullptr) : kInf;
+      if (std::isfinite(T_next) || back == 30) break;
+      ap *= 0.5;
+    }
+    stalled = ap < 0.05 ? stalled + 1 : 0;
+    if (!std::isfinite(T_next) || stalled == 3) return false;
+    x = next;
+    T = T_next;
+    for (size_t k = 0; k < R; ++k) lam[k] += ad * dlam[k];
+    zlo += ad * dzlo, zhi += ad * dzhi;
+    slacks();
+  }
+  return false;
 }
 
 }  // namespace
@@ -409,17 +588,28 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
   for (Eigen::Index c = 0; c < nx; ++c)
     if (!p.free[static_cast<size_t>(c)] && lo[c] != 0) return false;
   std::vector<JerkRow> rows;
-  const Eigen::VectorXd xs = x;
+  Eigen::VectorXd xs = x;
   rows_at(p, xs, rows);
   if (!strictly_inside(p, rows, xs)) return false;
 
   const double n_ineq = p.n_ineq();
   double T = jerk_quadrature_time(sh, xs, nullptr, nullptr);
   if (!std::isfinite(T)) return false;
+  const double t_final = n_ineq / (0.25 * in.tolerance * T);  // T here is the start's, above the answer's
+  int pd_steps = 0;  // the primal-dual method's iterations (counted in newton_steps with the barrier's)
+  if (in.primal_dual) {
+    Eigen::VectorXd xp = xs;
+    if (primal_dual(p, rows, xp, in.tolerance, out, deadline)) {
+      x = xp;
+      return true;
+    }
+    pd_steps = out.newton_steps;
+    rows.clear();
+    rows_at(p, xs, rows);
+  }
   BandLdlt K(3 * nb - 1);
   Step st(3 * nb - 1);
   double t = n_ineq / (first_gap * T);
-  const double t_final = n_ineq / (0.25 * in.tolerance * T);  // T here is the start's, above the answer's
   const int max_steps = 400;
   int since = 0;
   Eigen::VectorXd x0 = x, next(nx);
@@ -435,7 +625,7 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
       const double lower = multiplier_bound(p, rows, x, T, t, st);
       out.gap = std::max(0.0, T - lower) / T;
       if (T - lower <= in.tolerance * T) {
-        ++out.newton_steps;
+        out.newton_steps += 1 + pd_steps;
         return true;
       }
       if (st.dec2 <= 1e-9) {  // centred, yet the bound is not there: ask for less gap

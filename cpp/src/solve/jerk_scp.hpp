@@ -30,6 +30,9 @@ struct JerkInput {
   bool zero_sddot_begin = false, zero_sddot_end = false;
   Eigen::VectorXd theta_hint;  ///< θ of the second-order optimum (where the first linearisation is taken)
   int max_iterations = 200;
+  /// The structured solve tries the primal-dual method first (jerk_newton.cpp), the barrier path where it does
+  /// not certify; false: the barrier path alone (SolverOptions::method = Slp, for checking).
+  bool primal_dual = true;
   double tolerance = 1e-7;
   double lp_tolerance = 1e-9;
   double time_limit = 60;
