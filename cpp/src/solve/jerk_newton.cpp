@@ -408,6 +408,7 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
   for (Eigen::Index c = 0; c < nx; ++c) m += has_lo(c) + has_hi(c);
   double T = jerk_quadrature_time(p.sh, x, nullptr, nullptr);
   const double mu0 = T / m;  // the barrier's first centre: a duality gap of T
+  const double mu_floor = 0.1 * tolerance * T / m;  // a tenth of the gap the tolerance allows
   for (size_t k = 0; k < R; ++k) lam[k] = mu0 / s[k];
   for (Eigen::Index c = 0; c < nx; ++c) {
     if (has_lo(c)) zlo[c] = mu0 / glo[c];
@@ -466,12 +467,15 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
     directions(dx_aff, ds_aff, dlam_aff, zlo_aff, zhi_aff, ap, ad);
     const double mu = gap_mu(0, 0, ds_aff, dlam_aff, dx_aff, zlo_aff, zhi_aff);
     const double mu_aff = gap_mu(std::min(1.0, ap), std::min(1.0, ad), ds_aff, dlam_aff, dx_aff, zlo_aff, zhi_aff);
+    // The centring target σμ, not below mu_floor: a duality gap far below the tolerance's only makes the
+    // active rows' λ/s huge and the KKT solves inexact (seen: the bound closing to 1e-5, then lost).
     const double sigma = std::pow(std::min(1.0, mu_aff / mu), 3);
-    // The corrector: γ = σμ less the predictor's second-order term, on the same factorisation.
-    for (size_t k = 0; k < R; ++k) pd.grad_row[k] = sigma * mu - ds_aff[k] * dlam_aff[k];
+    const double target = std::max(sigma * mu, mu_floor);
+    // The corrector: γ = the target less the predictor's second-order term, on the same factorisation.
+    for (size_t k = 0; k < R; ++k) pd.grad_row[k] = target - ds_aff[k] * dlam_aff[k];
     for (Eigen::Index c = 0; c < nx; ++c) {
-      if (has_lo(c)) pd.grad_lo[c] = sigma * mu - dx_aff[c] * zlo_aff[c];
-      if (has_hi(c)) pd.grad_hi[c] = sigma * mu + dx_aff[c] * zhi_aff[c];
+      if (has_lo(c)) pd.grad_lo[c] = target - dx_aff[c] * zlo_aff[c];
+      if (has_hi(c)) pd.grad_hi[c] = target + dx_aff[c] * zhi_aff[c];
     }
     kkt_gradient(p, rows, x, 1.0, st.inv_slack, &pd, st.gT, g);
     if (!solve_kkt(p, g, 1.0, st)) return false;
