@@ -453,7 +453,7 @@ def test_primal_dual_and_barrier_certify_the_same_optimum_in_fewer_steps():
     """method="auto" (primal-dual first) and "slp" (the barrier alone) on the sweep arms' paths: both OPTIMAL with
     a certified gap to the linearised problem below the tolerance, T equal to it, within the limits at the grid
     points; the primal-dual iterations (stats["jerk_iterations"]) a fraction of the barrier's Newton steps
-    (measured: 11-13 against 58-63 at N = 100, 25-40 against 82-92 at N = 1000; bench/README.md)."""
+    (measured: 9-14 against 55-63 at N = 100, 24-39 against 82-92 at N = 1000; bench/README.md)."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
     from sweep import Arm, waypoints
 
