@@ -382,6 +382,8 @@ double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, cons
 // linearised again at each iterate (their slacks only grow: the tangent lies below J/√θ). Its answer is certified
 // like the barrier's, by weak duality with its own λ and ν (lagrangian_bound); where it does not certify within
 // its iterations, or a step fails, the barrier path runs from the same start. True: x certified to `tolerance`.
+// One function, longer than a screen: an iteration's stages (predictor, centring, corrector, certificate, step)
+// share a dozen per-row and per-bound vectors that a split would pass around.
 bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& x, double tolerance, JerkOutput& out,
                  std::chrono::steady_clock::time_point deadline) {
   const Eigen::Index nb = p.nb, nx = 2 * nb;
