@@ -544,13 +544,15 @@ bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::Ve
   for (Eigen::Index k = 1; k < n; ++k)
     if (!(theta[k] > 0)) return false;
   if (!std::isfinite(jerk_quadrature_time(sh, x, nullptr, nullptr))) return false;
-  // The largest κ for which κ x holds every row: the limits scale by κ, the jerk rows' left side by κ and
-  // their right side J/√θ by 1/√κ.
-  double kappa = kInf;
+  // The κ for which κ x holds every row: the limits scale by κ, the jerk rows' left side by κ and their right
+  // side J/√θ by 1/√κ. A row with a negative right-hand side that x meets by a negative left side (a contact
+  // polygon need not contain (θ, s̈) = 0) bounds κ from below.
+  double kappa = kInf, kappa_lo = 0.0;
   for (const JerkRow& r : jerk_point_rows(in, sh)) {
     const double l = r.dot(x);
     if (l > 0) kappa = std::min(kappa, r.rhs / l);
-    else if (!(r.rhs > 0)) return false;
+    else if (l < 0 && r.rhs < 0) kappa_lo = std::max(kappa_lo, r.rhs / l);
+    else if (l == 0 && !(r.rhs >= 0)) return false;  // l = 0: e.g. a row of a rest end's fixed zeros
   }
   for (const JerkLimitRow& r : jerk_limit_rows(in, sh)) {
     const double g = r.lin.dot(x);
@@ -559,7 +561,10 @@ bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::Ve
   for (Eigen::Index k = 0; k < nb; ++k)
     if (x[k] > 0 && hi[k] < kInf) kappa = std::min(kappa, hi[k] / x[k]);
   if (!(kappa > 0) || !std::isfinite(kappa)) return false;
-  x *= 0.9 * kappa;
+  // 0.9 of the largest, or halfway into the range where a lower bound leaves less room.
+  const double k = 0.9 * kappa > kappa_lo * 1.01 ? 0.9 * kappa : 0.5 * (kappa_lo + kappa);
+  if (!(k > kappa_lo * (1 + 1e-9) && k < kappa)) return false;
+  x *= k;
   return true;
 }
 
