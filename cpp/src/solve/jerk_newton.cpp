@@ -188,13 +188,13 @@ struct Step {
   explicit Step(Eigen::Index m) : Ks(m) {}
   Eigen::VectorXd gT, d, nu;  // ∇T at x̄, the Newton step, the consistency multipliers (of φ / t)
   double dec2 = 0;            // Newton decrement², -∇φ·d
-  std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, the scaled KKT matrix
-  std::vector<double> inv_slack;
+  std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, their multipliers
+  std::vector<double> inv_slack, lam;
   Eigen::VectorXd scale;      // the KKT matrix's symmetric scaling (solve_kkt)
   BandLdlt Ks;
 };
 
-// The primal-dual method's terms in place of the barrier's (jerk_primal_dual): per row the Hessian weight λ_r / s_r
+// The primal-dual method's terms in place of the barrier's (primal_dual): per row the Hessian weight λ_r / s_r
 // (the barrier's 1 / s_r²) and the gradient's γ_r / s_r (the barrier's 1 / s_r), and the same per bound.
 struct PdTerms {
   std::vector<double> hess_row, grad_row;
@@ -364,8 +364,9 @@ double lagrangian_bound(const Problem& p, const std::vector<JerkRow>& rows, cons
 // The barrier's bound: λ_r = (1 + a_r·d / s_r) / (t s_r) (the barrier's multiplier after the step d, to first
 // order; solve/barrier.hpp), clipped at 0.
 double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
-                        double t, const Step& st) {
-  std::vector<double> lam(rows.size());
+                        double t, Step& st) {
+  std::vector<double>& lam = st.lam;
+  lam.resize(rows.size());
   for (size_t k = 0; k < rows.size(); ++k) {
     const JerkRow& r = rows[k];
     const double s = r.rhs - r.dot(x);
@@ -384,8 +385,8 @@ double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, cons
 // its iterations, or a step fails, the barrier path runs from the same start. True: x certified to `tolerance`.
 // One function, longer than a screen: an iteration's stages (predictor, centring, corrector, certificate, step)
 // share a dozen per-row and per-bound vectors that a split would pass around.
-bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& x, double tolerance, JerkOutput& out,
-                 std::chrono::steady_clock::time_point deadline) {
+bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& x, double T, double tolerance,
+                 JerkOutput& out, std::chrono::steady_clock::time_point deadline) {
   const Eigen::Index nb = p.nb, nx = 2 * nb;
   const size_t R = rows.size();
   BandLdlt K(3 * nb - 1);
@@ -408,7 +409,6 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
   slacks();
   double m = static_cast<double>(R);
   for (Eigen::Index c = 0; c < nx; ++c) m += has_lo(c) + has_hi(c);
-  double T = jerk_quadrature_time(p.sh, x, nullptr, nullptr);
   const double mu0 = T / m;  // the barrier's first centre: a duality gap of T
   const double mu_floor = 0.1 * tolerance * T / m;  // a tenth of the gap the tolerance allows
   for (size_t k = 0; k < R; ++k) lam[k] = mu0 / s[k];
@@ -610,13 +610,11 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
   int pd_steps = 0;  // the primal-dual method's iterations (counted in newton_steps with the barrier's)
   if (in.primal_dual) {
     Eigen::VectorXd xp = xs;
-    if (primal_dual(p, rows, xp, in.tolerance, out, deadline)) {
+    if (primal_dual(p, rows, xp, T, in.tolerance, out, deadline)) {
       x = xp;
       return true;
     }
-    pd_steps = out.newton_steps;
-    rows.clear();
-    rows_at(p, xs, rows);
+    pd_steps = out.newton_steps;  // the barrier's first step re-linearises `rows` at xs
   }
   BandLdlt K(3 * nb - 1);
   Step st(3 * nb - 1);

@@ -29,7 +29,6 @@ JerkRow JerkLimitRow::linearised(double theta_bar) const {
   return r;
 }
 
-
 double jerk_total_time(const JerkShape& sh, const Eigen::VectorXd& x) {
   const Eigen::Index n = sh.n, nb = n + 1;
   double T = 0;
