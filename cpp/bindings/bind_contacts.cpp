@@ -98,13 +98,14 @@ py::tuple contact_state(const ContactConstraint& c) {
   return py::make_tuple(std::const_pointer_cast<RobotModel>(c.robot()), c.contacts(), o.cone_edges, o.friction_margin,
                         o.min_normal_force, o.cap, c.tau_min(), c.tau_max(), o.min_link_normal_force, o.max_lps,
                         py::make_tuple(o.active_begin, o.active_end, o.label, o.rest_at_begin), o.cone_offset,
-                        o.projection_tolerance, py::make_tuple(c.physical_tau_min(), c.physical_tau_max()));
+                        o.projection_tolerance, py::make_tuple(c.physical_tau_min(), c.physical_tau_max()),
+                        o.project_on_demand);
 }
 
 std::shared_ptr<ContactConstraint> contact_from_state(const py::tuple& t) {
-  // 11 / 12 / 13 entries: a state written before cone_offset / projection_tolerance (then 0) / the
-  // physical torque limits (then the stored ones).
-  if (t.size() < 11 || t.size() > 13) check_state(t, 14, "ContactConstraint");
+  // 11 / 12 / 13 / 14 entries: a state written before cone_offset / projection_tolerance (then 0) / the
+  // physical torque limits (then the stored ones) / project_on_demand (then false).
+  if (t.size() < 11 || t.size() > 14) check_state(t, 15, "ContactConstraint");
   ContactOptions o;
   o.cone_edges = t[2].cast<int>();
   o.friction_margin = t[3].cast<double>();
@@ -130,6 +131,7 @@ std::shared_ptr<ContactConstraint> contact_from_state(const py::tuple& t) {
     plo = to_vector(phys[0], "physical_tau_min");
     phi = to_vector(phys[1], "physical_tau_max");
   }
+  if (t.size() >= 15) o.project_on_demand = t[14].cast<bool>();
   py::gil_scoped_release release;
   auto out = std::make_shared<ContactConstraint>(std::move(robot), std::move(contacts), o, std::move(lo), std::move(hi));
   return plo.size() ? out->with_physical_torque_limits(plo, phi) : out;

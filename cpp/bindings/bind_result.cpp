@@ -66,6 +66,7 @@ constexpr void for_each_stat(Stats& s, F&& f) {
   f("projection_fallback_singular", s.projection_fallback_singular);
   f("projection_fallback_certificate", s.projection_fallback_certificate);
   f("audit_lps_glpk", s.audit_lps_glpk);
+  f("projection_rounds", s.projection_rounds);
 }
 // The pickle state's length, counted from for_each_stat (not written by hand beside it).
 constexpr size_t stats_state_size() {
@@ -95,8 +96,10 @@ SolverStats stats_from_state(const py::tuple& st) {
   constexpr size_t kFourthStatsStateSize = 29;  // ... and before the projection's ranging, dense and pivot counts
   constexpr size_t kFifthStatsStateSize = 33;   // ... and before the dense simplex's fallbacks by cause
   constexpr size_t kSixthStatsStateSize = 38;   // ... and before the audit's GLPK slice LPs
+  constexpr size_t kSeventhStatsStateSize = 39; // ... and before the projection's refinement rounds
   if (st.size() != kFirstStatsStateSize && st.size() != kSecondStatsStateSize && st.size() != kThirdStatsStateSize &&
-      st.size() != kFourthStatsStateSize && st.size() != kFifthStatsStateSize && st.size() != kSixthStatsStateSize)
+      st.size() != kFourthStatsStateSize && st.size() != kFifthStatsStateSize && st.size() != kSixthStatsStateSize &&
+      st.size() != kSeventhStatsStateSize)
     check_state(st, kStatsStateSize, "Result stats");
   SolverStats s;
   size_t i = 0;

@@ -10,7 +10,9 @@ namespace {
 
 template <typename T>
 void parse_into(T& field, py::handle value, const std::string& name) {
-  if constexpr (std::is_same_v<T, int>)
+  if constexpr (std::is_same_v<T, bool>)
+    field = to_bool(value, name);
+  else if constexpr (std::is_same_v<T, int>)
     field = to_int32(value, name);
   else
     field = to_double(value, name);

@@ -29,8 +29,9 @@ void for_each_contact_option(Options& o, F&& f) {
   f("max_lps", o.max_lps);
   f("cone_offset", o.cone_offset);
   f("projection_tolerance", o.projection_tolerance);
+  f("project_on_demand", o.project_on_demand);
 }
-inline constexpr size_t kContactOptions = 9;  // the calls of for_each_contact_option
+inline constexpr size_t kContactOptions = 10;  // the calls of for_each_contact_option
 
 /// The keyword arguments' values, in for_each_contact_option's order.
 using ContactOptionHandles = std::array<py::handle, kContactOptions>;
@@ -59,9 +60,9 @@ inline auto contact_option_args() { return detail::contact_option_args(std::make
 template <typename R, typename... Lead, typename F>
 auto with_contact_options(F f) {
   return [f](Lead... lead, py::handle o0, py::handle o1, py::handle o2, py::handle o3, py::handle o4, py::handle o5,
-             py::handle o6, py::handle o7, py::handle o8) -> R {
-    static_assert(kContactOptions == 9, "one handle per option");
-    return f(std::forward<Lead>(lead)..., parse_contact_options({o0, o1, o2, o3, o4, o5, o6, o7, o8}));
+             py::handle o6, py::handle o7, py::handle o8, py::handle o9) -> R {
+    static_assert(kContactOptions == 10, "one handle per option");
+    return f(std::forward<Lead>(lead)..., parse_contact_options({o0, o1, o2, o3, o4, o5, o6, o7, o8, o9}));
   };
 }
 

@@ -773,7 +773,7 @@ class ContactConstraint(Constraint):
     torque_scale, torque_margin : float
         As TorqueLimits' scale and margin (N·m).
     tau_min, tau_max : array_like (nq,), optional
-    min_link_normal_force, max_lps, cone_offset, projection_tolerance :
+    min_link_normal_force, max_lps, cone_offset, projection_tolerance, project_on_demand :
         See TimeScalingProblem.add_contacts: points in link frames, normals in the world frame; margins per
         point (min_normal_force, cone_offset) and per link (min_link_normal_force).
 
@@ -814,6 +814,7 @@ class ContactConstraint(Constraint):
         max_lps: int = 2000,
         cone_offset: float = 0.0,
         projection_tolerance: float = 0.0,
+        project_on_demand: bool = False,
     ) -> None: ...
     @property
     def tau_min(self) -> Array:
@@ -1953,6 +1954,7 @@ class TimeScalingProblem:
         max_lps: int = 2000,
         cone_offset: float = 0.0,
         projection_tolerance: float = 0.0,
+        project_on_demand: bool = False,
     ) -> None:
         """Torque limits with frictional contact forces (eq. 17-18), projected to (ṡ², s̈) per grid point
         (sec. IV.C; each polygon is the hull of LP optima with every edge certified by its own LP); see
@@ -2001,6 +2003,14 @@ class TimeScalingProblem:
             (T can only grow). The edges at sdot^2 = 0 are always exact, so the rest state's sddot range, where
             the path can start or stop, is the exact one. Edges kept by ε are labelled "contact forces" in
             Result.binding.
+        project_on_demand : bool
+            Project each grid point's polygon only where the timing needs it (default False: every polygon in
+            full). add_contacts then spends three LPs per point on an outer polygon, and solve() refines it
+            round by round: where the timing's (sdot^2, sddot), with both adjacent sddot, lies beyond a polygon
+            edge not yet certified, the expansion goes on towards that point only, until it lies inside the
+            certified inner polygon or beyond a certified edge. The timing is then that of the full projection
+            (the same T, to the projection's 1e-9 of each polygon's size) from the few edges it touches:
+            stats['projection_rounds'] counts the solves. feasible_set() shows the outer polygon before a solve.
         """
     def add_contact_phases(
         self,
@@ -2021,6 +2031,7 @@ class TimeScalingProblem:
         max_lps: int = 2000,
         cone_offset: float = 0.0,
         projection_tolerance: float = 0.0,
+        project_on_demand: bool = False,
     ) -> None:
         """Contacts that change along the path: one contact set per phase.
 
@@ -2043,7 +2054,7 @@ class TimeScalingProblem:
             options: a dict of this phase's own friction_margin, min_normal_force, min_link_normal_force,
             cone_offset, cone_edges (the others are the call's).
         cone_edges, friction_margin, min_normal_force, torque_scale, torque_margin, tau_min, tau_max,
-        min_link_normal_force, max_lps, cone_offset, projection_tolerance :
+        min_link_normal_force, max_lps, cone_offset, projection_tolerance, project_on_demand :
             As in ``add_contacts``, for every phase.
         drift_tolerance, drift :
             As in ``add_contacts``, for each phase's contacts on that phase's stretch.

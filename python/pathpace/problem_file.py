@@ -259,6 +259,10 @@ def _contact_options(r: _Reader, cd: dict, key: str) -> dict:
         opts["cone_edges"] = int(r.number(cd["cone_edges"], f"{key}.cone_edges"))
     if "drift" in cd:
         opts["drift"] = cd["drift"]  # auto | warn | error: add_contacts names a bad one
+    if "project_on_demand" in cd:
+        if not isinstance(cd["project_on_demand"], bool):
+            raise r.fail(f"{key}.project_on_demand", f"expected true or false, got {cd['project_on_demand']!r}")
+        opts["project_on_demand"] = cd["project_on_demand"]
     return opts
 
 
@@ -266,7 +270,7 @@ def _contacts(r: _Reader, value: Any, robot: pp.RobotModel, prob: pp.TimeScaling
     """contacts: {points: [...], options...} (one set for the whole path) or {phases: [{s: [s0, s1],
     points: [...], options...}, ...], options...} (TimeScalingProblem.add_contact_phases: each phase's
     options over the shared ones)."""
-    allowed = {"points", "phases", "cone_edges", "drift", *_CONTACT_OPTIONS}
+    allowed = {"points", "phases", "cone_edges", "drift", "project_on_demand", *_CONTACT_OPTIONS}
     cd = r.mapping(value, "contacts", allowed)
     if ("points" in cd) == ("phases" in cd):
         raise r.fail("contacts", "expected either 'points' (one set of contacts) or 'phases' (contact phases)")

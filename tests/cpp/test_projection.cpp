@@ -457,6 +457,72 @@ TEST(Projection, RandomPolytopesGiveTheSamePolygonsWarmAndCold) {
   }
 }
 
+namespace {
+
+// Checks one focused projection against the full one of the same polytope (to 1e-9 of its size): the outer
+// polygon holds the shadow, the hull lies in it, and every focus point is settled: one well inside the shadow
+// is inside the hull, one well outside it is cut off by an outer half-plane.
+void expect_focus_contract(const Projection& r, const Projection& full, const std::vector<Vertex>& focus, int k) {
+  ASSERT_EQ(r.outcome, Projection::Outcome::Polygon) << r.note;
+  ASSERT_TRUE(r.complete) << r.note;
+  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+  for (const Vertex& v : full.vertices) xlo = std::min(xlo, v.x), xhi = std::max(xhi, v.x), ylo = std::min(ylo, v.y), yhi = std::max(yhi, v.y);
+  const double size = std::max(xhi - xlo, yhi - ylo), tol = 1e-9 * size;
+  for (const Line& h : r.halfplanes) EXPECT_LE(support(full, h.a, h.b), h.c + tol) << "polytope " << k;
+  auto inside = [&](const std::vector<Line>& rows, const Vertex& q, double margin) {
+    for (const Line& h : rows)
+      if (h.a * q.x + h.b * q.y > h.c + margin) return false;
+    return true;
+  };
+  for (const Vertex& v : r.vertices) EXPECT_TRUE(inside(full.halfplanes, v, tol)) << "polytope " << k;
+  ASSERT_EQ(r.hull.size(), r.hull_certified.size());
+  for (const Vertex& q : focus) {
+    if (inside(full.halfplanes, q, -1e-6 * size)) EXPECT_TRUE(inside(r.hull, q, tol)) << "polytope " << k;
+    if (!inside(full.halfplanes, q, 1e-6 * size)) EXPECT_FALSE(inside(r.halfplanes, q, 0.0)) << "polytope " << k;
+  }
+}
+
+}  // namespace
+
+TEST(Projection, FocusedProjectionBracketsTheShadowSettlesItsPointsAndResumes) {
+  // project_on_demand's projections: random polytopes of the projection LPs' shape (the dense simplex on,
+  // the initial LPs warm from the previous polytope's), focus points inside and outside each shadow (a
+  // vertex of it scaled about the centre by 0.5 ... 2), first three of them, then all six from where the
+  // first call left off: both meet the contract; the second call spends no initial LP and fewer LPs than a
+  // fresh call with all six; and the focused calls fewer than the full projection.
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  PolytopeProjector projector;
+  int focused = 0, full_lps = 0;
+  for (int k = 0; k < 10; ++k) {
+    const PolytopeLp lp = random_polytope(gen);
+    const Projection full = project_polytope(lp);
+    ASSERT_TRUE(full.complete);
+    Vertex c{0.0, 0.0};
+    for (const Vertex& v : full.vertices) c.x += v.x / full.vertices.size(), c.y += v.y / full.vertices.size();
+    std::vector<Vertex> focus;
+    const double scales[6] = {0.5, 2.0, 0.9, 1.2, 0.99, 1.05};
+    for (double t : scales) {
+      const Vertex& v = full.vertices[static_cast<size_t>(unit(gen) * full.vertices.size()) % full.vertices.size()];
+      focus.push_back({c.x + t * (v.x - c.x), c.y + t * (v.y - c.y)});
+    }
+    const std::vector<Vertex> first(focus.begin(), focus.begin() + 3);
+    ProjectionState state;
+    const Projection a = projector.project(lp, 1e-9, 2000, 0.0, &first, &state);
+    expect_focus_contract(a, full, first, k);
+    ASSERT_TRUE(state.resumable);
+    const Projection b = projector.project(lp, 1e-9, 2000, 0.0, &focus, &state);
+    expect_focus_contract(b, full, focus, k);
+    const Projection fresh = project_polytope(lp, 1e-9, 2000, 0.0, &focus);
+    expect_focus_contract(fresh, full, focus, k);
+    EXPECT_EQ(b.by_cause.initial, 0);
+    EXPECT_LT(b.lp_solves, fresh.lp_solves) << "polytope " << k;
+    focused += a.lp_solves + b.lp_solves;
+    full_lps += full.lp_solves;
+  }
+  EXPECT_LT(focused, full_lps);
+}
+
 TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePolytope) {
   // Random polytopes through a projector with the dense simplex (the default) and one with GLPK alone:
   // the same polygons (support values to 1e-9 of the size in 256 directions), most LPs solved by the

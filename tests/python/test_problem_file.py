@@ -107,3 +107,16 @@ def test_contact_phases_of_a_file_drive_find_executable_margin(tmp_path):
     assert out.margin == 0.0 and out.trials[0].status == "OPTIMAL"
     assert out.trials[0].duration == pytest.approx(spec.solve().duration, rel=1e-9)
     assert sim.options and all(o == {"phases": spec.contact_phases} for o in sim.options)
+
+
+def test_project_on_demand_in_a_file_reaches_the_constraint(tmp_path):
+    """contacts.project_on_demand: the rows before the solve are the outer polygons of three LPs per point, and
+    the solve gives the full projection's T; a value that is not a bool is named."""
+    full = load_problem(rod_file(tmp_path, {"points": [ROD], "cone_edges": 4})[0])
+    lazy = load_problem(rod_file(tmp_path, {"points": [ROD], "cone_edges": 4, "project_on_demand": True}, "od.json")[0])
+    a, b = full.solve(), lazy.solve()
+    assert a.status == b.status == pp.Status.OPTIMAL
+    assert b.duration == pytest.approx(a.duration, rel=1e-9)
+    assert b.stats["projection_rounds"] >= 1 and a.stats["projection_rounds"] == 0
+    with pytest.raises(ProblemFileError, match="project_on_demand"):
+        load_problem(rod_file(tmp_path, {"points": [ROD], "cone_edges": 4, "project_on_demand": "yes"}, "bad.json")[0])

@@ -15,11 +15,11 @@ import pathpace as pp
 from helpers import two_joint_problem
 from pathpace import plot
 
-# Result's pickle state keeps SolverStats as a tuple of these 39 entries, in this order (the format pickles
+# Result's pickle state keeps SolverStats as a tuple of these 40 entries, in this order (the format pickles
 # written so far have): a new field may only be appended, with a new entry count. The first pickles had
 # the first 18, the next ones the first 23, then 26 (before the jerk statistics), then 29 (before the
 # projection's ranging, dense simplex and pivot counts), then 33 (before the dense simplex's fallbacks by cause),
-# then 38 (before the audit's GLPK slice LPs).
+# then 38 (before the audit's GLPK slice LPs), then 39 (before the projection's refinement rounds).
 STATS_STATE = ("slp_iterations", "lp_solves", "greatest_element", "gap", "average_halfplanes", "time_constraints",
                "time_feasible_sets", "time_reachability", "time_slp", "audit_rounds", "audit_cuts", "audit_worst",
                "windows", "window_points", "time_projection", "projection_lp_solves", "inexact_points", "newton_steps",
@@ -29,7 +29,7 @@ STATS_STATE = ("slp_iterations", "lp_solves", "greatest_element", "gap", "averag
                "projection_ranged_certificates", "projection_lps_dense", "projection_lps_dense_fallback",
                "projection_pivots", "projection_fallback_cap", "projection_fallback_small_pivot",
                "projection_fallback_unbounded", "projection_fallback_singular", "projection_fallback_certificate",
-               "audit_lps_glpk")
+               "audit_lps_glpk", "projection_rounds")
 
 
 def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
@@ -44,16 +44,16 @@ def test_set_joint_names_keeps_the_time_of_the_rows_it_relabels():
     assert prob.solve().stats["time_constraints"] > 0.0
 
 
-def test_result_stats_are_the_38_fields_and_a_pickle_round_trip_keeps_them():
+def test_result_stats_are_the_40_fields_and_a_pickle_round_trip_keeps_them():
     res = two_joint_problem(N=50).solve()
     assert set(res.stats) == set(STATS_STATE)
     back = pickle.loads(pickle.dumps(res))
     assert back.stats == res.stats and back.duration == res.duration
 
 
-def test_result_reads_a_stats_state_in_the_39_38_33_29_26_23_and_18_entry_layouts():
+def test_result_reads_a_stats_state_in_the_40_39_38_33_29_26_23_and_18_entry_layouts():
     """A state written in the layout pickles have (each value distinct, of its field's type) is read into
-    the fields of that name; one in the earlier 18-, 23-, 26-, 29-, 33- and 38-entry layouts too, the fields they lack at
+    the fields of that name; one in the earlier 18-, 23-, 26-, 29-, 33-, 38- and 39-entry layouts too, the fields they lack at
     0; a state of another length is refused, named."""
     res = two_joint_problem(N=50).solve()
     state = list(res.__getstate__())
@@ -67,13 +67,13 @@ def test_result_reads_a_stats_state_in_the_39_38_33_29_26_23_and_18_entry_layout
     r.__setstate__(tuple(state))
     assert r.stats == dict(zip(STATS_STATE, values))
     assert all(type(r.stats[n]) is type(v) for n, v in zip(STATS_STATE, values))
-    for first in (18, 23, 26, 29, 33, 38):
+    for first in (18, 23, 26, 29, 33, 38, 39):
         state[8] = tuple(values[:first])
         r = pp.Result.__new__(pp.Result)
         r.__setstate__(tuple(state))
-        assert r.stats == dict(zip(STATS_STATE, values[:first] + [0] * (39 - first)))
-    state[8] = tuple(values[:-2])  # 37: no layout's length
-    with pytest.raises(pp.InvalidInputError, match=r"Result stats pickle state has 37 entries, expected 39"):
+        assert r.stats == dict(zip(STATS_STATE, values[:first] + [0] * (40 - first)))
+    state[8] = tuple(values[:-3])  # 37: no layout's length
+    with pytest.raises(pp.InvalidInputError, match=r"Result stats pickle state has 37 entries, expected 40"):
         pp.Result.__new__(pp.Result).__setstate__(tuple(state))
 
 

@@ -104,6 +104,9 @@ struct SolverStats {
   /// Of audit_lps, the slice LPs GLPK answered: a call's first sample per constraint and what the dense
   /// simplex, warm-started from a nearby sample's optimal basis, gave up on (lp/slice_lp.hpp).
   int audit_lps_glpk = 0;
+  /// Solves of the rows (ContactOptions::project_on_demand): each after the polygons were refined where the
+  /// timing before needed them (1: none was refined after the first; 0: nothing is projected on demand).
+  int projection_rounds = 0;
 };
 
 // docstrings.txt @@ Result

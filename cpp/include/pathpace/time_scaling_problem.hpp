@@ -364,6 +364,14 @@ class TimeScalingProblem {
   /// intervals if `extra` (guarantee = continuous): the stages of solve/pipeline.hpp, in order.
   Result solve_rows(const std::vector<ConstraintRows>& rows, const detail::IntervalExtra* extra,
                     const SolverOptions& options) const;
+  /// solve_rows, and while a constraint that refines its rows on demand (Constraint::refines) finds the
+  /// timing beyond what it knows, its rows refined there and solved again: `rows` end refined, `memory` (one
+  /// per constraint) carries each constraint's state to the next call, and the ids of `extra`'s rows follow
+  /// the rows a refinement adds.
+  Result solve_refined(std::vector<ConstraintRows>& rows, detail::IntervalExtra* extra, const SolverOptions& options,
+                       std::vector<RefineMemory>& memory) const;
+  /// True if some constraint refines its rows on demand (Constraint::refines).
+  bool refines() const;
   std::shared_ptr<const Path> path_;
   PathSamples samples_;
   std::vector<std::shared_ptr<const Constraint>> constraints_;

@@ -13,9 +13,10 @@
 
 namespace pathpace::detail {
 
-Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
+Projection project_polytope(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation,
+                            const std::vector<Vertex>* focus, ProjectionState* state) {
   PolytopeProjector p;
-  return p.project(in, relative_tolerance, max_lps, approximation);
+  return p.project(in, relative_tolerance, max_lps, approximation, focus, state);
 }
 
 namespace {
@@ -31,8 +32,9 @@ constexpr int kRangingColumns = 30;
 
 }  // namespace
 
-Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation) {
-  return Run(*this, in, relative_tolerance, max_lps, approximation).project();
+Projection PolytopeProjector::project(const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation,
+                                      const std::vector<Vertex>* focus, ProjectionState* state) {
+  return Run(*this, in, relative_tolerance, max_lps, approximation, focus, state).project();
 }
 
 // A GLPK error (guarded() returned false): the problem is gone with the environment; so is the result.
@@ -44,15 +46,20 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::glpk_error() {
 }
 
 Projection PolytopeProjector::Run::project() {
+  const bool resuming = state_ && state_->resumable;
+  if (state_) state_->resumable = false;  // until this run keeps its own
   if (!start()) return out_;
-  Step s;
-  while ((s = triangle()) == Step::Again)
-    if (grow_stand_in() == Step::Stop) return out_;
-  if (s == Step::Stop) return out_;
+  if (resuming) {
+    resume();
+  } else {
+    Step s;
+    while ((s = triangle()) == Step::Again)
+      if (grow_stand_in() == Step::Stop) return out_;
+    if (s == Step::Stop) return out_;
+    // An LP that failed in the triangle left an inner set, reported incomplete.
+    out_.complete = points_.size() == 3;
+  }
   out_.stand_in = stand_in_;
-  // An LP that failed in the triangle left an inner set, reported incomplete.
-  out_.complete = points_.size() == 3;
-  row_norm_ = in_.A.rowwise().norm();
   if (expand() == Step::Stop) return out_;
   // A shadow found only beyond the stand-in bounds is not called exact: there b·u ~ 1e2 with b ~ 1e-8 (the
   // rounding residue of a path derivative), and the LPs' optima were seen to differ from HiGHS's by
@@ -63,37 +70,60 @@ Projection PolytopeProjector::Run::project() {
     out_.note = "the shadow lies only beyond the stand-in bounds (ill-conditioned LPs there)";
   }
   polygon();
+  if (state_) keep_state();
   std::swap(self_.previous_, self_.current_);
   return out_;
 }
 
-// Loads the problem and sizes every buffer the LPs' guarded calls write (glpk_guard.hpp's rule 1).
+// Where the last focused run on this polytope left off: its support points (their LPs' ranging is not kept:
+// the edges next to them are certified by LPs; their bases are, for the dense simplex to start from).
+void PolytopeProjector::Run::resume() {
+  const ProjectionState& st = *state_;
+  points_ = st.points;
+  support_ = st.support;
+  support_binding_ = st.binding;
+  basis_ = st.basis;
+  ranges_.assign(points_.size(), Ranging());
+  states_.assign(points_.size(), DenseSimplex::State());
+  for (const ProjectionState::Certified& c : st.certified) {
+    const Pending d{c.from, c.to, c.nx, c.nu, c.offset};
+    certified_[{c.from, c.to}] = c.binding;
+    certified_lines_.emplace_back(d, c.binding);
+  }
+  out_.complete = true;
+}
+
+// This run's state for the next (only for the caller's own LP: the stand-in bounds not grown).
+void PolytopeProjector::Run::keep_state() {
+  ProjectionState& st = *state_;
+  st.resumable = out_.outcome == Projection::Outcome::Polygon && stand_in_ == in_.stand_in && sx_ == 1.0 && su_ == 1.0;
+  if (!st.resumable) return;
+  st.points = points_;
+  st.support = support_;
+  st.binding = support_binding_;
+  st.basis = std::move(basis_);
+  st.certified.clear();
+  for (const auto& [d, code] : certified_lines_) st.certified.push_back({d.from, d.to, d.nx, d.nu, d.offset, code});
+}
+
+// Sizes every buffer the LPs' guarded calls write (glpk_guard.hpp's rule 1); GLPK's problem is loaded by
+// load_glpk(), when an LP first needs it.
 bool PolytopeProjector::Run::start() {
   // The parameters first: a GLPK error there frees the problem before load() looks at it.
   if (!projection_simplex_parameters(static_cast<int>(in_.A.rows()), static_cast<int>(in_.A.cols()), parm_)) {
     glpk_error();
     return false;
   }
-  const int loaded = self_.load(in_);
-  if (loaded < 0) {
-    glpk_error();
-    return false;
-  }
-  lp_ = self_.lp_.get();
-  rows_ = self_.rows_;
-  cols_ = self_.cols_;
+  rows_ = static_cast<int>(in_.A.rows());
+  cols_ = static_cast<int>(in_.A.cols());
   total_ = rows_ + cols_;
   // Warm starts across grid points (sec. IV.C): each LP starts from the final basis of the previous grid
   // point's LP in the nearest direction, if one was within kNear radians, by the dual simplex. That basis
   // is optimal for a nearby polytope and direction, so it is (nearly) dual feasible and a few dual pivots
   // restore primal feasibility, where the primal simplex from the basis of the LP just before (another
   // direction) takes many. Any start gives an optimum, so the polygon does not depend on it (a
-  // degenerate optimum may be another point of the same edge).
-  same_shape_ = loaded == 1 && !self_.previous_.empty() && cols_ >= kRestoreColumns;
+  // degenerate optimum may be another point of the same edge). load_glpk() decides whether they apply.
   record_ = cols_ >= kRestoreColumns;  // no basis is restored below this size: none is recorded
-  nonempty_col_.assign(static_cast<size_t>(cols_), 0);
-  if (same_shape_)
-    for (int j = 0; j < cols_; ++j) nonempty_col_[static_cast<size_t>(j)] = (in_.A.col(j).array() != 0.0).any();
   self_.current_.clear();
   dual_ = parm_;
   dual_.meth = GLP_DUALP;
@@ -104,7 +134,23 @@ bool PolytopeProjector::Run::start() {
   xlo_ = in_.col_lo[0], xhi_ = in_.col_hi[0], ulo_ = in_.col_lo[1], uhi_ = in_.col_hi[1];
   stand_in_ = in_.stand_in;
   dense_on_ = self_.dense && self_.ranging && cols_ >= kRangingColumns;
+  row_norm_ = in_.A.rowwise().norm();  // binding()'s scale of each row
   if (dense_on_) self_.dense_engine_.load(in_);
+  return true;
+}
+
+// GLPK's problem is loaded only for the first LP that GLPK solves: a grid point whose LPs the dense simplex
+// solves from warm bases (project_on_demand's) never needs it. False: a GLPK error.
+bool PolytopeProjector::Run::load_glpk() {
+  if (lp_) return true;
+  const int loaded = self_.load(in_);
+  if (loaded < 0) return false;
+  lp_ = self_.lp_.get();
+  // start()'s warm starts across grid points: the previous grid point's bases, if of this shape.
+  same_shape_ = loaded == 1 && !self_.previous_.empty() && cols_ >= kRestoreColumns;
+  nonempty_col_.assign(static_cast<size_t>(cols_), 0);
+  if (same_shape_)
+    for (int j = 0; j < cols_; ++j) nonempty_col_[static_cast<size_t>(j)] = (in_.A.col(j).array() != 0.0).any();
   return true;
 }
 
@@ -176,6 +222,7 @@ int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p, int start
   ++out_.lp_solves;
   const double angle = std::atan2(vu, vx);
   if (extremize_dense(vx, vu, p, start_point, angle)) return 1;
+  if (!load_glpk()) return -2;
   const Basis* from = warm_basis(angle);
   const signed char* start = from ? from->stat.data() : nullptr;
   const signed char* fallback =
@@ -204,9 +251,24 @@ int PolytopeProjector::Run::extremize(double vx, double vu, Vertex& p, int start
 // The dense simplex's LP (see extremize); false: not tried, or given up (counted; GLPK solves it).
 bool PolytopeProjector::Run::extremize_dense(double vx, double vu, Vertex& p, int start_point, double angle) {
   last_dense_ = false;
-  if (!dense_on_ || start_point < 0 || states_[static_cast<size_t>(start_point)].head.empty()) return false;
+  if (!dense_on_) return false;
   DenseSimplex& ds = self_.dense_engine_;
-  ds.restore(states_[static_cast<size_t>(start_point)]);
+  if (warm_) {
+    // A basis of the previous grid point's LP in this direction: optimal for a nearby polytope, so a few dual
+    // pivots restore primal feasibility (maximize's dual phase) and a few primal ones optimality.
+    if (!ds.set_basis(warm_, false)) return false;
+  } else {
+    if (start_point < 0) return false;
+    const size_t sp = static_cast<size_t>(start_point);
+    if (states_[sp].head.empty()) {
+      // A support point of an earlier run (resume): its basis factorised once, then kept like this run's own.
+      if (!focus_ || sp >= basis_.size() || basis_[sp].size() != static_cast<size_t>(total_) ||
+          !ds.set_basis(basis_[sp].data()))
+        return false;
+      states_[sp] = ds.state();
+    }
+    ds.restore(states_[sp]);
+  }
   const int before = ds.pivots;
   const int ok = ds.maximize(vx, vu);
   out_.by_cause.pivots += ds.pivots - before;
@@ -254,6 +316,12 @@ void PolytopeProjector::Run::range_basis(bool computed) {
 }
 
 void PolytopeProjector::Run::add_point(const Vertex& p, const Vertex& direction) {
+  if (focus_) {  // its support line is a row of the outer polygon: what binds there names it
+    int code = kBindingUnknown;
+    if (!binding(code)) code = kBindingUnknown;
+    support_binding_.push_back(code);
+    basis_.push_back(self_.stat_);  // the LP's optimal basis (extremize leaves it there)
+  }
   points_.push_back(p);
   ranges_.push_back(std::move(last_range_));
   support_.push_back(direction);
@@ -269,7 +337,11 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::triangle() {
   for (int i = 0; i < 3; ++i) {
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
+    std::vector<signed char>& warm = self_.triangle_[i];
+    warm_ = focus_ && warm.size() == static_cast<size_t>(total_) ? warm.data() : nullptr;
     const int r = extremize(std::cos(ang), std::sin(ang), p, static_cast<int>(points_.size()) - 1);
+    warm_ = nullptr;
+    if (focus_ && r == 1) warm = self_.stat_;
     ++out_.by_cause.initial;
     if (r == -2) return glpk_error();
     if (r == 0 && i == 0 && (capped(xhi_) || capped(ulo_) || capped(uhi_))) return Step::Again;
@@ -297,6 +369,7 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::grow_stand_in() {
                u_hi = capped(uhi_) ? INFINITY : uhi_;
   ++out_.lp_solves;
   ++out_.by_cause.cap_growth;
+  if (!load_glpk()) return glpk_error();
   // The LP changes (bounds grown, columns scaled): the dense simplex's bases are not its own any more.
   dense_on_ = false;
   for (DenseSimplex::State& st : states_) st = DenseSimplex::State();
@@ -391,20 +464,28 @@ void PolytopeProjector::Run::hull_changed() {
   approx_ = approximation_ * size;
 }
 
-// The polygon: the hull's vertices and edges (an inner set, certified when complete).
+// The polygon: the hull's vertices and edges (an inner set, certified when complete); with a focus, the
+// outer polygon as the half-planes and the hull's edges beside them.
 void PolytopeProjector::Run::polygon() {
   out_.tolerance = std::max(tol_, approx_);
   for (int i : hull_) out_.vertices.push_back(points_[static_cast<size_t>(i)]);
   const size_t h = out_.vertices.size();
-  auto push = [&](double nx, double nu, const Vertex& on, int from, int to) {
-    auto it = certified_.find({from, to});
-    out_.binding.push_back(it == certified_.end() ? kBindingUnknown : it->second);
+  auto line = [&](double nx, double nu, const Vertex& on) {
     const double len = std::hypot(nx, nu);
     nx /= len;
     nu /= len;
     double c = nx * on.x + nu * on.y;
     for (const Vertex& v : out_.vertices) c = std::max(c, nx * v.x + nu * v.y);  // never cut a hull vertex
-    out_.halfplanes.push_back({nx, nu, c, static_cast<int>(out_.halfplanes.size())});
+    return Line{nx, nu, c, 0};
+  };
+  std::vector<Line>& edges = focus_ ? out_.hull : out_.halfplanes;
+  auto push = [&](double nx, double nu, const Vertex& on, int from, int to) {
+    auto it = certified_.find({from, to});
+    const bool certified = it != certified_.end();
+    if (focus_) out_.hull_certified.push_back(certified ? 1 : 0);
+    else out_.binding.push_back(certified ? it->second : kBindingUnknown);
+    edges.push_back(line(nx, nu, on));
+    edges.back().id = static_cast<int>(edges.size()) - 1;
   };
   if (h == 1) {
     const Vertex& p = out_.vertices[0];
@@ -425,7 +506,23 @@ void PolytopeProjector::Run::polygon() {
       push(b.y - a.y, -(b.x - a.x), a, hull_[e], hull_[(e + 1) % h]);
     }
   }
+  if (focus_) outer_polygon();
   out_.outcome = Projection::Outcome::Polygon;
+}
+
+// With a focus: every LP optimum p along v gives v·z <= v·p, and every certified edge n·z <= its offset (to
+// the tolerance): their intersection holds the whole shadow. Where the hull is certified it is exact.
+void PolytopeProjector::Run::outer_polygon() {
+  auto push = [&](double nx, double nu, double c, int code) {
+    for (const Vertex& v : out_.vertices) c = std::max(c, nx * v.x + nu * v.y);
+    out_.halfplanes.push_back({nx, nu, c, static_cast<int>(out_.halfplanes.size())});
+    out_.binding.push_back(code);
+  };
+  for (size_t i = 0; i < points_.size(); ++i) {
+    const Vertex &d = support_[i], &p = points_[i];
+    push(d.x, d.y, d.x * p.x + d.y * p.y, support_binding_[i]);
+  }
+  for (const auto& [d, code] : certified_lines_) push(d.nx, d.nu, d.offset, code);
 }
 
 }  // namespace pathpace::detail

@@ -60,6 +60,28 @@ struct Projection {
   /// a failure), edge LPs that certified it, the feasibility LP without the stand-in bounds.
   LpCounts by_cause;
   int approximate_edges = 0;    ///< edges final by `approximation` (no LP; binding unknown)
+  /// With a focus (PolytopeProjector::project): `halfplanes` are the outer polygon, the support line of
+  /// every LP optimum and every certified edge (a superset of the shadow), and `hull` the hull's edges (an
+  /// inner set), with `hull_certified` per edge. Empty without a focus (the halfplanes are the hull's).
+  std::vector<Line> hull;
+  std::vector<char> hull_certified;
+};
+
+/// A focused projection's state at one polytope (PolytopeProjector::project with a focus): its support points,
+/// their LPs' directions, what binds there and optimal bases (GLPK's statuses, rows then columns), and the
+/// certified edges. A later call on the same polytope with a larger focus goes on from there instead of
+/// starting again (the rounds of ContactOptions::project_on_demand).
+struct ProjectionState {
+  struct Certified {
+    int from, to;
+    double nx, nu, offset;
+    int binding;
+  };
+  std::vector<Vertex> points, support;
+  std::vector<int> binding;
+  std::vector<std::vector<signed char>> basis;  // empty where none was kept
+  std::vector<Certified> certified;
+  bool resumable = false;  // false: start again (none yet, or the stand-in bounds grew)
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem
@@ -77,8 +99,14 @@ class PolytopeProjector {
   /// `approximation` (ContactOptions::projection_tolerance): an edge is also final, without its LP, when
   /// the outer bound beyond it (the apex of the support lines at its ends) lies within this times the
   /// polygon's size of it; the polygon is then an inner set within that of the shadow in every direction.
+  ///
+  /// `focus` (ContactOptions::project_on_demand): only the hull edges that some focus point lies beyond
+  /// are expanded, until every focus point is inside the hull or beyond a certified edge; the result is
+  /// then the outer polygon (Projection::hull). With an empty focus: the initial triangle's LPs only.
+  /// `state` (with a focus only): where an earlier call on this polytope left off (in), and this one's (out).
   Projection project(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000,
-                     double approximation = 0.0);
+                     double approximation = 0.0, const std::vector<Vertex>* focus = nullptr,
+                     ProjectionState* state = nullptr);
 
   /// One LP: is the polytope non-empty (1), empty (0, confirmed in exact arithmetic), or did the
   /// solver fail (-1)? With `fix` the point (x, u) = (fix[0], fix[1]) is imposed.
@@ -119,6 +147,9 @@ class PolytopeProjector {
     std::vector<signed char> stat;
   };
   std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
+  // With a focus: the optimal bases of the last projection's three initial LPs, where the next grid point's
+  // dense simplex starts them (a few dual pivots, where a start from the support point 120° away took ~30).
+  std::vector<signed char> triangle_[3];
   struct Ranging;
   class Run;
   std::vector<int> tab_ind_;  // glp_eval_tab_row scratch
@@ -139,6 +170,7 @@ class PolytopeProjector {
 
 /// One polytope, from a cold start.
 Projection project_polytope(const PolytopeLp& lp, double relative_tolerance = 1e-9, int max_lps = 2000,
-                            double approximation = 0.0);
+                            double approximation = 0.0, const std::vector<Vertex>* focus = nullptr,
+                            ProjectionState* state = nullptr);
 
 }  // namespace pathpace::detail

@@ -98,7 +98,8 @@ void PolytopeProjector::Run::directions() {
     nu /= len;
     // The hull's own support value in this direction: attained at the edge's ends (a convex hull).
     const Vertex &a = points_[static_cast<size_t>(from)], &b = points_[static_cast<size_t>(to)];
-    pending_.push_back({from, to, nx, nu, std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y)});
+    const double offset = std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y);
+    pending_.push_back({from, to, nx, nu, offset});
   };
   if (h == 1) return;  // three support points coincide: the shadow is that point
   for (size_t e = 0; e < h; ++e) {
@@ -111,6 +112,45 @@ void PolytopeProjector::Run::directions() {
     add(hull_[0], hull_[0], a.x - b.x, a.y - b.y);
     add(hull_[1], hull_[1], b.x - a.x, b.y - a.y);
   }
+  if (focus_) focus_directions();
+}
+
+// With a focus, of the hull's uncertified directions only those that settle a focus point: per point not yet
+// inside the hull or beyond a certified edge, the edge it lies farthest beyond. Its LP either certifies that
+// edge or finds a support point; one such edge per point and step, so that a point far outside costs a chain
+// of LPs towards it, not every edge it can see. A support line does not settle a point: the timing comes
+// from rows that include it, and lies beyond it only by the solver's tolerance, which may exceed ours, while
+// the shadow near the point may be far inside it.
+void PolytopeProjector::Run::focus_directions() {
+  std::vector<Pending> kept;
+  for (const Vertex& q : *focus_) {
+    bool settled = false;
+    for (size_t i = 0; i < certified_lines_.size() && !settled; ++i) {
+      const Pending& d = certified_lines_[i].first;
+      settled = d.nx * q.x + d.nu * q.y > d.offset + tol_;
+    }
+    if (settled) continue;
+    const Pending* worst = nullptr;
+    double far = tol_;
+    for (const Pending& d : pending_) {
+      // Not an edge whose ends are one point to the tolerance (two initial LPs that found one vertex): its
+      // normal is rounding, and the LP along it finds the far side of the shadow.
+      const Vertex &a = points_[static_cast<size_t>(d.from)], &b = points_[static_cast<size_t>(d.to)];
+      if (d.from != d.to && std::hypot(a.x - b.x, a.y - b.y) <= tol_) continue;
+      const double beyond = d.nx * q.x + d.nu * q.y - d.offset;
+      if (beyond > far) far = beyond, worst = &d;
+    }
+    if (!worst) continue;  // inside the hull (to the tolerance)
+    bool listed = false;
+    for (const Pending& k : kept) listed = listed || (k.from == worst->from && k.to == worst->to);
+    if (!listed) kept.push_back(*worst);
+  }
+  pending_ = std::move(kept);
+}
+
+void PolytopeProjector::Run::certify(const Pending& d, int code) {
+  certified_[{d.from, d.to}] = code;
+  if (focus_) certified_lines_.emplace_back(d, code);
 }
 
 // Edge expansion: the hull's uncertified directions, recomputed whenever a new support point changes
@@ -135,12 +175,12 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::certify_pending() {
     if (range_certifies(ranges_[static_cast<size_t>(d.from)], d.nx, d.nu, code) ||
         range_certifies(ranges_[static_cast<size_t>(d.to)], d.nx, d.nu, code)) {
       ++out_.by_cause.ranged;
-      certified_[{d.from, d.to}] = code;
+      certify(d, code);
       continue;
     }
     if (within_approximation(d)) {
       ++out_.approximate_edges;
-      certified_[{d.from, d.to}] = kBindingUnknown;  // no LP along it: what binds there is not known
+      certify(d, kBindingUnknown);  // no LP along it: what binds there is not known
       continue;
     }
     if (out_.lp_solves >= max_lps_) {
@@ -169,7 +209,7 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::certify_pending() {
     }
     ++out_.by_cause.certificate;
     if (!binding(code)) return glpk_error();
-    certified_[{d.from, d.to}] = code;  // nothing of the shadow beyond this edge
+    certify(d, code);  // nothing of the shadow beyond this edge
   }
   return Step::Ok;
 }

@@ -38,8 +38,10 @@ int glpk_binding(glp_prob* lp, const PolytopeLp& in, const double* row_norm, int
 // expansion of uncertified hull edges until each is certified, and the polygon's half-planes.
 class PolytopeProjector::Run {
  public:
-  Run(PolytopeProjector& self, const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation)
-      : self_(self), in_(in), relative_tolerance_(relative_tolerance), max_lps_(max_lps), approximation_(approximation) {}
+  Run(PolytopeProjector& self, const PolytopeLp& in, double relative_tolerance, int max_lps, double approximation,
+      const std::vector<Vertex>* focus, ProjectionState* state)
+      : self_(self), in_(in), relative_tolerance_(relative_tolerance), max_lps_(max_lps), approximation_(approximation),
+        focus_(focus), state_(focus ? state : nullptr) {}
   Projection project();
 
  private:
@@ -51,11 +53,17 @@ class PolytopeProjector::Run {
     double nx, nu, offset;
   };
   bool start();
+  bool load_glpk();
   Step triangle();
   Step grow_stand_in();
   Step expand();
   Step certify_pending();
   void polygon();
+  void outer_polygon();
+  void focus_directions();
+  void resume();
+  void keep_state();
+  void certify(const Pending& d, int code);
   int extremize(double vx, double vu, Vertex& p, int start_point);
   bool extremize_dense(double vx, double vu, Vertex& p, int start_point, double angle);
   const Basis* warm_basis(double angle) const;
@@ -83,6 +91,8 @@ class PolytopeProjector::Run {
   const double relative_tolerance_;
   const int max_lps_;
   const double approximation_;
+  const std::vector<Vertex>* const focus_;  // null: every edge; else only edges some of these points lie beyond
+  ProjectionState* const state_;            // with a focus: where to go on from, and where to leave off
   Projection out_;
   glp_smcp parm_, dual_;
   glp_prob* lp_ = nullptr;
@@ -102,6 +112,7 @@ class PolytopeProjector::Run {
   std::vector<DenseSimplex::State> states_;
   DenseSimplex::State last_state_;
   bool last_dense_ = false;
+  const signed char* warm_ = nullptr;  // a basis for the next dense LP to start from (see PolytopeProjector::triangle_)
   std::vector<Vertex> points_;      // every support point found
   std::vector<Ranging> ranges_;     // and its LP's ranging
   std::vector<Vertex> support_;     // and the (unit) direction of that LP
@@ -111,6 +122,9 @@ class PolytopeProjector::Run {
   // Certified directions, keyed by the hull edge (from, to) that produced them; (i, i) is the end
   // direction beyond point i of a hull that is a segment. The value: what binds there (see binding()).
   std::map<std::pair<int, int>, int> certified_;
+  std::vector<std::pair<Pending, int>> certified_lines_;  // with a focus: each certified direction, its binding
+  std::vector<int> support_binding_;                       // with a focus: what binds at each support point
+  std::vector<std::vector<signed char>> basis_;            // with a focus: each support point's optimal basis
   Eigen::VectorXd row_norm_;
   std::vector<int> hull_;
   std::vector<Pending> pending_;

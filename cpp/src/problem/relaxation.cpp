@@ -131,6 +131,16 @@ std::map<std::string, double> TimeScalingProblem::relaxation(double max_scale, d
     detail::fail("max_scale = " + detail::fmt(max_scale) + " must be > 1 and finite");
   if (!(rel_tolerance > 0.0 && rel_tolerance < 1.0))
     detail::fail("rel_tolerance = " + detail::fmt(rel_tolerance) + " must be in (0, 1)");
+  if (refines()) {
+    // Rows refined on demand bound their constraints from outside: the search needs the exact ones.
+    TimeScalingProblem exact(path_, samples_.s);
+    for (const auto& c : constraints_) {
+      const std::shared_ptr<const Constraint> e = c->exact();
+      exact.add_constraint(e ? e : c);
+    }
+    exact.set_settings(settings());
+    return exact.relaxation(max_scale, rel_tolerance, guarantee);
+  }
   std::vector<std::string> families;
   for (const auto& c : constraints_)
     for (const std::string& f : c->families())

@@ -59,6 +59,25 @@ Result with_drift_note(Result res) {
   return res;
 }
 
+// A projection's LPs into the stats, by cause.
+void add_projection_lps(SolverStats& st, int lps, const LpCounts& by) {
+  st.projection_lp_solves += lps;
+  st.projection_lps_initial += by.initial;
+  st.projection_lps_vertex += by.vertex;
+  st.projection_lps_certificate += by.certificate;
+  st.projection_lps_cap_growth += by.cap_growth;
+  st.projection_lps_cold_retry += by.cold_retry;
+  st.projection_ranged_certificates += by.ranged;
+  st.projection_lps_dense += by.dense;
+  st.projection_lps_dense_fallback += by.dense_fallback;
+  st.projection_pivots += by.pivots;
+  st.projection_fallback_cap += by.fallback_cap;
+  st.projection_fallback_small_pivot += by.fallback_small_pivot;
+  st.projection_fallback_unbounded += by.fallback_unbounded;
+  st.projection_fallback_singular += by.fallback_singular;
+  st.projection_fallback_certificate += by.fallback_certificate;
+}
+
 // The Result's robot, torque limits and contacts, and the stats of the constraints' rows (computed when they
 // were added).
 Result with_constraints(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows) {
@@ -73,22 +92,7 @@ Result with_constraints(const TimeScalingProblem& problem, const std::vector<Con
     res.stats.inexact_points += static_cast<int>(rows[i].inexact_points.size());
     if (problem.constraints()[i]->projected()) {
       res.stats.time_projection += rows[i].seconds;
-      res.stats.projection_lp_solves += rows[i].lp_solves;
-      const LpCounts& by = rows[i].lp_by_cause;
-      res.stats.projection_lps_initial += by.initial;
-      res.stats.projection_lps_vertex += by.vertex;
-      res.stats.projection_lps_certificate += by.certificate;
-      res.stats.projection_lps_cap_growth += by.cap_growth;
-      res.stats.projection_lps_cold_retry += by.cold_retry;
-      res.stats.projection_ranged_certificates += by.ranged;
-      res.stats.projection_lps_dense += by.dense;
-      res.stats.projection_lps_dense_fallback += by.dense_fallback;
-      res.stats.projection_pivots += by.pivots;
-      res.stats.projection_fallback_cap += by.fallback_cap;
-      res.stats.projection_fallback_small_pivot += by.fallback_small_pivot;
-      res.stats.projection_fallback_unbounded += by.fallback_unbounded;
-      res.stats.projection_fallback_singular += by.fallback_singular;
-      res.stats.projection_fallback_certificate += by.fallback_certificate;
+      add_projection_lps(res.stats, rows[i].lp_solves, rows[i].lp_by_cause);
     }
   }
   return res;
@@ -141,11 +145,12 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
     detail::fail("sddot = 0 at s_end needs sdot_end > 0: with sddot constant on each interval (eq. 24), a stop at "
                  "rest with sddot = 0 is never reached");
   if (options.guarantee == Guarantee::Grid) {
-    if (!zero_sddot_begin_ && !zero_sddot_end_) return with_drift_note(solve_rows(rows_, nullptr, options));
+    if (!zero_sddot_begin_ && !zero_sddot_end_ && !refines()) return with_drift_note(solve_rows(rows_, nullptr, options));
     std::vector<ConstraintRows> rows = rows_;
     detail::IntervalExtra extra;
     add_boundary_rows(rows, extra);
-    return with_drift_note(solve_rows(rows, &extra, options));
+    std::vector<RefineMemory> memory;
+    return with_drift_note(solve_refined(rows, &extra, options, memory));
   }
 
   // guarantee = continuous (see solve/continuous.hpp): velocity and acceleration rows that hold between
@@ -155,23 +160,28 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   detail::add_kinematic_continuous_rows(*path_, samples_, constraints_, rows, extra);
   add_boundary_rows(rows, extra);
   std::vector<int> offset;
-  int id = 0;
-  for (const ConstraintRows& cr : rows_) {
-    offset.push_back(id);
-    id += static_cast<int>(cr.rows());
-  }
   Result res;
   int rounds = 0, cuts = 0, audit_lps = 0, audit_lps_glpk = 0, audit_projections = 0, audit_reused = 0;
+  int projection_rounds = 0;
   detail::AuditMemory memory;
+  std::vector<RefineMemory> refined;
   // The time budget covers all rounds: each solve gets what is left.
   const auto started = std::chrono::steady_clock::now();
   SolverOptions round_options = options;
   for (;;) {
     round_options.time_limit = std::max(options.time_limit - detail::seconds_since(started), 1e-3);
-    res = solve_rows(rows, &extra, round_options);
+    res = solve_refined(rows, &extra, round_options, refined);
+    projection_rounds += res.stats.projection_rounds;
     if (!res.ok() || res.status == Status::TimeLimit) break;
     const Eigen::VectorXd theta = res.sdot.array().square();
-    const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, rows_, offset,
+    // The label ids of each constraint's first row (rows refined on demand may have grown since the last round).
+    offset.clear();
+    int id = 0;
+    for (size_t i = 0; i < constraints_.size(); ++i) {
+      offset.push_back(id);
+      id += static_cast<int>(rows[i].rows());
+    }
+    const detail::Audit audit = detail::audit_and_cut(*path_, samples_.s, theta, constraints_, rows, offset,
                                                       options.audit_points, options.audit_tolerance, extra, memory);
     ++rounds;
     cuts += audit.cuts;
@@ -195,7 +205,54 @@ Result TimeScalingProblem::solve(const SolverOptions& options) const {
   res.stats.audit_lps_glpk = audit_lps_glpk;
   res.stats.audit_projections = audit_projections;
   res.stats.audit_reused = audit_reused;
+  res.stats.projection_rounds = projection_rounds;
   return with_drift_note(std::move(res));
+}
+
+bool TimeScalingProblem::refines() const {
+  return std::any_of(constraints_.begin(), constraints_.end(), [](const auto& c) { return c->refines(); });
+}
+
+Result TimeScalingProblem::solve_refined(std::vector<ConstraintRows>& rows, detail::IntervalExtra* extra,
+                                         const SolverOptions& options, std::vector<RefineMemory>& memory) const {
+  if (!refines()) return solve_rows(rows, extra, options);
+  memory.resize(constraints_.size());
+  // Each round refines at least one grid point's polygon towards a point beyond an uncertified edge (a new
+  // vertex or a certified edge): finitely many, so the rounds end; this cap only guards against a bug.
+  constexpr int kMaxRounds = 1000;
+  const auto started = std::chrono::steady_clock::now();
+  SolverOptions round_options = options;
+  Result res;
+  int rounds = 0;
+  for (;;) {
+    round_options.time_limit = std::max(options.time_limit - detail::seconds_since(started), 1e-3);
+    res = solve_rows(rows, extra, round_options);
+    ++rounds;
+    if (!res.ok() || res.status == Status::TimeLimit) break;
+    const Eigen::VectorXd theta = res.sdot.array().square();
+    int changed = 0, first_id = 0;
+    for (size_t i = 0; i < constraints_.size(); ++i) {
+      const Eigen::Index before = rows[i].rows();
+      if (constraints_[i]->refines()) changed += constraints_[i]->refine(samples_, theta, nullptr, rows[i], memory[i]);
+      first_id += static_cast<int>(before);
+      const int grown = static_cast<int>(rows[i].rows() - before);
+      if (grown > 0 && extra)  // the ids after this constraint's rows move up by what it added
+        for (auto& interval : extra->rows)
+          for (detail::Line& l : interval)
+            if (l.id >= first_id) l.id += grown;
+      first_id += grown;
+    }
+    if (changed == 0) break;
+    if (rounds >= kMaxRounds) {
+      res.status = Status::IterationLimit;
+      res.message = "the contact polygons were refined " + std::to_string(rounds) +
+                    " times and the timing still needs more (project_on_demand)";
+      break;
+    }
+  }
+  res.stats.projection_rounds = rounds;
+  for (const RefineMemory& m : memory) add_projection_lps(res.stats, m.lp_solves, m.lp_by_cause);
+  return res;
 }
 
 Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constraint_rows,

@@ -70,7 +70,12 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
   if (n < 4)
     detail::fail("jerk limits need at least 4 grid intervals, the problem has " + std::to_string(n));
   // The second-order problem on the same rows, without the boundary s̈ rows (a relaxation of them): a start.
-  Result res = solve_rows(rows_, nullptr, options);
+  // Rows refined on demand (Constraint::refines) are refined for it, and again for each jerk-limited timing.
+  std::vector<ConstraintRows> refined;
+  std::vector<RefineMemory> memory;
+  if (refines()) refined = rows_;
+  const std::vector<ConstraintRows>& rows = refines() ? refined : rows_;
+  Result res = refines() ? solve_refined(refined, nullptr, options, memory) : solve_rows(rows_, nullptr, options);
   const double t2 = res.duration;
   if (!res.ok()) {
     res.message = "without jerk limits: " + res.message;
@@ -92,7 +97,7 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
   detail::third_derivatives(*path_, samples_.s, in.p3_left, in.p3_right);
   in.jmin = jerk_->jmin();
   in.jmax = jerk_->jmax();
-  in.rows = &rows_;
+  in.rows = &rows;
   in.sdot_begin = sdot_begin_;
   in.sdot_end = sdot_end_;
   in.zero_sddot_begin = zero_sddot_begin_;
@@ -103,7 +108,23 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
   in.tolerance = options.tolerance;
   in.lp_tolerance = options.lp_feasibility_tolerance;
   in.time_limit = options.time_limit;
-  const detail::JerkOutput out = detail::solve_jerk(in);
+  detail::JerkOutput out;
+  for (;;) {
+    out = detail::solve_jerk(in);
+    if (!refines() || out.theta.size() != samples_.s.size()) break;
+    // Each constraint's rows where this timing (θ and s̈ at the grid points) lies beyond what they know; its
+    // start (the second-order timing, feasible for the exact rows) stays feasible for the refined ones.
+    int changed = 0, lps = 0;
+    for (size_t i = 0; i < constraints_.size(); ++i) {
+      if (!constraints_[i]->refines()) continue;
+      const int before = memory[i].lp_solves;
+      changed += constraints_[i]->refine(samples_, out.theta, &out.b, refined[i], memory[i]);
+      lps += memory[i].lp_solves - before;
+    }
+    res.stats.projection_lp_solves += lps;
+    if (changed == 0) break;
+    ++res.stats.projection_rounds;
+  }
 
   res.status = out.status;
   res.message = out.message;

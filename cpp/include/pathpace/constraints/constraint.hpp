@@ -3,6 +3,7 @@
 /// A constraint on the timing, written at each grid point as half-planes a·x + b·u <= c in
 /// x = ṡ² and u = s̈ (the paper's eq. 9).
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <string>
@@ -129,6 +130,22 @@ struct SliceEdges {
 struct SliceStarts {
   std::vector<std::vector<signed char>> start[2], found[2];
   int glpk_lps = 0;
+};
+
+/// What a constraint whose rows are refined on demand (Constraint::refine) keeps between the rounds of one
+/// solve, per grid point: its own code, meaningful only to the constraint that wrote it.
+struct RefineMemory {
+  /// [grid point]: the (x, u) points of earlier timings the rows were refined towards.
+  std::vector<std::vector<std::array<double, 2>>> focus;
+  /// [grid point]: the inner polygon's edges, rows (a, b, c, certified: 1 or 0); none: not refined yet.
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, 4>> hull;
+  /// [grid point]: the distance beyond an uncertified edge that still counts as inside.
+  std::vector<double> tolerance;
+  /// [grid point]: whatever else the constraint keeps there (a contact polygon: where its expansion stopped).
+  std::vector<std::shared_ptr<void>> state;
+  int points = 0;        ///< grid points refined, over all calls
+  int lp_solves = 0;     ///< their LPs
+  LpCounts lp_by_cause;  ///< the same LPs by cause
 };
 
 // docstrings.txt @@ Constraint
@@ -259,6 +276,21 @@ class Constraint {
   /// For a projected() constraint: the stand-in bound on x where nothing else bounds it (its polygons are
   /// cut there; slice reports +inf instead).
   virtual double projection_cap() const { return std::numeric_limits<double>::infinity(); }
+  /// True if the rows bound the constraint from outside only, until refine() tightens them where a timing
+  /// needs it (ContactOptions::project_on_demand): the problem's solve then refines them round by round.
+  virtual bool refines() const { return false; }
+  /// For a refines() constraint: tightens `rows` (as evaluate() or an earlier call left them) at every grid
+  /// point where the timing θ (ṡ² at the grid points) is not known to satisfy the constraint, with both
+  /// adjacent s̈ there (constant on each interval, eq. 24), or with `sddot` (s̈ at the grid points, a
+  /// jerk-limited timing) that one. Returns the number of grid points changed (0: the timing satisfies the
+  /// constraint at every grid point).
+  virtual int refine(const PathSamples& /*samples*/, const Eigen::VectorXd& /*theta*/, const Eigen::VectorXd* /*sddot*/,
+                     ConstraintRows& /*rows*/, RefineMemory& /*memory*/) const {
+    return 0;
+  }
+  /// For a refines() constraint: the same constraint with exact rows at every grid point (what
+  /// TimeScalingProblem::relaxation needs); nullptr for any other.
+  virtual std::shared_ptr<const Constraint> exact() const { return nullptr; }
 
   /// Fills what a Result shows of this constraint (Result::robot, tau_min/tau_max, contacts, contact_phases).
   /// The problem calls it for its constraints in order; `torque_rank` records who set tau_min/tau_max: 2 a

@@ -19,6 +19,8 @@ namespace pathpace {
 
 namespace detail {
 struct PolytopeLp;  // the projection's LP data (internal)
+struct Projection;
+struct Line;
 }
 
 struct ContactOptions {
@@ -52,6 +54,13 @@ struct ContactOptions {
   /// direction: the timing stays executable, only slower. An edge is final without its LP when the outer
   /// bound beyond it (the apex of the support lines at its two ends) lies within that of it.
   double projection_tolerance = 0.0;
+  /// Project each grid point's polygon only where the timing needs it. evaluate() gives an outer polygon
+  /// (the support lines of three LPs per point), and each solve refines it round by round: where the
+  /// timing's (ṡ², s̈), with both adjacent s̈, lies beyond an edge not yet certified, the expansion (sec.
+  /// IV.C) goes on towards that point only, until it lies inside the certified inner polygon or beyond a
+  /// certified edge. The optimum of the outer rows is then feasible for the exact ones: the same T as the
+  /// full projection, from the few edges the optimum touches. feasible_set() shows the outer polygon.
+  bool project_on_demand = false;
   /// The stretch of s where these contacts hold (one phase of TimeScalingProblem::add_contact_phases): grid
   /// points with s outside [active_begin, active_end] (1e-12 relative) get only inactive rows, and
   /// max_drift looks only inside. Default: the whole path.
@@ -146,6 +155,13 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// The rows are the projection of the (ṡ², s̈, τ, f) polytope (sec. IV.C).
   bool projected() const override { return true; }
   double projection_cap() const override { return options_.cap; }
+  /// The label of the row that marks a grid point where no contact forces balance the robot (0 <= -1 there).
+  static constexpr const char* kNoBalance = "contact forces cannot balance the robot";
+  bool refines() const override { return options_.project_on_demand; }
+  int refine(const PathSamples& samples, const Eigen::VectorXd& theta, const Eigen::VectorXd* sddot,
+             ConstraintRows& rows, RefineMemory& memory) const override;
+  /// With project_on_demand: a copy without it (every polygon projected in full).
+  std::shared_ptr<const Constraint> exact() const override;
   /// Result::robot, contacts, contact_phases (a phase of add_contact_phases) and, unless the problem has
   /// torque limits of its own, tau_min/tau_max (rank 1, Constraint::report).
   void report(Result& result, int& torque_rank) const override;
@@ -229,6 +245,10 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   std::vector<std::string> binding_names(const LpLayout& layout) const;
   // evaluate() on every sample of `samples`, without the phase's range, prefix or rest row.
   ConstraintRows project(const PathSamples& samples) const;
+  // A projection's half-planes as rows (those on the stand-in bounds left out), each named by what binds it.
+  void polygon_rows(const detail::Projection& pr, const std::vector<std::string>& what, std::vector<detail::Line>& out,
+                    std::vector<std::string>& names) const;
+
   std::string binding_label(const LpLayout& layout, const std::vector<std::string>& names, int code) const;
   // `placed`: T already holds q's body placements (not computed again).
   void contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,

@@ -1,0 +1,158 @@
+"""ContactOptions.project_on_demand: each grid point's polygon projected only where the timing needs it, and
+refined between solves. Its contract: the same status and T as the full projection (to the projection's
+1e-9 of each polygon's size), a timing inside every exact polygon with both adjacent s̈, and far fewer LPs
+where the polygons have many edges; with phases, guarantee="continuous", jerk limits, an infeasible
+problem's report and relaxation, pickling and problem files."""
+
+import pickle
+
+import numpy as np
+import pytest
+
+import pathpace as pp
+
+pytest.importorskip("pinocchio")
+import contact_corpus as cc  # noqa: E402
+
+N = 50
+
+
+def hard_problem(robot, kind, margins, edges=4, on_demand=False, grid=N, scale=None):
+    case = next(c for c in cc.hard_cases() if (c.robot, c.kind) == (robot, kind))
+    h = cc.load(robot)
+    path = cc.make_hard_path(h, case)
+    prob = pp.TimeScalingProblem(path, grid=grid)
+    opts = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[margins]
+    prob.add_contacts(h.robot, cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot]), cone_edges=edges,
+                      drift_tolerance=1e-4, torque_scale=cc.HARD_TORQUE_SCALE[(robot, kind)] if scale is None else scale,
+                      project_on_demand=on_demand, **opts)
+    return prob
+
+
+def inside_every_polygon(exact, res):
+    """Largest distance of the timing's (θ_k, s̈) beyond the exact (fully projected) polygon at every grid
+    point, with both adjacent s̈, relative to the polygon's size (the larger of its extents in θ and s̈, the
+    projection's own yardstick)."""
+    theta = res.sdot ** 2
+    u = np.diff(theta) / (2 * np.diff(res.s))
+    worst = 0.0
+    for k in range(len(theta)):
+        fs = exact.feasible_set(k)
+        rows, v = fs.halfplanes, fs.vertices
+        if len(rows) == 0:
+            continue  # no contact row binds here (velocity and box only)
+        size = max(np.ptp(v[:, 0]), np.ptp(v[:, 1]))
+        for uk in ([u[k - 1]] if k > 0 else []) + ([u[k]] if k < len(u) else []):
+            beyond = (rows[:, 0] * theta[k] + rows[:, 1] * uk - rows[:, 2]) / np.hypot(rows[:, 0], rows[:, 1])
+            worst = max(worst, float(np.max(beyond)) / size)
+    return worst
+
+
+CASES = [(r, k, m, 4) for r in ("talos", "romeo", "g1") for k in ("lean", "squat") for m in ("fn1.5", "off1.5")]
+CASES += [("talos", "lean", "fn1.5", 8), ("g1", "lean", "fm0.5+fn0.33", 8)]
+
+
+@pytest.mark.parametrize("robot, kind, margins, edges", CASES)
+def test_on_demand_gives_the_full_projections_timing(robot, kind, margins, edges):
+    """Issue 27's corpus (60-64 sole points, per-point minimum or shifted cone, binding torque limits): the
+    status and T of the full projection (measured at N = 100: within 7.2e-10 relative, bench/README.md), the
+    timing inside every exact polygon, in a few refinement rounds; the exact per-point minima's leans (polygons
+    of 16-150 edges) in fewer than half the LPs."""
+    full = hard_problem(robot, kind, margins, edges)
+    lazy = hard_problem(robot, kind, margins, edges, on_demand=True)
+    a, b = full.solve(), lazy.solve()
+    assert a.status == b.status == pp.Status.OPTIMAL, (a.message, b.message)
+    assert b.duration == pytest.approx(a.duration, rel=1e-8)
+    assert inside_every_polygon(full, b) <= 1e-8
+    assert inside_every_polygon(full, a) <= 1e-8
+    assert 2 <= b.stats["projection_rounds"] <= 12
+    assert a.stats["projection_rounds"] == 0
+    if kind == "lean" and margins.startswith("f"):
+        assert b.stats["projection_lp_solves"] < 0.5 * a.stats["projection_lp_solves"]
+    # Before the solve the rows are the outer polygons of three LPs per point.
+    assert max(len(lazy.feasible_set(k).halfplanes) for k in range(N + 1)) <= 3
+    assert b.stats["inexact_points"] == a.stats["inexact_points"] == 0
+
+
+def test_on_demand_rows_refine_again_in_every_solve_and_leave_the_problem_as_it_was():
+    """The refinement belongs to the solve (the problem is shared and immutable): two solves, the same answer
+    and the same LPs; the problem's rows still the outer ones."""
+    lazy = hard_problem("g1", "lean", "fn1.5", on_demand=True)
+    before = [lazy.feasible_set(k).halfplanes.copy() for k in range(N + 1)]
+    r1, r2 = lazy.solve(), lazy.solve()
+    assert r1.duration == r2.duration
+    assert r1.stats["projection_lp_solves"] == r2.stats["projection_lp_solves"]
+    for k in range(N + 1):
+        np.testing.assert_array_equal(lazy.feasible_set(k).halfplanes, before[k])
+
+
+@pytest.mark.parametrize("robot, kind, margins", [("talos", "squat", "off1.5"), ("g1", "lean", "fn1.5")])
+def test_on_demand_with_the_continuous_guarantee(robot, kind, margins):
+    """guarantee="continuous": the grid points refined before each audit, the cuts between them as before;
+    the same T as the full projection's continuous solve to the audit's tolerance."""
+    a = hard_problem(robot, kind, margins).solve(guarantee="continuous")
+    b = hard_problem(robot, kind, margins, on_demand=True).solve(guarantee="continuous")
+    assert a.status == b.status == pp.Status.OPTIMAL, (a.message, b.message)
+    assert b.duration == pytest.approx(a.duration, rel=1e-6)
+    assert b.stats["audit_worst"] <= 1e-6
+    assert b.stats["projection_rounds"] >= 2
+
+
+def test_on_demand_with_jerk_limits():
+    """Jerk limits: the second-order start refined, then each jerk-limited timing's (θ_k, s̈_k) checked
+    against the refined polygons; the full projection's T."""
+    res = {}
+    for od in (False, True):
+        prob = hard_problem("g1", "lean", "off1.5", on_demand=od, grid=100)
+        jl = np.full(cc.load("g1").robot.nq, 50.0)
+        prob.add_jerk_limits(-jl, jl)
+        res[od] = prob.solve()
+        assert res[od].status == pp.Status.OPTIMAL, res[od].message
+    assert res[True].duration == pytest.approx(res[False].duration, rel=1e-7)
+    assert res[True].stats["projection_rounds"] >= 2
+
+
+def test_on_demand_infeasible_report_and_relaxation():
+    """An infeasible torque scale: the outer rows find it too (they contain the exact polygons); the report
+    names a grid point and its binding rows, and the relaxation, computed on the exact polygons, is the full
+    projection's."""
+    scale = 0.5 * cc.HARD_TORQUE_SCALE[("romeo", "lean")]
+    a = hard_problem("romeo", "lean", "off1.5", scale=scale, grid=20).solve(explain=True)
+    b = hard_problem("romeo", "lean", "off1.5", scale=scale, grid=20, on_demand=True).solve(explain=True)
+    assert a.status == b.status == pp.Status.INFEASIBLE
+    assert 0 <= b.infeasible_index <= 20 and b.binding_constraints
+    assert set(a.relaxation) == set(b.relaxation)
+    for f in a.relaxation:
+        assert b.relaxation[f] == pytest.approx(a.relaxation[f], rel=1e-6)
+
+
+def test_on_demand_with_contact_phases_is_the_closed_form_optimum():
+    """A hand that pushes a box, then brakes it (test_contact_phases.py: closed-form T): small LPs, which the
+    general solver answers (the dense simplex is for 30 columns and more), each phase refined on its own."""
+    from test_contact_phases import closed_form, hand_box, on_box, together
+
+    prob = pp.TimeScalingProblem(together(), grid=20)
+    prob.add_contact_phases(hand_box(), [(0.0, 1.0, on_box(1)), (1.0, 2.0, on_box(-1))], cone_edges=4,
+                            project_on_demand=True)
+    res = prob.solve()
+    assert res.status == pp.Status.OPTIMAL, res.message
+    assert res.duration == pytest.approx(closed_form(prob.grid, 10), rel=1e-9)
+
+
+def test_project_on_demand_is_validated_pickled_and_read_from_problem_files():
+    h = cc.load("g1")
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["g1"])
+    with pytest.raises(TypeError, match="project_on_demand"):
+        pp.ContactConstraint(h.robot, cons, project_on_demand="yes")
+    case = next(c for c in cc.hard_cases() if (c.robot, c.kind) == ("g1", "lean"))
+    path = cc.make_hard_path(h, case)
+    c = pp.ContactConstraint(h.robot, cons, project_on_demand=True, cone_edges=4)
+    a, b, full = (pp.TimeScalingProblem(path, grid=8) for _ in range(3))
+    a.add_constraint(c)
+    b.add_constraint(pickle.loads(pickle.dumps(c)))
+    full.add_constraint(pp.ContactConstraint(h.robot, cons, cone_edges=4))
+    for k in range(9):
+        np.testing.assert_array_equal(a.feasible_set(k).halfplanes, b.feasible_set(k).halfplanes)
+    # What the pickle kept is the option: the outer rows differ from the full polygons'.
+    assert sum(len(full.feasible_set(k).halfplanes) for k in range(9)) > sum(len(a.feasible_set(k).halfplanes)
+                                                                          for k in range(9))
