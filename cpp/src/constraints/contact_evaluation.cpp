@@ -51,6 +51,10 @@ ConstraintRows ContactConstraint::evaluate(const PathSamples& samples) const {
     out.c.row(in[i]).head(sub.rows()) = sub.c.row(j);
   }
   for (Eigen::Index p : sub.inexact_points) out.inexact_points.push_back(in[static_cast<size_t>(p)]);
+  if (!sub.refine_state.empty()) {
+    out.refine_state.assign(static_cast<size_t>(samples.size()), nullptr);
+    for (size_t i = 0; i < in.size(); ++i) out.refine_state[static_cast<size_t>(in[i])] = sub.refine_state[i];
+  }
   const std::string prefix = options_.label.empty() ? std::string() : options_.label + ": ";
   for (Eigen::Index j = 0; j < sub.rows(); ++j) out.labels[static_cast<size_t>(j)] = prefix + sub.labels[static_cast<size_t>(j)];
   if (rest) {
@@ -87,6 +91,13 @@ detail::Projection project_point(detail::PolytopeProjector& projector, const det
   return pr;
 }
 
+// Whether `per_point` optimal bases of `lp` at each of `points` grid points fit the memory kept for
+// project_on_demand's states (256 MB): beyond, the states keep no bases (or evaluate() none at all).
+bool kept_bases_fit(Eigen::Index points, const detail::PolytopeLp& lp, int per_point) {
+  constexpr double kBudget = 256.0 * (1 << 20);
+  return static_cast<double>(points) * static_cast<double>(lp.A.rows() + lp.A.cols()) * per_point <= kBudget;
+}
+
 // A row's label at its occurrence at one grid point: one column per (label, occurrence) (see project()).
 std::string occurrence_label(const std::string& label, int occurrence) {
   return occurrence == 0 ? label : label + " [polygon edge " + std::to_string(occurrence + 1) + " of this limit]";
@@ -121,13 +132,20 @@ ConstraintRows ContactConstraint::project(const PathSamples& samples) const {
   std::vector<std::vector<std::string>> names(static_cast<size_t>(samples.size()));
   const std::vector<std::string> what = binding_names(reduced_);
   std::vector<char> empty_point(static_cast<size_t>(samples.size()), 0);
-  // On demand: three LPs per point, their support lines an outer polygon (refine() goes on from there).
+  // On demand: three LPs per point, their support lines an outer polygon; refine() goes on from each point's
+  // state (kept in the rows while it is small: three bases per point).
   const std::vector<detail::Vertex> no_focus;
   const std::vector<detail::Vertex>* focus = options_.project_on_demand ? &no_focus : nullptr;
+  const bool keep = focus && kept_bases_fit(samples.size(), lp, 3);
   ConstraintRows r;
+  if (keep) r.refine_state.resize(static_cast<size_t>(samples.size()));
   for (Eigen::Index p = 0; p < samples.size(); ++p) {
     lp_point(reduced_, samples.q.row(p).transpose(), a.row(p).transpose(), b.row(p).transpose(), c.row(p).transpose(), lp);
-    const detail::Projection pr = project_point(projector, lp, options_, focus, r.lp_solves, r.lp_by_cause);
+    detail::ProjectionState state;
+    const detail::Projection pr =
+        project_point(projector, lp, options_, focus, r.lp_solves, r.lp_by_cause, keep ? &state : nullptr);
+    if (keep && state.resumable)
+      r.refine_state[static_cast<size_t>(p)] = std::make_shared<const detail::ProjectionState>(std::move(state));
     if (pr.outcome != detail::Projection::Outcome::Polygon) {
       // Empty (confirmed in exact arithmetic), or no support point at all (the solver failed: reported
       // inexact, and solve() re-checks such a point before it calls it infeasible).
@@ -300,6 +318,8 @@ int ContactConstraint::refine(const PathSamples& samples, const Eigen::VectorXd&
   const std::vector<std::string> what = binding_names(reduced_);
   const std::string prefix = options_.label.empty() ? std::string() : options_.label + ": ";
   PointRows out(rows, prefix, options_.rest_at_begin.empty() ? std::string() : prefix + options_.rest_at_begin);
+  // Bases of about 16 support points per point (the refined polygons' size in bench/README.md) while they fit.
+  const bool keep_bases = kept_bases_fit(samples.size(), lp, 16);
   std::vector<detail::Vertex> focus;
   std::vector<detail::Line> lines;
   std::vector<std::string> names;
@@ -310,7 +330,14 @@ int ContactConstraint::refine(const PathSamples& samples, const Eigen::VectorXd&
     lp_point(reduced_, q.row(ti).transpose(), a.row(ti).transpose(), b.row(ti).transpose(), c.row(ti).transpose(), lp);
     focus.clear();
     for (const auto& f : memory.focus[k]) focus.push_back({f[0], f[1]});
-    if (!memory.state[k]) memory.state[k] = std::make_shared<detail::ProjectionState>();
+    if (!memory.state[k]) {  // evaluate()'s state where it kept one, else a fresh start
+      const bool from_rows = rows.refine_state.size() == np && rows.refine_state[k];
+      auto st = from_rows ? std::make_shared<detail::ProjectionState>(
+                                *static_cast<const detail::ProjectionState*>(rows.refine_state[k].get()))
+                          : std::make_shared<detail::ProjectionState>();
+      st->keep_bases = keep_bases;
+      memory.state[k] = st;
+    }
     const int lps_before = memory.lp_solves;
     const detail::Projection pr = project_point(projector, lp, options_, &focus, memory.lp_solves, memory.lp_by_cause,
                                                 static_cast<detail::ProjectionState*>(memory.state[k].get()));

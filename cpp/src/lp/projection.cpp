@@ -102,6 +102,7 @@ void PolytopeProjector::Run::keep_state() {
   st.support = support_;
   st.binding = support_binding_;
   st.basis = std::move(basis_);
+  if (!st.keep_bases) st.basis.assign(st.points.size(), {});
   st.certified.clear();
   for (const auto& [d, code] : certified_lines_) st.certified.push_back({d.from, d.to, d.nx, d.nu, d.offset, code});
 }

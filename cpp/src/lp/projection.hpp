@@ -82,6 +82,7 @@ struct ProjectionState {
   std::vector<std::vector<signed char>> basis;  // empty where none was kept
   std::vector<Certified> certified;
   bool resumable = false;  // false: start again (none yet, or the stand-in bounds grew)
+  bool keep_bases = true;  // false: the bases are not kept (memory), a resumed LP starts from GLPK's
 };
 
 /// Projects a sequence of polytopes of one shape (the grid points of one constraint): the GLPK problem

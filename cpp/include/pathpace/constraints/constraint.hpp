@@ -72,6 +72,9 @@ struct ConstraintRows {
   /// leaves it false, and its rows are checked; one that edits the rows another's evaluate() returned
   /// (a subclass of VelocityLimits, say) must set it false again.
   bool valid_by_construction = false;
+  /// A refines() constraint's own state at each grid point after evaluate(), where its refine() goes on from
+  /// (meaningful only to that constraint; empty for any other, or where it kept none).
+  std::vector<std::shared_ptr<const void>> refine_state;
   int lp_solves = 0;     ///< LPs spent computing the rows (projections)
   LpCounts lp_by_cause;  ///< the same LPs by cause (contact projections)
   double seconds = 0.0;  ///< time spent computing them (set by TimeScalingProblem::add_constraint)
