@@ -15,6 +15,7 @@ margin, per-point and per-link minimum normal force.
     .venv/bin/python bench/contact_projection.py --part transcription [--repeat 3]
         pathpace against a direct transcription (cvxpy + Clarabel, forces as variables, exact cones)
     .venv/bin/python bench/contact_projection.py --part corpus [--edges 4 8 16] [--grids 100 400 1000] [--transcription]
+        [--projection full on_demand]
         issue 27's corpus (dense soles, per-point margins, strong leans and squats, binding torque limits):
         LPs and half-planes per point, wall time, T against the direct transcription; median and worst
 
@@ -255,10 +256,10 @@ def part_corpus(args):
     print("LPs/point by cause: initial directions / edge LPs that found a vertex / edge LPs that certified an edge / "
           "cap growth / cold retries; 'ranged': edges certified by an endpoint's basis, no LP; 'dense': share of the "
           "LPs the dense simplex solved and certified (fallbacks to GLPK in brackets, by cause: pivot cap/small pivot/unbounded/singular/certificate); pivots per LP")
-    print("| robot | path | points | torque scale | margins | edges | N | ε | status | T (s) | T - T(ε=0) | LPs/point | "
-          "by cause | ranged/point | dense (fallbacks) | pivots/LP | "
+    print("| robot | path | points | torque scale | margins | edges | N | ε | status | T (s) | T - T(ε=0, first mode) | LPs/point | "
+          "by cause | ranged/point | dense (fallbacks) | pivots/LP | projection | rounds | "
           "half-planes/point | torque-bound edges | wall (s) | CPU (s) | T direct, pyramids | rel. diff | direct exact cones (s) | speed-up |")
-    print("|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     rows = []
     for case in cc.hard_cases(args.seed27):
         if args.robots and case.robot not in args.robots:
@@ -268,13 +269,14 @@ def part_corpus(args):
         cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[case.robot])
         scale = cc.HARD_TORQUE_SCALE[(case.robot, case.kind)]
         exact_T = {}
-        for mname, N, k, eps in itertools.product(args.margins, args.grids, args.edges, args.tolerance):
+        for mname, N, k, eps, mode in itertools.product(args.margins, args.grids, args.edges, args.tolerance,
+                                                        args.projection):
             margins = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[mname]
 
             def run():
                 prob = pp.TimeScalingProblem(path, grid=N)
                 prob.add_contacts(h.robot, cons, cone_edges=k, drift_tolerance=1e-4, torque_scale=scale,
-                                  projection_tolerance=eps, **margins)
+                                  projection_tolerance=eps, project_on_demand=mode == "on_demand", **margins)
                 return prob, prob.solve()
 
             wall, cpu, (prob, res) = timed(run, args.repeat)
@@ -283,7 +285,7 @@ def part_corpus(args):
             labels = [l for fs in sets for l in fs.labels]
             torque = sum("torque" in l for l in labels) / max(len(labels), 1)
             st = res.stats
-            row = dict(lps=st["projection_lp_solves"] / (N + 1), hp=statistics.mean(hp),
+            row = dict(mode=mode, lps=st["projection_lp_solves"] / (N + 1), hp=statistics.mean(hp),
                        wall=statistics.median(wall), cpu=statistics.median(cpu), T=res.duration,
                        pivots=st["projection_pivots"] / max(st["projection_lp_solves"], 1))
             causes = "/".join(f"{st['projection_lps_' + c] / (N + 1):.1f}"
@@ -293,7 +295,7 @@ def part_corpus(args):
                      + "/".join(str(st['projection_fallback_' + c])
                                 for c in ("cap", "small_pivot", "unbounded", "singular", "certificate")) + ")")
             stats_cols = (f"{causes} | {st['projection_ranged_certificates'] / (N + 1):.1f} | {dense} | "
-                          f"{row['pivots']:.1f}")
+                          f"{row['pivots']:.1f} | {mode} | {st['projection_rounds']}")
             direct = ("", "", "", "")
             if args.transcription and N == 100:
                 tp = transcription(h, path, cons, N, margins, cone_edges=k, torque_scale=scale)
@@ -304,21 +306,22 @@ def part_corpus(args):
                 row.update(rel=abs(rel), speedup=wt / row["wall"])
                 direct = (f"{tp[1]:.6f} {tp[0]}", f"{rel:.1e}", f"{wt:.1f}", f"{wt / row['wall']:.0f}x")
             rows.append(row)
-            if eps == 0.0:
+            if eps == 0.0 and mode == args.projection[0]:
                 exact_T[(mname, N, k)] = res.duration
             ref = exact_T.get((mname, N, k))
-            dT = f"{res.duration - ref:+.2e}" if ref is not None and eps > 0.0 else ""
+            dT = f"{res.duration - ref:+.2e}" if ref is not None and (eps > 0.0 or mode != args.projection[0]) else ""
             print(f"| {case.robot} | {case.kind} | {len(cons)} | {scale} | {mname} | {k} | {N} | {eps:g} | {res.status.name} | "
                   f"{res.duration:.9f} | {dT} | {row['lps']:.1f} | {stats_cols} | {row['hp']:.1f} | {torque:.0%} | {row['wall']:.3f} | {row['cpu']:.3f} | "
                   + " | ".join(direct) + " |", flush=True)
-    print("\nover the rows: median (worst)")
-    for key, name, worst in (("lps", "LPs per point", max), ("pivots", "pivots per LP", max),
-                             ("hp", "half-planes per point", max),
-                             ("wall", "wall s", max), ("cpu", "CPU s", max), ("rel", "|T - T direct| / T direct", max),
-                             ("speedup", "speed-up over direct, exact cones", min)):
-        xs = [r[key] for r in rows if key in r]
-        if xs:
-            print(f"- {name}: {statistics.median(xs):.3g} ({worst(xs):.3g})")
+    for mode in args.projection:
+        print(f"\nover the rows, {mode}: median (worst)")
+        for key, name, worst in (("lps", "LPs per point", max), ("pivots", "pivots per LP", max),
+                                 ("hp", "half-planes per point", max),
+                                 ("wall", "wall s", max), ("cpu", "CPU s", max), ("rel", "|T - T direct| / T direct", max),
+                                 ("speedup", "speed-up over direct, exact cones", min)):
+            xs = [r[key] for r in rows if key in r and r["mode"] == mode]
+            if xs:
+                print(f"- {name}: {statistics.median(xs):.3g} ({worst(xs):.3g})")
 
 
 def part_transcription(args):
@@ -359,6 +362,8 @@ def main():
     ap.add_argument("--edges", nargs="*", type=int, default=[4, 8], help="corpus: cone edges (16 optional)")
     ap.add_argument("--grids", nargs="*", type=int, default=[100], help="corpus: N (400, 1000 optional)")
     ap.add_argument("--transcription", action="store_true", help="corpus: direct transcription at N = 100")
+    ap.add_argument("--projection", nargs="+", choices=["full", "on_demand"], default=["full"],
+                    help="corpus: every polygon projected in full, or project_on_demand (each row once per mode)")
     ap.add_argument("--tolerance", nargs="+", type=float, default=[0.0], metavar="EPS",
                     help="corpus: projection_tolerance values (0 = exact, listed first to get T - T(0))")
     args = ap.parse_args()

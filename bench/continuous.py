@@ -132,7 +132,7 @@ def humanoid_row(robot, path, feet, N, repeat):
     return row
 
 
-def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True):
+def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_demand=False):
     sys.path.insert(0, str(HERE.parent / "tests" / "python"))
     import contact_corpus as cc
 
@@ -152,7 +152,8 @@ def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True):
             for g in GUARANTEES:
                 t0 = time.thread_time()
                 prob = pp.TimeScalingProblem(path, grid=N)
-                prob.add_contacts(h.robot, cons, cone_edges=edges, drift_tolerance=1e-4, torque_scale=scale, **opts)
+                prob.add_contacts(h.robot, cons, cone_edges=edges, drift_tolerance=1e-4, torque_scale=scale,
+                                  project_on_demand=on_demand, **opts)
                 res = prob.solve(guarantee=g)
                 cpu = time.thread_time() - t0
                 r = {"status": res.status.name, "T": res.duration, "cpu": cpu,
@@ -235,10 +236,11 @@ def main():
     ap.add_argument("--margins", nargs="+", default=["off1.5"])
     ap.add_argument("--cases", nargs="*", default=[], help="e.g. talos-squat romeo-lean (default: all six)")
     ap.add_argument("--no-margins", action="store_true", help="contact corpus: skip the 1 kHz force margins")
+    ap.add_argument("--on-demand", action="store_true", help="contact corpus: add_contacts(project_on_demand=True)")
     args = ap.parse_args()
     if args.contact_corpus:
         print(CONTACT_HEADER)
-        rows = contact_corpus_rows(args.margins, args.cases, force_margins=not args.no_margins)
+        rows = contact_corpus_rows(args.margins, args.cases, force_margins=not args.no_margins, on_demand=args.on_demand)
         ratios = [r["continuous"]["cpu"] / r["grid"]["cpu"] for r in rows]
         print(f"\ncontinuous / grid CPU: median {statistics.median(ratios):.1f}x, worst {max(ratios):.1f}x over {len(rows)} rows")
         return

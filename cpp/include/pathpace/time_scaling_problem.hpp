@@ -28,6 +28,7 @@ namespace pathpace {
 
 namespace detail {
 struct IntervalExtra;
+struct Scale;
 
 /// How many callers read (solve, feasible_set, ...) and modify (add_*, set_*) one problem: the state of
 /// TimeScalingProblem::Use. A copy of a problem starts unused.
@@ -362,8 +363,9 @@ class TimeScalingProblem {
                      std::vector<ConstraintRows> rows, Guarantee guarantee) const;
   /// solve() on these rows (one ConstraintRows per constraint, then any extra ones), plus rows of single
   /// intervals if `extra` (guarantee = continuous): the stages of solve/pipeline.hpp, in order.
+  /// `scale`: the units to solve in (default: from `rows`; see solve/pipeline.hpp's grid_sets_stage).
   Result solve_rows(const std::vector<ConstraintRows>& rows, const detail::IntervalExtra* extra,
-                    const SolverOptions& options) const;
+                    const SolverOptions& options, const detail::Scale* scale = nullptr) const;
   /// solve_rows, and while a constraint that refines its rows on demand (Constraint::refines) finds the
   /// timing beyond what it knows, its rows refined there and solved again: `rows` end refined, `memory` (one
   /// per constraint) carries each constraint's state to the next call, and the ids of `extra`'s rows follow

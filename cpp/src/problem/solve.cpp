@@ -220,13 +220,16 @@ Result TimeScalingProblem::solve_refined(std::vector<ConstraintRows>& rows, deta
   // Each round refines at least one grid point's polygon towards a point beyond an uncertified edge (a new
   // vertex or a certified edge): finitely many, so the rounds end; this cap only guards against a bug.
   constexpr int kMaxRounds = 1000;
+  // One scale for every round and every call (the problem's own rows'): a refinement then leaves the timing of
+  // the points it does not touch as it was, to the bit, which the continuous audit's memory relies on.
+  const detail::Scale scale = detail::problem_scale(samples_.s, rows_);
   const auto started = std::chrono::steady_clock::now();
   SolverOptions round_options = options;
   Result res;
   int rounds = 0;
   for (;;) {
     round_options.time_limit = std::max(options.time_limit - detail::seconds_since(started), 1e-3);
-    res = solve_rows(rows, extra, round_options);
+    res = solve_rows(rows, extra, round_options, &scale);
     ++rounds;
     if (!res.ok() || res.status == Status::TimeLimit) break;
     const Eigen::VectorXd theta = res.sdot.array().square();
@@ -256,14 +259,15 @@ Result TimeScalingProblem::solve_refined(std::vector<ConstraintRows>& rows, deta
 }
 
 Result TimeScalingProblem::solve_rows(const std::vector<ConstraintRows>& constraint_rows,
-                                      const detail::IntervalExtra* extra, const SolverOptions& options) const {
+                                      const detail::IntervalExtra* extra, const SolverOptions& options,
+                                      const detail::Scale* scale) const {
   const detail::Budget budget = detail::Budget::from(options.time_limit);
   Result res = with_constraints(*this, rows_);
   res.path = path_;
   res.contact_drift = contact_drift_;
   res.s = samples_.s;
 
-  const detail::SetsStage sets = detail::grid_sets_stage(samples_, constraint_rows, sdot_begin_, sdot_end_);
+  const detail::SetsStage sets = detail::grid_sets_stage(samples_, constraint_rows, sdot_begin_, sdot_end_, scale);
   res.stats.time_feasible_sets = sets.seconds;
   res.stats.average_halfplanes = sets.sets.average_rows;
   if (sets.stop) return report(*this, rows_, sets.sets, *sets.stop, options, std::move(res));

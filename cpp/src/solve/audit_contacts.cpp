@@ -57,6 +57,9 @@ void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<E
                             std::vector<size_t>& first, std::vector<double>& f) {
   auto& memo = memory_.slices[ci];
   if (memo.size() != static_cast<size_t>(N_ * points_)) memo.assign(static_cast<size_t>(N_ * points_), {});
+  auto& ends = memory_.grid_slices[ci];
+  const bool at_ends = cc.refines();
+  if (at_ends && ends.size() != static_cast<size_t>(2 * N_)) ends.assign(static_cast<size_t>(2 * N_), {});
   ks_.clear();
   ls_.clear();
   memo_of_.clear();
@@ -69,6 +72,10 @@ void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<E
       ls_.push_back(l);
       memo_of_.push_back(M);
     };
+    if (at_ends) {
+      add(0.0, &ends[2 * kk]);
+      add(1.0, &ends[2 * kk + 1]);
+    }
     for (int m = 0; m < points_; ++m) add(lam_[static_cast<size_t>(m)], &memo[kk * static_cast<size_t>(points_) + static_cast<size_t>(m)]);
     for (AuditMemory::Point& pt : memory_.cut_points[ci][kk]) add(pt.lam, &pt.slice);
     auto& probes = memory_.probes[ci][kk];

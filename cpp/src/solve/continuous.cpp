@@ -177,6 +177,7 @@ void Auditor::size_memory() {
     memory_.cut_points.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   }
   if (memory_.slices.size() != n) memory_.slices.assign(n, {});
+  if (memory_.grid_slices.size() != n) memory_.grid_slices.assign(n, {});
   if (memory_.probes.size() != n) memory_.probes.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   if (memory_.curvature.size() != n) memory_.curvature.assign(n, std::vector<double>(static_cast<size_t>(N_), 0.0));
   if (memory_.bases.size() != n) memory_.bases.assign(n, std::vector<std::array<std::vector<signed char>, 2>>(static_cast<size_t>(N_)));
@@ -317,9 +318,12 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
     const size_t kk = static_cast<size_t>(k);
     sample.clear();
     if (contact) {
-      // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP.
-      sample.emplace_back(0.0, row_slice_violation(grid, k, x_of(k, 0.0), u_of(k)));
-      sample.emplace_back(1.0, row_slice_violation(grid, k + 1, x_of(k, 1.0), u_of(k)));
+      // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP; rows refined
+      // on demand bound it from outside only, and their grid points are in the batch (contact_batch).
+      if (!contact->refines()) {
+        sample.emplace_back(0.0, row_slice_violation(grid, k, x_of(k, 0.0), u_of(k)));
+        sample.emplace_back(1.0, row_slice_violation(grid, k + 1, x_of(k, 1.0), u_of(k)));
+      }
       for (size_t i = first[t]; i < first[t + 1]; ++i) sample.emplace_back(ls_[i], fc[i]);
     } else {
       sample.emplace_back(0.0, worst_row(grid, k, 0.0, k));

@@ -48,6 +48,10 @@ struct AuditMemory {
     bool hi_capped = false;                            // the top is the stand-in cap (no limit)
   };
   std::vector<std::vector<Slices>> slices;
+  /// [constraint][2k + end]: a contact constraint's slices at both grid points of interval k (end 0: s_k, 1:
+  /// s_{k+1}) where its rows there bound it from outside only (Constraint::refines): solved like the
+  /// Chebyshev points' (an outer polygon's slice would overstate the room at the grid points).
+  std::vector<std::vector<Slices>> grid_slices;
   /// [constraint][interval]: the rows at each point where the interval was cut.
   struct Point {
     double lam;

@@ -23,11 +23,11 @@ Budget Budget::from(double time_limit) {
 }
 
 SetsStage grid_sets_stage(const PathSamples& samples, const std::vector<ConstraintRows>& rows, double sdot_begin,
-                          double sdot_end) {
+                          double sdot_end, const Scale* scale) {
   const auto t0 = std::chrono::steady_clock::now();
   // Solved in units where the speeds are ~1 (see Scale): T then scales exactly with the path's length and its
   // limits, with no cap on ṡ² that a bounded problem could reach.
-  SetsStage out{problem_scale(samples.s, rows), {}, 0.0, std::nullopt};
+  SetsStage out{scale ? *scale : problem_scale(samples.s, rows), {}, 0.0, std::nullopt};
   out.sets = build_grid_sets(samples, rows, out.scale);
   out.seconds = seconds_since(t0);
   const Eigen::Index n = samples.s.size() - 1;

@@ -46,8 +46,10 @@ struct SetsStage {
   double seconds = 0.0;
   std::optional<Stop> stop;  ///< an empty polygon, or a boundary speed beyond its end point's bound
 };
+/// `scale`: these units instead of problem_scale's of `rows` (rows refined between solves keep one scale, so
+/// that the parts of the timing their refinement does not touch stay the same to the bit).
 SetsStage grid_sets_stage(const PathSamples& samples, const std::vector<ConstraintRows>& rows, double sdot_begin,
-                          double sdot_end);
+                          double sdot_end, const Scale* scale = nullptr);
 
 /// Stage 2: the chain of interval rows, the reachability analysis and, with Method::Auto and coupling rows,
 /// the relaxation's bracket (see SolverOptions' Method::Auto); theta is the profile to certify.
