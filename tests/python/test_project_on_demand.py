@@ -160,3 +160,20 @@ def test_project_on_demand_is_validated_pickled_and_read_from_problem_files():
     # What the pickle kept is the option: the outer rows differ from the full polygons'.
     assert sum(len(full.feasible_set(k).halfplanes) for k in range(9)) > sum(len(a.feasible_set(k).halfplanes)
                                                                           for k in range(9))
+
+
+def test_on_demand_restarts_and_solves_one_problem_from_two_threads():
+    """Online re-timing (restarted) re-projects the tail's outer polygons and refines them in its own solve:
+    the full projection's T from the same state. One problem solved from two threads at once (solve_many):
+    each solve keeps its own refinement, the answers are the single-threaded one's."""
+    full = hard_problem("talos", "lean", "fn1.5")
+    lazy = hard_problem("talos", "lean", "fn1.5", on_demand=True)
+    a, b = full.solve(), lazy.solve()
+    s0, v0 = 0.4, float(np.interp(0.4, b.s, b.sdot))
+    ra, rb = full.restarted(s0, v0).solve(), lazy.restarted(s0, v0).solve()
+    assert ra.status == rb.status == pp.Status.OPTIMAL, (ra.message, rb.message)
+    assert rb.duration == pytest.approx(ra.duration, rel=1e-8)
+    assert rb.stats["projection_rounds"] >= 2
+    results = pp.solve_many([lazy] * 4, workers=2)
+    for r in results:
+        assert r.duration == b.duration and r.stats["projection_lp_solves"] == b.stats["projection_lp_solves"]
