@@ -2010,7 +2010,7 @@ class TimeScalingProblem:
             edge not yet certified, the expansion goes on towards that point only, until it lies inside the
             certified inner polygon or beyond a certified edge. The timing is then that of the full projection
             (the same T, to the projection's 1e-9 of each polygon's size) from the few edges it touches:
-            stats['projection_rounds'] counts the solves. feasible_set() shows the outer polygon before a solve.
+            stats['projection_rounds'] counts the solves. feasible_set(k) projects point k in full when asked.
         """
     def add_contact_phases(
         self,

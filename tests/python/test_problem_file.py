@@ -110,8 +110,8 @@ def test_contact_phases_of_a_file_drive_find_executable_margin(tmp_path):
 
 
 def test_project_on_demand_in_a_file_reaches_the_constraint(tmp_path):
-    """contacts.project_on_demand: the rows before the solve are the outer polygons of three LPs per point, and
-    the solve gives the full projection's T; a value that is not a bool is named."""
+    """contacts.project_on_demand: the solve refines its polygons (stats['projection_rounds']) and gives the full
+    projection's T; a value that is not a bool is named."""
     full = load_problem(rod_file(tmp_path, {"points": [ROD], "cone_edges": 4})[0])
     lazy = load_problem(rod_file(tmp_path, {"points": [ROD], "cone_edges": 4, "project_on_demand": True}, "od.json")[0])
     a, b = full.solve(), lazy.solve()

@@ -69,21 +69,26 @@ def test_on_demand_gives_the_full_projections_timing(robot, kind, margins, edges
     assert a.stats["projection_rounds"] == 0
     if kind == "lean" and margins.startswith("f"):
         assert b.stats["projection_lp_solves"] < 0.5 * a.stats["projection_lp_solves"]
-    # Before the solve the rows are the outer polygons of three LPs per point.
-    assert max(len(lazy.feasible_set(k).halfplanes) for k in range(N + 1)) <= 3
     assert b.stats["inexact_points"] == a.stats["inexact_points"] == 0
+    # feasible_set(k) shows the exact polygon (point k projected in full when asked), not the outer rows.
+    for k in (0, N // 3, N):
+        fa, fb = full.feasible_set(k), lazy.feasible_set(k)
+        # The same polygon: support values in 64 directions to 1e-8 of its size (vertex lists may start elsewhere,
+        # and labels differ where two limits bind at once: a cold start picks another degenerate optimum).
+        d = np.array([[np.cos(t), np.sin(t)] for t in np.linspace(0, 2 * np.pi, 64, endpoint=False)])
+        size = max(np.ptp(fa.vertices[:, 0]), np.ptp(fa.vertices[:, 1]))
+        np.testing.assert_allclose((fb.vertices @ d.T).max(axis=0), (fa.vertices @ d.T).max(axis=0), rtol=0,
+                                   atol=1e-8 * size)
 
 
-def test_on_demand_rows_refine_again_in_every_solve_and_leave_the_problem_as_it_was():
-    """The refinement belongs to the solve (the problem is shared and immutable): two solves, the same answer
-    and the same LPs; the problem's rows still the outer ones."""
+def test_on_demand_rows_refine_again_in_every_solve():
+    """The refinement belongs to the solve (the problem is shared and immutable): two solves, the same answer,
+    the same LPs and rounds (a second solve that went on from the first's refined rows would need fewer)."""
     lazy = hard_problem("g1", "lean", "fn1.5", on_demand=True)
-    before = [lazy.feasible_set(k).halfplanes.copy() for k in range(N + 1)]
     r1, r2 = lazy.solve(), lazy.solve()
     assert r1.duration == r2.duration
     assert r1.stats["projection_lp_solves"] == r2.stats["projection_lp_solves"]
-    for k in range(N + 1):
-        np.testing.assert_array_equal(lazy.feasible_set(k).halfplanes, before[k])
+    assert r1.stats["projection_rounds"] == r2.stats["projection_rounds"] >= 2
 
 
 @pytest.mark.parametrize("robot, kind, margins", [("talos", "squat", "off1.5"), ("g1", "lean", "fn1.5"),
@@ -155,11 +160,11 @@ def test_project_on_demand_is_validated_pickled_and_read_from_problem_files():
     a.add_constraint(c)
     b.add_constraint(pickle.loads(pickle.dumps(c)))
     full.add_constraint(pp.ContactConstraint(h.robot, cons, cone_edges=4))
-    for k in range(9):
-        np.testing.assert_array_equal(a.feasible_set(k).halfplanes, b.feasible_set(k).halfplanes)
-    # What the pickle kept is the option: the outer rows differ from the full polygons'.
-    assert sum(len(full.feasible_set(k).halfplanes) for k in range(9)) > sum(len(a.feasible_set(k).halfplanes)
-                                                                          for k in range(9))
+    ra, rb, rf = a.solve(), b.solve(), full.solve()
+    # What the pickle kept is the option: refinement rounds and the same LPs, where the full projection has none.
+    assert rb.stats["projection_rounds"] == ra.stats["projection_rounds"] >= 1 and rf.stats["projection_rounds"] == 0
+    assert rb.stats["projection_lp_solves"] == ra.stats["projection_lp_solves"]
+    assert rb.duration == ra.duration == pytest.approx(rf.duration, rel=1e-8)
 
 
 def test_on_demand_restarts_and_solves_one_problem_from_two_threads():

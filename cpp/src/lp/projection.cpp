@@ -512,18 +512,30 @@ void PolytopeProjector::Run::polygon() {
 }
 
 // With a focus: every LP optimum p along v gives v·z <= v·p, and every certified edge n·z <= its offset (to
-// the tolerance): their intersection holds the whole shadow. Where the hull is certified it is exact.
+// the tolerance): their intersection holds the whole shadow. Where the hull is certified it is exact. The
+// certified edges come first (their rows are named by what binds them, and the first row of a name gets it
+// plain); a support line at a hull vertex whose two edges are certified is left out: those edges imply it
+// (its direction lies between their normals, and the shadow there is the hull's).
 void PolytopeProjector::Run::outer_polygon() {
   auto push = [&](double nx, double nu, double c, int code) {
     for (const Vertex& v : out_.vertices) c = std::max(c, nx * v.x + nu * v.y);
     out_.halfplanes.push_back({nx, nu, c, static_cast<int>(out_.halfplanes.size())});
     out_.binding.push_back(code);
   };
+  for (const auto& [d, code] : certified_lines_) push(d.nx, d.nu, d.offset, code);
+  const size_t h = hull_.size();
   for (size_t i = 0; i < points_.size(); ++i) {
+    if (h >= 3) {
+      const auto at = std::find(hull_.begin(), hull_.end(), static_cast<int>(i));
+      if (at != hull_.end()) {
+        const size_t e = static_cast<size_t>(at - hull_.begin());
+        const int prev = hull_[(e + h - 1) % h], next = hull_[(e + 1) % h];
+        if (certified_.count({prev, static_cast<int>(i)}) && certified_.count({static_cast<int>(i), next})) continue;
+      }
+    }
     const Vertex &d = support_[i], &p = points_[i];
     push(d.x, d.y, d.x * p.x + d.y * p.y, support_binding_[i]);
   }
-  for (const auto& [d, code] : certified_lines_) push(d.nx, d.nu, d.offset, code);
 }
 
 }  // namespace pathpace::detail

@@ -217,10 +217,35 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   // polygon's tolerances are relative to the problem, and mapped back: a 1e-12-long path is bounded too.
   detail::Scale scale = detail::problem_scale(samples_.s, rows_);
   scale.cap = detail::kInfinityCap;
+  // Rows refined on demand (Constraint::refines) bound their constraint from outside until a solve refines
+  // them: the set shown is the exact one, from the exact constraint at this point alone.
+  std::vector<ConstraintRows> at_k;
+  if (refines()) {
+    PathSamples one;
+    one.s = samples_.s.segment(k, 1);
+    one.q = samples_.q.row(k);
+    one.dq = samples_.dq.row(k);
+    one.ddq = samples_.ddq.row(k);
+    for (size_t i = 0; i < constraints_.size(); ++i) {
+      const std::shared_ptr<const Constraint> e = constraints_[i]->exact();
+      if (e) {
+        at_k.push_back(e->evaluate(one));
+        continue;
+      }
+      ConstraintRows r = rows_[i];
+      for (ConstraintRows::Matrix* m : {&r.a, &r.b, &r.c}) *m = ConstraintRows::Matrix(m->row(k));
+      r.inexact_points.clear();
+      if (std::find(rows_[i].inexact_points.begin(), rows_[i].inexact_points.end(), k) != rows_[i].inexact_points.end())
+        r.inexact_points.push_back(0);
+      at_k.push_back(std::move(r));
+    }
+  }
+  const std::vector<ConstraintRows>& rows = refines() ? at_k : rows_;
+  const Eigen::Index row = refines() ? 0 : k;
   std::vector<detail::Line> scratch;
-  const detail::PointSet ps = detail::build_point_set(rows_, k, polygon, scratch, {}, nullptr, scale);
+  const detail::PointSet ps = detail::build_point_set(rows, row, polygon, scratch, {}, nullptr, scale);
   std::vector<std::string> labels;
-  for (const ConstraintRows& cr : rows_) labels.insert(labels.end(), cr.labels.begin(), cr.labels.end());
+  for (const ConstraintRows& cr : rows) labels.insert(labels.end(), cr.labels.begin(), cr.labels.end());
   auto label = [&](int id) { return id >= 0 ? labels[static_cast<size_t>(id)] : std::string(); };
 
   FeasibleSet fs;
@@ -230,8 +255,8 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   fs.x_max = ps.x_hi_id >= 0 ? ps.x_hi * scale.x_unit : std::numeric_limits<double>::infinity();
   fs.x_max_label = label(ps.x_hi_id);
   fs.empty = ps.empty;
-  for (const ConstraintRows& cr : rows_)
-    if (std::find(cr.inexact_points.begin(), cr.inexact_points.end(), k) != cr.inexact_points.end()) fs.exact = false;
+  for (const ConstraintRows& cr : rows)
+    if (std::find(cr.inexact_points.begin(), cr.inexact_points.end(), row) != cr.inexact_points.end()) fs.exact = false;
   if (ps.empty) {
     for (int id : ps.certificate)
       if (id >= 0) fs.labels.push_back(label(id));

@@ -59,7 +59,7 @@ struct ContactOptions {
   /// timing's (ṡ², s̈), with both adjacent s̈, lies beyond an edge not yet certified, the expansion (sec.
   /// IV.C) goes on towards that point only, until it lies inside the certified inner polygon or beyond a
   /// certified edge. The optimum of the outer rows is then feasible for the exact ones: the same T as the
-  /// full projection, from the few edges the optimum touches. feasible_set() shows the outer polygon.
+  /// full projection, from the few edges the optimum touches. feasible_set(k) projects point k in full.
   bool project_on_demand = false;
   /// The stretch of s where these contacts hold (one phase of TimeScalingProblem::add_contact_phases): grid
   /// points with s outside [active_begin, active_end] (1e-12 relative) get only inactive rows, and
