@@ -148,6 +148,21 @@ def test_on_demand_with_contact_phases_is_the_closed_form_optimum():
     assert res.duration == pytest.approx(closed_form(prob.grid, 10), rel=1e-9)
 
 
+def test_on_demand_phases_infeasible_at_the_switch_is_reported_as_such():
+    """Per-phase margins that cannot both hold at the switch (phase 0 pushes with >= 1 N, s̈ >= 1; phase 1
+    brakes, s̈ <= 0; test_contact_phases.py): INFEASIBLE at the switch, as with the full projection. The
+    re-check by one LP on phase 0's polytope takes phase 1's rows there exactly: with its outer rows the LP was
+    feasible and the point reported as a failed projection (NUMERICAL_ERROR)."""
+    from test_contact_phases import hand_box, on_box, together
+
+    for od in (False, True):
+        prob = pp.TimeScalingProblem(together(), grid=20)
+        prob.add_contact_phases(hand_box(), [(0.0, 1.0, on_box(1), {"min_normal_force": 1.0}), (1.0, 2.0, on_box(-1))],
+                                project_on_demand=od)
+        res = prob.solve()
+        assert res.status == pp.Status.INFEASIBLE and res.infeasible_index == 10, (od, res.message)
+
+
 def test_project_on_demand_is_validated_pickled_and_read_from_problem_files():
     h = cc.load("g1")
     cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["g1"])

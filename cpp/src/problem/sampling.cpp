@@ -1,5 +1,6 @@
 #include "problem/sampling.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -24,6 +25,32 @@ ConstraintRows timed_evaluate(const Constraint& constraint, const PathSamples& s
   ConstraintRows rows = constraint.evaluate(samples);
   rows.seconds = seconds_since(t0);
   return rows;
+}
+
+std::vector<ConstraintRows> exact_rows_at(const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                          const std::vector<ConstraintRows>& rows, const PathSamples& samples,
+                                          Eigen::Index k) {
+  PathSamples one;
+  one.s = samples.s.segment(k, 1);
+  one.q = samples.q.row(k);
+  one.dq = samples.dq.row(k);
+  one.ddq = samples.ddq.row(k);
+  std::vector<ConstraintRows> out;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::shared_ptr<const Constraint> e = i < constraints.size() ? constraints[i]->exact() : nullptr;
+    if (e) {
+      out.push_back(e->evaluate(one));
+      continue;
+    }
+    ConstraintRows r = rows[i];
+    for (ConstraintRows::Matrix* m : {&r.a, &r.b, &r.c}) *m = ConstraintRows::Matrix(m->row(k));
+    const bool inexact =
+        std::find(rows[i].inexact_points.begin(), rows[i].inexact_points.end(), k) != rows[i].inexact_points.end();
+    r.inexact_points.assign(inexact ? 1 : 0, 0);
+    r.refine_state.clear();
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 }  // namespace pathpace::detail

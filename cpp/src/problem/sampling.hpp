@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <limits>
+#include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -37,6 +39,13 @@ bool finite_entries(const Matrix& m) {
 // p, p', p'' at samples.s (the grid of a new problem, or one with a contact switch inserted), with the entry
 // that is not finite named.
 void sample_path(const Path& path, PathSamples& samples);
+
+// Each constraint's rows at grid point k alone (one row each): `rows`' row k, or for a constraint whose rows
+// are refined on demand (Constraint::refines) its exact() constraint evaluated at that point (what the rows
+// bound from outside). For what must hold exactly at one point: feasible_set, the re-check of an infeasibility.
+std::vector<ConstraintRows> exact_rows_at(const std::vector<std::shared_ptr<const Constraint>>& constraints,
+                                          const std::vector<ConstraintRows>& rows, const PathSamples& samples,
+                                          Eigen::Index k);
 
 // A constraint's rows on `samples` with the time they took (summed into SolverStats::time_constraints): every
 // evaluation that ends up in the problem's rows goes through here, so that no row keeps another's time.

@@ -9,6 +9,7 @@
 
 #include "base/clock.hpp"
 #include "base/validate.hpp"
+#include "problem/sampling.hpp"
 #include "solve/continuous.hpp"
 #include "solve/grid_sets.hpp"
 #include "solve/options.hpp"
@@ -26,13 +27,16 @@ namespace {
 void recheck_projection(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows, Eigen::Index k,
                         bool point_empty, const Constraint& projected, Result& res) {
   Eigen::Matrix<double, Eigen::Dynamic, 3> extra(0, 3);
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const ConstraintRows& cr = rows[i];
+  // The other constraints exactly (rows refined on demand bound theirs from outside: another contact phase's
+  // at a switch made a plainly infeasible point look like a failed projection).
+  const std::vector<ConstraintRows> at_k = detail::exact_rows_at(problem.constraints(), rows, problem.samples(), k);
+  for (size_t i = 0; i < at_k.size(); ++i) {
+    const ConstraintRows& cr = at_k[i];
     if (problem.constraints()[i].get() == &projected) continue;
     for (Eigen::Index j = 0; j < cr.rows(); ++j)
-      if (std::isfinite(cr.c(k, j))) {
+      if (std::isfinite(cr.c(0, j))) {
         extra.conservativeResize(extra.rows() + 1, 3);
-        extra.row(extra.rows() - 1) << cr.a(k, j), cr.b(k, j), cr.c(k, j);
+        extra.row(extra.rows() - 1) << cr.a(0, j), cr.b(0, j), cr.c(0, j);
       }
   }
   const PointCheck check = projected.check_point(problem.samples(), k, extra);

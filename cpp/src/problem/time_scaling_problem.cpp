@@ -220,26 +220,7 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   // Rows refined on demand (Constraint::refines) bound their constraint from outside until a solve refines
   // them: the set shown is the exact one, from the exact constraint at this point alone.
   std::vector<ConstraintRows> at_k;
-  if (refines()) {
-    PathSamples one;
-    one.s = samples_.s.segment(k, 1);
-    one.q = samples_.q.row(k);
-    one.dq = samples_.dq.row(k);
-    one.ddq = samples_.ddq.row(k);
-    for (size_t i = 0; i < constraints_.size(); ++i) {
-      const std::shared_ptr<const Constraint> e = constraints_[i]->exact();
-      if (e) {
-        at_k.push_back(e->evaluate(one));
-        continue;
-      }
-      ConstraintRows r = rows_[i];
-      for (ConstraintRows::Matrix* m : {&r.a, &r.b, &r.c}) *m = ConstraintRows::Matrix(m->row(k));
-      r.inexact_points.clear();
-      if (std::find(rows_[i].inexact_points.begin(), rows_[i].inexact_points.end(), k) != rows_[i].inexact_points.end())
-        r.inexact_points.push_back(0);
-      at_k.push_back(std::move(r));
-    }
-  }
+  if (refines()) at_k = detail::exact_rows_at(constraints_, rows_, samples_, k);
   const std::vector<ConstraintRows>& rows = refines() ? at_k : rows_;
   const Eigen::Index row = refines() ? 0 : k;
   std::vector<detail::Line> scratch;
