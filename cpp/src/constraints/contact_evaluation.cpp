@@ -341,7 +341,6 @@ int ContactConstraint::refine(const PathSamples& samples, const Eigen::VectorXd&
     const int lps_before = memory.lp_solves;
     const detail::Projection pr = project_point(projector, lp, options_, &focus, memory.lp_solves, memory.lp_by_cause,
                                                 static_cast<detail::ProjectionState*>(memory.state[k].get()));
-    ++memory.points;
     // A point whose timing lies beyond a certified edge (by the solver's tolerance) needs no LP: unchanged.
     if (memory.lp_solves == lps_before) continue;
     ++changed;

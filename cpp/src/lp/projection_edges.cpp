@@ -98,8 +98,7 @@ void PolytopeProjector::Run::directions() {
     nu /= len;
     // The hull's own support value in this direction: attained at the edge's ends (a convex hull).
     const Vertex &a = points_[static_cast<size_t>(from)], &b = points_[static_cast<size_t>(to)];
-    const double offset = std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y);
-    pending_.push_back({from, to, nx, nu, offset});
+    pending_.push_back({from, to, nx, nu, std::max(nx * a.x + nu * a.y, nx * b.x + nu * b.y)});
   };
   if (h == 1) return;  // three support points coincide: the shadow is that point
   for (size_t e = 0; e < h; ++e) {

@@ -146,7 +146,6 @@ struct RefineMemory {
   std::vector<double> tolerance;
   /// [grid point]: whatever else the constraint keeps there (a contact polygon: where its expansion stopped).
   std::vector<std::shared_ptr<void>> state;
-  int points = 0;        ///< grid points refined, over all calls
   int lp_solves = 0;     ///< their LPs
   LpCounts lp_by_cause;  ///< the same LPs by cause
 };
