@@ -4,6 +4,7 @@ number of cone edges, composed with torque limits, re-checked before an infeasib
 The fast slice of the seeded corpus of contact_corpus.py; bench/contact_projection.py runs all of it
 (N up to 400, 4-32 cone edges) and the timings."""
 
+import re
 import time
 
 import numpy as np
@@ -198,6 +199,38 @@ def test_infeasibility_is_rechecked_on_the_full_polytope(paths):
     # (the speed cannot be shed before grid point 1: the polygon there is fine, the start speed is not)
     assert res.infeasible_index <= 1
     assert "polytope at that point: feasible, rest state (0, 0) feasible" in res.message
+
+
+@pytest.mark.parametrize("on_demand", [False, True])
+def test_a_turning_point_on_a_grid_point_is_infeasible_not_a_failed_projection(on_demand):
+    """A held-out squat (hard_cases(99), Talos) whose bottom is a grid point: p'(0.5) ~ 1e-11 is the rounding
+    residue of a turning point, so the polytope there is feasible only at |s̈| ~ 1e13 (b = M p'), beyond the
+    largest stand-in, and the robot cannot hold that pose at any speed with 0.3x its torque limits. The
+    problem is infeasible there (it was reported NUMERICAL_ERROR: the full LP without caps found that s̈).
+    Off the turning point by 1e-12 the projection grows its stand-in instead: the same verdict. The relaxation
+    it names holds."""
+    case = next(c for c in cc.hard_cases(99) if (c.robot, c.kind) == ("talos", "squat"))
+    h = cc.load("talos")
+    path = cc.make_hard_path(h, case)
+    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["talos"])
+    scale = cc.HARD_TORQUE_SCALE[("talos", "squat")]
+
+    def solve(offset, torque_scale):
+        grid = np.linspace(0.0, 1.0, 101)
+        grid[50] += offset
+        prob = pp.TimeScalingProblem(path, grid=grid)
+        prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4, torque_scale=torque_scale,
+                          project_on_demand=on_demand, **cc.SHIFTED_MARGINS["off1.5"])
+        return prob.solve()
+
+    assert np.abs(path.dq(0.5)).max() < 1e-9  # the turning point (measured 9.6e-12)
+    for offset in (0.0, 1e-12):
+        res = solve(offset, scale)
+        assert res.status == pp.Status.INFEASIBLE, (offset, res.message)
+        assert 48 <= res.infeasible_index <= 52  # measured: 50 on the point, 52 off it
+        factor = float(re.search(r"feasible with torque limits x ([0-9.]+)", res.message).group(1))
+        assert 1.0 < factor < 1.2  # measured 1.048
+    assert solve(0.0, scale * 1.1).status == pp.Status.OPTIMAL
 
 
 def test_stats_time_the_projection_and_report_an_exhausted_budget(paths):

@@ -20,6 +20,33 @@ namespace pathpace {
 
 namespace {
 
+// Whether the full polytope at k holds a point (x, u) that the discretised problem can use. Both adjacent
+// intervals' s̈ must lie in the polygon at k (eq. 24-25, both adjacent s̈ rows), and u of the interval to
+// neighbour j is the difference quotient ±(θ_j - x) / (2 |s_j - s_k|) with θ_j in [0, X_j], X_j the largest
+// ṡ² of j's rows (outer rows where they are refined on demand: a bound still). So each side adds two rows,
+// 0 <= x ± 2Δs u <= X_j, and each side's LP must be feasible. It tells a projection that failed (its shadow
+// only at |s̈| ~ 1e13, where p'(s_k) ~ 1e-11 is a turning point's rounding residue and b = M p' with it) from
+// a point the problem could reach. False only when a side's LP is empty (confirmed in exact arithmetic).
+bool reachable_at(const TimeScalingProblem& problem, const std::vector<ConstraintRows>& rows, Eigen::Index k,
+                  const Eigen::Matrix<double, Eigen::Dynamic, 3>& extra, const Constraint& projected) {
+  const Eigen::VectorXd& s = problem.samples().s;
+  detail::Polygon2d polygon;
+  for (const Eigen::Index j : {k - 1, k + 1}) {
+    if (j < 0 || j >= s.size()) continue;
+    const detail::PointSet set = detail::build_point_set(rows, j, polygon);
+    if (set.empty) continue;  // no bound from an empty neighbour (it is reported in its own right)
+    double x_lo = 0.0, x_hi = 0.0;
+    polygon.x_range(x_lo, x_hi);
+    const double h = 2.0 * (s[j] - s[k]);  // θ_j = x + h u
+    Eigen::Matrix<double, Eigen::Dynamic, 3> side(extra.rows() + 2, 3);
+    side.topRows(extra.rows()) = extra;
+    side.row(extra.rows()) << 1.0, h, x_hi;
+    side.row(extra.rows() + 1) << -1.0, -h, 0.0;
+    if (projected.check_point(problem.samples(), k, side).feasible == 0) return false;
+  }
+  return true;
+}
+
 // An infeasibility with contacts is a claim about the robot, and the polygons are projections: before
 // it is reported, one LP on the full (ṡ², s̈, τ, f) polytope at the binding grid point, with every other
 // constraint's half-planes there, re-checks it; the message says whether the rest state (0, 0) is
@@ -41,6 +68,12 @@ void recheck_projection(const TimeScalingProblem& problem, const std::vector<Con
   }
   const PointCheck check = projected.check_point(problem.samples(), k, extra);
   auto word = [](int v, const char* yes, const char* no) { return v > 0 ? yes : v == 0 ? no : "unknown (LP failed)"; };
+  if (point_empty && check.feasible > 0 && !reachable_at(problem, rows, k, extra, projected)) {
+    res.message += "; re-checked by one LP on the full (sdot^2, sddot, torque, force) polytope at that point: feasible "
+                   "only at an sddot no adjacent interval reaches (a path derivative ~0 there makes the sddot "
+                   "coefficients rounding residues)";
+    return;
+  }
   if (point_empty && check.feasible > 0) {
     res.status = Status::NumericalError;
     res.message = "the feasible set is empty at grid index " + std::to_string(k) + " (s = " +
