@@ -23,7 +23,8 @@ negative = forces that do not exist). Reported as distributions: median and wors
 Contact corpus (`--contact-corpus`): every case of tests/python/contact_corpus.hard_cases (Talos, Romeo, G1;
 a strong lean and a squat each; 60-64 sole points, torque limits scaled until they bind), 4-edge cones,
 N = 100, with the margins named (`contact_corpus.HARD_MARGINS` / `SHIFTED_MARGINS`). Per row and guarantee:
-thread CPU s of add_contacts + solve (one run: the rows take seconds), audit rounds, cuts, the audit's slice
+thread CPU s of add_contacts + solve (median of `--repeat` runs; this shared machine's CPU time moves by up to
+1.4x from run to run, so the audit's LPs and rounds are the steadier measure), audit rounds, cuts, the audit's slice
 LPs and cut projections, T, and the independent dense audit: the smallest force-distribution margin (N) of
 the returned trajectory at 1 kHz (>= -1e-6 is the contract the tests assert).
 """
@@ -132,7 +133,7 @@ def humanoid_row(robot, path, feet, N, repeat):
     return row
 
 
-def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_demand=False):
+def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_demand=False, repeat=1):
     sys.path.insert(0, str(HERE.parent / "tests" / "python"))
     import contact_corpus as cc
 
@@ -150,12 +151,13 @@ def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_d
             row = {"case": name, "margins": mname, "points": len(cons), "edges": edges, "N": N,
                    "load_before": os.getloadavg()[0]}
             for g in GUARANTEES:
-                t0 = time.thread_time()
-                prob = pp.TimeScalingProblem(path, grid=N)
-                prob.add_contacts(h.robot, cons, cone_edges=edges, drift_tolerance=1e-4, torque_scale=scale,
-                                  project_on_demand=on_demand, **opts)
-                res = prob.solve(guarantee=g)
-                cpu = time.thread_time() - t0
+                def run():
+                    prob = pp.TimeScalingProblem(path, grid=N)
+                    prob.add_contacts(h.robot, cons, cone_edges=edges, drift_tolerance=1e-4, torque_scale=scale,
+                                      project_on_demand=on_demand, **opts)
+                    return prob.solve(guarantee=g)
+
+                res, cpu = timed(run, repeat)
                 r = {"status": res.status.name, "T": res.duration, "cpu": cpu,
                      **{k: res.stats[k] for k in ("audit_rounds", "audit_cuts", "audit_lps", "audit_projections",
                                                    "projection_lp_solves")}}
@@ -240,9 +242,13 @@ def main():
     args = ap.parse_args()
     if args.contact_corpus:
         print(CONTACT_HEADER)
-        rows = contact_corpus_rows(args.margins, args.cases, force_margins=not args.no_margins, on_demand=args.on_demand)
+        rows = contact_corpus_rows(args.margins, args.cases, force_margins=not args.no_margins, on_demand=args.on_demand,
+                                   repeat=args.repeat)
         ratios = [r["continuous"]["cpu"] / r["grid"]["cpu"] for r in rows]
         print(f"\ncontinuous / grid CPU: median {statistics.median(ratios):.1f}x, worst {max(ratios):.1f}x over {len(rows)} rows")
+        for key in ("audit_rounds", "audit_lps"):
+            xs = [r["continuous"][key] for r in rows]
+            print(f"{key}: median {statistics.median(xs):g}, worst {max(xs)}, total {sum(xs)}")
         return
     seeds = args.seeds or (3 if args.quick else 10)
     t0 = time.time()

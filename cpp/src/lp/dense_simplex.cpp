@@ -32,9 +32,17 @@ void DenseSimplex::load(const PolytopeLp& lp) {
   lo_ << lp.row_lo, lp.col_lo;
   hi_ << lp.row_hi, lp.col_hi;
   d_.assign(static_cast<size_t>(m_ + n_), 0.0);
-  at_ = lp.A.transpose();
-  abs_at_ = at_.cwiseAbs();
-  row_max_ = abs_at_.colwise().maxCoeff().transpose();
+  // A^T and each row's largest |a_ij| in one pass over A (a slice LP loads at every sample); |A|^T is not
+  // kept: certify() takes a row's |a|·|z| from A^T where the cheaper bound does not decide it.
+  at_.resize(n_, m_);
+  row_max_.setZero(m_);
+  for (int j = 0; j < n_; ++j) {
+    const double* a = lp.A.col(j).data();
+    for (int i = 0; i < m_; ++i) {
+      at_(j, i) = a[i];
+      row_max_[i] = std::max(row_max_[i], std::abs(a[i]));
+    }
+  }
   s_ = State();
 }
 
@@ -421,7 +429,7 @@ bool DenseSimplex::certify() {
       v = rows_[k];
       if (s_.stat[static_cast<size_t>(k)] == GLP_BS) s_.value[k] = v;
       e = gamma * row_max_[k] * z1;
-      if (!(v - e >= lo && v + e <= hi)) e = gamma * abs_at_.col(k).dot(abs_z);
+      if (!(v - e >= lo && v + e <= hi)) e = gamma * at_.col(k).cwiseAbs().dot(abs_z);
     }
     if (v - e >= lo && v + e <= hi) continue;
     // Undecided in double: the row again in extended precision, whose error bound is 2048 times smaller.

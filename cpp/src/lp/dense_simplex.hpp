@@ -101,7 +101,6 @@ class DenseSimplex {
   Eigen::VectorXd f_col_;
   Eigen::VectorXd cv_z_, cv_r_, cv_xb_;
   Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous
-  Eigen::MatrixXd abs_at_;  // |A|^T, for the certificate's rounding bound
   Eigen::VectorXd row_max_;  // max_j |a_ij| per row
 };
 

@@ -138,10 +138,10 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
 // the end of its slice that the timing's (x, u) is beyond (SliceEdges; the polygon lies on its side of
 // that line, so the row is exact), one LP per end instead of a projection of the polygon. A slice that
 // is empty there (u outside the polygon) or whose LP failed has no such edge: that point's polygon is
-// projected, and its broken rows cut. Besides the peak, the top edges at kSpread points evenly inside
-// the peak's bracket (span: its samples), broken or not.
+// projected, and its broken rows cut. Besides the peak, the top edges at kSpread points evenly between the
+// interval's cuts (or ends) that flank the peak, broken or not (see kSpread).
 void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
-                           const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named) {
+                           const std::map<std::string, int>& named) {
   std::vector<Eigen::Index> ks;
   std::vector<char> spread;  // per point: 0 a peak, 1 a spread point
   for (size_t q = 0; q < cuts.size(); ++q) {
@@ -149,7 +149,11 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
     spread.push_back(0);
   }
   for (size_t q = 0; q < cuts.size(); ++q) {
-    const auto [a, c] = span[cuts[q]];
+    double a = 0.0, c = 1.0;
+    for (double l : memory_.cut_at[ci][static_cast<size_t>(at[cuts[q]])]) {
+      if (l < ls_[q]) a = std::max(a, l);
+      if (l > ls_[q]) c = std::min(c, l);
+    }
     for (int j = 1; j <= kSpread; ++j) {
       const double l = a + (c - a) * j / (kSpread + 1.0);
       if (std::abs(l - ls_[q]) < 1e-2 * (c - a)) continue;  // the peak's own
@@ -159,11 +163,16 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
     }
   }
   const Constraint& cc = *constraints_[ci];
-  Eigen::VectorXd u(static_cast<Eigen::Index>(ks.size())), lo, hi;
-  for (size_t q = 0; q < ks.size(); ++q) u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
+  // The bottom's LP only where it can cut: at a peak below its slice's top (above it, the bottom is below
+  // too); a spread point cuts its top only (a bottom broken there is found by the next round's samples).
+  Eigen::VectorXd u(static_cast<Eigen::Index>(ks.size())), skip(u.size()), lo, hi;
+  for (size_t q = 0; q < ks.size(); ++q) {
+    u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
+    skip[static_cast<Eigen::Index>(q)] = spread[q] ? kInf : x_of(ks[q], ls_[q]);
+  }
   SliceEdges edges;
   edges.labels = true;
-  warm_slice(cc, ci, ks, samples_at(ks, ls_), u, lo, hi, nullptr, &edges);
+  warm_slice(cc, ci, ks, samples_at(ks, ls_), u, lo, hi, &skip, &edges);
   const double cap = cc.projection_cap();
   std::vector<Eigen::Index> pk;  // the points to project
   std::vector<double> pl;

@@ -25,11 +25,14 @@ double violation(double a, double b, double c, double lam, double t0, double t1,
 // all fits this u) or a failed LP counts as a full violation, which the cut's projection then settles.
 double slice_violation(double x, double lo, double hi);
 
-// Contact cuts per interval and round besides its peak's (contact_cuts): each round's single cut at the
-// peak leaves the peak between two cuts, which quarters the violation from round to round (x(λ) follows
-// the chord of the limit between them); rows at 3 more points of the peak's bracket divide that gap by 4,
-// the violation by 16 (measured in bench/README.md, issue 27).
-constexpr int kSpread = 3;
+// Contact cuts per interval and round besides its peak's (contact_cuts). Between two cuts at which the
+// timing is tight, x(λ) is the chord of the limit, so the violation is about K d² / 8 for cuts d apart (K
+// the limit's convexity in λ), and its peak lies near their middle, not where the final timing touches the
+// limit. Rows at kSpread more points spread evenly between the cuts that flank the peak divide that gap by
+// kSpread + 1 each round, the violation by about (kSpread + 1)². Spread over the peak's bracket (its
+// samples: narrower than the cuts around it where earlier peak searches left samples) the touching point
+// was seen to move out of it, which halved the gap per round instead (bench/README.md, issue 27).
+constexpr int kSpread = 7;
 
 // One audit_and_cut call: the data its stages share. Per constraint (audit_constraint): the intervals
 // whose speeds changed, their samples (contact slices in one batch), the path-wide concavity bound, the
@@ -77,10 +80,9 @@ class Auditor {
   }
   void brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBracket>& cand, std::vector<Eigen::Index>& at,
                 std::vector<double>& curvature) const;
-  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
-           const std::vector<std::pair<double, double>>& span);
+  void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at);
   void contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
-                    const std::vector<std::pair<double, double>>& span, const std::map<std::string, int>& named);
+                    const std::map<std::string, int>& named);
   void add_cut(size_t ci, Eigen::Index k, double l, double a, double b, double c, const std::string& label,
                const std::map<std::string, int>& named);
   void add_broken_rows(size_t ci, const ConstraintRows& rr, Eigen::Index r, Eigen::Index k, double l,

@@ -176,6 +176,7 @@ void Auditor::size_memory() {
     memory_.coarse.assign(n, ConstraintRows());
     memory_.cut_points.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   }
+  if (memory_.cut_at.size() != n) memory_.cut_at.assign(n, std::vector<std::vector<double>>(static_cast<size_t>(N_)));
   if (memory_.slices.size() != n) memory_.slices.assign(n, {});
   if (memory_.grid_slices.size() != n) memory_.grid_slices.assign(n, {});
   if (memory_.probes.size() != n) memory_.probes.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
@@ -221,7 +222,7 @@ void Auditor::audit_constraint(size_t ci) {
         return c.best() <= tolerance_ && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance_ &&
                bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance_;
       });
-  cut(ci, cand, at, span);
+  cut(ci, cand, at);
 }
 
 PathSamples Auditor::samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const {
@@ -419,8 +420,7 @@ void Auditor::brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBr
 // first row if it has none). A contact constraint's cut is the polygon's edge there, with kSpread more
 // (contact_cuts); other constraints' rows are cheap to evaluate, and one row per round keeps the rows of
 // an interval from crowding near-parallel.
-void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at,
-                  const std::vector<std::pair<double, double>>& span) {
+void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at) {
   ks_.clear();
   ls_.clear();
   std::vector<size_t> cuts;
@@ -446,7 +446,7 @@ void Auditor::cut(size_t ci, const std::vector<PeakBracket>& cand, const std::ve
   const ConstraintRows& grid = grid_rows_[ci];
   for (size_t j = 0; j < grid.labels.size(); ++j) named.emplace(grid.labels[j], static_cast<int>(j));
   if (constraints_[ci]->projected()) {
-    contact_cuts(ci, cuts, at, span, named);
+    contact_cuts(ci, cuts, at, named);
     return;
   }
   const ConstraintRows rr = constraints_[ci]->evaluate(samples_at(ks_, ls_));
@@ -465,6 +465,7 @@ void Auditor::add_cut(size_t ci, Eigen::Index k, double l, double a, double b, d
   const auto id = named.find(label);
   extra_.rows[static_cast<size_t>(k)].push_back(
       {a * (1.0 - l) - b / (2.0 * h), a * l + b / (2.0 * h), c, row_offset_[ci] + (id == named.end() ? 0 : id->second)});
+  memory_.cut_at[ci][static_cast<size_t>(k)].push_back(l);
   ++audit_.cuts;
 }
 

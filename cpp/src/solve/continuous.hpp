@@ -59,6 +59,9 @@ struct AuditMemory {
     Slices slice;  // a contact constraint's slice there (as at a Chebyshev point)
   };
   std::vector<std::vector<std::vector<Point>>> cut_points;
+  /// [constraint][interval]: the λ of every row cut into the interval (a contact constraint's peaks and
+  /// spread points): the cuts that flank a new peak bound where its spread rows go (contact_cuts).
+  std::vector<std::vector<std::vector<double>>> cut_at;
   /// [constraint][interval]: a contact constraint's points of the peak search (a, b, c empty), with their
   /// slices: later rounds sample them again where the slices' edges cover the new u (no LP), so that the
   /// brackets start between them and most close by the bump bound, not by new LPs. At most kProbes each.
