@@ -70,8 +70,8 @@ void recheck_projection(const TimeScalingProblem& problem, const std::vector<Con
   auto word = [](int v, const char* yes, const char* no) { return v > 0 ? yes : v == 0 ? no : "unknown (LP failed)"; };
   if (point_empty && check.feasible > 0 && !reachable_at(problem, rows, k, extra, projected)) {
     res.message += "; re-checked by one LP on the full (sdot^2, sddot, torque, force) polytope at that point: feasible "
-                   "only at an sddot no adjacent interval reaches (a path derivative ~0 there makes the sddot "
-                   "coefficients rounding residues)";
+                   "only at an sddot that no adjacent interval reaches (as at a turning point of the path, where p' ~ 0 "
+                   "leaves the sddot coefficients at rounding residues)";
     return;
   }
   if (point_empty && check.feasible > 0) {
