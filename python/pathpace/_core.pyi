@@ -2206,7 +2206,9 @@ class TimeScalingProblem:
             'grid': limits hold at the grid points (eq. 26); 'continuous': at every instant (velocity and
             acceleration by Bernstein bounds of a piecewise-polynomial path, torque and contact by an audit at
             audit_points interior points per interval with exact cuts until it passes; stats['audit_worst'] is
-            the largest relative violation left, negative = the margin reached).
+            the largest relative violation left, negative = the margin reached; above audit_tolerance only where
+            no further cut changed the timing, e.g. cuts met to the LP solver's own tolerance: the message then
+            says so).
         audit_points, audit_tolerance, max_audit_rounds :
             Of the continuous audit: points per interval, relative violation accepted, solve-audit rounds.
         time_limit : float
