@@ -230,6 +230,19 @@ def make_hard_path(h: Humanoid, case: HardCase, knots: int = 21) -> pp.CubicSpli
     return pp.CubicSplinePath(np.array(wp), knots=s)
 
 
+def hard_problem(robot: str, kind: str, margins: str, edges: int = 4, on_demand: bool = False, grid: int = 100,
+                 scale: float | None = None, seed: int = 27) -> pp.TimeScalingProblem:
+    """hard_cases(seed)'s (robot, kind) with the named HARD_MARGINS / SHIFTED_MARGINS, its sole grid and torque
+    scale (or `scale`), as the tests and benches build it."""
+    case = next(c for c in hard_cases(seed) if (c.robot, c.kind) == (robot, kind))
+    h = load(robot)
+    prob = pp.TimeScalingProblem(make_hard_path(h, case), grid=grid)
+    prob.add_contacts(h.robot, contacts(h, "sway", grid=HARD_GRIDS[robot]), cone_edges=edges, drift_tolerance=1e-4,
+                      torque_scale=HARD_TORQUE_SCALE[(robot, kind)] if scale is None else scale,
+                      project_on_demand=on_demand, **{**HARD_MARGINS, **SHIFTED_MARGINS}[margins])
+    return prob
+
+
 def hard_torque_scale(h: Humanoid, path, cons, ladder=(1.0, 0.8, 0.6, 0.5, 0.4, 0.3, 0.25, 0.2, 0.15, 0.1)) -> float:
     """The smallest scale of the ladder at which every HARD_MARGINS set is OPTIMAL (N = 50, 4 edges)."""
     best = None

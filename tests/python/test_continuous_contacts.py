@@ -123,13 +123,7 @@ def test_spread_cuts_between_the_flanking_cuts_converge_in_few_rounds():
     measured (bench/README.md), 10 + 12 + 9 with the bracket's spread."""
     rounds = 0
     for robot in ("talos", "romeo", "g1"):
-        case = next(c for c in cc.hard_cases() if (c.robot, c.kind) == (robot, "lean"))
-        h = cc.load(robot)
-        path = cc.make_hard_path(h, case)
-        cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot])
-        prob = pp.TimeScalingProblem(path, grid=100)
-        prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4,
-                          torque_scale=cc.HARD_TORQUE_SCALE[(robot, "lean")], **cc.SHIFTED_MARGINS["off1.5"])
+        prob = cc.hard_problem(robot, "lean", "off1.5")
         grid, cont = prob.solve(), prob.solve(guarantee="continuous")
         assert cont.status == pp.Status.OPTIMAL, cont.message
         assert cont.duration >= grid.duration * (1 - 1e-9)
@@ -142,14 +136,7 @@ def test_a_start_from_rest_on_the_polygons_top_edge_is_not_a_violation():
     polygon's top edge, where the grid rows' slice top is -1.9e-14 for that s̈. Measured relative to x (= 0)
     that read as a full violation (audit_worst = 1.0 at OPTIMAL, no cut could remove it); by the rows' own
     terms it is rounding (6e-11 measured). The independent force margin at 1 kHz agrees."""
-    case = next(c for c in cc.hard_cases(99) if (c.robot, c.kind) == ("g1", "lean"))
-    h = cc.load("g1")
-    path = cc.make_hard_path(h, case)
-    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS["g1"])
-    prob = pp.TimeScalingProblem(path, grid=100)
-    prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4,
-                      torque_scale=cc.HARD_TORQUE_SCALE[("g1", "lean")], **cc.HARD_MARGINS["fn1.5"])
-    cont = prob.solve(guarantee="continuous")
+    cont = cc.hard_problem("g1", "lean", "fn1.5", seed=99).solve(guarantee="continuous")
     assert cont.status == pp.Status.OPTIMAL, cont.message
     assert cont.sdot[0] == 0.0
     assert cont.stats["audit_worst"] < 1e-6

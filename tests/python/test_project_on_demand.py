@@ -18,15 +18,7 @@ N = 50
 
 
 def hard_problem(robot, kind, margins, edges=4, on_demand=False, grid=N, scale=None):
-    case = next(c for c in cc.hard_cases() if (c.robot, c.kind) == (robot, kind))
-    h = cc.load(robot)
-    path = cc.make_hard_path(h, case)
-    prob = pp.TimeScalingProblem(path, grid=grid)
-    opts = {**cc.HARD_MARGINS, **cc.SHIFTED_MARGINS}[margins]
-    prob.add_contacts(h.robot, cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot]), cone_edges=edges,
-                      drift_tolerance=1e-4, torque_scale=cc.HARD_TORQUE_SCALE[(robot, kind)] if scale is None else scale,
-                      project_on_demand=on_demand, **opts)
-    return prob
+    return cc.hard_problem(robot, kind, margins, edges=edges, on_demand=on_demand, grid=grid, scale=scale)
 
 
 def inside_every_polygon(exact, res):
@@ -205,14 +197,7 @@ def test_a_continuous_solve_meets_audit_tolerance_or_says_it_does_not(robot, kin
     unchanged after its cuts (met to the solver's own tolerance) keeps its violation. On demand, 3 of the 12
     corpus rows ended so, OPTIMAL at 3.8e-10, 1.8e-9 and 3.0e-10 against audit_tolerance = 1e-10, silently
     (bench/README.md). Either the tolerance holds, or the message says by how much it does not."""
-    case = next(c for c in cc.hard_cases() if (c.robot, c.kind) == (robot, kind))
-    h = cc.load(robot)
-    path = cc.make_hard_path(h, case)
-    cons = cc.contacts(h, "sway", grid=cc.HARD_GRIDS[robot])
-    prob = pp.TimeScalingProblem(path, grid=100)
-    prob.add_contacts(h.robot, cons, cone_edges=4, drift_tolerance=1e-4, project_on_demand=True,
-                      torque_scale=cc.HARD_TORQUE_SCALE[(robot, kind)], **cc.HARD_MARGINS["fn1.5"])
-    cont = prob.solve(guarantee="continuous")
+    cont = hard_problem(robot, kind, "fn1.5", on_demand=True, grid=100).solve(guarantee="continuous")
     assert cont.status == pp.Status.OPTIMAL, cont.message
     worst = cont.stats["audit_worst"]
     if worst > 1e-10:
