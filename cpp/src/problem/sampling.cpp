@@ -42,12 +42,15 @@ std::vector<ConstraintRows> exact_rows_at(const std::vector<std::shared_ptr<cons
       out.push_back(e->evaluate(one));
       continue;
     }
-    ConstraintRows r = rows[i];
-    for (ConstraintRows::Matrix* m : {&r.a, &r.b, &r.c}) *m = ConstraintRows::Matrix(m->row(k));
+    // Row k alone (not a copy of every grid point's rows: feasible_set asks point by point).
+    ConstraintRows r;
+    r.a = rows[i].a.row(k);
+    r.b = rows[i].b.row(k);
+    r.c = rows[i].c.row(k);
+    r.labels = rows[i].labels;
     const bool inexact =
         std::find(rows[i].inexact_points.begin(), rows[i].inexact_points.end(), k) != rows[i].inexact_points.end();
     r.inexact_points.assign(inexact ? 1 : 0, 0);
-    r.refine_state.clear();
     out.push_back(std::move(r));
   }
   return out;

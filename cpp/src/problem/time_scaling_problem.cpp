@@ -219,10 +219,11 @@ FeasibleSet TimeScalingProblem::feasible_set(Eigen::Index k) const {
   scale.cap = detail::kInfinityCap;
   // Rows refined on demand (Constraint::refines) bound their constraint from outside until a solve refines
   // them: the set shown is the exact one, from the exact constraint at this point alone.
+  const bool outer = refines();
   std::vector<ConstraintRows> at_k;
-  if (refines()) at_k = detail::exact_rows_at(constraints_, rows_, samples_, k);
-  const std::vector<ConstraintRows>& rows = refines() ? at_k : rows_;
-  const Eigen::Index row = refines() ? 0 : k;
+  if (outer) at_k = detail::exact_rows_at(constraints_, rows_, samples_, k);
+  const std::vector<ConstraintRows>& rows = outer ? at_k : rows_;
+  const Eigen::Index row = outer ? 0 : k;
   std::vector<detail::Line> scratch;
   const detail::PointSet ps = detail::build_point_set(rows, row, polygon, scratch, {}, nullptr, scale);
   std::vector<std::string> labels;

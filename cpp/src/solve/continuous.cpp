@@ -131,21 +131,25 @@ double bump_bound(double la, double va, double lb, double vb, double K) {
 // The slice measures x's distance relative to x's own size, which at rest is rounding over rounding: a
 // timing that leaves rest on the polygon's top edge (x = 0, the top at -1.9e-14 for its u) read as a full
 // violation that no cut could remove (audit_worst = 1 on a G1 lean that met every limit). Where the slice
-// says broken, the rows' own measure (violation(), relative to each row's terms) decides, if smaller.
+// says broken (rarely: a second pass, not a division per row at every sample), the rows' own measure
+// (violation(), relative to each row's terms) decides, if smaller.
 double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
   const double inf = std::numeric_limits<double>::infinity();
-  double lo = -inf, hi = inf, by_rows = -inf;
+  double lo = -inf, hi = inf;
   bool u_broken = false;
   for (Eigen::Index j = 0; j < rows.rows(); ++j) {
     const double a = rows.a(r, j), c = rows.c(r, j), rest = c - rows.b(r, j) * u;
     if (c == inf) continue;
-    by_rows = std::max(by_rows, violation(a, rows.b(r, j), c, 0.0, x, x, u));
     if (a > 0.0) hi = std::min(hi, rest / a);
     else if (a < 0.0) lo = std::max(lo, rest / a);
     else if (rest < 0.0) u_broken = true;  // a row on u alone that this u breaks
   }
   const double by_slice = u_broken ? 1.0 : slice_violation(x, lo, hi);
-  return by_slice > 0.0 ? std::min(by_slice, by_rows) : by_slice;
+  if (!(by_slice > 0.0)) return by_slice;
+  double by_rows = -inf;
+  for (Eigen::Index j = 0; j < rows.rows(); ++j)
+    if (rows.c(r, j) != inf) by_rows = std::max(by_rows, violation(rows.a(r, j), rows.b(r, j), rows.c(r, j), 0.0, x, x, u));
+  return std::min(by_slice, by_rows);
 }
 
 // v'' from three samples.
