@@ -27,11 +27,11 @@ void Auditor::warm_slice(const Constraint& cc, size_t ci, const std::vector<Eige
 }
 bool Auditor::covers(const AuditMemory::Slices& M, double x, double u) {
   if (!(M.hi_from <= u && u <= M.hi_to)) return false;
-  return (!M.hi_capped && x > M.hi + M.hi_slope * (u - M.u)) || (M.lo_from <= u && u <= M.lo_to);
+  return (!M.hi_capped && x > M.hi + M.hi_slope * (u - M.u)) || (M.lo_from <= u && u <= M.lo_to) || M.lo_skipped;
 }
 
 void Auditor::keep_slice(AuditMemory::Slices& M, double u, double lo, double hi, const SliceEdges& edges,
-                         Eigen::Index e, double cap) {
+                         Eigen::Index e, double cap, bool lo_skipped) {
   M = AuditMemory::Slices();
   M.u = u;
   // Kept only for a slice whose ends are numbers (an empty slice or a failed LP is asked again).
@@ -41,6 +41,7 @@ void Auditor::keep_slice(AuditMemory::Slices& M, double u, double lo, double hi,
   M.hi_slope = edges.hi_slope[e];
   M.hi_from = edges.hi_from[e];
   M.hi_to = edges.hi_to[e];
+  M.lo_skipped = lo_skipped;
   if (lo > -kInf) {  // -inf: its LP was skipped (x above the top)
     M.lo = lo;
     M.lo_slope = edges.lo_slope[e];
@@ -100,6 +101,7 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double cap = cc.projection_cap();
   f.assign(kk.size(), nan);
+  fbot_.assign(kk.size(), nan);
   std::vector<Eigen::Index> bk;
   std::vector<double> bl, bu, bx;
   std::vector<size_t> main_of;  // per sample asked: its index in kk
@@ -111,7 +113,10 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
       if (covers(M, x, u)) {
         const double hi = M.hi_capped ? kInf : M.hi + M.hi_slope * (u - M.u);
         const bool bottom = M.lo_from <= u && u <= M.lo_to;
-        f[i] = slice_violation(x, bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf, hi);
+        const double lo = bottom && x <= hi ? M.lo + M.lo_slope * (u - M.u) : -kInf;
+        f[i] = slice_violation(x, lo, hi);
+        // A bottom skipped below the top: unknown (NaN, Auditor::bottoms).
+        fbot_[i] = !bottom && x <= hi ? nan : bottom_violation(x, lo, hi);
         ++audit_.reused;
         continue;
       }
@@ -131,6 +136,7 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   for (size_t q = 0; q < bk.size(); ++q) {
     const Eigen::Index e = static_cast<Eigen::Index>(q);
     f[main_of[q]] = slice_violation(bx[q], lo[e], hi[e]);
+    fbot_[main_of[q]] = bottom_violation(bx[q], lo[e], hi[e]);
     keep_slice(*memo_of_[main_of[q]], bu[q], lo[e], hi[e], edges, e, cap);
   }
 }
@@ -168,7 +174,7 @@ void Auditor::contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std
   Eigen::VectorXd u(static_cast<Eigen::Index>(ks.size())), skip(u.size()), lo, hi;
   for (size_t q = 0; q < ks.size(); ++q) {
     u[static_cast<Eigen::Index>(q)] = u_of(ks[q]);
-    skip[static_cast<Eigen::Index>(q)] = spread[q] ? kInf : x_of(ks[q], ls_[q]);
+    skip[static_cast<Eigen::Index>(q)] = spread[q] || !bottom_[static_cast<size_t>(ks[q])] ? kInf : x_of(ks[q], ls_[q]);
   }
   SliceEdges edges;
   edges.labels = true;

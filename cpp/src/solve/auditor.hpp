@@ -24,6 +24,10 @@ double violation(double a, double b, double c, double lam, double t0, double t1,
 // relative to x's own size (as a row's violation is relative to its terms); an empty slice (no x at
 // all fits this u) or a failed LP counts as a full violation, which the cut's projection then settles.
 double slice_violation(double x, double lo, double hi);
+// The bottom's part of slice_violation, (lo - x) / max(|x|, |hi|): where the bottom's LP was skipped above
+// the top (lo = -inf), (hi - x) / ..., which is larger (x >= lo, the bottom cannot be broken there); an
+// empty slice or a failed LP 1.
+double bottom_violation(double x, double lo, double hi);
 
 // Contact cuts per interval and round besides its peak's (contact_cuts). Between two cuts at which the
 // timing is tight, x(λ) is the chord of the limit, so the violation is about K d² / 8 for cuts d apart (K
@@ -61,11 +65,11 @@ class Auditor {
   void contact_batch(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& todo, std::vector<size_t>& first,
                      std::vector<double>& f);
   // Whether a kept slice gives the violation at (x, u) without an LP: u within its top's range, and x
-  // above the top or u within its bottom's range too.
+  // above the top or u within its bottom's range too, or its bottom skipped (then the top's alone).
   static bool covers(const AuditMemory::Slices& M, double x, double u);
   // M from a slice solved at u (lo, hi its ends, edges' row e their edges).
   static void keep_slice(AuditMemory::Slices& M, double u, double lo, double hi, const SliceEdges& edges,
-                         Eigen::Index e, double cap);
+                         Eigen::Index e, double cap, bool lo_skipped = false);
   void warm_slice(const Constraint& cc, size_t ci, const std::vector<Eigen::Index>& ks, const PathSamples& ps,
                   const Eigen::VectorXd& u, Eigen::VectorXd& lo, Eigen::VectorXd& hi, const Eigen::VectorXd* x,
                   SliceEdges* edges);
@@ -74,6 +78,7 @@ class Auditor {
   void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
                         const std::vector<size_t>& first, const std::vector<double>& fc);
   void path_curvature(size_t ci, const std::vector<Eigen::Index>& todo);
+  void bottoms(const std::vector<Eigen::Index>& todo);
   double K_of(Eigen::Index k, double curvature) const {
     const double h = s_[k + 1] - s_[k];
     return 4.0 * curvature * h * h;
@@ -106,6 +111,9 @@ class Auditor {
   std::vector<AuditMemory::Slices*> memo_of_;  // contact_batch's samples: each one's kept slice
   std::vector<std::vector<double>> Ls_, Vs_;  // [interval to audit]: its samples, sorted and merged
   std::vector<double> curvature_;             // [interval to audit]: its bound on -v''(s) (path_curvature)
+  std::vector<double> fbot_;                  // contact_samples' samples: bottom_violation of each
+  std::vector<std::vector<double>> Bs_;       // [interval to audit]: bottom_violation at Ls_ (contact only)
+  std::vector<char> bottom_;                  // [interval]: whether its slices' bottoms are solved (bottoms())
 };
 
 }  // namespace pathpace::detail

@@ -2,6 +2,7 @@
 #include "solve/auditor.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -118,6 +119,13 @@ double slice_violation(double x, double lo, double hi) {
   return over / std::max({std::abs(x), std::isfinite(hi) ? std::abs(hi) : 0.0, 1e-300});
 }
 
+double bottom_violation(double x, double lo, double hi) {
+  if (std::isnan(lo) || std::isnan(hi) || lo > hi) return 1.0;
+  const double end = lo == -std::numeric_limits<double>::infinity() ? hi : lo;
+  if (!std::isfinite(end)) return -std::numeric_limits<double>::infinity();
+  return (end - x) / std::max({std::abs(x), std::isfinite(hi) ? std::abs(hi) : 0.0, 1e-300});
+}
+
 namespace {
 
 // An upper bound of v on [la, lb] from its end values, if v'' >= -K there: the chord plus K τ (h - τ) / 2.
@@ -133,10 +141,12 @@ double bump_bound(double la, double va, double lb, double vb, double K) {
 // violation that no cut could remove (audit_worst = 1 on a G1 lean that met every limit). Where the slice
 // says broken (rarely: a second pass, not a division per row at every sample), the rows' own measure
 // (violation(), relative to each row's terms) decides, if smaller.
-double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
+// The slice at u of row r's polygon: [lo, hi], or u_broken where a row on u alone excludes this u.
+void row_slice(const ConstraintRows& rows, Eigen::Index r, double u, double& lo, double& hi, bool& u_broken) {
   const double inf = std::numeric_limits<double>::infinity();
-  double lo = -inf, hi = inf;
-  bool u_broken = false;
+  lo = -inf;
+  hi = inf;
+  u_broken = false;
   for (Eigen::Index j = 0; j < rows.rows(); ++j) {
     const double a = rows.a(r, j), c = rows.c(r, j), rest = c - rows.b(r, j) * u;
     if (c == inf) continue;
@@ -144,12 +154,26 @@ double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x,
     else if (a < 0.0) lo = std::max(lo, rest / a);
     else if (rest < 0.0) u_broken = true;  // a row on u alone that this u breaks
   }
+}
+
+double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double lo, hi;
+  bool u_broken;
+  row_slice(rows, r, u, lo, hi, u_broken);
   const double by_slice = u_broken ? 1.0 : slice_violation(x, lo, hi);
   if (!(by_slice > 0.0)) return by_slice;
   double by_rows = -inf;
   for (Eigen::Index j = 0; j < rows.rows(); ++j)
     if (rows.c(r, j) != inf) by_rows = std::max(by_rows, violation(rows.a(r, j), rows.b(r, j), rows.c(r, j), 0.0, x, x, u));
   return std::min(by_slice, by_rows);
+}
+
+double row_slice_bottom(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
+  double lo, hi;
+  bool u_broken;
+  row_slice(rows, r, u, lo, hi, u_broken);
+  return u_broken ? 1.0 : bottom_violation(x, lo, hi);
 }
 
 // v'' from three samples.
@@ -207,6 +231,7 @@ void Auditor::audit_constraint(size_t ci) {
   if (contact) contact_batch(*contact, ci, todo, first, fc);
   sample_intervals(ci, contact, todo, first, fc);
   path_curvature(ci, todo);
+  if (contact) bottoms(todo);
   std::vector<PeakBracket> cand;
   std::vector<Eigen::Index> at;    // per bracket: its interval
   std::vector<double> curvature;   // and that interval's curvature bound
@@ -261,13 +286,14 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
   if (kk.empty()) return;
   const PathSamples ps = samples_at(kk, ll);
   if (contact) {
-    Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), x(u.size()), lo, hi;
+    Eigen::VectorXd u(static_cast<Eigen::Index>(kk.size())), x(u.size()), skip(u.size()), lo, hi;
     for (size_t i = 0; i < kk.size(); ++i) {
       u[static_cast<Eigen::Index>(i)] = u_of(kk[i]);
       x[static_cast<Eigen::Index>(i)] = x_of(kk[i], ll[i]);
+      skip[static_cast<Eigen::Index>(i)] = bottom_[static_cast<size_t>(kk[i])] ? x[static_cast<Eigen::Index>(i)] : kInf;
     }
     SliceEdges edges;
-    warm_slice(*contact, ci, kk, ps, u, lo, hi, &x, &edges);
+    warm_slice(*contact, ci, kk, ps, u, lo, hi, &skip, &edges);
     const double cap = contact->projection_cap();
     for (size_t i = 0; i < kk.size(); ++i) {
       const Eigen::Index e = static_cast<Eigen::Index>(i);
@@ -275,7 +301,7 @@ void Auditor::violations(size_t ci, const Constraint* contact, const std::vector
       auto& probes = memory_.probes[ci][static_cast<size_t>(kk[i])];
       if (probes.size() >= AuditMemory::kProbes) probes.erase(probes.begin());
       probes.push_back({ll[i], {}, {}, {}, {}});
-      keep_slice(probes.back().slice, u[e], lo[e], hi[e], edges, e, cap);
+      keep_slice(probes.back().slice, u[e], lo[e], hi[e], edges, e, cap, skip[e] == kInf && !(x[e] > hi[e]));
     }
     return;
   }
@@ -322,9 +348,10 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
                                const std::vector<size_t>& first, const std::vector<double>& fc) {
   const ConstraintRows& cr = memory_.coarse[ci];
   const ConstraintRows& grid = grid_rows_[ci];
-  std::vector<std::pair<double, double>> sample;  // (λ, violation) of one interval
+  std::vector<std::array<double, 3>> sample;  // (λ, violation, bottom_violation) of one interval
   Ls_.assign(todo.size(), {});
   Vs_.assign(todo.size(), {});
+  Bs_.assign(todo.size(), {});
   for (size_t t = 0; t < todo.size(); ++t) {
     const Eigen::Index k = todo[t];
     const size_t kk = static_cast<size_t>(k);
@@ -333,32 +360,36 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
       // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP; rows refined
       // on demand bound it from outside only, and their grid points are in the batch (contact_batch).
       if (!contact->refines()) {
-        sample.emplace_back(0.0, row_slice_violation(grid, k, x_of(k, 0.0), u_of(k)));
-        sample.emplace_back(1.0, row_slice_violation(grid, k + 1, x_of(k, 1.0), u_of(k)));
+        sample.push_back({0.0, row_slice_violation(grid, k, x_of(k, 0.0), u_of(k)), row_slice_bottom(grid, k, x_of(k, 0.0), u_of(k))});
+        sample.push_back({1.0, row_slice_violation(grid, k + 1, x_of(k, 1.0), u_of(k)),
+                          row_slice_bottom(grid, k + 1, x_of(k, 1.0), u_of(k))});
       }
-      for (size_t i = first[t]; i < first[t + 1]; ++i) sample.emplace_back(ls_[i], fc[i]);
+      for (size_t i = first[t]; i < first[t + 1]; ++i) sample.push_back({ls_[i], fc[i], fbot_[i]});
     } else {
-      sample.emplace_back(0.0, worst_row(grid, k, 0.0, k));
-      sample.emplace_back(1.0, worst_row(grid, k + 1, 1.0, k));
+      sample.push_back({0.0, worst_row(grid, k, 0.0, k), 0.0});
+      sample.push_back({1.0, worst_row(grid, k + 1, 1.0, k), 0.0});
       for (int m = 0; m < points_; ++m)
-        sample.emplace_back(lam_[static_cast<size_t>(m)], worst_row(cr, k * points_ + m, lam_[static_cast<size_t>(m)], k));
+        sample.push_back({lam_[static_cast<size_t>(m)], worst_row(cr, k * points_ + m, lam_[static_cast<size_t>(m)], k), 0.0});
       for (const AuditMemory::Point& pt : memory_.cut_points[ci][kk]) {
         double w = -kInf;
         for (Eigen::Index j = 0; j < pt.a.size(); ++j)
           w = std::max(w, violation(pt.a[j], pt.b[j], pt.c[j], pt.lam, theta_[k], theta_[k + 1], u_of(k)));
-        sample.emplace_back(pt.lam, w);
+        sample.push_back({pt.lam, w, 0.0});
       }
     }
     std::sort(sample.begin(), sample.end());
     std::vector<double>& L = Ls_[t];
     std::vector<double>& V = Vs_[t];
-    for (const auto& [l, v] : sample) {
+    std::vector<double>& B = Bs_[t];
+    for (const auto& [l, v, b] : sample) {
       if (!L.empty() && l - L.back() <= 1e-6) {
         V.back() = std::max(V.back(), v);
+        B.back() = std::fmax(B.back(), b);  // NaN (unknown) only where neither is known
         continue;
       }
       L.push_back(l);
       V.push_back(v);
+      B.push_back(b);
     }
     double worst = -kInf;
     for (double v : V) worst = std::max(worst, v);
@@ -403,6 +434,44 @@ void Auditor::path_curvature(size_t ci, const std::vector<Eigen::Index>& todo) {
     double& own = memory_.curvature[ci][static_cast<size_t>(todo[t])];  // the interval's largest of every round
     own = std::max(own, curvature_[t]);
     curvature_[t] = std::max(own, near);
+  }
+}
+
+// Whether each interval's slices need their bottoms: a peak search's samples and its peak cut solve the
+// slice's bottom (a second LP) only in an interval whose bottom could come near the timing. Its bottom's
+// violation at the interval's samples (both grid points, the Chebyshev points, the cut points), under the
+// screen's concavity bound (bump_bound, the interval's K), stays below -kFar between every two of them:
+// the bottom is far from the timing there (kFar is path_curvature's "near the limit", so that the
+// concavity that the combined samples show, which a far bottom's own does not shape, still applies).
+void Auditor::bottoms(const std::vector<Eigen::Index>& todo) {
+  constexpr double kFar = 1e-2;
+  bottom_.assign(static_cast<size_t>(N_), 1);
+  for (size_t t = 0; t < todo.size(); ++t) {
+    std::vector<double>& L = Ls_[t];
+    std::vector<double>& V = Vs_[t];
+    std::vector<double>& B = Bs_[t];
+    const double K = K_of(todo[t], curvature_[t]);
+    bool far = true;
+    size_t i = 0;  // the last sample whose bottom is known
+    while (far && i < B.size() && std::isnan(B[i])) ++i;
+    for (size_t j = i + 1; far && j < L.size(); ++j) {
+      if (std::isnan(B[j])) continue;
+      far = bump_bound(L[i], std::max(B[i], -1.0), L[j], std::max(B[j], -1.0), K) <= -kFar;
+      i = j;
+    }
+    bottom_[static_cast<size_t>(todo[t])] = far ? 0 : 1;
+    if (far) continue;
+    // Samples whose bottom an earlier round skipped say the top's violation only: not samples here.
+    size_t w = 0;
+    for (size_t j = 0; j < L.size(); ++j)
+      if (!std::isnan(B[j])) {
+        L[w] = L[j];
+        V[w] = V[j];
+        B[w++] = B[j];
+      }
+    L.resize(w);
+    V.resize(w);
+    B.resize(w);
   }
 }
 

@@ -46,6 +46,7 @@ struct AuditMemory {
     double hi = 0.0, hi_slope = 0.0, hi_from = 1.0, hi_to = 0.0;  // hi_from > hi_to: the top unknown
     double lo = 0.0, lo_slope = 0.0, lo_from = 1.0, lo_to = 0.0;  // the bottom (its LP is skipped above the top)
     bool hi_capped = false;                            // the top is the stand-in cap (no limit)
+    bool lo_skipped = false;  // the bottom not solved, its interval's far from the timing (Auditor::bottoms)
   };
   std::vector<std::vector<Slices>> slices;
   /// [constraint][2k + end]: a contact constraint's slices at both grid points of interval k (end 0: s_k, 1:
