@@ -214,23 +214,13 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
   }
   // Rounding residue (1e-17 where a joint axis is orthogonal to a force) is not a coefficient: as a
   // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5.
-  // Four running maxima (one chain of max through every coefficient was a fifth of this function's time), then
-  // only the few tiny coefficients written.
-  const Eigen::Index cols = lp.A.cols();
-  double top[4] = {0.0, 0.0, 0.0, 0.0};
-  for (Eigen::Index j = 0; j < cols; ++j) {
-    const double* col = lp.A.col(j).data();
-    Eigen::Index i = 0;
-    for (; i + 4 <= n; i += 4)
-      for (int l = 0; l < 4; ++l) top[l] = std::max(top[l], std::abs(col[i + l]));
-    for (; i < n; ++i) top[0] = std::max(top[0], std::abs(col[i]));
-  }
-  const double tiny = 1e-13 * std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
-  for (Eigen::Index j = 0; j < cols; ++j) {
-    double* col = lp.A.col(j).data();
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (std::abs(col[i]) < tiny) col[i] = 0.0;
-  }
+  // Eigen's packet reduction and select: no compare-and-branch per coefficient (most are exact zeros, off
+  // a contact's chain, so such a branch mispredicts), and the same values bit for bit (a maximum and a
+  // select do not round). The continuous audit builds one such LP per sample.
+  if (n == 0) return;
+  auto torque_rows = lp.A.topRows(n);
+  const double tiny = 1e-13 * torque_rows.cwiseAbs().maxCoeff();
+  torque_rows = (torque_rows.array().abs() < tiny).select(0.0, torque_rows);
 }
 
 Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q,
