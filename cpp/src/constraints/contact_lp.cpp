@@ -214,12 +214,22 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
   }
   // Rounding residue (1e-17 where a joint axis is orthogonal to a force) is not a coefficient: as a
   // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5.
-  // Eigen's packet reduction and select: no compare-and-branch per coefficient (most are exact zeros, off
-  // a contact's chain, so such a branch mispredicts), and the same values bit for bit (a maximum and a
-  // select do not round). The continuous audit builds one such LP per sample.
+  // The largest |coefficient| by eight independent running maxima (one chain of max through every
+  // coefficient waits on each max's latency), then the tiny ones zeroed by Eigen's select: no
+  // compare-and-branch per coefficient (most are exact zeros, off a contact's chain, so such a branch
+  // mispredicts). The continuous audit builds one such LP per sample. A maximum and a select do not
+  // round: the same values bit for bit in any order.
   if (n == 0) return;
+  double top[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  for (Eigen::Index j = 0; j < lp.A.cols(); ++j) {
+    const double* col = lp.A.col(j).data();
+    Eigen::Index i = 0;
+    for (; i + 8 <= n; i += 8)
+      for (int l = 0; l < 8; ++l) top[l] = std::max(top[l], std::abs(col[i + l]));
+    for (; i < n; ++i) top[i % 8] = std::max(top[i % 8], std::abs(col[i]));
+  }
+  const double tiny = 1e-13 * *std::max_element(top, top + 8);
   auto torque_rows = lp.A.topRows(n);
-  const double tiny = 1e-13 * torque_rows.cwiseAbs().maxCoeff();
   torque_rows = (torque_rows.array().abs() < tiny).select(0.0, torque_rows);
 }
 
