@@ -64,10 +64,20 @@ void Auditor::contact_batch(const Constraint& cc, size_t ci, const std::vector<E
   ks_.clear();
   ls_.clear();
   memo_of_.clear();
+  far_ends_.assign(static_cast<size_t>(N_), 0);
+  const ConstraintRows& grid = grid_rows_[ci];
   for (size_t t = 0; t < todo.size(); ++t) {
     const Eigen::Index k = todo[t];
     const size_t kk = static_cast<size_t>(k);
     first[t] = ks_.size();
+    // The guess that the slices' bottoms are far from the timing in this interval: both grid points' exact
+    // bottoms (their rows, no LP) are below it by more than kGuess of its size. Its samples' LPs then skip the
+    // bottom; bottoms() checks the guess by the screen, and where it fails the interval is sampled again.
+    if (!at_ends && !memory_.bottoms_near[ci][kk]) {
+      constexpr double kGuess = 0.25;
+      const double u = u_of(k);
+      far_ends_[kk] = std::max(row_slice_bottom(grid, k, x_of(k, 0.0), u), row_slice_bottom(grid, k + 1, x_of(k, 1.0), u)) <= -kGuess;
+    }
     auto add = [&](double l, AuditMemory::Slices* M) {
       ks_.push_back(k);
       ls_.push_back(l);
@@ -103,7 +113,7 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   f.assign(kk.size(), nan);
   fbot_.assign(kk.size(), nan);
   std::vector<Eigen::Index> bk;
-  std::vector<double> bl, bu, bx;
+  std::vector<double> bl, bu, bx, bskip;
   std::vector<size_t> main_of;  // per sample asked: its index in kk
   for (size_t t = 0; t < todo.size(); ++t)
     for (size_t i = first[t]; i < first[t + 1]; ++i) {
@@ -124,6 +134,7 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
       bl.push_back(ll[i]);
       bu.push_back(u);
       bx.push_back(x);
+      bskip.push_back(far_ends_[static_cast<size_t>(k)] ? kInf : x);
       main_of.push_back(i);
     }
   if (bk.empty()) return;
@@ -131,13 +142,14 @@ void Auditor::contact_samples(const Constraint& cc, size_t ci, const std::vector
   Eigen::VectorXd lo, hi;
   SliceEdges edges;
   const Eigen::Index n = static_cast<Eigen::Index>(bu.size());
-  const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(bx.data(), n);
-  warm_slice(cc, ci, bk, ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &xv, &edges);
+  const Eigen::VectorXd skip = Eigen::Map<const Eigen::VectorXd>(bskip.data(), n);
+  warm_slice(cc, ci, bk, ps, Eigen::Map<const Eigen::VectorXd>(bu.data(), n), lo, hi, &skip, &edges);
   for (size_t q = 0; q < bk.size(); ++q) {
     const Eigen::Index e = static_cast<Eigen::Index>(q);
+    const bool skipped = bskip[q] == kInf && !(bx[q] > hi[e]);  // the bottom guessed far, not solved
     f[main_of[q]] = slice_violation(bx[q], lo[e], hi[e]);
-    fbot_[main_of[q]] = bottom_violation(bx[q], lo[e], hi[e]);
-    keep_slice(*memo_of_[main_of[q]], bu[q], lo[e], hi[e], edges, e, cap);
+    fbot_[main_of[q]] = skipped ? nan : bottom_violation(bx[q], lo[e], hi[e]);
+    keep_slice(*memo_of_[main_of[q]], bu[q], lo[e], hi[e], edges, e, cap, skipped);
   }
 }
 // A contact constraint's cuts at the peaks (ks_, ls_) of the brackets cuts[q]: the polygon's edge through

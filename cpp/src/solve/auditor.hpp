@@ -28,6 +28,8 @@ double slice_violation(double x, double lo, double hi);
 // the top (lo = -inf), (hi - x) / ..., which is larger (x >= lo, the bottom cannot be broken there); an
 // empty slice or a failed LP 1.
 double bottom_violation(double x, double lo, double hi);
+// bottom_violation of grid point r's polygon (its rows) at (x, u).
+double row_slice_bottom(const ConstraintRows& rows, Eigen::Index r, double x, double u);
 
 // Contact cuts per interval and round besides its peak's (contact_cuts). Between two cuts at which the
 // timing is tight, x(λ) is the chord of the limit, so the violation is about K d² / 8 for cuts d apart (K
@@ -78,7 +80,8 @@ class Auditor {
   void sample_intervals(size_t ci, const Constraint* contact, const std::vector<Eigen::Index>& todo,
                         const std::vector<size_t>& first, const std::vector<double>& fc);
   void path_curvature(size_t ci, const std::vector<Eigen::Index>& todo);
-  void bottoms(const std::vector<Eigen::Index>& todo);
+  std::vector<Eigen::Index> bottoms(const std::vector<Eigen::Index>& todo);
+  void forget_skipped_bottoms(size_t ci, Eigen::Index k);
   double K_of(Eigen::Index k, double curvature) const {
     const double h = s_[k + 1] - s_[k];
     return 4.0 * curvature * h * h;
@@ -114,6 +117,7 @@ class Auditor {
   std::vector<double> fbot_;                  // contact_samples' samples: bottom_violation of each
   std::vector<std::vector<double>> Bs_;       // [interval to audit]: bottom_violation at Ls_ (contact only)
   std::vector<char> bottom_;                  // [interval]: whether its slices' bottoms are solved (bottoms())
+  std::vector<char> far_ends_;                // [interval]: its samples' LPs skip the bottom (contact_batch)
 };
 
 }  // namespace pathpace::detail

@@ -169,12 +169,16 @@ double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x,
   return std::min(by_slice, by_rows);
 }
 
+}  // namespace
+
 double row_slice_bottom(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
   double lo, hi;
   bool u_broken;
   row_slice(rows, r, u, lo, hi, u_broken);
   return u_broken ? 1.0 : bottom_violation(x, lo, hi);
 }
+
+namespace {
 
 // v'' from three samples.
 double second_difference(double la, double va, double lb, double vb, double lc, double vc) {
@@ -216,6 +220,7 @@ void Auditor::size_memory() {
   if (memory_.grid_slices.size() != n) memory_.grid_slices.assign(n, {});
   if (memory_.probes.size() != n) memory_.probes.assign(n, std::vector<std::vector<AuditMemory::Point>>(static_cast<size_t>(N_)));
   if (memory_.curvature.size() != n) memory_.curvature.assign(n, std::vector<double>(static_cast<size_t>(N_), 0.0));
+  if (memory_.bottoms_near.size() != n) memory_.bottoms_near.assign(n, std::vector<char>(static_cast<size_t>(N_), 0));
   if (memory_.bases.size() != n) memory_.bases.assign(n, std::vector<std::array<std::vector<signed char>, 2>>(static_cast<size_t>(N_)));
 }
 
@@ -231,7 +236,21 @@ void Auditor::audit_constraint(size_t ci) {
   if (contact) contact_batch(*contact, ci, todo, first, fc);
   sample_intervals(ci, contact, todo, first, fc);
   path_curvature(ci, todo);
-  if (contact) bottoms(todo);
+  if (contact) {
+    // Intervals whose samples skipped their bottoms (contact_batch's guess from the grid points) where the
+    // screen finds the bottom near after all: sampled again with bottoms (the other samples' slices are
+    // kept, so only those LPs are solved again).
+    const std::vector<Eigen::Index> redo = bottoms(todo);
+    if (!redo.empty()) {
+      for (Eigen::Index k : redo) forget_skipped_bottoms(ci, k);
+      const int reused = audit_.reused;  // this round's own slices: not reuse across rounds
+      contact_batch(*contact, ci, todo, first, fc);
+      audit_.reused = reused;
+      sample_intervals(ci, contact, todo, first, fc);
+      path_curvature(ci, todo);
+      bottoms(todo);
+    }
+  }
   std::vector<PeakBracket> cand;
   std::vector<Eigen::Index> at;    // per bracket: its interval
   std::vector<double> curvature;   // and that interval's curvature bound
@@ -443,9 +462,10 @@ void Auditor::path_curvature(size_t ci, const std::vector<Eigen::Index>& todo) {
 // screen's concavity bound (bump_bound, the interval's K), stays below -kFar between every two of them:
 // the bottom is far from the timing there (kFar is path_curvature's "near the limit", so that the
 // concavity that the combined samples show, which a far bottom's own does not shape, still applies).
-void Auditor::bottoms(const std::vector<Eigen::Index>& todo) {
+std::vector<Eigen::Index> Auditor::bottoms(const std::vector<Eigen::Index>& todo) {
   constexpr double kFar = 1e-2;
   bottom_.assign(static_cast<size_t>(N_), 1);
+  std::vector<Eigen::Index> redo;
   for (size_t t = 0; t < todo.size(); ++t) {
     std::vector<double>& L = Ls_[t];
     std::vector<double>& V = Vs_[t];
@@ -461,7 +481,8 @@ void Auditor::bottoms(const std::vector<Eigen::Index>& todo) {
     }
     bottom_[static_cast<size_t>(todo[t])] = far ? 0 : 1;
     if (far) continue;
-    // Samples whose bottom an earlier round skipped say the top's violation only: not samples here.
+    // Samples whose bottom was skipped say the top's violation only: not samples here (and the interval
+    // is sampled again with them, by the caller, where it was its own guess in this round).
     size_t w = 0;
     for (size_t j = 0; j < L.size(); ++j)
       if (!std::isnan(B[j])) {
@@ -469,10 +490,28 @@ void Auditor::bottoms(const std::vector<Eigen::Index>& todo) {
         V[w] = V[j];
         B[w++] = B[j];
       }
+    if (w < L.size()) redo.push_back(todo[t]);
     L.resize(w);
     V.resize(w);
     B.resize(w);
   }
+  return redo;
+}
+
+// Interval k's kept slices whose bottom was skipped: forgotten (their LPs solved again, bottoms too), and
+// the interval not guessed far again in this solve.
+void Auditor::forget_skipped_bottoms(size_t ci, Eigen::Index k) {
+  const size_t kk = static_cast<size_t>(k);
+  memory_.bottoms_near[ci][kk] = 1;
+  for (int m = 0; m < points_; ++m) {
+    AuditMemory::Slices& M = memory_.slices[ci][kk * static_cast<size_t>(points_) + static_cast<size_t>(m)];
+    if (M.lo_skipped) M = AuditMemory::Slices();
+  }
+  for (AuditMemory::Point& pt : memory_.cut_points[ci][kk])
+    if (pt.slice.lo_skipped) pt.slice = AuditMemory::Slices();
+  auto& probes = memory_.probes[ci][kk];
+  probes.erase(std::remove_if(probes.begin(), probes.end(), [](const AuditMemory::Point& pt) { return pt.slice.lo_skipped; }),
+               probes.end());
 }
 
 // A bracket between every two neighbouring samples whose bump bound does not clear the tolerance; at[i]

@@ -71,6 +71,9 @@ struct AuditMemory {
   /// [constraint][interval]: the largest concavity of v in s that the interval's samples showed in any
   /// round (part of the screen's bound, kept from round to round).
   std::vector<std::vector<double>> curvature;
+  /// [constraint][interval]: 1 where the guess that the slices' bottoms are far (Auditor::contact_batch)
+  /// failed once: its samples solve their bottoms in every later round.
+  std::vector<std::vector<char>> bottoms_near;
   /// [constraint][interval]: the last optimal bases of a contact constraint's slice LPs in the interval
   /// (top, bottom), the warm starts of its next samples there (SliceStarts).
   std::vector<std::vector<std::array<std::vector<signed char>, 2>>> bases;
