@@ -143,19 +143,19 @@ bool DenseSimplex::invert_small(const Eigen::MatrixXd& C, Eigen::MatrixXd& X) {
   return std::isfinite(norm_x) && 1.0 / (norm_c * norm_x) > limits.min_rcond;
 }
 
-// x_B = -B^-1 N x_N from the nonbasic values (exactly at their bounds).
+// x_B = -B^-1 N x_N from the nonbasic values (exactly at their bounds). N x_N column by column over the
+// nonbasic structurals off zero only: most sit at a zero bound (a polytope LP's cone weights), so a
+// product with all of A would multiply mostly zeros.
 void DenseSimplex::compute_values() {
   const Eigen::MatrixXd& A = lp_->A;
-  Eigen::VectorXd& z = cv_z_;
   Eigen::VectorXd& r = cv_r_;
-  z.setZero(n_);
   r.setZero(m_);
-  for (int k = 0; k < m_ + n_; ++k) {
-    if (s_.stat[static_cast<size_t>(k)] == GLP_BS) continue;
-    if (k < m_) r[k] -= s_.value[k];
-    else z[k - m_] = s_.value[k];
+  for (int k = 0; k < m_; ++k)
+    if (s_.stat[static_cast<size_t>(k)] != GLP_BS) r[k] -= s_.value[k];
+  for (int j = 0; j < n_; ++j) {
+    const double v = s_.value[m_ + j];
+    if (s_.stat[static_cast<size_t>(m_ + j)] != GLP_BS && v != 0.0) r.noalias() += v * A.col(j);
   }
-  r.noalias() += A * z;
   cv_xb_.noalias() = s_.inv * r;
   for (int i = 0; i < m_; ++i) s_.value[s_.head[static_cast<size_t>(i)]] = -cv_xb_[i];
 }
@@ -409,7 +409,7 @@ void DenseSimplex::bound_range(int k, double& from, double& to) {
 bool DenseSimplex::certify() {
   compute_values();
   const Eigen::MatrixXd& A = lp_->A;
-  Eigen::VectorXd& z = cv_z_;  // compute_values() is done with it
+  Eigen::VectorXd& z = cv_z_;
   z = s_.value.tail(n_);
   // Every row's value from the point, against the row's bounds: the computed value v is within
   // (n + 2) u Σ_j |a_ij z_j| of the exact one (u the unit roundoff), so the row is certified when v less
