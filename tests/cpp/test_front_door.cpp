@@ -2,6 +2,7 @@
 // source, centre of mass, mimic joints (virtual work), joint names in limit labels.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -113,6 +114,49 @@ TEST(MimicJoints, FollowTheirJointAndPassTheirTorqueByVirtualWork) {
   EXPECT_LT((mimic.frame_placement(q, "c") - free.frame_placement(Q, "c")).cwiseAbs().maxCoeff(), 1e-14);
   const MatrixXd J = free.point_jacobian(Q, "c", Eigen::Vector3d(0.1, 0, 0));
   EXPECT_LT((mimic.point_jacobian(q, "c", Eigen::Vector3d(0.1, 0, 0)).col(0) - (J.col(0) - 0.5 * J.col(1))).norm(), 1e-14);
+}
+
+// RobotModel::moving_joints: exactly the columns add_point_jacobian writes (the contact LPs fill only
+// those rows), on a branched tree, with a mimic joint, and for the world.
+TEST(RobotModel, MovingJointsAreTheColumnsAPointJacobianWrites) {
+  const std::string branched = R"(<robot name="y"><link name="a"/>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="c"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="d"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="5" velocity="2"/></joint>
+  <joint name="j2" type="prismatic"><parent link="b"/><child link="c"/><origin xyz="0.5 0 0"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="5" velocity="2"/></joint>
+  <joint name="j3" type="revolute"><parent link="a"/><child link="d"/><origin xyz="0 0.3 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="5" velocity="2"/></joint>
+  </robot>)";
+  const RobotModel y = RobotModel::from_urdf_string(branched);
+  auto col = [&](const RobotModel& r, const std::string& j) {
+    const auto& names = r.joint_names();
+    return static_cast<int>(std::find(names.begin(), names.end(), j) - names.begin());
+  };
+  auto sorted = [](std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  Eigen::Isometry3d in_body;
+  const std::vector<std::pair<std::string, std::vector<int>>> expect = {
+      {"b", {col(y, "j1")}}, {"c", sorted({col(y, "j1"), col(y, "j2")})}, {"d", {col(y, "j3")}}};
+  const VectorXd q = (VectorXd(3) << 0.4, 0.2, -0.7).finished();
+  std::vector<Eigen::Isometry3d> T;
+  y.body_placements(q, T);
+  for (const auto& [link, joints] : expect) {
+    const int body = y.body_of_link(link, in_body);
+    EXPECT_EQ(y.moving_joints(body), joints) << link;
+    MatrixXd J = MatrixXd::Zero(3, y.nq());
+    y.add_point_jacobian(T, body, T[static_cast<size_t>(body)] * Eigen::Vector3d(0.1, 0.2, 0.3), 1.0, J);
+    for (int j = 0; j < y.nq(); ++j) {
+      const bool moving = std::count(joints.begin(), joints.end(), j) > 0;
+      EXPECT_EQ(J.col(j).norm() > 0.0, moving) << link << " column " << j;
+    }
+  }
+  EXPECT_TRUE(y.moving_joints(-1).empty());
+  // A mimic body moves with its joint: link c of the mimic chain with j1's coordinate alone.
+  const RobotModel mimic = RobotModel::from_urdf_string(chain(true));
+  EXPECT_EQ(mimic.moving_joints(mimic.body_of_link("c", in_body)), std::vector<int>{0});
+  EXPECT_EQ(mimic.moving_joints(mimic.body_of_link("b", in_body)), std::vector<int>{0});
 }
 
 TEST(LimitLabels, NameTheJointsWhenGiven) {

@@ -246,6 +246,9 @@ class RobotModel {
   /// mimic body's column goes to its joint's, times the multiplier.
   void add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p, double sign,
                           Eigen::Ref<Eigen::MatrixXd> J) const;
+  /// The coordinates whose motion moves body `body`, ascending: the joints on its chain to the root (a
+  /// mimic body's: its joint's). add_point_jacobian writes no other column. Empty for body -1 (the world).
+  std::vector<int> moving_joints(int body) const;
 
  private:
   friend struct detail::RobotInternals;

@@ -79,6 +79,11 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     }
     other_body_.push_back(other);
     other_in_body_.push_back(other_in_body);
+    std::vector<int> moving = robot_->moving_joints(body_.back()), other_moving = robot_->moving_joints(other);
+    moving.insert(moving.end(), other_moving.begin(), other_moving.end());
+    std::sort(moving.begin(), moving.end());
+    moving.erase(std::unique(moving.begin(), moving.end()), moving.end());
+    moving_.push_back(std::move(moving));
     // Cone generators g_e = n + μ' (cos φ_e t1 + sin φ_e t2), inscribed in the cone of μ' = μ (1 -
     // friction_margin) (sec. V.D), in the normal's own frame (the world, or other_link).
     const Eigen::Vector3d& nrm = c.normal;

@@ -119,6 +119,20 @@ void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd
   }
 }
 
+namespace {
+
+// out = -scale · Jiᵀ G on the rows `rows` (ascending), zero elsewhere: Ji is 3 x n and zero off those
+// columns. Each coefficient's sum in the order of a coefficient-wise product of inner dimension 3.
+template <class JType, class GType, class Out>
+void chain_product(const JType& Ji, const GType& G, double scale, const std::vector<int>& rows, Out&& out) {
+  out.setZero();
+  for (int r : rows)
+    for (Eigen::Index e = 0; e < G.cols(); ++e)
+      out(r, e) = -(scale * ((Ji(0, r) * G(0, e) + Ji(1, r) * G(1, e)) + Ji(2, r) * G(2, e)));
+}
+
+}  // namespace
+
 void ContactConstraint::lp_structure(const LpLayout& layout, int extra, detail::PolytopeLp& lp) const {
   const int n = robot_->nq(), m = static_cast<int>(layout.cone.size()), k = options_.cone_edges;
   const int ms = static_cast<int>(layout.section.size()), h = k / 2;
@@ -182,10 +196,12 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
   lp.A.col(0).head(n) = a;  // the minimum-normal-force rows below n keep zeros in x and u
   lp.A.col(1).head(n) = b;
   contact_jacobians(q, T, J, gen, &layout.jacobians);
-  // Products of inner dimension 3, one per contact: coefficient-wise (lazyProduct), not Eigen's blocked GEMM,
-  // whose set-up costs more than these few multiplications.
+  // -J_iᵀ g_ie, one product of inner dimension 3 per coefficient, on the rows of the joints that move the
+  // contact only (J_i is zero on every other column: a foot's point moves with its leg and the base, a
+  // third of a humanoid's joints); the rest of the block zero.
   for (int i = 0; i < m; ++i)
-    lp.A.block(0, 2 + i * k, n, k).noalias() = -(J.middleRows(3 * i, 3).transpose().lazyProduct(gen.middleCols(i * k, k)));
+    chain_product(J.middleRows(3 * i, 3), gen.middleCols(i * k, k), 1.0,
+                  moving_[static_cast<size_t>(layout.jacobians[static_cast<size_t>(i)])], lp.A.block(0, 2 + i * k, n, k));
   lp.row_lo.head(n) = tau_min_ - c;
   lp.row_hi.head(n) = tau_max_ - c;
   if (options_.cone_offset > 0.0) {
@@ -206,7 +222,7 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
       const auto Ji = J.middleRows(3 * (m + static_cast<Eigen::Index>(j)), 3);
       const Eigen::Matrix3d R = normal_frame(u, T);
       edges.noalias() = R * local_half_edges_[u];
-      lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h).noalias() = -d * Ji.transpose().lazyProduct(edges);
+      chain_product(Ji, edges, d, moving_[u], lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h));
       w.noalias() += Ji.transpose().lazyProduct(R * contacts_[u].normal);
     }
     lp.row_lo.head(n) += d * w;

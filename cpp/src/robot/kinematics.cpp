@@ -1,6 +1,7 @@
 // Kinematics of a RobotModel: link lookup, body placements, frame placements, point Jacobians (the
 // contact constraints' J of eq. 17), frame Jacobians and a point's motion along a path (the frame
 // limits' rows) and the centre of mass.
+#include <algorithm>
 #include <vector>
 
 #include "base/validate.hpp"
@@ -68,6 +69,22 @@ void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int
     if (b.type == JointType::Revolute) J.col(i) += sign * z.cross(p - T[static_cast<size_t>(i)].translation());
     else J.col(i) += sign * z;
   }
+}
+
+std::vector<int> RobotModel::moving_joints(int body) const {
+  const std::vector<Body>& bodies = tree_->bodies;
+  std::vector<int> out;
+  for (int i = body; i >= 0; i = bodies[static_cast<size_t>(i)].parent) {
+    if (!mimic_) {
+      out.push_back(i);
+      continue;
+    }
+    for (Eigen::Index j = 0; j < mimic_->E.cols(); ++j)  // body i's coordinate in terms of q
+      if (mimic_->E(i, j) != 0.0) out.push_back(static_cast<int>(j));
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 Eigen::Matrix4d RobotModel::frame_placement(const Eigen::VectorXd& q, const std::string& link) const {

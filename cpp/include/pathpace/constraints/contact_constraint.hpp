@@ -280,6 +280,7 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   LpLayout reduced_;                                    // the projection's LPs
   std::vector<Eigen::Matrix3Xd> local_half_edges_;      // μ' (u_{m+1} - u_m) / 2, m < k/2 (even k only)
   std::vector<int> body_, other_body_;                  // other_body_ -1: the world
+  std::vector<std::vector<int>> moving_;                // per contact: the joints that move its point(s)
   std::vector<Eigen::Vector3d> point_in_body_;
   std::vector<Eigen::Isometry3d> other_in_body_;        // other_link's frame in its body's frame
   std::vector<Eigen::Matrix3Xd> local_generators_;      // in world (or other_link) coordinates
