@@ -8,6 +8,7 @@ void SliceLp::load(const PolytopeLp& lp) {
   lp_ = &lp;
   dense_.load(lp);
   norms_ = false;
+  top_here_ = false;
 }
 
 int SliceLp::extreme(double sign, double& x, PolytopeProjector::FixedColumn* fixed,
@@ -18,9 +19,15 @@ int SliceLp::extreme(double sign, double& x, PolytopeProjector::FixedColumn* fix
   if (fixed && fixed->label && !norms_) row_norm_ = lp.A.rowwise().norm(), norms_ = true;
   const size_t total = static_cast<size_t>(rows + lp.A.cols());
   const std::vector<signed char>& from = start && start->size() == total ? *start : basis;
-  if (from.size() == total && dense_.set_basis(from.data(), false) &&
-      dense_.maximize(sign, 0.0) == DenseSimplex::kOptimal) {
+  auto solved_from = [&](const std::vector<signed char>& b) {
+    return b.size() == total && dense_.set_basis(b.data(), false) && dense_.maximize(sign, 0.0) == DenseSimplex::kOptimal;
+  };
+  bool solved = solved_from(from);
+  if (!solved && end == 1 && top_here_) solved = solved_from(basis_[0]);
+  if (!solved && end == 0 && &from != &basis) solved = solved_from(basis);
+  if (solved) {
     ++dense;
+    if (end == 0) top_here_ = true;
     const std::vector<signed char>& stat = dense_.state().stat;
     basis = stat;
     x = dense_.x();
@@ -40,6 +47,7 @@ int SliceLp::extreme(double sign, double& x, PolytopeProjector::FixedColumn* fix
   const int st = glpk_[end].maximize(lp, objective_, z_, fixed, &basis);
   if (st != 1) basis.clear();
   else x = z_[0];
+  if (end == 0) top_here_ = st == 1;
   return st == 1 ? 1 : st == 0 ? 0 : -1;
 }
 
