@@ -32,11 +32,13 @@ void DenseSimplex::load(const PolytopeLp& lp) {
   lo_ << lp.row_lo, lp.col_lo;
   hi_ << lp.row_hi, lp.col_hi;
   d_.assign(static_cast<size_t>(m_ + n_), 0.0);
-  // Each row's largest |a_ij|, column by column (contiguous). No copy of A^T: a slice LP loads at every
-  // sample, and the strided stores of a transpose cost more than the few strided rows that
-  // transposed_times and certify() read.
+  // Each row's largest |a_ij|, column by column (contiguous), and A^T written in its own storage order
+  // (A read with a stride, A^T written contiguously: a loop over A's columns that scattered its stores
+  // was most of this function, which a slice LP runs at every sample). transposed_times and certify()
+  // read A's rows as A^T's contiguous columns.
   row_max_.setZero(m_);
   for (int j = 0; j < n_; ++j) row_max_ = row_max_.cwiseMax(lp.A.col(j).cwiseAbs());
+  at_.noalias() = lp.A.transpose();
   s_ = State();
 }
 
@@ -188,7 +190,7 @@ bool DenseSimplex::set_basis(const signed char* stat, bool primal_feasible) {
 void DenseSimplex::transposed_times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   out.setZero(n_);
   for (int i = 0; i < m_; ++i)
-    if (v[i] != 0.0) out.noalias() += v[i] * lp_->A.row(i).transpose();
+    if (v[i] != 0.0) out.noalias() += v[i] * at_.col(i);
 }
 
 void DenseSimplex::price(double vx, double vu) {
@@ -423,7 +425,7 @@ bool DenseSimplex::certify() {
       v = rows_[k];
       if (s_.stat[static_cast<size_t>(k)] == GLP_BS) s_.value[k] = v;
       e = gamma * row_max_[k] * z1;
-      if (!(v - e >= lo && v + e <= hi)) e = gamma * A.row(k).cwiseAbs().dot(abs_z.transpose());
+      if (!(v - e >= lo && v + e <= hi)) e = gamma * at_.col(k).cwiseAbs().dot(abs_z);
     }
     if (v - e >= lo && v + e <= hi) continue;
     // Undecided in double: the row again in extended precision, whose error bound is 2048 times smaller.

@@ -100,6 +100,7 @@ class DenseSimplex {
   std::vector<int> f_piv_;
   Eigen::VectorXd f_col_;
   Eigen::VectorXd cv_z_, cv_r_, cv_xb_;
+  Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous
   Eigen::VectorXd row_max_;  // max_j |a_ij| per row
 };
 
