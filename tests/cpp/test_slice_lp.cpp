@@ -138,6 +138,36 @@ TEST(SliceLp, TheFixedColumnsSlopeAndRangeAreTheEdgeOfTheSlicesTop) {
   EXPECT_EQ(slices.glpk, 2);
 }
 
+TEST(SliceLp, ABottomWhoseStartTheDenseSimplexCannotRepairStartsFromTheTopsOptimumNotGlpk) {
+  // max / min x subject to x <= 0.8 (row 0), x in [0, 1], u fixed at 0.5. The top starts from a basis with x
+  // basic (primal feasible: x = 0.8). The bottom's start has row 0's auxiliary basic and x at its upper
+  // bound 1: the row's value 1 is outside its bound, and along -x the reduced cost of x at its upper bound
+  // improves, so it is not dual feasible either (DenseSimplex::kNotDualFeasible). The bottom then starts
+  // from the top's optimum of the same LP (a vertex: primal feasible) and reaches x = 0 by the primal
+  // simplex; GLPK answers nothing.
+  PolytopeLp lp;
+  lp.A.resize(1, 2);
+  lp.A << 1, 0;
+  lp.row_lo = Eigen::VectorXd::Constant(1, -INFINITY);
+  lp.row_hi = Eigen::VectorXd::Constant(1, 0.8);
+  lp.col_lo = Eigen::Vector2d(0, 0.5);
+  lp.col_hi = Eigen::Vector2d(1, 0.5);
+  const std::vector<signed char> top_start = {GLP_NU, GLP_BS, GLP_NS}, bottom_start = {GLP_BS, GLP_NU, GLP_NS};
+  DenseSimplex probe;
+  probe.load(lp);
+  ASSERT_TRUE(probe.set_basis(bottom_start.data(), false));
+  ASSERT_EQ(probe.maximize(-1.0, 0.0), DenseSimplex::kNotDualFeasible);
+  SliceLp slices;
+  slices.load(lp);
+  double top = NAN, bottom = NAN;
+  ASSERT_EQ(slices.extreme(1.0, top, nullptr, &top_start), 1);
+  ASSERT_EQ(slices.extreme(-1.0, bottom, nullptr, &bottom_start), 1);
+  EXPECT_NEAR(top, 0.8, 1e-15);
+  EXPECT_NEAR(bottom, 0.0, 1e-15);
+  EXPECT_EQ(slices.dense, 2);
+  EXPECT_EQ(slices.glpk, 0);
+}
+
 TEST(DenseSimplex, ADualPhaseGivesUpOnAStartThatIsNotDualFeasibleAndOnAnEmptyRow) {
   // x in [0, 1], u in [0, 1]; row 0: x >= 2 (nothing meets it). The basis {row 0's auxiliary} puts the
   // row's value 0 below its bound. Along -x its reduced costs are dual feasible: x enters up to 2 (above

@@ -24,9 +24,9 @@ class SliceLp {
   /// Maximise sign x (+1: the slice's top, -1: its bottom). 1: optimal, x the optimum's x (not times
   /// sign) and `fixed` (if given) u's column; 0: the slice is empty; -1: the solver failed. The dense
   /// simplex starts from `start` if given (a basis of this LP's shape), else from this end's last optimum;
-  /// where that start is neither primal nor dual feasible (the dense simplex has no phase for it), the
-  /// bottom starts again from the top's optimum of this same LP (a vertex of its polytope: primal feasible),
-  /// and the top from its last optimum, before GLPK.
+  /// where the dense simplex gives up from that start (one neither primal nor dual feasible, for which it
+  /// has no phase, most often), the bottom starts again from the top's optimum of this same LP (a vertex of
+  /// its polytope: primal feasible), and the top from its last optimum, before GLPK.
   int extreme(double sign, double& x, PolytopeProjector::FixedColumn* fixed,
               const std::vector<signed char>* start = nullptr);
   /// This end's last optimal basis (0 the top, 1 the bottom; empty: none).

@@ -135,12 +135,6 @@ double bump_bound(double la, double va, double lb, double vb, double K) {
   return va + slope * tau + 0.5 * K * tau * (h - tau);
 }
 
-// The same from a polygon's rows (row r of `rows`): the slice at u is where every row a x + b u <= c holds.
-// The slice measures x's distance relative to x's own size, which at rest is rounding over rounding: a
-// timing that leaves rest on the polygon's top edge (x = 0, the top at -1.9e-14 for its u) read as a full
-// violation that no cut could remove (audit_worst = 1 on a G1 lean that met every limit). Where the slice
-// says broken (rarely: a second pass, not a division per row at every sample), the rows' own measure
-// (violation(), relative to each row's terms) decides, if smaller.
 // The slice at u of row r's polygon: [lo, hi], or u_broken where a row on u alone excludes this u.
 void row_slice(const ConstraintRows& rows, Eigen::Index r, double u, double& lo, double& hi, bool& u_broken) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -156,6 +150,12 @@ void row_slice(const ConstraintRows& rows, Eigen::Index r, double u, double& lo,
   }
 }
 
+// slice_violation from a polygon's rows (row r of `rows`): the slice at u is where every row a x + b u <= c holds.
+// The slice measures x's distance relative to x's own size, which at rest is rounding over rounding: a
+// timing that leaves rest on the polygon's top edge (x = 0, the top at -1.9e-14 for its u) read as a full
+// violation that no cut could remove (audit_worst = 1 on a G1 lean that met every limit). Where the slice
+// says broken (rarely: a second pass, not a division per row at every sample), the rows' own measure
+// (violation(), relative to each row's terms) decides, if smaller.
 double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
   const double inf = std::numeric_limits<double>::infinity();
   double lo, hi;
@@ -481,8 +481,8 @@ std::vector<Eigen::Index> Auditor::bottoms(const std::vector<Eigen::Index>& todo
     }
     bottom_[static_cast<size_t>(todo[t])] = far ? 0 : 1;
     if (far) continue;
-    // Samples whose bottom was skipped say the top's violation only: not samples here (and the interval
-    // is sampled again with them, by the caller, where it was its own guess in this round).
+    // Samples whose bottom was skipped say the top's violation only: not samples here (the caller samples
+    // the interval again with their bottoms).
     size_t w = 0;
     for (size_t j = 0; j < L.size(); ++j)
       if (!std::isnan(B[j])) {
