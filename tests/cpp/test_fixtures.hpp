@@ -35,6 +35,20 @@ inline detail::PolytopeLp octahedron() {
   return lp;
 }
 
+// One row over (x, u): row_lo <= a_x x + a_u u <= row_hi, x and u within their bounds (the small LPs of
+// the dense simplex's and the slices' tests).
+inline detail::PolytopeLp one_row_lp(double a_x, double a_u, double row_lo, double row_hi, const Eigen::Vector2d& col_lo,
+                                     const Eigen::Vector2d& col_hi) {
+  detail::PolytopeLp lp;
+  lp.A.resize(1, 2);
+  lp.A << a_x, a_u;
+  lp.row_lo = Eigen::VectorXd::Constant(1, row_lo);
+  lp.row_hi = Eigen::VectorXd::Constant(1, row_hi);
+  lp.col_lo = col_lo;
+  lp.col_hi = col_hi;
+  return lp;
+}
+
 // y = 1e-8 u (row 0), 100 <= y <= 200, 0 <= x <= 1 (row 1: x <= 1): the shadow [0, 1] x [1e10, 2e10] lies
 // beyond the stand-in bounds |u| <= 1e6, so the projection takes its other branch (a feasibility LP, grown
 // bounds, rescaled columns).

@@ -14,6 +14,7 @@
 using namespace pathpace::detail;
 using pathpace::test::beyond_stand_in;
 using pathpace::test::octahedron;
+using pathpace::test::one_row_lp;
 using pathpace::test::support;
 
 TEST(Projection, OctahedronShadowIsTheDiamond) {
@@ -583,16 +584,7 @@ TEST(Projection, EveryDenseFallbackIsCountedByItsCauseAndGlpkGivesTheSamePolygon
 namespace {
 // 0 <= x (no upper bound), 0 <= u <= 1, row 0: x + u <= 1.5; the basis: the row's auxiliary basic, x and u
 // at their lower bounds (the point (0, 0)). Variables in GLPK's order: the auxiliary 0, x 1, u 2.
-PolytopeLp wedge() {
-  PolytopeLp lp;
-  lp.A.resize(1, 2);
-  lp.A << 1, 1;
-  lp.row_lo = Eigen::VectorXd::Constant(1, -INFINITY);
-  lp.row_hi = Eigen::VectorXd::Constant(1, 1.5);
-  lp.col_lo = Eigen::Vector2d(0, 0);
-  lp.col_hi = Eigen::Vector2d(INFINITY, 1);
-  return lp;
-}
+PolytopeLp wedge() { return one_row_lp(1, 1, -INFINITY, 1.5, Eigen::Vector2d(0, 0), Eigen::Vector2d(INFINITY, 1)); }
 const signed char kWedgeStart[] = {GLP_BS, GLP_NL, GLP_NL};
 }  // namespace
 

@@ -11,8 +11,10 @@
 #include "lp/dense_simplex.hpp"
 #include "lp/projection.hpp"
 #include "lp/slice_lp.hpp"
+#include "test_fixtures.hpp"
 
 using namespace pathpace::detail;
+using pathpace::test::one_row_lp;
 
 namespace {
 
@@ -108,13 +110,7 @@ TEST(SliceLp, TheFixedColumnsSlopeAndRangeAreTheEdgeOfTheSlicesTop) {
   // max x subject to x + u <= 1.5, x >= 0, u fixed: the top is 1.5 - u (slope -1) for every u <= 1.5
   // (below -inf no basic variable stops it; at 1.5 x reaches its bound 0). The first sample is GLPK's,
   // the second the dense simplex's from its basis: both tell the same edge.
-  PolytopeLp lp;
-  lp.A.resize(1, 2);
-  lp.A << 1, 1;
-  lp.row_lo = Eigen::VectorXd::Constant(1, -INFINITY);
-  lp.row_hi = Eigen::VectorXd::Constant(1, 1.5);
-  lp.col_lo = Eigen::Vector2d(0, 0.5);
-  lp.col_hi = Eigen::Vector2d(INFINITY, 0.5);
+  PolytopeLp lp = one_row_lp(1, 1, -INFINITY, 1.5, Eigen::Vector2d(0, 0.5), Eigen::Vector2d(INFINITY, 0.5));
   SliceLp slices;
   for (int engine = 0; engine < 2; ++engine) {
     slices.load(lp);
@@ -145,13 +141,7 @@ TEST(SliceLp, ABottomWhoseStartTheDenseSimplexCannotRepairStartsFromTheTopsOptim
   // improves, so it is not dual feasible either (DenseSimplex::kNotDualFeasible). The bottom then starts
   // from the top's optimum of the same LP (a vertex: primal feasible) and reaches x = 0 by the primal
   // simplex; GLPK answers nothing.
-  PolytopeLp lp;
-  lp.A.resize(1, 2);
-  lp.A << 1, 0;
-  lp.row_lo = Eigen::VectorXd::Constant(1, -INFINITY);
-  lp.row_hi = Eigen::VectorXd::Constant(1, 0.8);
-  lp.col_lo = Eigen::Vector2d(0, 0.5);
-  lp.col_hi = Eigen::Vector2d(1, 0.5);
+  const PolytopeLp lp = one_row_lp(1, 0, -INFINITY, 0.8, Eigen::Vector2d(0, 0.5), Eigen::Vector2d(1, 0.5));
   const std::vector<signed char> top_start = {GLP_NU, GLP_BS, GLP_NS}, bottom_start = {GLP_BS, GLP_NU, GLP_NS};
   DenseSimplex probe;
   probe.load(lp);
@@ -173,13 +163,7 @@ TEST(DenseSimplex, ADualPhaseGivesUpOnAStartThatIsNotDualFeasibleAndOnAnEmptyRow
   // row's value 0 below its bound. Along -x its reduced costs are dual feasible: x enters up to 2 (above
   // its own bound 1), then x leaves at 1 and no nonbasic variable can raise the row again: a dual ray.
   // Along +x, x at its lower bound has an improving reduced cost: not dual feasible.
-  PolytopeLp lp;
-  lp.A.resize(1, 2);
-  lp.A << 1, 0;
-  lp.row_lo = Eigen::VectorXd::Constant(1, 2.0);
-  lp.row_hi = Eigen::VectorXd::Constant(1, INFINITY);
-  lp.col_lo = Eigen::Vector2d(0, 0);
-  lp.col_hi = Eigen::Vector2d(1, 1);
+  PolytopeLp lp = one_row_lp(1, 0, 2.0, INFINITY, Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1));
   const signed char start[] = {GLP_BS, GLP_NL, GLP_NL};
   DenseSimplex ds;
   ds.load(lp);

@@ -156,11 +156,10 @@ void row_slice(const ConstraintRows& rows, Eigen::Index r, double u, double& lo,
 // violation that no cut could remove (audit_worst = 1 on a G1 lean that met every limit). Where the slice
 // says broken (rarely: a second pass, not a division per row at every sample), the rows' own measure
 // (violation(), relative to each row's terms) decides, if smaller.
-double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u) {
+// [lo, hi] and u_broken: row r's slice at u (row_slice).
+double row_slice_violation(const ConstraintRows& rows, Eigen::Index r, double x, double u, double lo, double hi,
+                           bool u_broken) {
   const double inf = std::numeric_limits<double>::infinity();
-  double lo, hi;
-  bool u_broken;
-  row_slice(rows, r, u, lo, hi, u_broken);
   const double by_slice = u_broken ? 1.0 : slice_violation(x, lo, hi);
   if (!(by_slice > 0.0)) return by_slice;
   double by_rows = -inf;
@@ -378,11 +377,15 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
     if (contact) {
       // At the grid points the polygon is known (its exact rows): the slice by arithmetic, no LP; rows refined
       // on demand bound it from outside only, and their grid points are in the batch (contact_batch).
-      if (!contact->refines()) {
-        sample.push_back({0.0, row_slice_violation(grid, k, x_of(k, 0.0), u_of(k)), row_slice_bottom(grid, k, x_of(k, 0.0), u_of(k))});
-        sample.push_back({1.0, row_slice_violation(grid, k + 1, x_of(k, 1.0), u_of(k)),
-                          row_slice_bottom(grid, k + 1, x_of(k, 1.0), u_of(k))});
-      }
+      if (!contact->refines())
+        for (int end = 0; end < 2; ++end) {  // each grid point's slice once, for both measures
+          const double x = x_of(k, end), u = u_of(k);
+          double lo, hi;
+          bool u_broken;
+          row_slice(grid, k + end, u, lo, hi, u_broken);
+          sample.push_back({static_cast<double>(end), row_slice_violation(grid, k + end, x, u, lo, hi, u_broken),
+                            u_broken ? 1.0 : bottom_violation(x, lo, hi)});
+        }
       for (size_t i = first[t]; i < first[t + 1]; ++i) sample.push_back({ls_[i], fc[i], fbot_[i]});
     } else {
       sample.push_back({0.0, worst_row(grid, k, 0.0, k), 0.0});
