@@ -159,6 +159,40 @@ TEST(RobotModel, MovingJointsAreTheColumnsAPointJacobianWrites) {
   EXPECT_EQ(mimic.moving_joints(mimic.body_of_link("b", in_body)), std::vector<int>{0});
 }
 
+// add_point_jacobian with the axes of joint_axes (the contact LPs' form, one axis pass for many points)
+// is the plain form bit for bit, with either sign, on a branched tree with a prismatic joint and on a
+// mimic chain; it adds to J like the plain form.
+TEST(RobotModel, PointJacobianFromJointAxesIsThePlainOneExactly) {
+  const RobotModel y = RobotModel::from_urdf_string(R"(<robot name="y"><link name="a"/>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="c"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="d"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0.6 0.8"/><limit lower="-3" upper="3" effort="5" velocity="2"/></joint>
+  <joint name="j2" type="prismatic"><parent link="b"/><child link="c"/><origin xyz="0.5 0 0" rpy="0.1 0.2 0.3"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="5" velocity="2"/></joint>
+  <joint name="j3" type="revolute"><parent link="a"/><child link="d"/><origin xyz="0 0.3 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="5" velocity="2"/></joint>
+  </robot>)");
+  const RobotModel mimic = RobotModel::from_urdf_string(chain(true));
+  const std::vector<std::pair<const RobotModel*, std::string>> cases = {{&y, "b"}, {&y, "c"}, {&y, "d"}, {&mimic, "c"}};
+  for (const auto& [robot, link] : cases) {
+    const VectorXd q = VectorXd::LinSpaced(robot->nq(), 0.4, -0.7);
+    std::vector<Eigen::Isometry3d> T;
+    robot->body_placements(q, T);
+    Eigen::Matrix3Xd axes;
+    robot->joint_axes(T, axes);
+    EXPECT_EQ(axes.cols(), static_cast<Eigen::Index>(T.size())) << link;
+    Eigen::Isometry3d in_body;
+    const int body = robot->body_of_link(link, in_body);
+    const Eigen::Vector3d p = T[static_cast<size_t>(body)] * Eigen::Vector3d(0.1, -0.2, 0.3);
+    for (double sign : {1.0, -0.5}) {
+      MatrixXd plain = MatrixXd::Constant(3, robot->nq(), 0.25), with_axes = plain;  // both add to what is there
+      robot->add_point_jacobian(T, body, p, sign, plain);
+      robot->add_point_jacobian(T, axes, body, p, sign, with_axes);
+      EXPECT_EQ(plain, with_axes) << link << " sign " << sign;
+      EXPECT_GT((plain.array() - 0.25).abs().maxCoeff(), 0.1) << link;  // it wrote something
+    }
+  }
+}
+
 TEST(LimitLabels, NameTheJointsWhenGiven) {
   const VelocityLimits v(-VectorXd::Ones(2), VectorXd::Ones(2), {"shoulder", "elbow"});
   TimeScalingProblem p(spline(), 10);

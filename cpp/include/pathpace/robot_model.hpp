@@ -246,6 +246,13 @@ class RobotModel {
   /// mimic body's column goes to its joint's, times the multiplier.
   void add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p, double sign,
                           Eigen::Ref<Eigen::MatrixXd> J) const;
+  /// The world axis of every body's joint at the poses T of body_placements() (3 x bodies; bodies = nq
+  /// unless there are mimic joints), for the form of add_point_jacobian below.
+  void joint_axes(const std::vector<Eigen::Isometry3d>& T, Eigen::Matrix3Xd& z) const;
+  /// add_point_jacobian with the axes z = joint_axes(T), the same J bit for bit: for many points on the
+  /// same chains at one q (a sole's points), which would otherwise turn every axis again per point.
+  void add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, const Eigen::Matrix3Xd& z, int body,
+                          const Eigen::Vector3d& p, double sign, Eigen::Ref<Eigen::MatrixXd> J) const;
   /// The coordinates whose motion moves body `body`, ascending: the joints on its chain to the root (a
   /// mimic body's: its joint's). add_point_jacobian writes no other column. Empty for body -1 (the world).
   std::vector<int> moving_joints(int body) const;

@@ -185,23 +185,43 @@ void ContactConstraint::lp_structure(const LpLayout& layout, int extra, detail::
     lp.A.block(n + point_rows + link_of[static_cast<size_t>(i)], 2 + i * k, 1, k).setOnes();
 }
 
+void ContactConstraint::chain_jacobian(size_t u, const std::vector<Eigen::Isometry3d>& T, const Eigen::Matrix3Xd& axes,
+                                       Eigen::MatrixXd& Ji) const {
+  for (int r : moving_[u]) {  // three stores, not a run-time-length column's memset
+    Ji(0, r) = 0.0;
+    Ji(1, r) = 0.0;
+    Ji(2, r) = 0.0;
+  }
+  const Eigen::Vector3d p = (body_[u] >= 0 ? T[static_cast<size_t>(body_[u])] : Eigen::Isometry3d::Identity()) * point_in_body_[u];
+  if (body_[u] >= 0) robot_->add_point_jacobian(T, axes, body_[u], p, 1.0, Ji);
+  // The reaction acts on other_link at the same world point (eq. 17 with both bodies moving).
+  if (other_body_[u] >= 0) robot_->add_point_jacobian(T, axes, other_body_[u], p, -1.0, Ji);
+}
+
 void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& q,
                                  const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                                  const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const {
   thread_local std::vector<Eigen::Isometry3d> T;
-  thread_local Eigen::MatrixXd J;
-  thread_local Eigen::Matrix3Xd gen, edges;
+  thread_local Eigen::MatrixXd Ji;
+  thread_local Eigen::Matrix3Xd axes, gen, edges;
   const int n = robot_->nq(), m = static_cast<int>(layout.cone.size()), k = options_.cone_edges, h = k / 2;
   // eq. (17): τ = a x + b u + c - Σ J_iᵀ f_i, with τ eliminated into row bounds (sec. IV.B).
   lp.A.col(0).head(n) = a;  // the minimum-normal-force rows below n keep zeros in x and u
   lp.A.col(1).head(n) = b;
-  contact_jacobians(q, T, J, gen, &layout.jacobians);
-  // -J_iᵀ g_ie, one product of inner dimension 3 per coefficient, on the rows of the joints that move the
-  // contact only (J_i is zero on every other column: a foot's point moves with its leg and the base, a
-  // third of a humanoid's joints); the rest of the block zero.
-  for (int i = 0; i < m; ++i)
-    chain_product(J.middleRows(3 * i, 3), gen.middleCols(i * k, k), 1.0,
-                  moving_[static_cast<size_t>(layout.jacobians[static_cast<size_t>(i)])], lp.A.block(0, 2 + i * k, n, k));
+  robot_->body_placements(q, T);
+  robot_->joint_axes(T, axes);  // once for every point: a sole's points share their leg's axes
+  // One contact's J_i at a time in Ji (3 x n), on the columns of the joints that move it only
+  // (chain_jacobian): J_i is zero on every other column, and nothing below reads them (a foot's point
+  // moves with its leg and the base, a third of a humanoid's joints).
+  if (Ji.cols() != n) Ji.setZero(3, n);
+  // -J_iᵀ g_ie, one product of inner dimension 3 per coefficient, on those rows; the rest of the block zero.
+  for (int i = 0; i < m; ++i) {
+    const size_t u = static_cast<size_t>(layout.cone[static_cast<size_t>(i)]);
+    chain_jacobian(u, T, axes, Ji);
+    const bool turned = other_body_[u] >= 0;  // generators in other_link's frame, turned into the world
+    if (turned) gen.noalias() = T[static_cast<size_t>(other_body_[u])].linear() * other_in_body_[u].linear() * local_generators_[u];
+    chain_product(Ji, turned ? gen : local_generators_[u], 1.0, moving_[u], lp.A.block(0, 2 + i * k, n, k));
+  }
   lp.row_lo.head(n) = tau_min_ - c;
   lp.row_hi.head(n) = tau_max_ - c;
   if (options_.cone_offset > 0.0) {
@@ -219,11 +239,12 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
     Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
     for (size_t j = 0; j < layout.section.size(); ++j) {
       const size_t u = static_cast<size_t>(layout.section[j]);
-      const auto Ji = J.middleRows(3 * (m + static_cast<Eigen::Index>(j)), 3);
+      chain_jacobian(u, T, axes, Ji);
       const Eigen::Matrix3d R = normal_frame(u, T);
       edges.noalias() = R * local_half_edges_[u];
       chain_product(Ji, edges, d, moving_[u], lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h));
-      w.noalias() += Ji.transpose().lazyProduct(R * contacts_[u].normal);
+      const Eigen::Vector3d nw = R * contacts_[u].normal;
+      for (int r : moving_[u]) w[r] += Ji.col(r).dot(nw);
     }
     lp.row_lo.head(n) += d * w;
     lp.row_hi.head(n) += d * w;

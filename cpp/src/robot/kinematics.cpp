@@ -53,6 +53,27 @@ void RobotModel::body_placements(const Eigen::Ref<const Eigen::VectorXd>& q, std
   }
 }
 
+namespace {
+
+// J += sign · (the linear Jacobian of world point p moving with `body`), the axis of joint i being
+// z(i): the one chain walk behind both forms of add_point_jacobian. The joint frame is the body frame:
+// its axis is fixed in the body, its origin is the body origin.
+template <class Axis>
+void add_chain_jacobian(const std::vector<Body>& bodies, const std::vector<Eigen::Isometry3d>& T, int body,
+                        const Eigen::Vector3d& p, double sign, Eigen::Ref<Eigen::MatrixXd> J, const Axis& z) {
+  for (int i = body; i >= 0; i = bodies[static_cast<size_t>(i)].parent) {
+    const Eigen::Vector3d v = bodies[static_cast<size_t>(i)].type == RobotModel::JointType::Revolute
+                                  ? Eigen::Vector3d(sign * z(i).cross(p - T[static_cast<size_t>(i)].translation()))
+                                  : Eigen::Vector3d(sign * z(i));
+    // Coefficient by coefficient: J.col(i) of a Ref has a run-time length, three of them cost a loop.
+    J(0, i) += v[0];
+    J(1, i) += v[1];
+    J(2, i) += v[2];
+  }
+}
+
+}  // namespace
+
 void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int body, const Eigen::Vector3d& p,
                                     double sign, Eigen::Ref<Eigen::MatrixXd> J) const {
   if (mimic_) {  // chain rule: a mimic body's column goes to its joint's, times the multiplier
@@ -62,13 +83,26 @@ void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, int
     return;
   }
   const std::vector<Body>& bodies = tree_->bodies;
-  for (int i = body; i >= 0; i = bodies[static_cast<size_t>(i)].parent) {
-    const Body& b = bodies[static_cast<size_t>(i)];
-    // The joint frame is the body frame: its axis is fixed in the body, its origin is the body origin.
-    const Eigen::Vector3d z = T[static_cast<size_t>(i)].linear() * b.axis;
-    if (b.type == JointType::Revolute) J.col(i) += sign * z.cross(p - T[static_cast<size_t>(i)].translation());
-    else J.col(i) += sign * z;
+  add_chain_jacobian(bodies, T, body, p, sign, J, [&](int i) -> Eigen::Vector3d {
+    return T[static_cast<size_t>(i)].linear() * bodies[static_cast<size_t>(i)].axis;
+  });
+}
+
+void RobotModel::joint_axes(const std::vector<Eigen::Isometry3d>& T, Eigen::Matrix3Xd& z) const {
+  const std::vector<Body>& bodies = tree_->bodies;
+  z.resize(3, static_cast<Eigen::Index>(bodies.size()));
+  for (size_t i = 0; i < bodies.size(); ++i) z.col(static_cast<Eigen::Index>(i)) = T[i].linear() * bodies[i].axis;
+}
+
+void RobotModel::add_point_jacobian(const std::vector<Eigen::Isometry3d>& T, const Eigen::Matrix3Xd& z, int body,
+                                    const Eigen::Vector3d& p, double sign, Eigen::Ref<Eigen::MatrixXd> J) const {
+  if (mimic_) {
+    Eigen::MatrixXd Jb = Eigen::MatrixXd::Zero(3, static_cast<Eigen::Index>(tree_->bodies.size()));
+    add_chain_jacobian(tree_->bodies, T, body, p, sign, Jb, [&](int i) -> Eigen::Vector3d { return z.col(i); });
+    J.noalias() += Jb * mimic_->E;
+    return;
   }
+  add_chain_jacobian(tree_->bodies, T, body, p, sign, J, [&](int i) -> Eigen::Vector3d { return z.col(i); });
 }
 
 std::vector<int> RobotModel::moving_joints(int body) const {
