@@ -121,14 +121,26 @@ void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd
 
 namespace {
 
-// out = -scale · Jiᵀ G on the rows `rows` (ascending), zero elsewhere: Ji is 3 x n and zero off those
-// columns. Each coefficient's sum in the order of a coefficient-wise product of inner dimension 3.
+// out = -scale · Jiᵀ G on the rows `rows` (ascending), the rest of out left as it is (zero: lp_point's
+// precondition). Each coefficient's sum in the order of a coefficient-wise product of inner dimension 3.
+// Returns the largest |coefficient| written.
 template <class JType, class GType, class Out>
-void chain_product(const JType& Ji, const GType& G, double scale, const std::vector<int>& rows, Out&& out) {
-  out.setZero();
-  for (int r : rows)
-    for (Eigen::Index e = 0; e < G.cols(); ++e)
-      out(r, e) = -(scale * ((Ji(0, r) * G(0, e) + Ji(1, r) * G(1, e)) + Ji(2, r) * G(2, e)));
+double chain_product(const JType& Ji, const GType& G, double scale, const std::vector<int>& rows, Out&& out) {
+  double top = 0.0;
+  for (Eigen::Index e = 0; e < G.cols(); ++e)
+    for (int r : rows) {
+      const double v = -(scale * ((Ji(0, r) * G(0, e) + Ji(1, r) * G(1, e)) + Ji(2, r) * G(2, e)));
+      out(r, e) = v;
+      top = std::max(top, std::abs(v));
+    }
+  return top;
+}
+
+// Zeroes out's coefficients on `rows` below `tiny` in magnitude (a select, no branch).
+template <class Out>
+void zero_tiny(const std::vector<int>& rows, double tiny, Out&& out) {
+  for (Eigen::Index e = 0; e < out.cols(); ++e)
+    for (int r : rows) out(r, e) = std::abs(out(r, e)) < tiny ? 0.0 : out(r, e);
 }
 
 }  // namespace
@@ -214,13 +226,16 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
   // (chain_jacobian): J_i is zero on every other column, and nothing below reads them (a foot's point
   // moves with its leg and the base, a third of a humanoid's joints).
   if (Ji.cols() != n) Ji.setZero(3, n);
-  // -J_iᵀ g_ie, one product of inner dimension 3 per coefficient, on those rows; the rest of the block zero.
+  // -J_iᵀ g_ie, one product of inner dimension 3 per coefficient, on those rows; the rest of the block
+  // stays zero from lp_structure. `top`: the largest |coefficient| of the torque rows.
+  double top = 0.0;
+  for (int r = 0; r < n; ++r) top = std::max(top, std::max(std::abs(a[r]), std::abs(b[r])));
   for (int i = 0; i < m; ++i) {
     const size_t u = static_cast<size_t>(layout.cone[static_cast<size_t>(i)]);
     chain_jacobian(u, T, axes, Ji);
     const bool turned = other_body_[u] >= 0;  // generators in other_link's frame, turned into the world
     if (turned) gen.noalias() = T[static_cast<size_t>(other_body_[u])].linear() * other_in_body_[u].linear() * local_generators_[u];
-    chain_product(Ji, turned ? gen : local_generators_[u], 1.0, moving_[u], lp.A.block(0, 2 + i * k, n, k));
+    top = std::max(top, chain_product(Ji, turned ? gen : local_generators_[u], 1.0, moving_[u], lp.A.block(0, 2 + i * k, n, k)));
   }
   lp.row_lo.head(n) = tau_min_ - c;
   lp.row_hi.head(n) = tau_max_ - c;
@@ -242,7 +257,7 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
       chain_jacobian(u, T, axes, Ji);
       const Eigen::Matrix3d R = normal_frame(u, T);
       edges.noalias() = R * local_half_edges_[u];
-      chain_product(Ji, edges, d, moving_[u], lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h));
+      top = std::max(top, chain_product(Ji, edges, d, moving_[u], lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h)));
       const Eigen::Vector3d nw = R * contacts_[u].normal;
       for (int r : moving_[u]) w[r] += Ji.col(r).dot(nw);
     }
@@ -250,24 +265,18 @@ void ContactConstraint::lp_point(const LpLayout& layout, const Eigen::Ref<const 
     lp.row_hi.head(n) += d * w;
   }
   // Rounding residue (1e-17 where a joint axis is orthogonal to a force) is not a coefficient: as a
-  // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5.
-  // The largest |coefficient| by eight independent running maxima (one chain of max through every
-  // coefficient waits on each max's latency), then the tiny ones zeroed by Eigen's select: no
-  // compare-and-branch per coefficient (most are exact zeros, off a contact's chain, so such a branch
-  // mispredicts). The continuous audit builds one such LP per sample. A maximum and a select do not
-  // round: the same values bit for bit in any order.
+  // pivot it makes the simplex basis ill-conditioned and its optimum miss the polytope by 1e-5. Only
+  // the coefficients written above can be such residue (every other one is an exact zero); a maximum
+  // and a select do not round, so the order does not matter.
   if (n == 0) return;
-  double top[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  for (Eigen::Index j = 0; j < lp.A.cols(); ++j) {
-    const double* col = lp.A.col(j).data();
-    Eigen::Index i = 0;
-    for (; i + 8 <= n; i += 8)
-      for (int l = 0; l < 8; ++l) top[l] = std::max(top[l], std::abs(col[i + l]));
-    for (; i < n; ++i) top[i % 8] = std::max(top[i % 8], std::abs(col[i]));
-  }
-  const double tiny = 1e-13 * *std::max_element(top, top + 8);
-  auto torque_rows = lp.A.topRows(n);
-  torque_rows = (torque_rows.array().abs() < tiny).select(0.0, torque_rows);
+  const double tiny = 1e-13 * top;
+  auto xu = lp.A.topLeftCorner(n, 2);
+  xu = (xu.array().abs() < tiny).select(0.0, xu);
+  for (int i = 0; i < m; ++i)
+    zero_tiny(moving_[static_cast<size_t>(layout.cone[static_cast<size_t>(i)])], tiny, lp.A.block(0, 2 + i * k, n, k));
+  for (size_t j = 0; j < layout.section.size(); ++j)
+    zero_tiny(moving_[static_cast<size_t>(layout.section[j])], tiny,
+              lp.A.block(0, 2 + m * k + static_cast<Eigen::Index>(j) * h, n, h));
 }
 
 Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -272,6 +272,10 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   /// `placed`: q's body placements if the caller has them (lp_point's), else computed here.
   Eigen::VectorXd offset_torques(const Eigen::Ref<const Eigen::VectorXd>& q,
                                  const std::vector<Eigen::Isometry3d>* placed = nullptr) const;
+  // The sample's part of the projection LP (eq. 17): x's and u's coefficients a and b, each contact's
+  // -J_iᵀ g_ie, the torque rows' bounds. lp must come from lp_structure(layout) with no writer but
+  // lp_point since: a contact's weights are written on its chain's rows only (moving_), the other
+  // coefficients of the torque rows are lp_structure's zeros.
   void lp_point(const LpLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& q,
                 const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
                 const Eigen::Ref<const Eigen::VectorXd>& c, detail::PolytopeLp& lp) const;
