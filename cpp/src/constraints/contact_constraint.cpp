@@ -102,6 +102,17 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
     for (int j = 0; j < w.cols(); ++j) w.col(j) = 0.5 * (g.col(j + 1) - g.col(j));
     local_half_edges_.push_back(w);
   }
+  for (size_t i = 0; i < contacts_.size(); ++i) {
+    const int body = body_[i];
+    if (other_body_[i] >= 0) {
+      offset_moving_.push_back(static_cast<int>(i));
+    } else if (body >= 0) {  // (both ends fixed: no torque)
+      auto g = std::find_if(offset_groups_.begin(), offset_groups_.end(),
+                            [&](const OffsetGroup& x) { return x.body == body && x.normal == contacts_[i].normal; });
+      if (g == offset_groups_.end()) offset_groups_.push_back({body, contacts_[i].normal, point_in_body_[i], 1.0});
+      else g->sum += point_in_body_[i], g->count += 1.0;
+    }
+  }
   reduce_contacts();
 }
 

@@ -286,39 +286,24 @@ Eigen::VectorXd ContactConstraint::offset_torques(const Eigen::Ref<const Eigen::
   thread_local Eigen::Matrix3Xd gen;
   // A link's point Jacobian is affine in the point (add_point_jacobian), so the contacts of one link
   // under one world-fixed normal add up to their count times the Jacobian at their mean point: one
-  // Jacobian per such group (a sole), not one per point. A contact on two moving bodies keeps its own.
-  struct Group {
-    int body;
-    Eigen::Vector3d normal, sum;
-    double count;
-  };
-  thread_local std::vector<Group> groups;
-  thread_local std::vector<int> moving;
-  groups.clear();
-  moving.clear();
-  for (size_t i = 0; i < contacts_.size(); ++i) {
-    const int body = body_[i];
-    if (other_body_[i] >= 0) {
-      moving.push_back(static_cast<int>(i));
-    } else if (body >= 0) {  // (both ends fixed: no torque)
-      auto g = std::find_if(groups.begin(), groups.end(),
-                            [&](const Group& x) { return x.body == body && x.normal == contacts_[i].normal; });
-      if (g == groups.end()) groups.push_back({body, contacts_[i].normal, point_in_body_[i], 1.0});
-      else g->sum += point_in_body_[i], g->count += 1.0;
-    }
-  }
-  if (placed) own = *placed;
-  std::vector<Eigen::Isometry3d>& T = own;
-  contact_jacobians(q, T, J, gen, &moving, placed != nullptr);  // the placements (unless given), the moving contacts' Jacobians
+  // Jacobian per such group (a sole), not one per point (offset_groups_). A contact on two moving bodies
+  // keeps its own (offset_moving_).
+  if (!placed) robot_->body_placements(q, own);
+  const std::vector<Eigen::Isometry3d>& T = placed ? *placed : own;
   const int nq = robot_->nq();
   Eigen::VectorXd w = Eigen::VectorXd::Zero(nq);
-  for (size_t j = 0; j < moving.size(); ++j) {
-    const size_t i = static_cast<size_t>(moving[j]);
-    // The normal in the world: other_link's turned into the world.
-    const Eigen::Vector3d n = T[static_cast<size_t>(other_body_[i])].linear() * other_in_body_[i].linear() * contacts_[i].normal;
-    w.noalias() += J.middleRows(3 * static_cast<Eigen::Index>(j), 3).transpose() * n;
+  if (!offset_moving_.empty()) {
+    thread_local std::vector<Eigen::Isometry3d> Tm;  // contact_jacobians takes placements it could write
+    Tm = T;
+    contact_jacobians(q, Tm, J, gen, &offset_moving_, true);
+    for (size_t j = 0; j < offset_moving_.size(); ++j) {
+      const size_t i = static_cast<size_t>(offset_moving_[j]);
+      // The normal in the world: other_link's turned into the world.
+      const Eigen::Vector3d n = T[static_cast<size_t>(other_body_[i])].linear() * other_in_body_[i].linear() * contacts_[i].normal;
+      w.noalias() += J.middleRows(3 * static_cast<Eigen::Index>(j), 3).transpose() * n;
+    }
   }
-  for (const Group& g : groups) {
+  for (const OffsetGroup& g : offset_groups_) {
     Jg.setZero(3, nq);
     robot_->add_point_jacobian(T, g.body, T[static_cast<size_t>(g.body)] * Eigen::Vector3d(g.sum / g.count), g.count, Jg);
     w.noalias() += Jg.transpose() * g.normal;

@@ -293,6 +293,16 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   std::vector<Eigen::Vector3d> point_in_body_;
   std::vector<Eigen::Isometry3d> other_in_body_;        // other_link's frame in its body's frame
   std::vector<Eigen::Matrix3Xd> local_generators_;      // in world (or other_link) coordinates
+  // offset_torques' terms (built once by the constructor): the contacts of one body under one world-fixed
+  // normal as a group (their count and the sum of their points in the body), and the contacts on two
+  // moving bodies, each on its own.
+  struct OffsetGroup {
+    int body;
+    Eigen::Vector3d normal, sum;
+    double count;
+  };
+  std::vector<OffsetGroup> offset_groups_;
+  std::vector<int> offset_moving_;
   ContactOptions options_;
   Eigen::VectorXd tau_min_, tau_max_;
   Eigen::VectorXd phys_tau_min_, phys_tau_max_;  // before scale and margin
