@@ -179,7 +179,7 @@ def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_d
     return rows
 
 
-CONTACT_HEADER = ("| case | margins | grid CPU s | continuous CPU s | ratio | rounds | cuts | audit LPs | "
+CONTACT_HEADER = ("| case | margins | grid CPU ms | continuous CPU ms | ratio | rounds | cuts | audit LPs | "
                   "cut projections | T grid (s) | T cont. / grid - 1 | 1 kHz margin grid (N) | 1 kHz margin cont. (N) |\n"
                   "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 
@@ -187,7 +187,7 @@ CONTACT_HEADER = ("| case | margins | grid CPU s | continuous CPU s | ratio | ro
 def contact_line(row):
     g, c = row["grid"], row["continuous"]
     dT = c["T"] / g["T"] - 1 if g["status"] == c["status"] == "OPTIMAL" else float("nan")
-    return (f"| {row['case']} | {row['margins']} | {g['cpu']:.3f} | {c['cpu']:.3f} | {c['cpu'] / g['cpu']:.1f}x | "
+    return (f"| {row['case']} | {row['margins']} | {1e3 * g['cpu']:.1f} | {1e3 * c['cpu']:.1f} | {c['cpu'] / g['cpu']:.2f}x | "
             f"{c['audit_rounds']} | {c['audit_cuts']} | {c['audit_lps']} | {c['audit_projections']} | {g['T']:.6f} | "
             f"{dT:+.2e} | {g.get('margin_N', float('nan')):+.3g} | {c.get('margin_N', float('nan')):+.3g} |"
             + ("" if c["status"] == "OPTIMAL" else f" {c['status']}"))
@@ -256,7 +256,7 @@ def main():
                                    repeat=args.repeat, seed=args.seed27)
         ok = [r for r in rows if r["grid"]["status"] == r["continuous"]["status"] == "OPTIMAL"]
         ratios = [r["continuous"]["cpu"] / r["grid"]["cpu"] for r in ok]
-        print(f"\ncontinuous / grid CPU: median {statistics.median(ratios):.1f}x, worst {max(ratios):.1f}x over {len(ok)} "
+        print(f"\ncontinuous / grid CPU: median {statistics.median(ratios):.2f}x, worst {max(ratios):.2f}x over {len(ok)} "
               f"OPTIMAL rows of {len(rows)}")
         for key in ("audit_rounds", "audit_lps", "audit_worst"):
             xs = [r["continuous"][key] for r in ok]
