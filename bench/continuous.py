@@ -167,7 +167,7 @@ def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_d
                     times[g].append(cpu)
             for g in GUARANTEES:
                 res, cpu = out[g], statistics.median(times[g])
-                r = {"status": res.status.name, "T": res.duration, "cpu": cpu,
+                r = {"status": res.status.name, "T": res.duration, "cpu": cpu, "cpu_min": min(times[g]),
                      **{k: res.stats[k] for k in ("audit_rounds", "audit_cuts", "audit_lps", "audit_projections",
                                                    "projection_lp_solves", "audit_worst")}}
                 if res.ok and force_margins:
@@ -179,15 +179,15 @@ def contact_corpus_rows(margins, cases, edges=4, N=100, force_margins=True, on_d
     return rows
 
 
-CONTACT_HEADER = ("| case | margins | grid CPU ms | continuous CPU ms | ratio | rounds | cuts | audit LPs | "
+CONTACT_HEADER = ("| case | margins | grid CPU ms | continuous CPU ms | ratio | ratio of minima | rounds | cuts | audit LPs | "
                   "cut projections | T grid (s) | T cont. / grid - 1 | 1 kHz margin grid (N) | 1 kHz margin cont. (N) |\n"
-                  "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+                  "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 
 
 def contact_line(row):
     g, c = row["grid"], row["continuous"]
     dT = c["T"] / g["T"] - 1 if g["status"] == c["status"] == "OPTIMAL" else float("nan")
-    return (f"| {row['case']} | {row['margins']} | {1e3 * g['cpu']:.1f} | {1e3 * c['cpu']:.1f} | {c['cpu'] / g['cpu']:.2f}x | "
+    return (f"| {row['case']} | {row['margins']} | {1e3 * g['cpu']:.1f} | {1e3 * c['cpu']:.1f} | {c['cpu'] / g['cpu']:.2f}x | {c['cpu_min'] / g['cpu_min']:.2f}x | "
             f"{c['audit_rounds']} | {c['audit_cuts']} | {c['audit_lps']} | {c['audit_projections']} | {g['T']:.6f} | "
             f"{dT:+.2e} | {g.get('margin_N', float('nan')):+.3g} | {c.get('margin_N', float('nan')):+.3g} |"
             + ("" if c["status"] == "OPTIMAL" else f" {c['status']}"))
@@ -258,6 +258,10 @@ def main():
         ratios = [r["continuous"]["cpu"] / r["grid"]["cpu"] for r in ok]
         print(f"\ncontinuous / grid CPU: median {statistics.median(ratios):.2f}x, worst {max(ratios):.2f}x over {len(ok)} "
               f"OPTIMAL rows of {len(rows)}")
+        # The ratio of each guarantee's fastest call: the VM's slow phases (up to 1.4x for seconds) lift
+        # some calls of a row and not others, which moves a ratio of medians more than a ratio of minima.
+        mins = [r["continuous"]["cpu_min"] / r["grid"]["cpu_min"] for r in ok]
+        print(f"ratio of minima: median {statistics.median(mins):.2f}x, worst {max(mins):.2f}x")
         for key in ("audit_rounds", "audit_lps", "audit_worst"):
             xs = [r["continuous"][key] for r in ok]
             print(f"{key}: median {statistics.median(xs):.3g}, worst {max(xs):.3g}, total {sum(xs):.3g}")
