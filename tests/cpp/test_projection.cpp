@@ -558,32 +558,6 @@ TEST(Projection, DenseSimplexGivesTheSamePolygonsAsGlpkAndEveryVertexIsInThePoly
   EXPECT_GT(dense, total / 2);
 }
 
-TEST(Projection, AFullProjectionStartsItsInitialLpsFromThePreviousPointsBasesOnTheDenseSimplex) {
-  // Grid points in a row (a polytope and its small drift, as along a path), projected in full (no focus):
-  // from the second point on, every LP goes to the dense simplex first, the three initial directions
-  // warm from the previous point's optimal bases in the same direction, so GLPK answers only the dense
-  // simplex's counted fallbacks. (The first direction had no support point to start from and went to GLPK
-  // at every grid point.) The polygons are GLPK's own to 1e-9 of their size.
-  std::mt19937 gen(11);
-  std::normal_distribution<double> g(0.0, 1.0);
-  PolytopeProjector with, glpk;
-  glpk.dense = false;
-  const PolytopeLp base = random_polytope(gen);
-  for (int k = 0; k < 8; ++k) {
-    PolytopeLp lp = base;
-    for (Eigen::Index i = 0; i < lp.A.rows(); ++i)
-      for (Eigen::Index j = 0; j < lp.A.cols(); ++j)
-        if (lp.A(i, j) != 0.0) lp.A(i, j) *= 1.0 + 1e-3 * k * g(gen);
-    const Projection a = with.project(lp), b = glpk.project(lp);
-    ASSERT_EQ(a.outcome, Projection::Outcome::Polygon);
-    ASSERT_TRUE(a.complete && b.complete) << a.note << b.note;
-    expect_same_support(a, b, k);
-    if (k == 0) continue;
-    EXPECT_EQ(a.by_cause.initial, 3);
-    EXPECT_EQ(a.lp_solves - a.by_cause.dense, a.by_cause.dense_fallback) << "grid point " << k;
-  }
-}
-
 TEST(Projection, EveryDenseFallbackIsCountedByItsCauseAndGlpkGivesTheSamePolygon) {
   // With no pivot allowed the dense simplex gives back every LP that is not optimal at its start: each
   // counted as a fallback by its cause (the pivot cap), none by another, and GLPK's answers make the

@@ -257,11 +257,7 @@ bool PolytopeProjector::Run::extremize_dense(double vx, double vu, Vertex& p, in
   if (warm_) {
     // A basis of the previous grid point's LP in this direction: optimal for a nearby polytope, so a few dual
     // pivots restore primal feasibility (maximize's dual phase) and a few primal ones optimality.
-    if (!ds.set_basis(warm_, false)) {  // singular here: counted like a dense simplex that gave up
-      ++out_.by_cause.dense_fallback;
-      ++out_.by_cause.fallback_singular;
-      return false;
-    }
+    if (!ds.set_basis(warm_, false)) return false;
   } else {
     if (start_point < 0) return false;
     const size_t sp = static_cast<size_t>(start_point);
@@ -343,10 +339,10 @@ PolytopeProjector::Run::Step PolytopeProjector::Run::triangle() {
     const double ang = 2.0 * M_PI * i / 3.0;
     Vertex p;
     std::vector<signed char>& warm = self_.triangle_[i];
-    warm_ = warm.size() == static_cast<size_t>(total_) ? warm.data() : nullptr;
+    warm_ = focus_ && warm.size() == static_cast<size_t>(total_) ? warm.data() : nullptr;
     const int r = extremize(std::cos(ang), std::sin(ang), p, static_cast<int>(points_.size()) - 1);
     warm_ = nullptr;
-    if (r == 1) warm = self_.stat_;
+    if (focus_ && r == 1) warm = self_.stat_;
     ++out_.by_cause.initial;
     if (r == -2) return glpk_error();
     if (r == 0 && i == 0 && (capped(xhi_) || capped(ulo_) || capped(uhi_))) return Step::Again;

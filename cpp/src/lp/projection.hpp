@@ -148,9 +148,8 @@ class PolytopeProjector {
     std::vector<signed char> stat;
   };
   std::vector<Basis> previous_, current_;  // the LPs of the previous projection, of this one
-  // The optimal bases of the last projection's three initial LPs, where the next grid point's dense simplex
-  // starts them (a few dual pivots, where a start from the support point 120° away took ~30, and the first
-  // direction, with no support point yet, went to GLPK: a third of a shifted-cone projection's time).
+  // With a focus: the optimal bases of the last projection's three initial LPs, where the next grid point's
+  // dense simplex starts them (a few dual pivots, where a start from the support point 120° away took ~30).
   std::vector<signed char> triangle_[3];
   struct Ranging;
   class Run;
