@@ -136,7 +136,7 @@ double chain_product(const JType& Ji, const GType& G, double scale, const std::v
   return top;
 }
 
-// Zeroes out's coefficients on `rows` below `tiny` in magnitude (a select, no branch).
+// Zeroes out's coefficients on `rows` below `tiny` in magnitude.
 template <class Out>
 void zero_tiny(const std::vector<int>& rows, double tiny, Out&& out) {
   for (Eigen::Index e = 0; e < out.cols(); ++e)
