@@ -114,18 +114,16 @@ TEST(WindowPolicy, FarStartIsTheRelativeBracket) {
   EXPECT_FALSE(far_start(policy, 1.0, std::nan("")));
 }
 
-// The chain simplex's pivot budget: the fixed floor on small windows, eight pivots per free point on large
-// ones (a cold start takes about one per point, up to 2.5 in a continuous solve's later rounds), the floor
-// alone on a far start that the barrier may take.
+// The chain simplex's pivot budget: the fixed floor on small windows, two pivots per free point on large ones
+// (a cold start takes about one per point), the floor alone on a far start that the barrier may take.
 TEST(WindowPolicy, ChainPivotBudgetGrowsWithTheWindowUnlessTheStartIsFar) {
   const WindowPolicy policy;
   for (bool barrier : {true, false}) {
     EXPECT_EQ(chain_pivot_budget(policy, window(1, barrier, false)), policy.chain_pivots);
-    EXPECT_EQ(chain_pivot_budget(policy, window(8, barrier, false)), policy.chain_pivots);
-    EXPECT_EQ(chain_pivot_budget(policy, window(9, barrier, false)), 72);
-    EXPECT_EQ(chain_pivot_budget(policy, window(91, barrier, false)), 728);
-    EXPECT_EQ(chain_pivot_budget(policy, window(1999, barrier, false)), 15992);
+    EXPECT_EQ(chain_pivot_budget(policy, window(32, barrier, false)), policy.chain_pivots);
+    EXPECT_EQ(chain_pivot_budget(policy, window(91, barrier, false)), 182);
+    EXPECT_EQ(chain_pivot_budget(policy, window(1999, barrier, false)), 3998);
   }
   EXPECT_EQ(chain_pivot_budget(policy, window(999, true, true)), policy.chain_pivots);
-  EXPECT_EQ(chain_pivot_budget(policy, window(999, false, true)), 7992);  // without the barrier: no one else
+  EXPECT_EQ(chain_pivot_budget(policy, window(999, false, true)), 1998);  // without the barrier: no one else
 }

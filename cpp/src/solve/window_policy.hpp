@@ -26,11 +26,10 @@ struct WindowPolicy {
   int barrier_steps = 300;     ///< the barrier's Newton step budget (then GLPK SLP goes on)
   /// The chain simplex's pivot budget per LP (then the barrier or GLPK): this many, or chain_pivots_per_point
   /// per free point if more. A cold start (the greedy vertex) of a window that every point's row presses
-  /// takes about one pivot per point, more as a guarantee="continuous" solve's cuts accumulate: its later
-  /// rounds' cold starts need up to 2.5 per point (Bland's rule), and a window that runs out goes to GLPK
-  /// SLP, whose LPs cost far more than the pivots it would have saved. Each pivot is one banded solve.
+  /// takes about one pivot per point: a guarantee="continuous" round, whose cuts reach most of the path,
+  /// needed 92 on a 91-point window and went to GLPK SLP at a fixed 64. Each pivot is one banded solve.
   int chain_pivots = 64;
-  double chain_pivots_per_point = 8.0;
+  double chain_pivots_per_point = 2.0;
   int chain_frank_wolfe = 6;   ///< its Frank-Wolfe iterations (then the barrier or GLPK)
 };
 
