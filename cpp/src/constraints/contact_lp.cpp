@@ -99,23 +99,19 @@ Eigen::Matrix3d ContactConstraint::normal_frame(size_t i, const std::vector<Eige
 void ContactConstraint::contact_jacobians(const Eigen::Ref<const Eigen::VectorXd>& q, std::vector<Eigen::Isometry3d>& T,
                                           Eigen::MatrixXd& J, Eigen::Matrix3Xd& gen, const std::vector<int>* use,
                                           bool placed) const {
+  thread_local Eigen::Matrix3Xd axes;
   const int m = use ? static_cast<int>(use->size()) : static_cast<int>(contacts_.size()), k = options_.cone_edges;
   if (!placed) robot_->body_placements(q, T);
+  robot_->joint_axes(T, axes);
   J.setZero(3 * m, robot_->nq());
   gen.resize(3, m * k);
-  auto pose = [&](int body) { return body >= 0 ? T[static_cast<size_t>(body)] : Eigen::Isometry3d::Identity(); };
   for (int i = 0; i < m; ++i) {
     const size_t u = use ? static_cast<size_t>((*use)[static_cast<size_t>(i)]) : static_cast<size_t>(i);
-    const Eigen::Vector3d p = pose(body_[u]) * point_in_body_[u];
-    auto Ji = J.middleRows(3 * i, 3);
-    if (body_[u] >= 0) robot_->add_point_jacobian(T, body_[u], p, 1.0, Ji);
-    if (other_body_[u] >= 0) {
-      // The reaction acts on other_link at the same world point (eq. 17 with both bodies moving).
-      robot_->add_point_jacobian(T, other_body_[u], p, -1.0, Ji);
-      gen.middleCols(i * k, k) = pose(other_body_[u]).linear() * other_in_body_[u].linear() * local_generators_[u];
-    } else {
+    chain_jacobian(u, T, axes, J.middleRows(3 * i, 3));
+    if (other_body_[u] >= 0)
+      gen.middleCols(i * k, k) = T[static_cast<size_t>(other_body_[u])].linear() * other_in_body_[u].linear() * local_generators_[u];
+    else
       gen.middleCols(i * k, k) = local_generators_[u];
-    }
   }
 }
 
@@ -198,7 +194,7 @@ void ContactConstraint::lp_structure(const LpLayout& layout, int extra, detail::
 }
 
 void ContactConstraint::chain_jacobian(size_t u, const std::vector<Eigen::Isometry3d>& T, const Eigen::Matrix3Xd& axes,
-                                       Eigen::MatrixXd& Ji) const {
+                                       Eigen::Ref<Eigen::MatrixXd> Ji) const {
   for (int r : moving_[u]) {  // three stores, not a run-time-length column's memset
     Ji(0, r) = 0.0;
     Ji(1, r) = 0.0;

@@ -150,6 +150,9 @@ void row_slice(const ConstraintRows& rows, Eigen::Index r, double u, double& lo,
   }
 }
 
+// bottom_violation of a row slice (row_slice's lo, hi, u_broken): 1 where a row on u alone breaks u.
+double slice_bottom(double x, double lo, double hi, bool u_broken) { return u_broken ? 1.0 : bottom_violation(x, lo, hi); }
+
 // slice_violation from a polygon's rows (row r of `rows`): the slice at u is where every row a x + b u <= c holds.
 // The slice measures x's distance relative to x's own size, which at rest is rounding over rounding: a
 // timing that leaves rest on the polygon's top edge (x = 0, the top at -1.9e-14 for its u) read as a full
@@ -174,7 +177,7 @@ double row_slice_bottom(const ConstraintRows& rows, Eigen::Index r, double x, do
   double lo, hi;
   bool u_broken;
   row_slice(rows, r, u, lo, hi, u_broken);
-  return u_broken ? 1.0 : bottom_violation(x, lo, hi);
+  return slice_bottom(x, lo, hi, u_broken);
 }
 
 namespace {
@@ -384,7 +387,7 @@ void Auditor::sample_intervals(size_t ci, const Constraint* contact, const std::
           bool u_broken;
           row_slice(grid, k + end, u, lo, hi, u_broken);
           sample.push_back({static_cast<double>(end), row_slice_violation(grid, k + end, x, u, lo, hi, u_broken),
-                            u_broken ? 1.0 : bottom_violation(x, lo, hi)});
+                            slice_bottom(x, lo, hi, u_broken)});
         }
       for (size_t i = first[t]; i < first[t + 1]; ++i) sample.push_back({ls_[i], fc[i], fbot_[i]});
     } else {

@@ -258,7 +258,7 @@ class ContactConstraint : public Constraint, public std::enable_shared_from_this
   // moving_[u] of Ji (3 x nq), given q's placements T and joint axes (RobotModel::joint_axes); Ji's other
   // columns are left as they were.
   void chain_jacobian(size_t u, const std::vector<Eigen::Isometry3d>& T, const Eigen::Matrix3Xd& axes,
-                      Eigen::MatrixXd& Ji) const;
+                      Eigen::Ref<Eigen::MatrixXd> Ji) const;
   // Every contact with its cone weights, no reduction (the force distribution, the infeasibility check);
   // every_point_row: a per-point row even where min_normal_force is 0 (the force distribution's margin
   // counts each point's normal force).
