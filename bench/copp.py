@@ -8,6 +8,7 @@ points with both adjacent s̈ (bench/common.py's oracle, its own spline).
 
     .venv/bin/python bench/copp.py            (about 2 min; prints the table in bench/README.md)
     .venv/bin/python bench/copp.py --seeds 5
+    .venv/bin/python bench/copp.py --seed0 100    (held out: seeds 100-119, paths no session tuned on)
 """
 
 import argparse
@@ -49,6 +50,7 @@ def timed(fns, rounds=5):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=20)
+    ap.add_argument("--seed0", type=int, default=0, help="first seed (the corpus: 0)")
     ap.add_argument("--N", default="100,1000,10000")
     args = ap.parse_args()
     arms = {name: Arm(name) for name in ARMS}
@@ -58,7 +60,7 @@ def main():
     for N in (int(x) for x in args.N.split(",")):
         ratio, t_ours, t_copp, dT, v_ours, v_copp = [], [], [], [], [], []
         for name, arm in arms.items():
-            for seed in range(args.seeds):
+            for seed in range(args.seed0, args.seed0 + args.seeds):
                 wp = waypoints(arm, seed)
                 grid, fns = solvers(arm, wp, N)
                 med, last = timed(fns, rounds=5 if N <= 1000 else 3)

@@ -8,6 +8,7 @@
 #include "base/clock.hpp"
 #include "base/validate.hpp"
 #include "solve/binding.hpp"
+#include "solve/line_reachability.hpp"
 #include "solve/slp.hpp"
 
 namespace pathpace::detail {
@@ -56,6 +57,9 @@ SetsStage grid_sets_stage(const PathSamples& samples, const std::vector<Constrai
 
 namespace {
 
+// How far from feasible (relative) a timing from the analyses by lines may be: rounding.
+constexpr double kLineViolation = 1e-12;
+
 // A stationary piece of path (p' = 0 on a stretch of the grid) that no constraint bounds would be crossed in
 // zero time: the discretised problem has no optimum there (T* is not attained). That is an input error, named
 // by its s-range; a single grid point with p' = 0 (a cusp) is just an unbounded point.
@@ -94,6 +98,54 @@ void bracket(ReachStage& out, double tolerance) {
     out.gap = std::max(0.0, upper - out.T_relaxed) / out.T_relaxed;
     out.proven = true;
   }
+}
+
+// The analyses by lines (solve/line_reachability.hpp) in their common case, instead of the polygons: the
+// greatest element on a lattice, else the bracket, and where it does not prove the optimum the full
+// analysis for the SLP (ReachStage::lines). A profile they prove must meet the grid points' own rows (eq. 26)
+// to rounding (kLineViolation) before it stands for the polygons' answer. False, with `out` untouched,
+// where they do not apply, or a profile stops on an interval (avoid_stopped_profile reads the polygons): the
+// polygons then decide.
+bool line_stage(const GridSets& sets, double tolerance, ReachStage& out) {
+  const Chain& chain = out.chain;
+  LineAnalysis relaxed, full;
+  if (!line_analysis(chain, true, out.th0, out.thN, relaxed)) return false;
+  auto exact = [&](const Eigen::VectorXd& theta) {
+    return !has_stopped_interval(theta) && grid_violation(chain, sets, theta, nullptr) <= kLineViolation;
+  };
+  if (chain.lattice) {
+    // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
+    if (!exact(relaxed.theta)) return false;
+    out.theta = std::move(relaxed.theta);
+    out.proven = true;
+    return true;
+  }
+  const double T_relaxed = duration(chain.ds, relaxed.theta);
+  bool proven = false;
+  double gap = 0.0;
+  Eigen::VectorXd theta;
+  if (coupled_violation(chain, relaxed.theta) <= 1e-12 && exact(relaxed.theta)) {
+    theta = relaxed.theta;
+    proven = true;
+  } else {
+    if (!line_analysis(chain, false, out.th0, out.thN, full, &relaxed) || has_stopped_interval(full.theta))
+      return false;
+    const double upper = duration(chain.ds, full.theta);
+    if (upper - T_relaxed <= tolerance * T_relaxed && exact(full.theta)) {
+      gap = std::max(0.0, upper - T_relaxed) / T_relaxed;
+      proven = true;
+    }
+    theta = full.theta;
+  }
+  out.relaxed = std::make_unique<Reachability>();
+  out.relaxed->theta = std::move(relaxed.theta);
+  out.have_full = true;
+  out.T_relaxed = T_relaxed;
+  out.theta = std::move(theta);
+  out.gap = gap;
+  out.proven = proven;
+  if (!proven) out.lines = std::make_unique<LineAnalysis>(std::move(full));
+  return true;
 }
 
 // The full analysis alone (no bracket: a lattice, Method::Slp, or the relaxed analysis did not end feasible);
@@ -139,6 +191,10 @@ ReachStage reachability_stage(const PathSamples& samples, const SetsStage& sets,
   out.th0 = sdot_begin * sdot_begin / sets.scale.x_unit;
   out.thN = sdot_end * sdot_end / sets.scale.x_unit;
   out.T_relaxed = std::numeric_limits<double>::quiet_NaN();
+  if (options.method == Method::Auto && line_stage(sets.sets, options.tolerance, out)) {
+    out.seconds = seconds_since(t0);
+    return out;
+  }
   if (!out.chain.lattice && options.method == Method::Auto) bracket(out, options.tolerance);
   if (!out.have_full && !full_analysis(samples, out, options.method)) return out;
   // A proven θ is the answer even if it stops on an interval (every feasible profile does, then).
@@ -175,17 +231,14 @@ void slp_status(SlpOutcome::Status st, const SolverOptions& options, const std::
   }
 }
 
-// SLP on windows around the intervals where θ' breaks a coupling row (see solve/slp.hpp); without θ'
-// (Method::Slp, or the relaxed analysis did not end feasible) one window, the whole chain, under θ_hi. Every
-// feasible θ_k is also below the backward-controllable bound K_k (tighter than x_hi, which is the solve's cap
-// where nothing bounds ṡ² alone: a column bound of 1e100 would not help GLPK).
-Certified by_slp(const SetsStage& sets, const ReachStage& reach, const SolverOptions& options, const Budget& budget) {
+// SLP on windows from `start` (solve/slp.hpp), its timing checked in the grid points' own terms and labelled.
+// `excess`: how far the SLP's repaired timing is from feasible (relative; +inf if it needed the
+// exact-feasibility step).
+Certified slp_certified(const SetsStage& sets, const Chain& chain, const SlpStart& start, const SolverOptions& options,
+                        const Budget& budget, double& excess) {
   Certified out;
   const auto t0 = std::chrono::steady_clock::now();
-  const Chain& chain = reach.chain;
-  const Eigen::VectorXd upper = reach.have_full ? reach.relaxed->theta : chain.x_hi.cwiseMin(reach.reach.k_hi);
-  const SlpOutcome slp = windowed_slp(chain, {reach.reach, upper, reach.have_full, reach.th0, reach.T_relaxed},
-                                      slp_limits(options, budget.deadline));
+  const SlpOutcome slp = windowed_slp(chain, start, slp_limits(options, budget.deadline));
   out.seconds = seconds_since(t0);
   out.slp_iterations = slp.iterations;
   out.lp_solves = slp.lp_solves;
@@ -208,6 +261,7 @@ Certified by_slp(const SetsStage& sets, const ReachStage& reach, const SolverOpt
                               " (relative, certified)"
                         : "the timing returned is NOT feasible: it breaks a constraint by " + fmt(violation) +
                               " (relative); T exceeds the optimum by at most " + fmt(out.gap);
+  excess = T_increase > 0.0 ? std::numeric_limits<double>::infinity() : violation;
   slp_status(slp.status, options, bound, out);
   if (violation > 1e-9) {
     // Whatever ended the SLP, a timing that breaks a row is not a result to execute (ok() is false).
@@ -216,6 +270,37 @@ Certified by_slp(const SetsStage& sets, const ReachStage& reach, const SolverOpt
     out.status = Status::NumericalError;
   }
   return out;
+}
+
+// SLP on windows around the intervals where θ' breaks a coupling row (see solve/slp.hpp); without θ'
+// (Method::Slp, or the relaxed analysis did not end feasible) one window, the whole chain, under θ_hi. Every
+// feasible θ_k is also below the backward-controllable bound K_k (tighter than x_hi, which is the solve's cap
+// where nothing bounds ṡ² alone: a column bound of 1e100 would not help GLPK). From the analyses by lines the
+// timing must meet every row to rounding (kLineViolation) without the exact-feasibility step; where it does
+// not, the polygons' analyses run and repair instead (their slices interpolate between vertices, which no
+// steep row can throw off).
+Certified by_slp(const SetsStage& sets, const ReachStage& reach, const SolverOptions& options, const Budget& budget) {
+  const Chain& chain = reach.chain;
+  const double th0 = reach.th0;
+  double excess = 0.0;
+  if (reach.lines) {
+    const LineAnalysis& full = *reach.lines;
+    const SlpStart start{full.theta, [&](const Eigen::VectorXd& caps) { return line_forward_pass(chain, full, th0, caps); },
+                         reach.relaxed->theta, true, reach.T_relaxed};
+    Certified out = slp_certified(sets, chain, start, options, budget, excess);
+    if (excess <= kLineViolation) return out;
+    Reachability relaxed, polygons;
+    if (!reachability_pair(chain, th0, reach.thN, relaxed, polygons)) return out;
+    const SlpStart again{polygons.theta, [&](const Eigen::VectorXd& caps) { return forward_pass(polygons, th0, &caps); },
+                         relaxed.theta, true, duration(chain.ds, relaxed.theta)};
+    Certified by_polygons = slp_certified(sets, chain, again, options, budget, excess);
+    by_polygons.seconds += out.seconds;
+    return by_polygons;
+  }
+  const Eigen::VectorXd upper = reach.have_full ? reach.relaxed->theta : chain.x_hi.cwiseMin(reach.reach.k_hi);
+  const SlpStart start{reach.reach.theta, [&](const Eigen::VectorXd& caps) { return forward_pass(reach.reach, th0, &caps); },
+                       upper, reach.have_full, reach.T_relaxed};
+  return slp_certified(sets, chain, start, options, budget, excess);
 }
 
 // The greatest element and the bracketed profile are read off the reachability polygons: checked in the grid

@@ -19,6 +19,7 @@
 #include "pathpace/result.hpp"
 #include "pathpace/solver_options.hpp"
 #include "solve/grid_sets.hpp"
+#include "solve/line_reachability.hpp"
 #include "solve/reachability.hpp"
 
 namespace pathpace::detail {
@@ -60,6 +61,9 @@ struct ReachStage {
   /// The relaxed analysis (when have_full); on the heap because `reach` may point into it (Reachability::base).
   std::unique_ptr<Reachability> relaxed;
   Reachability reach;
+  /// The full analysis by lines when it stands in for `reach` (which then holds nothing): its greedy profile
+  /// starts the SLP's windows and its capped pass repairs their result (see line_stage in pipeline.cpp).
+  std::unique_ptr<LineAnalysis> lines;
   bool have_full = false;  ///< the relaxed and full analyses both ran and ended feasible
   bool proven = false;     ///< theta is the optimum, or within the tolerance of it, without SLP
   double T_relaxed = 0.0;  ///< T(θ') when have_full (a lower bound on T*), else NaN

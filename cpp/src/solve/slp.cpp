@@ -174,9 +174,7 @@ SlpLimits slp_limits(const SolverOptions& options, Clock::time_point deadline) {
 }
 
 SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimits& limits) {
-  const Reachability& full = start.full;
   const Eigen::VectorXd& upper = start.upper;
-  const double theta_begin = start.theta_begin;
   double T_upper = start.T_upper;
   SlpOutcome out;
   const Eigen::Index n = chain.intervals();
@@ -188,7 +186,7 @@ SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimi
     // ramps before and after): the stretches where θ_g < θ', widened by a margin, are the first windows.
     // Each contains the intervals it must (where θ' breaks a coupling row, θ_g, which is feasible, differs
     // from it at one end at least).
-    const Eigen::VectorXd& g = full.theta;
+    const Eigen::VectorXd& g = start.greedy;
     auto below = [&](Eigen::Index j) { return g[j] < upper[j] - 1e-12 * std::max(upper[j], 1e-300); };
     for (Eigen::Index j = 0; j <= n; ++j) {
       if (!below(j)) continue;
@@ -225,7 +223,7 @@ SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimi
   for (;;) {
     for (Window& w : ws) {
       if (w.solved) continue;
-      w.result = slp_window({chain, upper, full.theta, rel_target, limits}, {w.a, w.b, w.a == 0, w.b == n}, lp);
+      w.result = slp_window({chain, upper, start.greedy, rel_target, limits}, {w.a, w.b, w.a == 0, w.b == n}, lp);
       out.newton_steps += w.result.newton_steps;
       w.solved = true;
       out.iterations += w.result.iterations;
@@ -242,7 +240,7 @@ SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimi
       lower += std::max(w.t_upper, w.result.lower) - w.t_upper;
       T_z += w.result.T - w.t_upper;  // T(z), from the windows' parts
     }
-    out.theta = forward_pass(full, theta_begin, &z);  // θ_0 = theta_begin
+    out.theta = start.repair(z);
     out.lower = lower;
     out.T = duration(chain.ds, out.theta);
     // The repair can lose far more than z's infeasibility (GLPK's tolerance): where the rows bound θ_{k+1}
@@ -253,7 +251,7 @@ SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimi
       const double eps = shrink_to_rows(chain, z);
       if (!std::isnan(eps) && eps < 1e-6) {
         const Eigen::VectorXd shrunk = z * (1.0 - eps);
-        Eigen::VectorXd alt = forward_pass(full, theta_begin, &shrunk);
+        Eigen::VectorXd alt = start.repair(shrunk);
         const double T_alt = duration(chain.ds, alt);
         if (T_alt < out.T) {
           out.theta = std::move(alt);

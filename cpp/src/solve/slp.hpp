@@ -17,6 +17,7 @@
 // is returned is made exactly feasible by the capped forward pass, and its T - LB is the certified gap.
 
 #include <chrono>
+#include <functional>
 #include <limits>
 
 #include <Eigen/Core>
@@ -59,14 +60,15 @@ SlpLimits slp_limits(const SolverOptions& options, Clock::time_point deadline);
 /// Where the SLP starts. `upper` bounds every feasible θ componentwise and satisfies every row except on the
 /// intervals the first windows must cover: the relaxed greatest element θ' with `relaxed` = true (windows
 /// around the intervals where it violates a coupling row), or any bound (e.g. θ_hi) with `relaxed` = false
-/// (one window, the whole chain). `full` is the full reachability analysis: its greedy profile is each
-/// window's feasible start and its polygons repair the result. θ_0 = theta_begin. T_upper is T(upper) when
-/// the caller has it (NaN: computed here).
+/// (one window, the whole chain). `greedy` is the full reachability analysis's greedy profile, each window's
+/// feasible start, and `repair` that analysis's capped greedy pass (forward_pass on its polygons, or
+/// line_forward_pass from the start speed): it makes the result exactly feasible. T_upper is T(upper) when the
+/// caller has it (NaN: computed here).
 struct SlpStart {
-  const Reachability& full;
+  const Eigen::VectorXd& greedy;
+  std::function<Eigen::VectorXd(const Eigen::VectorXd& caps)> repair;
   const Eigen::VectorXd& upper;
   bool relaxed;
-  double theta_begin;
   double T_upper = std::numeric_limits<double>::quiet_NaN();
 };
 
