@@ -182,3 +182,31 @@ TEST(LineReachability, GivesWayOutsideTheCommonCase) {
   // θ_{k+1} <= θ_k - 2 with θ_{k+1} >= 0 leaves no θ_k in [0, 1]: K_k is empty (the polygons name the rows).
   EXPECT_FALSE(line_analysis(hand_chain(8, {{-1.0, 1.0, -2.0, 4}, down}), false, 0.0, 0.0, a));
 }
+
+// On a fine grid whose intervals span three decades (N = 10^5) a line's value is exact to eps θ, which is
+// eps θ / (2Δs) in s̈: the proven profile breaks a grid row by ~1e-10 before the exact-feasibility step
+// scales it to 1e-12, at a cost in T that the gap carries. Its T is then inside the polygons' bracket.
+TEST(LineReachability, FineGridProofIsMadeExact) {
+  std::mt19937 rng(11);
+  const ArmCase c = arm_case(rng, 100000, 6, false);
+  const SetsStage sets = grid_sets_stage(c.samples, c.rows, 0.0, 0.0);
+  ASSERT_FALSE(sets.stop);
+  SolverOptions options;
+  const ReachStage reach = reachability_stage(c.samples, sets, nullptr, 0.0, 0.0, options);
+  ASSERT_FALSE(reach.stop);
+  ASSERT_EQ(reach.reach.theta.size(), 0);  // the lines stood in for the polygons
+  ASSERT_TRUE(reach.proven);
+  EXPECT_LE(grid_violation(reach.chain, sets.sets, reach.theta, nullptr), 1e-12);
+  // The step had work to do: the profiles as the lines leave them break a row by more than rounding.
+  LineAnalysis lr, lf;
+  ASSERT_TRUE(line_analysis(reach.chain, true, 0.0, 0.0, lr));
+  ASSERT_TRUE(line_analysis(reach.chain, false, 0.0, 0.0, lf, &lr));
+  EXPECT_GT(std::min(grid_violation(reach.chain, sets.sets, lr.theta, nullptr),
+                     grid_violation(reach.chain, sets.sets, lf.theta, nullptr)), 1e-12);
+  Reachability relaxed, full;
+  ASSERT_TRUE(reachability_pair(reach.chain, 0.0, 0.0, relaxed, full));
+  const double T = duration(reach.chain.ds, reach.theta), lower = duration(reach.chain.ds, relaxed.theta);
+  EXPECT_GE(T, lower * (1 - 1e-12));
+  EXPECT_LE(T, lower * (1 + reach.gap + 1e-12));
+  EXPECT_LE(reach.gap, options.tolerance);
+}

@@ -102,47 +102,55 @@ void bracket(ReachStage& out, double tolerance) {
 
 // The analyses by lines (solve/line_reachability.hpp) in their common case, instead of the polygons: the
 // greatest element on a lattice, else the bracket, and where it does not prove the optimum the full
-// analysis for the SLP (ReachStage::lines). A profile they prove must meet the grid points' own rows (eq. 26)
-// to rounding (kLineViolation) before it stands for the polygons' answer. False, with `out` untouched,
-// where they do not apply, or a profile stops on an interval (avoid_stopped_profile reads the polygons): the
-// polygons then decide.
+// analysis for the SLP (ReachStage::lines). A profile they prove is made to meet the grid points' own rows
+// (eq. 26) to rounding (kLineViolation) by the exact-feasibility step, whose cost in T joins the gap (on a
+// fine grid a line's value is exact to eps θ, which is eps θ / (2Δs) in s̈: 1e-11 of a row at N = 10^6).
+// False, with `out` untouched, where they do not apply, or a profile stops on an interval
+// (avoid_stopped_profile reads the polygons): the polygons then decide.
 bool line_stage(const GridSets& sets, double tolerance, ReachStage& out) {
   const Chain& chain = out.chain;
   LineAnalysis relaxed, full;
   if (!line_analysis(chain, true, out.th0, out.thN, relaxed)) return false;
-  auto exact = [&](const Eigen::VectorXd& theta) {
-    return !has_stopped_interval(theta) && grid_violation(chain, sets, theta, nullptr) <= kLineViolation;
+  // A proven profile, made exact: T's growth (relative) that the step cost, or NaN if it does not make it.
+  auto exact = [&](Eigen::VectorXd& theta) {
+    double T_increase = 0.0;
+    const bool ok = !has_stopped_interval(theta) &&
+                    exact_feasibility_step(chain, sets, theta, nullptr, &T_increase, kLineViolation) <= kLineViolation;
+    return ok ? T_increase : std::numeric_limits<double>::quiet_NaN();
   };
   if (chain.lattice) {
     // Greatest element of a max-closed feasible set: optimal with no LP at all (see Chain::lattice).
-    if (!exact(relaxed.theta)) return false;
+    const double cost = exact(relaxed.theta);
+    if (!(cost <= tolerance)) return false;
     out.theta = std::move(relaxed.theta);
+    out.gap = cost;
     out.proven = true;
     return true;
   }
   const double T_relaxed = duration(chain.ds, relaxed.theta);
-  bool proven = false;
-  double gap = 0.0;
   Eigen::VectorXd theta;
-  if (coupled_violation(chain, relaxed.theta) <= 1e-12 && exact(relaxed.theta)) {
-    theta = relaxed.theta;
-    proven = true;
-  } else {
+  double gap = std::numeric_limits<double>::quiet_NaN();
+  if (coupled_violation(chain, relaxed.theta) <= 1e-12) {
+    theta = relaxed.theta;  // the optimum: θ' meets the rows it was relaxed of
+    gap = exact(theta);
+  }
+  if (!(gap <= tolerance)) {
     if (!line_analysis(chain, false, out.th0, out.thN, full, &relaxed) || has_stopped_interval(full.theta))
       return false;
-    const double upper = duration(chain.ds, full.theta);
-    if (upper - T_relaxed <= tolerance * T_relaxed && exact(full.theta)) {
-      gap = std::max(0.0, upper - T_relaxed) / T_relaxed;
-      proven = true;
-    }
     theta = full.theta;
+    const double upper = duration(chain.ds, theta);
+    gap = std::numeric_limits<double>::quiet_NaN();
+    if (upper - T_relaxed <= tolerance * T_relaxed)
+      gap = std::max(0.0, upper * (1.0 + exact(theta)) - T_relaxed) / T_relaxed;  // NaN if not made exact
+    if (!(gap <= tolerance)) theta = full.theta;  // the SLP starts from the greedy profile itself
   }
+  const bool proven = gap <= tolerance;
   out.relaxed = std::make_unique<Reachability>();
   out.relaxed->theta = std::move(relaxed.theta);
   out.have_full = true;
   out.T_relaxed = T_relaxed;
   out.theta = std::move(theta);
-  out.gap = gap;
+  out.gap = proven ? gap : 0.0;
   out.proven = proven;
   if (!proven) out.lines = std::make_unique<LineAnalysis>(std::move(full));
   return true;
@@ -231,15 +239,11 @@ void slp_status(SlpOutcome::Status st, const SolverOptions& options, const std::
   }
 }
 
-// SLP on windows from `start` (solve/slp.hpp), its timing checked in the grid points' own terms and labelled.
-// `excess`: how far the SLP's repaired timing is from feasible (relative; +inf if it needed the
-// exact-feasibility step).
-Certified slp_certified(const SetsStage& sets, const Chain& chain, const SlpStart& start, const SolverOptions& options,
-                        const Budget& budget, double& excess) {
+// The SLP's timing (solve/slp.hpp) checked in the grid points' own terms, made exact to `target` (the
+// exact-feasibility step) and labelled. `excess`: how far the timing is from feasible then (relative).
+Certified slp_certified(const SetsStage& sets, const Chain& chain, const SlpOutcome& slp, const SolverOptions& options,
+                        double target, double& excess) {
   Certified out;
-  const auto t0 = std::chrono::steady_clock::now();
-  const SlpOutcome slp = windowed_slp(chain, start, slp_limits(options, budget.deadline));
-  out.seconds = seconds_since(t0);
   out.slp_iterations = slp.iterations;
   out.lp_solves = slp.lp_solves;
   out.windows = slp.windows;
@@ -247,7 +251,7 @@ Certified slp_certified(const SetsStage& sets, const Chain& chain, const SlpStar
   out.newton_steps = slp.newton_steps;
   out.theta = slp.theta;
   double T_increase = 0.0;
-  const double grid_excess = exact_feasibility_step(chain, sets.sets, out.theta, nullptr, &T_increase);
+  const double grid_excess = exact_feasibility_step(chain, sets.sets, out.theta, nullptr, &T_increase, target);
   const double T = slp.T * (1.0 + T_increase);
   out.gap = slp.lower > 0.0 ? std::max(0.0, T - slp.lower) / slp.lower : std::numeric_limits<double>::infinity();
   // The repair (forward_pass) returns a profile that meets every row to rounding; checked, not assumed, before a
@@ -261,7 +265,7 @@ Certified slp_certified(const SetsStage& sets, const Chain& chain, const SlpStar
                               " (relative, certified)"
                         : "the timing returned is NOT feasible: it breaks a constraint by " + fmt(violation) +
                               " (relative); T exceeds the optimum by at most " + fmt(out.gap);
-  excess = T_increase > 0.0 ? std::numeric_limits<double>::infinity() : violation;
+  excess = violation;
   slp_status(slp.status, options, bound, out);
   if (violation > 1e-9) {
     // Whatever ended the SLP, a timing that breaks a row is not a result to execute (ok() is false).
@@ -275,32 +279,46 @@ Certified slp_certified(const SetsStage& sets, const Chain& chain, const SlpStar
 // SLP on windows around the intervals where θ' breaks a coupling row (see solve/slp.hpp); without θ'
 // (Method::Slp, or the relaxed analysis did not end feasible) one window, the whole chain, under θ_hi. Every
 // feasible θ_k is also below the backward-controllable bound K_k (tighter than x_hi, which is the solve's cap
-// where nothing bounds ṡ² alone: a column bound of 1e100 would not help GLPK). From the analyses by lines the
-// timing must meet every row to rounding (kLineViolation) without the exact-feasibility step; where it does
-// not, the polygons' analyses run and repair instead (their slices interpolate between vertices, which no
-// steep row can throw off).
+// where nothing bounds ṡ² alone: a column bound of 1e100 would not help GLPK). Repaired by the lines (when
+// they stand in for the polygons) the timing is made to meet every row to rounding (kLineViolation), as
+// line_stage's; where the exact-feasibility step cannot, the polygons' analysis is built and repairs the same
+// iterates again (their slices interpolate between exact vertices).
 Certified by_slp(const SetsStage& sets, const ReachStage& reach, const SolverOptions& options, const Budget& budget) {
+  const auto t0 = std::chrono::steady_clock::now();
   const Chain& chain = reach.chain;
   const double th0 = reach.th0;
+  const SlpLimits limits = slp_limits(options, budget.deadline);
   double excess = 0.0;
+  Certified out;
   if (reach.lines) {
     const LineAnalysis& full = *reach.lines;
-    const SlpStart start{full.theta, [&](const Eigen::VectorXd& caps) { return line_forward_pass(chain, full, th0, caps); },
-                         reach.relaxed->theta, true, reach.T_relaxed};
-    Certified out = slp_certified(sets, chain, start, options, budget, excess);
-    if (excess <= kLineViolation) return out;
+    SlpOutcome slp = windowed_slp(
+        chain, {full.theta, [&](const Eigen::VectorXd& caps) { return line_forward_pass(chain, full, th0, caps); },
+                reach.relaxed->theta, true, reach.T_relaxed},
+        limits);
+    double seconds = seconds_since(t0);
+    out = slp_certified(sets, chain, slp, options, kLineViolation, excess);
+    // The windows' iterates and their bound stand; only the repair is done again, on the polygons.
     Reachability relaxed, polygons;
-    if (!reachability_pair(chain, th0, reach.thN, relaxed, polygons)) return out;
-    const SlpStart again{polygons.theta, [&](const Eigen::VectorXd& caps) { return forward_pass(polygons, th0, &caps); },
-                         relaxed.theta, true, duration(chain.ds, relaxed.theta)};
-    Certified by_polygons = slp_certified(sets, chain, again, options, budget, excess);
-    by_polygons.seconds += out.seconds;
-    return by_polygons;
+    const auto t1 = std::chrono::steady_clock::now();
+    if (excess > kLineViolation && reachability_pair(chain, th0, reach.thN, relaxed, polygons)) {
+      slp.theta = forward_pass(polygons, th0, &slp.caps);
+      slp.T = duration(chain.ds, slp.theta);
+      seconds += seconds_since(t1);
+      out = slp_certified(sets, chain, slp, options, 1e-9, excess);
+    }
+    out.seconds = seconds;
+  } else {
+    const Eigen::VectorXd upper = reach.have_full ? reach.relaxed->theta : chain.x_hi.cwiseMin(reach.reach.k_hi);
+    const SlpOutcome slp = windowed_slp(
+        chain, {reach.reach.theta, [&](const Eigen::VectorXd& caps) { return forward_pass(reach.reach, th0, &caps); },
+                upper, reach.have_full, reach.T_relaxed},
+        limits);
+    const double seconds = seconds_since(t0);
+    out = slp_certified(sets, chain, slp, options, 1e-9, excess);
+    out.seconds = seconds;
   }
-  const Eigen::VectorXd upper = reach.have_full ? reach.relaxed->theta : chain.x_hi.cwiseMin(reach.reach.k_hi);
-  const SlpStart start{reach.reach.theta, [&](const Eigen::VectorXd& caps) { return forward_pass(reach.reach, th0, &caps); },
-                       upper, reach.have_full, reach.T_relaxed};
-  return slp_certified(sets, chain, start, options, budget, excess);
+  return out;
 }
 
 // The greatest element and the bracketed profile are read off the reachability polygons: checked in the grid

@@ -134,18 +134,18 @@ double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::Vec
 }
 
 double exact_feasibility_step(const Chain& chain, const GridSets& sets, Eigen::VectorXd& theta, Eigen::Index* where,
-                              double* T_increase) {
+                              double* T_increase, double target) {
   *T_increase = 0.0;
   const double v0 = grid_violation(chain, sets, theta, where);
   const Eigen::Index n = chain.intervals();
   // Boundary speeds other than rest are the user's: a scaled profile would not meet them.
-  if (v0 <= 1e-9 || v0 > 1e-6 || theta[0] != 0.0 || theta[n] != 0.0) return v0;
+  if (v0 <= target || v0 > 1e-6 || theta[0] != 0.0 || theta[n] != 0.0) return v0;
   double shrink = 4.0 * v0;
   for (int attempt = 0; attempt < 3; ++attempt, shrink *= 2.0) {
     const Eigen::VectorXd scaled = theta / (1.0 + shrink);
     Eigen::Index at = -1;
     const double v = grid_violation(chain, sets, scaled, &at);
-    if (v <= 1e-9) {
+    if (v <= target) {
       *T_increase = std::sqrt(1.0 + shrink) - 1.0;  // T ∝ 1 / sqrt(θ) (eq. 25)
       theta = scaled;
       if (where) *where = at;

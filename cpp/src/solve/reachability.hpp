@@ -90,13 +90,14 @@ double bound_violation(const Chain& chain, const Eigen::VectorXd& theta);
 /// and hide an s̈ that breaks its limit on a fine grid. x_lo/x_hi as bound_violation does.
 double grid_violation(const Chain& chain, const GridSets& sets, const Eigen::VectorXd& theta, Eigen::Index* where);
 
-/// The last exact-feasibility step: where θ (from rest to rest) breaks a grid point's row by more than 1e-9
-/// but by rounding only (<= 1e-6, relative), θ scaled down by 1 / (1 + 4 v), up to three times doubling the
-/// shrink, until it meets every row to 1e-9 (rows with c > 0, as speed and acceleration limits have, hold
-/// with room at a lower speed). Returns grid_violation of the θ it leaves and sets *T_increase to the relative
-/// growth of T (added to the certified gap); θ is unchanged when the step does not help.
+/// The last exact-feasibility step: where θ (from rest to rest) breaks a grid point's row by more than
+/// `target` but by rounding only (<= 1e-6, relative), θ scaled down by 1 / (1 + 4 v), up to three times
+/// doubling the shrink, until it meets every row to `target` (rows with c > 0, as speed and acceleration
+/// limits have, hold with room at a lower speed). Returns grid_violation of the θ it leaves and sets
+/// *T_increase to the relative growth of T (added to the certified gap); θ is unchanged when the step does
+/// not help.
 double exact_feasibility_step(const Chain& chain, const GridSets& sets, Eigen::VectorXd& theta, Eigen::Index* where,
-                              double* T_increase);
+                              double* T_increase, double target = 1e-9);
 
 struct Reachability {
   enum class Outcome { Feasible, Infeasible, Unbounded };

@@ -241,6 +241,7 @@ SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimi
       T_z += w.result.T - w.t_upper;  // T(z), from the windows' parts
     }
     out.theta = start.repair(z);
+    out.caps = z;
     out.lower = lower;
     out.T = duration(chain.ds, out.theta);
     // The repair can lose far more than z's infeasibility (GLPK's tolerance): where the rows bound θ_{k+1}
@@ -255,6 +256,7 @@ SlpOutcome windowed_slp(const Chain& chain, const SlpStart& start, const SlpLimi
         const double T_alt = duration(chain.ds, alt);
         if (T_alt < out.T) {
           out.theta = std::move(alt);
+          out.caps = shrunk;
           out.T = T_alt;
         }
       }

@@ -33,6 +33,7 @@ struct SlpOutcome {
   enum class Status { Converged, IterationLimit, TimeLimit, LpFailed };
   Status status = Status::Converged;
   Eigen::VectorXd theta;  // feasible profile (repaired by the capped forward pass)
+  Eigen::VectorXd caps;   // what the repair was capped by: the windows' iterates between stretches of `upper`
   double T = 0.0;         // its duration, T(theta)
   double lower = 0.0;     // certified lower bound on T*
   int iterations = 0;     // SLP iterations, all windows
