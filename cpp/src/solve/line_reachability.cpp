@@ -51,7 +51,8 @@ struct Ln {
   double P, Q;
 };
 struct IntervalLines {
-  std::vector<Ln> up, lo;  // rows with β > 0, β < 0
+  std::vector<Ln> up, lo;  // rows with β > 0, β < 0: [0, n_up), [0, n_lo) (sized once, never shrunk)
+  std::size_t n_up = 0, n_lo = 0;
   bool c_nonnegative = true;
 };
 
@@ -59,14 +60,18 @@ struct IntervalLines {
 // of those is infeasible on its own or bounds x from below above x_lo (then K_k's bottom is not x_lo), or if a
 // row is steep (see kSteep).
 bool interval_lines(View<Line> rows, double x_lo, double& x_top, IntervalLines& L) {
-  L.up.clear();
-  L.lo.clear();
-  L.c_nonnegative = true;
+  if (L.up.size() < rows.n) L.up.resize(rows.n), L.lo.resize(rows.n);
+  // Written through pointers, counted in locals: push_back would check the capacity and store the vector's
+  // end at every row.
+  Ln* up = L.up.data();
+  Ln* lo = L.lo.data();
+  std::size_t n_up = 0, n_lo = 0;
+  bool c_nonnegative = true;
   for (const Line& r : rows) {
-    L.c_nonnegative = L.c_nonnegative && r.c >= 0.0;
+    c_nonnegative = c_nonnegative && r.c >= 0.0;
     if (r.b != 0.0) {
       if (std::abs(r.a) > kSteep * std::abs(r.b)) return false;
-      (r.b > 0.0 ? L.up : L.lo).push_back({r.c / r.b, -r.a / r.b});
+      (r.b > 0.0 ? up[n_up++] : lo[n_lo++]) = {r.c / r.b, -r.a / r.b};
     } else if (r.a > 0.0) {
       x_top = std::min(x_top, r.c / r.a);
     } else if (r.a < 0.0) {
@@ -75,6 +80,9 @@ bool interval_lines(View<Line> rows, double x_lo, double& x_top, IntervalLines& 
       return false;
     }
   }
+  L.n_up = n_up;
+  L.n_lo = n_lo;
+  L.c_nonnegative = c_nonnegative;
   return x_top >= x_lo;
 }
 
@@ -84,11 +92,13 @@ struct Active {
 };
 Active active(const IntervalLines& L, double x, double y_lo, double y_hi) {
   Active e{y_hi, y_lo, y_hi, 0.0, y_lo, 0.0};
-  for (const Ln& l : L.up) {
+  for (std::size_t i = 0; i < L.n_up; ++i) {
+    const Ln& l = L.up[i];
     const double v = l.P + l.Q * x;
     if (v < e.hi || (v == e.hi && l.Q > e.hi_Q)) e.hi = v, e.hi_P = l.P, e.hi_Q = l.Q;
   }
-  for (const Ln& l : L.lo) {
+  for (std::size_t i = 0; i < L.n_lo; ++i) {
+    const Ln& l = L.lo[i];
     const double v = l.P + l.Q * x;
     if (v > e.lo || (v == e.lo && l.Q < e.lo_Q)) e.lo = v, e.lo_P = l.P, e.lo_Q = l.Q;
   }
