@@ -1,5 +1,5 @@
 #pragma once
-// The relaxation's bracket (sec. V, eq. 26) without polygons, for the common case.
+// The reachability analyses (sec. V, eq. 26) and the SLP's repair pass without polygons, for the common case.
 //
 // On interval k (x = θ_k, y = θ_{k+1}) a chain row α x + β y <= c with β > 0 bounds y from above by the
 // line (c - α x) / β, one with β < 0 from below, one with β = 0 bounds x alone. With y also in K_{k+1},
@@ -7,13 +7,14 @@
 // g = Hi - Lo is concave and K_k = {x : g(x) >= 0} an interval, whose top is g's largest root (Newton's
 // method from the top of the box with g's left derivative: from the right of the root each step lands in
 // [root, x), and on it once the two active lines are the root's), and the greedy pass takes y = Hi(θ_k).
-// The polygons of detail::reachability (Polygon2d per interval, with vertices) give the same two analyses
-// to rounding; the windows and the reports need them, the bracket alone does not.
+// detail::reachability's polygons (Polygon2d per interval, with vertices) give the same analyses to rounding;
+// the reports (which rows empty a set) and avoid_stopped_profile still need them.
 //
 // The common case: every K_k's bottom is the box's (x_lo[k], as from rest on velocity and acceleration
-// limits), Newton ends on every interval and no number overflows. Anywhere else this says so and the
-// polygons decide. Either way the profile is checked in the grid points' own terms (eq. 26) before it is
-// used (solve/pipeline.cpp).
+// limits), no row is steep (kSteep in the .cpp: the polygons read a near-vertical edge as vertical, lines
+// cannot), Newton ends on every interval and no number overflows. Anywhere else this says so and the
+// polygons decide. What the lines return is made exact in the grid points' own terms (eq. 26) before it is
+// used (line_stage and by_slp in solve/pipeline.cpp).
 
 #include <Eigen/Core>
 
