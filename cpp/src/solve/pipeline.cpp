@@ -124,7 +124,7 @@ bool line_stage(const GridSets& sets, double tolerance, ReachStage& out) {
     if (!(cost <= tolerance)) return false;
     out.theta = std::move(relaxed.theta);
     out.gap = cost;
-    out.proven = true;
+    out.proven = out.exact = true;
     return true;
   }
   const double T_relaxed = duration(chain.ds, relaxed.theta);
@@ -151,7 +151,7 @@ bool line_stage(const GridSets& sets, double tolerance, ReachStage& out) {
   out.T_relaxed = T_relaxed;
   out.theta = std::move(theta);
   out.gap = proven ? gap : 0.0;
-  out.proven = proven;
+  out.proven = out.exact = proven;
   if (!proven) out.lines = std::make_unique<LineAnalysis>(std::move(full));
   return true;
 }
@@ -332,7 +332,9 @@ Certified proven(const PathSamples& samples, const SetsStage& sets, const ReachS
   out.binding = binding_labels(reach.chain, sets.sets, out.theta);
   Eigen::Index at = -1;
   double T_increase = 0.0;
-  const double violation = exact_feasibility_step(reach.chain, sets.sets, out.theta, &at, &T_increase);
+  // line_stage's profiles come made exact to kLineViolation already (ReachStage::exact).
+  const double violation =
+      reach.exact ? 0.0 : exact_feasibility_step(reach.chain, sets.sets, out.theta, &at, &T_increase);
   // Its cost in T is part of the gap (the greatest element is then within T_increase of the optimum).
   if (T_increase > 0.0) {
     out.gap += T_increase;

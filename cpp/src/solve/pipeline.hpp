@@ -66,6 +66,7 @@ struct ReachStage {
   std::unique_ptr<LineAnalysis> lines;
   bool have_full = false;  ///< the relaxed and full analyses both ran and ended feasible
   bool proven = false;     ///< theta is the optimum, or within the tolerance of it, without SLP
+  bool exact = false;      ///< theta (proven) already meets the grid points' rows to rounding (line_stage)
   double T_relaxed = 0.0;  ///< T(θ') when have_full (a lower bound on T*), else NaN
   double gap = 0.0;        ///< the bracket's certified gap, when proven by it
   double seconds = 0.0;
