@@ -19,31 +19,22 @@ namespace {
 // At 1e5 an arm's row is steep only where the grid lands within ~1e-5 Δs of a joint's reversal.
 constexpr double kSteep = 1e5;
 
-// Hi and Lo of interval k at x (see the header): Hi = min(y_hi, the lines of the rows with β > 0), Lo =
-// max(y_lo, the lines of the rows with β < 0), each with the row active just left of x (on a tie the one
-// with the larger slope for Hi, the smaller for Lo: g's left derivative). nullptr: the box side.
-struct Envelopes {
+// The slice [Lo, Hi] of interval k's set at x for the greedy pass and the repair (see the header): Hi =
+// min(y_hi, the lines of the rows with β > 0), Lo = max(y_lo, those with β < 0), one division per row.
+struct Slice {
   double hi, lo;
-  const Line* hi_row = nullptr;
-  const Line* lo_row = nullptr;
 };
 
-double slope(const Line* r) { return r ? -r->a / r->b : 0.0; }
-
-Envelopes envelopes(View<Line> rows, double x, double y_lo, double y_hi) {
-  Envelopes e{y_hi, y_lo};
+Slice slice(View<Line> rows, double x, double y_lo, double y_hi) {
+  Slice e{y_hi, y_lo};
   for (const Line& r : rows) {
-    if (r.b == 0.0) continue;  // a bound on x alone: in the box (x_bounds)
+    if (r.b == 0.0) continue;  // a bound on x alone: in the box (interval_lines)
     const double v = (r.c - r.a * x) / r.b;
-    if (r.b > 0.0) {
-      if (v < e.hi || (v == e.hi && slope(&r) > slope(e.hi_row))) e.hi = v, e.hi_row = &r;
-    } else if (v > e.lo || (v == e.lo && slope(&r) < slope(e.lo_row))) {
-      e.lo = v, e.lo_row = &r;
-    }
+    if (r.b > 0.0) e.hi = std::min(e.hi, v);
+    else e.lo = std::max(e.lo, v);
   }
   return e;
 }
-
 
 // Interval k's lines y = P + Q x in the backward pass, where each is evaluated a few times (two divisions
 // once, then one multiply-add each time).
@@ -86,7 +77,8 @@ bool interval_lines(View<Line> rows, double x_lo, double& x_top, IntervalLines& 
   return x_top >= x_lo;
 }
 
-// g = min(y_hi, up) - max(y_lo, lo) at x, with the lines active just left of x (see envelopes).
+// g = min(y_hi, up) - max(y_lo, lo) at x, each with the line active just left of x (on a tie the one with the
+// larger slope for Hi, the smaller for Lo: g's left derivative); the box sides have slope 0.
 struct Active {
   double hi, lo, hi_P, hi_Q, lo_P, lo_Q;
 };
@@ -190,7 +182,7 @@ bool line_analysis(const Chain& chain, bool relaxed, double theta_begin, double 
       theta[k + 1] = x = base->theta[k + 1];
       continue;
     }
-    const Envelopes e = envelopes(block(chain, relaxed, k), x, y_low(chain, a, k + 1), k_hi[k + 1]);
+    const Slice e = slice(block(chain, relaxed, k), x, y_low(chain, a, k + 1), k_hi[k + 1]);
     // θ_k at K_k's top, a root found to rounding, may see Hi a few ulps below Lo: the top is the slice.
     if (!meets(e.hi, e.lo, 1e-13) || !std::isfinite(e.hi)) return false;
     theta[k + 1] = x = e.hi;
@@ -212,7 +204,7 @@ Eigen::VectorXd line_forward_pass(const Chain& chain, const LineAnalysis& a, dou
       continue;
     }
     const double x = std::clamp(theta[k], chain.x_lo[k], a.k_hi[k]);
-    const Envelopes e = envelopes(block(chain, a.relaxed, k), x, y_low(chain, a, k + 1), a.k_hi[k + 1]);
+    const Slice e = slice(block(chain, a.relaxed, k), x, y_low(chain, a, k + 1), a.k_hi[k + 1]);
     theta[k + 1] = std::max(std::min(caps[k + 1], e.hi), std::min(e.lo, e.hi));
   }
   return theta;
