@@ -205,7 +205,7 @@ Eigen::VectorXd line_forward_pass(const Chain& chain, const LineAnalysis& a, dou
     }
     const double x = std::clamp(theta[k], chain.x_lo[k], a.k_hi[k]);
     const Slice e = slice(block(chain, a.relaxed, k), x, y_low(chain, a, k + 1), a.k_hi[k + 1]);
-    theta[k + 1] = std::max(std::min(caps[k + 1], e.hi), std::min(e.lo, e.hi));
+    theta[k + 1] = std::clamp(caps[k + 1], std::min(e.lo, e.hi), e.hi);  // a vertex to rounding: its top
   }
   return theta;
 }

@@ -287,37 +287,27 @@ Certified by_slp(const SetsStage& sets, const ReachStage& reach, const SolverOpt
   const auto t0 = std::chrono::steady_clock::now();
   const Chain& chain = reach.chain;
   const double th0 = reach.th0;
-  const SlpLimits limits = slp_limits(options, budget.deadline);
+  const LineAnalysis* lines = reach.lines.get();
+  const Eigen::VectorXd upper = reach.have_full ? reach.relaxed->theta : chain.x_hi.cwiseMin(reach.reach.k_hi);
+  auto repair = [&](const Eigen::VectorXd& caps) {
+    return lines ? line_forward_pass(chain, *lines, th0, caps) : forward_pass(reach.reach, th0, &caps);
+  };
+  SlpOutcome slp = windowed_slp(chain, {lines ? lines->theta : reach.reach.theta, repair, upper, reach.have_full,
+                                        reach.T_relaxed},
+                                slp_limits(options, budget.deadline));
+  double seconds = seconds_since(t0);
   double excess = 0.0;
-  Certified out;
-  if (reach.lines) {
-    const LineAnalysis& full = *reach.lines;
-    SlpOutcome slp = windowed_slp(
-        chain, {full.theta, [&](const Eigen::VectorXd& caps) { return line_forward_pass(chain, full, th0, caps); },
-                reach.relaxed->theta, true, reach.T_relaxed},
-        limits);
-    double seconds = seconds_since(t0);
-    out = slp_certified(sets, chain, slp, options, kLineViolation, excess);
-    // The windows' iterates and their bound stand; only the repair is done again, on the polygons.
-    Reachability relaxed, polygons;
-    const auto t1 = std::chrono::steady_clock::now();
-    if (excess > kLineViolation && reachability_pair(chain, th0, reach.thN, relaxed, polygons)) {
-      slp.theta = forward_pass(polygons, th0, &slp.caps);
-      slp.T = duration(chain.ds, slp.theta);
-      seconds += seconds_since(t1);
-      out = slp_certified(sets, chain, slp, options, 1e-9, excess);
-    }
-    out.seconds = seconds;
-  } else {
-    const Eigen::VectorXd upper = reach.have_full ? reach.relaxed->theta : chain.x_hi.cwiseMin(reach.reach.k_hi);
-    const SlpOutcome slp = windowed_slp(
-        chain, {reach.reach.theta, [&](const Eigen::VectorXd& caps) { return forward_pass(reach.reach, th0, &caps); },
-                upper, reach.have_full, reach.T_relaxed},
-        limits);
-    const double seconds = seconds_since(t0);
+  Certified out = slp_certified(sets, chain, slp, options, lines ? kLineViolation : 1e-9, excess);
+  // The windows' iterates and their bound stand; only the repair is done again, on the polygons.
+  Reachability relaxed, polygons;
+  const auto t1 = std::chrono::steady_clock::now();
+  if (lines && excess > kLineViolation && reachability_pair(chain, th0, reach.thN, relaxed, polygons)) {
+    slp.theta = forward_pass(polygons, th0, &slp.caps);
+    slp.T = duration(chain.ds, slp.theta);
+    seconds += seconds_since(t1);
     out = slp_certified(sets, chain, slp, options, 1e-9, excess);
-    out.seconds = seconds;
   }
+  out.seconds = seconds;
   return out;
 }
 
