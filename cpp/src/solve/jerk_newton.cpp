@@ -18,6 +18,8 @@
 #include <limits>
 #include <vector>
 
+#include "lp/band_ldlt.hpp"
+#include "solve/jerk_row_groups.hpp"
 #include "solve/jerk_rows.hpp"
 
 namespace pathpace::detail {
@@ -25,63 +27,6 @@ namespace pathpace::detail {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kBand = 4;
-
-// Symmetric band matrix (lower band stored), LDLᵀ in place.
-class BandLdlt {
- public:
-  explicit BandLdlt(Eigen::Index m) : m_(m), a_(m * (kBand + 1)), f_(m * (kBand + 1)) {}
-  void clear() { std::fill(a_.begin(), a_.end(), 0.0); }
-  void add(Eigen::Index i, Eigen::Index j, double v) {
-    if (i < j) std::swap(i, j);
-    a_[static_cast<size_t>(i * (kBand + 1) + (i - j))] += v;
-  }
-  double at(Eigen::Index i, Eigen::Index j) const {
-    if (i < j) std::swap(i, j);
-    return i - j > kBand ? 0.0 : a_[static_cast<size_t>(i * (kBand + 1) + (i - j))];
-  }
-  // Factors A + diag(reg); false if a pivot is not finite or zero.
-  bool factor(const Eigen::VectorXd& reg) {
-    f_ = a_;
-    for (Eigen::Index i = 0; i < m_; ++i) f_[idx(i, i)] += reg[i];
-    for (Eigen::Index i = 0; i < m_; ++i) {
-      const Eigen::Index j0 = std::max<Eigen::Index>(0, i - kBand);
-      for (Eigen::Index j = j0; j < i; ++j) {
-        double v = f_[idx(i, j)];
-        for (Eigen::Index k = std::max(j0, j - kBand); k < j; ++k) v -= f_[idx(i, k)] * f_[idx(j, k)] * f_[idx(k, k)];
-        f_[idx(i, j)] = v / f_[idx(j, j)];
-      }
-      double d = f_[idx(i, i)];
-      for (Eigen::Index k = j0; k < i; ++k) d -= f_[idx(i, k)] * f_[idx(i, k)] * f_[idx(k, k)];
-      if (!(std::abs(d) > 0) || !std::isfinite(d)) return false;
-      f_[idx(i, i)] = d;
-    }
-    return true;
-  }
-  void solve(Eigen::VectorXd& x) const {
-    for (Eigen::Index i = 0; i < m_; ++i)
-      for (Eigen::Index k = std::max<Eigen::Index>(0, i - kBand); k < i; ++k) x[i] -= f_[idx(i, k)] * x[k];
-    for (Eigen::Index i = 0; i < m_; ++i) x[i] /= f_[idx(i, i)];
-    for (Eigen::Index i = m_ - 1; i >= 0; --i)
-      for (Eigen::Index k = i + 1; k <= std::min(m_ - 1, i + kBand); ++k) x[i] -= f_[idx(k, i)] * x[k];
-  }
-  // y = A x (unregularised).
-  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-    y.setZero(m_);
-    for (Eigen::Index i = 0; i < m_; ++i)
-      for (Eigen::Index j = std::max<Eigen::Index>(0, i - kBand); j <= i; ++j) {
-        const double v = a_[idx(i, j)];
-        y[i] += v * x[j];
-        if (j != i) y[j] += v * x[i];
-      }
-  }
-
- private:
-  size_t idx(Eigen::Index i, Eigen::Index j) const { return static_cast<size_t>(i * (kBand + 1) + (i - j)); }
-  Eigen::Index m_;
-  std::vector<double> a_, f_;
-};
-
 struct Problem {
   const JerkShape& sh;
   Eigen::VectorXd lo, hi;
@@ -92,40 +37,43 @@ struct Problem {
   // KKT position of column c (θ_k -> 3k, b_k -> 3k + 1) and of interval k's multiplier.
   Eigen::Index pos(Eigen::Index c) const { return c < nb ? 3 * c : 3 * (c - nb) + 1; }
   Eigen::Index nu_pos(Eigen::Index k) const { return 3 * k + 2; }
-  double n_ineq() const {
-    double m = static_cast<double>(point.size() + jerk.size());
+  double n_ineq(std::size_t rows) const {
+    double m = static_cast<double>(rows);
     for (Eigen::Index c = 0; c < 2 * nb; ++c)
       if (free[static_cast<size_t>(c)]) m += (lo[c] > -kInf) + (hi[c] < kInf);
     return m;
   }
 };
 
-// The rows at x̄: the point rows, then the jerk rows linearised at x̄. The point rows do not depend on x̄, nor
-// does a jerk row but for its θ coefficient and right-hand side: once `rows` holds them, only those two are
-// written (JerkLimitRow::relinearise), √θ̄ once per grid point (a step re-linearises every row twice).
-void rows_at(const Problem& p, const Eigen::VectorXd& xbar, std::vector<JerkRow>& rows) {
-  const size_t np = p.point.size();
-  if (rows.size() != np + p.jerk.size()) {
-    rows.resize(np + p.jerk.size());
-    std::copy(p.point.begin(), p.point.end(), rows.begin());
-    for (size_t i = 0; i < p.jerk.size(); ++i) rows[np + i] = p.jerk[i].linearised(xbar[p.jerk[i].point]);
-    return;
-  }
-  Eigen::Index at = -1;
-  double tb = 0.0, root = 0.0;
-  for (size_t i = 0; i < p.jerk.size(); ++i) {
-    const JerkLimitRow& j = p.jerk[i];
-    if (j.point != at) at = j.point, tb = std::max(xbar[at], 1e-300), root = std::sqrt(tb);
-    j.relinearise(rows[np + i], tb, root);
-  }
+// max(0, f(0), ..., f(n - 1)) and Σ f(k) with four independent partial results: one running maximum or sum
+// waits on each step (the per-row passes of an interior-point iteration are over ~40 rows per grid point).
+template <class F>
+double max_over(size_t n, F f) {
+  double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
+  size_t k = 0;
+  for (; k + 4 <= n; k += 4)
+    m0 = std::max(m0, f(k)), m1 = std::max(m1, f(k + 1)), m2 = std::max(m2, f(k + 2)), m3 = std::max(m3, f(k + 3));
+  for (; k < n; ++k) m0 = std::max(m0, f(k));
+  return std::max(std::max(m0, m1), std::max(m2, m3));
+}
+template <class F>
+double sum_over(size_t n, F f) {
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  size_t k = 0;
+  for (; k + 4 <= n; k += 4) s0 += f(k), s1 += f(k + 1), s2 += f(k + 2), s3 += f(k + 3);
+  for (; k < n; ++k) s0 += f(k);
+  return (s0 + s1) + (s2 + s3);
 }
 
-bool strictly_inside(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x) {
+// Whether x is strictly inside every row (slacks into s) and bound.
+bool strictly_inside(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, std::vector<double>& s) {
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c)
     if (p.free[static_cast<size_t>(c)] && !(x[c] > p.lo[c] && x[c] < p.hi[c])) return false;
-  for (const JerkRow& r : rows)
-    if (!(r.rhs - r.dot(x) > 0)) return false;
-  return true;
+  s.resize(rows.size());
+  rows.slacks(x, s.data());
+  bool inside = true;
+  for (double v : s) inside &= v > 0;
+  return inside;
 }
 
 // Σ log s over positive s as the log of their product, one log per 8 factors: the product's exponent is taken
@@ -161,12 +109,14 @@ class LogSum {
 };
 
 // φ at x for the rows as given (+inf outside).
-double barrier_value(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t) {
+double barrier_value(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double t,
+                     std::vector<double>& slack) {
   const double T = jerk_quadrature_time(p.sh, x, nullptr, nullptr);
   if (!std::isfinite(T)) return kInf;
   LogSum logs;
-  for (const JerkRow& r : rows) {
-    const double s = r.rhs - r.dot(x);
+  slack.resize(rows.size());
+  rows.slacks(x, slack.data());
+  for (double s : slack) {
     if (!(s > 0)) return kInf;
     logs.add(s);
   }
@@ -189,8 +139,9 @@ struct Step {
   Eigen::VectorXd gT, d, nu;  // ∇T at x̄, the Newton step, the consistency multipliers (of φ / t)
   double dec2 = 0;            // Newton decrement², -∇φ·d
   std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, their multipliers
-  std::vector<double> inv_slack, lam;
+  std::vector<double> inv_slack, lam, weight, scratch;
   Eigen::VectorXd scale;      // the KKT matrix's symmetric scaling (solve_kkt)
+  Eigen::VectorXd kkt_b, kkt_y, kkt_r;  // solve_kkt's scratch
   BandLdlt Ks;
 };
 
@@ -202,14 +153,15 @@ struct PdTerms {
 };
 
 // ∇φ at x̄: t ∇T plus each row's and bound's γ / slack along its normal (γ = 1: the barrier's).
-void kkt_gradient(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t,
-                  const std::vector<double>& inv, const PdTerms* pd, const Eigen::VectorXd& gT, Eigen::VectorXd& g) {
+void kkt_gradient(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double t,
+                  const std::vector<double>& inv, const PdTerms* pd, const Eigen::VectorXd& gT, std::vector<double>& w,
+                  Eigen::VectorXd& g) {
   g = t * gT;
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const JerkRow& r = rows[k];
-    const double w = pd ? pd->grad_row[k] * inv[k] : inv[k];
-    for (int i = 0; i < r.n; ++i) g[r.col[i]] += w * r.val[i];
+  if (pd) {
+    w.resize(rows.size());
+    for (size_t k = 0; k < w.size(); ++k) w[k] = pd->grad_row[k] * inv[k];
   }
+  rows.scatter(pd ? w.data() : inv.data(), g);
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
     if (!p.free[static_cast<size_t>(c)]) {
       g[c] = 0;
@@ -223,18 +175,19 @@ void kkt_gradient(const Problem& p, const std::vector<JerkRow>& rows, const Eige
 // The KKT system's solution for the gradient g with the factorisation of newton_step: st.d, st.nu (of φ / t), dec2.
 bool solve_kkt(const Problem& p, const Eigen::VectorXd& g, double t, Step& st) {
   const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m);
-  for (Eigen::Index c = 0; c < nx; ++c) rhs[p.pos(c)] = -g[c];
+  Eigen::VectorXd &b = st.kkt_b, &y = st.kkt_y, &r = st.kkt_r;
+  b.setZero(m);
+  for (Eigen::Index c = 0; c < nx; ++c) b[p.pos(c)] = -g[c] * st.scale[p.pos(c)];
   const BandLdlt& Ks = st.Ks;
-  Eigen::VectorXd b = st.scale.cwiseProduct(rhs), y = b, r;
+  y = b;
   Ks.solve(y);
   for (int it = 0; it < 2; ++it) {  // iterative refinement against the unregularised Â
     Ks.multiply(y, r);
-    Eigen::VectorXd corr = b - r;
-    Ks.solve(corr);
-    y += corr;
+    r = b - r;
+    Ks.solve(r);
+    y += r;
   }
-  y = y.cwiseProduct(st.scale);
+  y.array() *= st.scale.array();
   st.d.resize(nx);
   for (Eigen::Index c = 0; c < nx; ++c) st.d[c] = p.free[static_cast<size_t>(c)] ? y[p.pos(c)] : 0.0;
   st.nu.resize(p.sh.n);
@@ -245,8 +198,8 @@ bool solve_kkt(const Problem& p, const Eigen::VectorXd& g, double t, Step& st) {
 
 // The Newton step of φ_t^x̄ at x̄ subject to the consistency rows (with `pd`, the primal-dual system of the same
 // shape). False if the factorisation fails.
-bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double t, BandLdlt& K,
-                 Step& st, const PdTerms* pd = nullptr) {
+bool newton_step(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double t, BandLdlt& K,
+                 Step& st, const PdTerms* pd = nullptr, const std::vector<double>* inv_slack = nullptr) {
   const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
   std::vector<double>& hT = st.hT;
   jerk_quadrature_time(p.sh, x, &st.gT, &hT);
@@ -270,15 +223,20 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
   // The rows' 1 / slack first, in a pass of their own: each a division whose latency the assembly below
   // would wait for row by row.
   std::vector<double>& inv = st.inv_slack;
-  inv.resize(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) inv[k] = rows[k].rhs - rows[k].dot(x);
-  for (double& v : inv) v = 1.0 / v;
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const JerkRow& r = rows[k];
-    const double w2 = pd ? pd->hess_row[k] : inv[k] * inv[k];
-    for (int i = 0; i < r.n; ++i)
-      for (int j = 0; j <= i; ++j) addH(r.col[i], r.col[j], w2 * r.val[i] * r.val[j]);
+  if (inv_slack) {
+    inv = *inv_slack;
+  } else {
+    inv.resize(rows.size());
+    rows.slacks(x, inv.data());
+    for (double& v : inv) v = 1.0 / v;
   }
+  const double* w2 = pd ? pd->hess_row.data() : nullptr;
+  if (!pd) {
+    st.weight.resize(rows.size());
+    for (size_t k = 0; k < inv.size(); ++k) st.weight[k] = inv[k] * inv[k];
+    w2 = st.weight.data();
+  }
+  rows.hessian(w2, [&](int c1, int c2, double v) { K.add(p.pos(c1), p.pos(c2), v); });
   for (Eigen::Index c = 0; c < nx; ++c) {
     if (!is_free(c)) {
       K.add(p.pos(c), p.pos(c), 1.0);
@@ -310,24 +268,25 @@ bool newton_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen
   }
   // Scale in place: Â = S A S.
   BandLdlt& Ks = st.Ks;
-  Ks.clear();
-  for (Eigen::Index i = 0; i < m; ++i)
-    for (Eigen::Index j = std::max<Eigen::Index>(0, i - kBand); j <= i; ++j) Ks.add(i, j, scale[i] * K.at(i, j) * scale[j]);
+  Ks.scaled(K, scale);
   for (Eigen::Index c = 0; c < nx; ++c) reg[p.pos(c)] = 1e-11;
   for (Eigen::Index k = 0; k < p.sh.n; ++k) reg[p.nu_pos(k)] = -1e-11;
   if (!Ks.factor(reg)) return false;
   Eigen::VectorXd g;
-  kkt_gradient(p, rows, x, t, inv, pd, st.gT, g);
+  kkt_gradient(p, rows, x, t, inv, pd, st.gT, st.weight, g);
   return solve_kkt(p, g, t, st);
 }
 
 // The largest step along d keeping every slack and bound positive.
-double max_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, const Eigen::VectorXd& d) {
+double max_step(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, const Eigen::VectorXd& d,
+                Step& st) {
   double amax = kInf;
-  for (const JerkRow& r : rows) {
-    const double ad = r.dot(d);
-    if (ad > 0) amax = std::min(amax, (r.rhs - r.dot(x)) / ad);
-  }
+  std::vector<double>&s = st.scratch, &ad = st.weight;
+  s.resize(rows.size()), ad.resize(rows.size());
+  rows.slacks(x, s.data());
+  rows.products(d, ad.data());
+  for (size_t k = 0; k < s.size(); ++k)
+    if (ad[k] > 0) amax = std::min(amax, s[k] / ad[k]);
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
     if (!p.free[static_cast<size_t>(c)]) continue;
     if (d[c] < 0 && p.lo[c] > -kInf) amax = std::min(amax, (x[c] - p.lo[c]) / -d[c]);
@@ -339,15 +298,11 @@ double max_step(const Problem& p, const std::vector<JerkRow>& rows, const Eigen:
 // Lower bound on min T over the problem linearised at x (convex), from multipliers λ_r >= 0 of its rows and ν of
 // its consistency rows: T(y) >= T(x) + ∇T·(y - x) >= T(x) - ∇T·x - λ·c + Σ_j min_{lo_j <= y_j <= hi_j} coef_j y_j,
 // coef = ∇T + Σ λ_r a_r + Eᵀν (weak duality: any λ >= 0 and ν give a bound, the closer to optimal the tighter).
-double lagrangian_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
+double lagrangian_bound(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double T,
                         const Eigen::VectorXd& gT, const Eigen::VectorXd& nu, const std::vector<double>& lam) {
   Eigen::VectorXd coef = gT;
-  double lower = T - gT.dot(x);
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const JerkRow& r = rows[k];
-    for (int i = 0; i < r.n; ++i) coef[r.col[i]] += lam[k] * r.val[i];
-    lower -= lam[k] * r.rhs;
-  }
+  double lower = T - gT.dot(x) - rows.weighted_rhs(lam.data());
+  rows.scatter(lam.data(), coef);
   for (Eigen::Index k = 0; k < p.sh.n; ++k) {
     const JerkRow& e = p.consistency[static_cast<size_t>(k)];
     for (int i = 0; i < e.n; ++i) coef[e.col[i]] += nu[k] * e.val[i];
@@ -363,14 +318,15 @@ double lagrangian_bound(const Problem& p, const std::vector<JerkRow>& rows, cons
 
 // The barrier's bound: λ_r = (1 + a_r·d / s_r) / (t s_r) (the barrier's multiplier after the step d, to first
 // order; solve/barrier.hpp), clipped at 0.
-double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, const Eigen::VectorXd& x, double T,
+double multiplier_bound(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double T,
                         double t, Step& st) {
-  std::vector<double>& lam = st.lam;
-  lam.resize(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const JerkRow& r = rows[k];
-    const double s = r.rhs - r.dot(x);
-    lam[k] = std::max(0.0, 1.0 + r.dot(st.d) / s) / (t * s);
+  std::vector<double>&lam = st.lam, &ad = st.scratch;
+  lam.resize(rows.size()), ad.resize(rows.size());
+  rows.slacks(x, lam.data());
+  rows.products(st.d, ad.data());
+  for (size_t k = 0; k < lam.size(); ++k) {
+    const double s = lam[k];
+    lam[k] = std::max(0.0, 1.0 + ad[k] / s) / (t * s);
   }
   return lagrangian_bound(p, rows, x, T, st.gT, st.nu, lam);
 }
@@ -385,7 +341,7 @@ double multiplier_bound(const Problem& p, const std::vector<JerkRow>& rows, cons
 // its iterations, or a step fails, the barrier path runs from the same start. True: x certified to `tolerance`.
 // One function, longer than a screen: an iteration's stages (predictor, centring, corrector, certificate, step)
 // share a dozen per-row and per-bound vectors that a split would pass around.
-bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& x, double T, double tolerance,
+bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, double T, double tolerance,
                  JerkOutput& out, std::chrono::steady_clock::time_point deadline) {
   const Eigen::Index nb = p.nb, nx = 2 * nb;
   const size_t R = rows.size();
@@ -395,18 +351,19 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
   pd.hess_row.resize(R), pd.grad_row.resize(R);
   for (Eigen::VectorXd* v : {&pd.hess_lo, &pd.hess_hi, &pd.grad_lo, &pd.grad_hi}) v->setZero(nx);
   // Slacks (rows, then each finite bound of a free unknown) and their multipliers; g_lo, g_hi 0 where no bound.
-  std::vector<double> s(R), lam(R), ds(R), dlam(R), ds_aff(R), dlam_aff(R), lam_full(R);
+  std::vector<double> s(R), lam(R), ds(R), dlam(R), ds_aff(R), dlam_aff(R), lam_full(R), s_next(R);
+  std::vector<double> inv_s(R), inv_lam(R);  // 1 / s and 1 / λ at the iterate: the ratio tests multiply
   Eigen::VectorXd glo = Eigen::VectorXd::Zero(nx), ghi = glo, zlo = glo, zhi = glo, zlo_aff = glo, zhi_aff = glo;
   auto has_lo = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] && p.lo[c] > -kInf; };
   auto has_hi = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] && p.hi[c] < kInf; };
-  auto slacks = [&]() {
-    for (size_t k = 0; k < R; ++k) s[k] = rows[k].rhs - rows[k].dot(x);
+  auto bound_slacks = [&]() {
     for (Eigen::Index c = 0; c < nx; ++c) {
       if (has_lo(c)) glo[c] = x[c] - p.lo[c];
       if (has_hi(c)) ghi[c] = p.hi[c] - x[c];
     }
   };
-  slacks();
+  rows.slacks(x, s.data());
+  bound_slacks();
   double m = static_cast<double>(R);
   for (Eigen::Index c = 0; c < nx; ++c) m += has_lo(c) + has_hi(c);
   const double mu0 = T / m;  // the barrier's first centre: a duality gap of T
@@ -420,13 +377,15 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
   // γ of pd's gradient terms: 0 for the predictor), and the largest primal and dual steps keeping s, λ > 0.
   auto directions = [&](const Eigen::VectorXd& dx, std::vector<double>& dsv, std::vector<double>& dl,
                         Eigen::VectorXd& dzlo, Eigen::VectorXd& dzhi, double& ap, double& ad) {
-    ap = ad = kInf;
+    rows.products(dx, dsv.data());
     for (size_t k = 0; k < R; ++k) {
-      dsv[k] = -rows[k].dot(dx);
-      dl[k] = (pd.grad_row[k] - lam[k] * s[k] - lam[k] * dsv[k]) / s[k];
-      if (dsv[k] < 0) ap = std::min(ap, -s[k] / dsv[k]);
-      if (dl[k] < 0) ad = std::min(ad, -lam[k] / dl[k]);
+      dsv[k] = -dsv[k];
+      dl[k] = (pd.grad_row[k] - lam[k] * s[k] - lam[k] * dsv[k]) * inv_s[k];
     }
+    const double rp = max_over(R, [&](size_t k) { return -dsv[k] * inv_s[k]; });
+    const double rd = max_over(R, [&](size_t k) { return -dl[k] * inv_lam[k]; });
+    ap = rp > 0 ? 1.0 / rp : kInf;
+    ad = rd > 0 ? 1.0 / rd : kInf;
     for (Eigen::Index c = 0; c < nx; ++c) {
       if (has_lo(c)) {
         dzlo[c] = (pd.grad_lo[c] - zlo[c] * glo[c] - zlo[c] * dx[c]) / glo[c];
@@ -442,8 +401,7 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
   };
   auto gap_mu = [&](double ap, double ad, const std::vector<double>& dsv, const std::vector<double>& dl,
                     const Eigen::VectorXd& dx, const Eigen::VectorXd& dzlo, const Eigen::VectorXd& dzhi) {
-    double sum = 0;
-    for (size_t k = 0; k < R; ++k) sum += (s[k] + ap * dsv[k]) * (lam[k] + ad * dl[k]);
+    double sum = sum_over(R, [&](size_t k) { return (s[k] + ap * dsv[k]) * (lam[k] + ad * dl[k]); });
     for (Eigen::Index c = 0; c < nx; ++c) {
       if (has_lo(c)) sum += (glo[c] + ap * dx[c]) * (zlo[c] + ad * dzlo[c]);
       if (has_hi(c)) sum += (ghi[c] - ap * dx[c]) * (zhi[c] + ad * dzhi[c]);
@@ -456,13 +414,14 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
   for (int it = 0; it < max_iterations; ++it) {
     if (std::chrono::steady_clock::now() >= deadline) return false;
     // The predictor: γ = 0.
-    for (size_t k = 0; k < R; ++k) pd.hess_row[k] = lam[k] / s[k], pd.grad_row[k] = 0.0;
+    for (size_t k = 0; k < R; ++k) inv_s[k] = 1.0 / s[k], inv_lam[k] = 1.0 / lam[k];
+    for (size_t k = 0; k < R; ++k) pd.hess_row[k] = lam[k] * inv_s[k], pd.grad_row[k] = 0.0;
     for (Eigen::Index c = 0; c < nx; ++c) {
       pd.hess_lo[c] = has_lo(c) ? zlo[c] / glo[c] : 0.0;
       pd.hess_hi[c] = has_hi(c) ? zhi[c] / ghi[c] : 0.0;
       pd.grad_lo[c] = pd.grad_hi[c] = 0.0;
     }
-    if (!newton_step(p, rows, x, 1.0, K, st, &pd)) return false;
+    if (!newton_step(p, rows, x, 1.0, K, st, &pd, &inv_s)) return false;
     ++out.newton_steps;
     dx_aff = st.d;
     double ap = 0, ad = 0;
@@ -479,7 +438,7 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
       if (has_lo(c)) pd.grad_lo[c] = target - dx_aff[c] * zlo_aff[c];
       if (has_hi(c)) pd.grad_hi[c] = target + dx_aff[c] * zhi_aff[c];
     }
-    kkt_gradient(p, rows, x, 1.0, st.inv_slack, &pd, st.gT, g);
+    kkt_gradient(p, rows, x, 1.0, st.inv_slack, &pd, st.gT, st.weight, g);
     if (!solve_kkt(p, g, 1.0, st)) return false;
     const Eigen::VectorXd dx = st.d;
     directions(dx, ds, dlam, dzlo, dzhi, ap, ad);
@@ -496,8 +455,8 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
     double T_next = kInf;
     for (int back = 0;; ++back) {
       next = x + ap * dx;
-      rows_at(p, next, rows);
-      T_next = strictly_inside(p, rows, next) ? jerk_quadrature_time(p.sh, next, nullptr, nullptr) : kInf;
+      rows.relinearise(next);
+      T_next = strictly_inside(p, rows, next, s_next) ? jerk_quadrature_time(p.sh, next, nullptr, nullptr) : kInf;
       if (std::isfinite(T_next) || back == 30) break;
       ap *= 0.5;
     }
@@ -507,7 +466,8 @@ bool primal_dual(const Problem& p, std::vector<JerkRow>& rows, Eigen::VectorXd& 
     T = T_next;
     for (size_t k = 0; k < R; ++k) lam[k] += ad * dlam[k];
     zlo += ad * dzlo, zhi += ad * dzhi;
-    slacks();
+    std::swap(s, s_next);  // the rows' slacks at the new x, linearised there
+    bound_slacks();
   }
   return false;
 }
@@ -598,12 +558,13 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
   // x must be strictly feasible; every fixed value 0 (rest to rest: the starts are slowed by scaling).
   for (Eigen::Index c = 0; c < nx; ++c)
     if (!p.free[static_cast<size_t>(c)] && lo[c] != 0) return false;
-  std::vector<JerkRow> rows;
+  JerkRowGroups rows(p.point, p.jerk, p.free);
+  std::vector<double> slack;
   Eigen::VectorXd xs = x;
-  rows_at(p, xs, rows);
-  if (!strictly_inside(p, rows, xs)) return false;
+  rows.relinearise(xs);
+  if (!strictly_inside(p, rows, xs, slack)) return false;
 
-  const double n_ineq = p.n_ineq();
+  const double n_ineq = p.n_ineq(rows.size());
   double T = jerk_quadrature_time(sh, xs, nullptr, nullptr);
   if (!std::isfinite(T)) return false;
   const double t_final = n_ineq / (0.25 * in.tolerance * T);  // T here is the start's, above the answer's
@@ -625,7 +586,7 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
   x = xs;
   for (out.newton_steps = 0; out.newton_steps < max_steps; ++out.newton_steps) {
     if ((out.newton_steps & 7) == 7 && std::chrono::steady_clock::now() >= deadline) break;
-    rows_at(p, x, rows);
+    rows.relinearise(x);
     if (!newton_step(p, rows, x, t, K, st)) break;
     const bool final_t = t >= t_final;
     // At the final t and near its centre the bound is taken at every step (O(rows)): it certifies as soon as
@@ -642,16 +603,17 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
         continue;
       }
     }
-    double alpha = std::min(1.0, 0.99 * max_step(p, rows, x, st.d));
+    double alpha = std::min(1.0, 0.99 * max_step(p, rows, x, st.d, st));
     if (st.dec2 >= 0.1) {
-      const double phi0 = barrier_value(p, rows, x, t);
+      const double phi0 = barrier_value(p, rows, x, t, slack);
       for (int ls = 0; ls < 60; ++ls, alpha *= 0.5)
-        if (barrier_value(p, rows, x + alpha * st.d, t) <= phi0 - 0.25 * alpha * st.dec2) break;
+        if (barrier_value(p, rows, x + alpha * st.d, t, slack) <= phi0 - 0.25 * alpha * st.dec2) break;
     }
     next = x + alpha * st.d;
-    rows_at(p, next, rows);
+    rows.relinearise(next);
     bool centred = st.dec2 <= 0.5;
-    const double T_next = strictly_inside(p, rows, next) ? jerk_quadrature_time(sh, next, nullptr, nullptr) : kInf;
+    const double T_next =
+        strictly_inside(p, rows, next, slack) ? jerk_quadrature_time(sh, next, nullptr, nullptr) : kInf;
     if (!std::isfinite(T_next)) {
       if (st.dec2 > 1e-3) break;
       centred = true;  // rounding at a tiny decrement: stay, as if centred

@@ -1,0 +1,122 @@
+// The grouped rows of the structured jerk solve (solve/jerk_row_groups.hpp) against the same rows one by one
+// (JerkRow, JerkLimitRow::linearised): seeded rows of a chain of grid points, the limit rows of each point given
+// constraint by constraint (so one point's rows are far apart in the input), jerk rows on both sides, rows next
+// to a rest end (two unknowns), and terms on fixed unknowns that the groups drop. The groups store the rows in
+// their own order, so every comparison is of an order-free quantity: the sorted slacks, and Σ f(s_r) a_r and
+// Σ f(s_r) a_r a_rᵀ with weights that are functions of each row's slack.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "solve/jerk_row_groups.hpp"
+
+using namespace pathpace::detail;
+
+namespace {
+
+struct RowCase {
+  int n = 0;  // intervals; unknowns θ_0..θ_n, b_0..b_n
+  std::vector<JerkRow> point;
+  std::vector<JerkLimitRow> jerk;
+  std::vector<char> free;
+  Eigen::VectorXd x, xbar;
+};
+
+RowCase row_case(std::mt19937& rng, int n) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.5, 2.0);
+  RowCase c;
+  c.n = n;
+  const int nb = n + 1;
+  c.free.assign(static_cast<size_t>(2 * nb), 1);
+  c.free[0] = c.free[static_cast<size_t>(n)] = 0;                            // θ at the rest ends
+  c.free[static_cast<size_t>(nb)] = c.free[static_cast<size_t>(nb + n)] = 0;  // b at the rest ends
+  c.x = Eigen::VectorXd::Zero(2 * nb);
+  c.xbar = c.x;
+  for (int k = 1; k < n; ++k) c.x[k] = P(rng), c.xbar[k] = P(rng), c.x[nb + k] = U(rng), c.xbar[nb + k] = U(rng);
+  // Three "constraints", each a row on (θ_k, b_k) at every inner point: rows of a point are far apart.
+  for (int family = 0; family < 3; ++family)
+    for (int k = 1; k < n; ++k) {
+      JerkRow r;
+      r.add(k, U(rng));
+      r.add(nb + k, U(rng));
+      r.rhs = 10 + U(rng);
+      c.point.push_back(r);
+    }
+  // Jerk rows at each inner point, both sides, several joints and both signs; b_0 and b_n are fixed (dropped).
+  for (int k = 1; k < n; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int other = side == 0 ? k - 1 : k + 1;
+      for (int j = 0; j < 3; ++j)
+        for (int sign = 1; sign >= -1; sign -= 2) {
+          JerkLimitRow r;
+          r.lin.add(nb + other, sign * U(rng));
+          r.lin.add(nb + k, sign * U(rng));
+          r.lin.add(k, sign * U(rng));
+          r.point = k;
+          r.J = 20 * P(rng);
+          c.jerk.push_back(r);
+        }
+    }
+  return c;
+}
+
+}  // namespace
+
+TEST(JerkRowGroups, AreTheRowsOneByOneInAnyOrder) {
+  std::mt19937 rng(11);
+  for (int n : {4, 5, 9, 30}) {
+    RowCase c = row_case(rng, n);
+    JerkRowGroups groups(c.point, c.jerk, c.free);
+    ASSERT_EQ(groups.size(), c.point.size() + c.jerk.size());
+    groups.relinearise(c.xbar);
+    // The same rows one by one, linearised at x̄, with the fixed unknowns' terms dropped (their values are 0).
+    std::vector<JerkRow> plain = c.point;
+    for (const JerkLimitRow& r : c.jerk) plain.push_back(r.linearised(c.xbar[r.point]));
+    std::vector<double> want(plain.size()), got(groups.size()), prod(groups.size());
+    for (size_t i = 0; i < plain.size(); ++i) want[i] = plain[i].rhs - plain[i].dot(c.x);
+    groups.slacks(c.x, got.data());
+    std::vector<double> ws = want, gs = got;
+    std::sort(ws.begin(), ws.end());
+    std::sort(gs.begin(), gs.end());
+    for (size_t i = 0; i < ws.size(); ++i) EXPECT_NEAR(gs[i], ws[i], 1e-12 * (1 + std::abs(ws[i]))) << n << " " << i;
+    // a·d = slack(0) - slack(d) for the same rows, in the groups' order.
+    std::vector<double> at_zero(groups.size());
+    groups.products(c.x, prod.data());
+    groups.slacks(Eigen::VectorXd::Zero(c.x.size()), at_zero.data());
+    for (size_t i = 0; i < prod.size(); ++i) EXPECT_NEAR(prod[i], at_zero[i] - got[i], 1e-12 * (1 + std::abs(prod[i])));
+    // Σ f(s) a and Σ f(s) a aᵀ with f(s) = 1 / s² (the barrier's Hessian weight), and Σ f(s) rhs.
+    const Eigen::Index nx = c.x.size();
+    Eigen::VectorXd g_want = Eigen::VectorXd::Zero(nx), g_got = g_want;
+    Eigen::MatrixXd H_want = Eigen::MatrixXd::Zero(nx, nx), H_got = H_want;
+    double rhs_want = 0;
+    for (size_t i = 0; i < plain.size(); ++i) {
+      const double w = 1 / (want[i] * want[i]);
+      rhs_want += w * plain[i].rhs;
+      for (int a = 0; a < plain[i].n; ++a) {
+        if (!c.free[static_cast<size_t>(plain[i].col[a])]) continue;
+        g_want[plain[i].col[a]] += w * plain[i].val[a];
+        for (int b = 0; b < plain[i].n; ++b)
+          if (c.free[static_cast<size_t>(plain[i].col[b])])
+            H_want(plain[i].col[a], plain[i].col[b]) += w * plain[i].val[a] * plain[i].val[b];
+      }
+    }
+    std::vector<double> w(groups.size());
+    for (size_t i = 0; i < w.size(); ++i) w[i] = 1 / (got[i] * got[i]);
+    groups.scatter(w.data(), g_got);
+    groups.hessian(w.data(), [&](int i, int j, double v) {  // each pair of a group once
+      H_got(i, j) += v;
+      if (i != j) H_got(j, i) += v;
+    });
+    EXPECT_LE((g_got - g_want).lpNorm<Eigen::Infinity>(), 1e-11 * (1 + g_want.lpNorm<Eigen::Infinity>())) << n;
+    EXPECT_LE((H_got - H_want).lpNorm<Eigen::Infinity>(), 1e-11 * (1 + H_want.lpNorm<Eigen::Infinity>())) << n;
+    EXPECT_NEAR(groups.weighted_rhs(w.data()), rhs_want, 1e-11 * std::abs(rhs_want)) << n;
+    // Rows of one point on the same unknowns share a group: one per point and family-free column set, plus
+    // one per point and side for the jerk rows.
+    EXPECT_EQ(groups.groups().size(), static_cast<size_t>(3 * (n - 1)));
+    for (const JerkRowGroups::Group& g : groups.groups())
+      for (int s = 0; s < 3; ++s) EXPECT_TRUE(g.col[s] < 0 || c.free[static_cast<size_t>(g.col[s])]);
+  }
+}
