@@ -72,7 +72,8 @@ TEST(BandLdlt, ScaledIsTheSymmetricScalingAndAZeroPivotIsReported) {
   scaled.scaled(band, s);
   const Eigen::MatrixXd want = s.asDiagonal() * dense * s.asDiagonal();
   for (Eigen::Index i = 0; i < m; ++i)
-    for (Eigen::Index j = 0; j < m; ++j) EXPECT_NEAR(scaled.at(i, j), want(i, j), 1e-13 * std::abs(want(i, j))) << i << j;
+    for (Eigen::Index j = 0; j < m; ++j)
+      EXPECT_NEAR(scaled.at(i, j), want(i, j), 1e-13 * std::abs(want(i, j))) << i << " " << j;
   BandLdlt zero(6);  // all zero: the first pivot is 0
   EXPECT_FALSE(zero.factor(Eigen::VectorXd::Zero(6)));
   BandLdlt nan(6);

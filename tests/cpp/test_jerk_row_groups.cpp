@@ -120,3 +120,71 @@ TEST(JerkRowGroups, AreTheRowsOneByOneInAnyOrder) {
       for (int s = 0; s < 3; ++s) EXPECT_TRUE(g.col[s] < 0 || c.free[static_cast<size_t>(g.col[s])]);
   }
 }
+
+// jerk_undominated_rows (solve/jerk_rows.hpp): seeded limit rows α θ_k + β b_k <= c at a few grid points, plus a
+// row on other unknowns; a random (θ, b) in the θ range that meets the rows kept meets every row, and a row that
+// is the binding one somewhere in the range is kept.
+TEST(JerkUndominatedRows, KeepTheFeasibleSetAndEveryBindingRow) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.2, 3.0);
+  const Eigen::Index nb = 6;
+  for (int rep = 0; rep < 20; ++rep) {
+    std::vector<JerkRow> rows;
+    Eigen::VectorXd lo = Eigen::VectorXd::Zero(2 * nb), hi = Eigen::VectorXd::Constant(2 * nb, 1e300);
+    for (Eigen::Index k = 1; k < nb - 1; ++k) {
+      hi[k] = P(rng);  // θ_k in [0, hi]
+      for (int j = 0; j < 7; ++j)
+        for (int sign = 1; sign >= -1; sign -= 2) {  // |p'' θ + p' b| <= a, as the acceleration limits
+          JerkRow r;
+          const double d2 = U(rng), d1 = U(rng);
+          r.add(static_cast<int>(k), sign * d2);
+          r.add(static_cast<int>(nb + k), sign * d1);
+          r.rhs = P(rng);
+          rows.push_back(r);
+        }
+    }
+    JerkRow other;  // a row on two grid points' unknowns: kept as it is
+    other.add(1, 1.0), other.add(static_cast<int>(nb + 2), 1.0), other.rhs = 5;
+    rows.push_back(other);
+    const std::vector<JerkRow> kept = jerk_undominated_rows(rows, nb, lo, hi);
+    EXPECT_LT(kept.size(), rows.size());
+    EXPECT_EQ(kept.back().rhs, 5.0);
+    auto worst = [](const std::vector<JerkRow>& rs, const Eigen::VectorXd& x) {
+      double w = -1e300;
+      for (const JerkRow& r : rs) w = std::max(w, r.dot(x) - r.rhs);
+      return w;
+    };
+    // The same set: a point the kept rows admit, every row admits.
+    int inside = 0;
+    for (int t = 0; t < 4000; ++t) {
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * nb);
+      for (Eigen::Index k = 1; k < nb - 1; ++k) x[k] = hi[k] * (0.5 + 0.5 * U(rng)), x[nb + k] = 0.5 * U(rng);
+      if (worst(kept, x) <= 0) {
+        ++inside;
+        EXPECT_LE(worst(rows, x), 1e-12) << rep << " " << t;
+      }
+    }
+    EXPECT_GT(inside, 20);  // the samples reach the set
+    // Every row that is the least upper (largest lower) bound of b_k at some θ_k in the range is kept.
+    auto is_kept = [&](const JerkRow& r) {
+      for (const JerkRow& q : kept)
+        if (q.rhs == r.rhs && q.val[0] == r.val[0] && q.val[1] == r.val[1]) return true;
+      return false;
+    };
+    for (Eigen::Index k = 1; k < nb - 1; ++k)
+      for (int t = 0; t <= 200; ++t) {
+        const double th = hi[k] * t / 200.0;
+        const JerkRow *up = nullptr, *down = nullptr;
+        double u = 1e300, d = -1e300;
+        for (const JerkRow& r : rows) {
+          if (r.n != 2 || r.col[0] != k) continue;
+          const double bound = (r.rhs - r.val[0] * th) / r.val[1];
+          if (r.val[1] > 0 && bound < u) u = bound, up = &r;
+          if (r.val[1] < 0 && bound > d) d = bound, down = &r;
+        }
+        ASSERT_TRUE(up && down);
+        EXPECT_TRUE(is_kept(*up)) << rep << " " << k << " " << th;
+        EXPECT_TRUE(is_kept(*down)) << rep << " " << k << " " << th;
+      }
+  }
+}

@@ -32,7 +32,7 @@ struct Problem {
   Eigen::VectorXd lo, hi;
   std::vector<char> free;
   std::vector<JerkRow> point, consistency;
-  std::vector<JerkLimitRow> jerk;
+  const std::vector<JerkLimitRow>& jerk;
   Eigen::Index nb = 0;
   // KKT position of column c (θ_k -> 3k, b_k -> 3k + 1) and of interval k's multiplier.
   Eigen::Index pos(Eigen::Index c) const { return c < nb ? 3 * c : 3 * (c - nb) + 1; }
@@ -45,17 +45,8 @@ struct Problem {
   }
 };
 
-// max(0, f(0), ..., f(n - 1)) and Σ f(k) with four independent partial results: one running maximum or sum
-// waits on each step (the per-row passes of an interior-point iteration are over ~40 rows per grid point).
-template <class F>
-double max_over(size_t n, F f) {
-  double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
-  size_t k = 0;
-  for (; k + 4 <= n; k += 4)
-    m0 = std::max(m0, f(k)), m1 = std::max(m1, f(k + 1)), m2 = std::max(m2, f(k + 2)), m3 = std::max(m3, f(k + 3));
-  for (; k < n; ++k) m0 = std::max(m0, f(k));
-  return std::max(std::max(m0, m1), std::max(m2, m3));
-}
+// Σ f(k) with four independent partial sums: one running sum waits on each addition (the per-row passes of an
+// interior-point iteration are over ~40 rows per grid point).
 template <class F>
 double sum_over(size_t n, F f) {
   double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
@@ -70,10 +61,7 @@ bool strictly_inside(const Problem& p, const JerkRowGroups& rows, const Eigen::V
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c)
     if (p.free[static_cast<size_t>(c)] && !(x[c] > p.lo[c] && x[c] < p.hi[c])) return false;
   s.resize(rows.size());
-  rows.slacks(x, s.data());
-  bool inside = true;
-  for (double v : s) inside &= v > 0;
-  return inside;
+  return rows.slacks(x, s.data());
 }
 
 // Σ log s over positive s as the log of their product, one log per 8 factors: the product's exponent is taken
@@ -148,20 +136,18 @@ struct Step {
 // The primal-dual method's terms in place of the barrier's (primal_dual): per row the Hessian weight λ_r / s_r
 // (the barrier's 1 / s_r²) and the gradient's γ_r / s_r (the barrier's 1 / s_r), and the same per bound.
 struct PdTerms {
-  std::vector<double> hess_row, grad_row;
+  std::vector<double> hess_row, grad_row;  // grad_row: γ_r / s_r, the row's weight in the gradient
+  bool rows_in_gradient = true;            // false: every γ_r = 0 (the predictor), no pass over the rows
   Eigen::VectorXd hess_lo, hess_hi, grad_lo, grad_hi;
 };
 
-// ∇φ at x̄: t ∇T plus each row's and bound's γ / slack along its normal (γ = 1: the barrier's).
+// ∇φ at x̄: t ∇T plus each row's and bound's γ / slack along its normal (γ = 1: the barrier's, whose row weights
+// are the rows' 1 / slack; pd's are pd->grad_row).
 void kkt_gradient(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double t,
-                  const std::vector<double>& inv, const PdTerms* pd, const Eigen::VectorXd& gT, std::vector<double>& w,
-                  Eigen::VectorXd& g) {
+                  const std::vector<double>& inv, const PdTerms* pd, const Eigen::VectorXd& gT, Eigen::VectorXd& g) {
   g = t * gT;
-  if (pd) {
-    w.resize(rows.size());
-    for (size_t k = 0; k < w.size(); ++k) w[k] = pd->grad_row[k] * inv[k];
-  }
-  rows.scatter(pd ? w.data() : inv.data(), g);
+  if (!pd) rows.scatter(inv.data(), g);
+  else if (pd->rows_in_gradient) rows.scatter(pd->grad_row.data(), g);
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
     if (!p.free[static_cast<size_t>(c)]) {
       g[c] = 0;
@@ -199,7 +185,7 @@ bool solve_kkt(const Problem& p, const Eigen::VectorXd& g, double t, Step& st) {
 // The Newton step of φ_t^x̄ at x̄ subject to the consistency rows (with `pd`, the primal-dual system of the same
 // shape). False if the factorisation fails.
 bool newton_step(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, double t, BandLdlt& K,
-                 Step& st, const PdTerms* pd = nullptr, const std::vector<double>* inv_slack = nullptr) {
+                 Step& st, const PdTerms* pd = nullptr) {
   const Eigen::Index nb = p.nb, nx = 2 * nb, m = 3 * nb - 1;
   std::vector<double>& hT = st.hT;
   jerk_quadrature_time(p.sh, x, &st.gT, &hT);
@@ -220,23 +206,18 @@ bool newton_step(const Problem& p, const JerkRowGroups& rows, const Eigen::Vecto
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b <= a; ++b) addH(c[a], c[b], t * h[3 * a + b]);
   }
-  // The rows' 1 / slack first, in a pass of their own: each a division whose latency the assembly below
-  // would wait for row by row.
+  // The barrier's row weights: 1 / slack in a pass of its own (each a division whose latency the assembly
+  // would wait for row by row), and its square. The primal-dual method brings its own (pd).
   std::vector<double>& inv = st.inv_slack;
-  if (inv_slack) {
-    inv = *inv_slack;
-  } else {
+  if (!pd) {
     inv.resize(rows.size());
     rows.slacks(x, inv.data());
     for (double& v : inv) v = 1.0 / v;
-  }
-  const double* w2 = pd ? pd->hess_row.data() : nullptr;
-  if (!pd) {
     st.weight.resize(rows.size());
     for (size_t k = 0; k < inv.size(); ++k) st.weight[k] = inv[k] * inv[k];
-    w2 = st.weight.data();
   }
-  rows.hessian(w2, [&](int c1, int c2, double v) { K.add(p.pos(c1), p.pos(c2), v); });
+  rows.hessian(pd ? pd->hess_row.data() : st.weight.data(),
+               [&](int c1, int c2, double v) { K.add(p.pos(c1), p.pos(c2), v); });
   for (Eigen::Index c = 0; c < nx; ++c) {
     if (!is_free(c)) {
       K.add(p.pos(c), p.pos(c), 1.0);
@@ -273,7 +254,7 @@ bool newton_step(const Problem& p, const JerkRowGroups& rows, const Eigen::Vecto
   for (Eigen::Index k = 0; k < p.sh.n; ++k) reg[p.nu_pos(k)] = -1e-11;
   if (!Ks.factor(reg)) return false;
   Eigen::VectorXd g;
-  kkt_gradient(p, rows, x, t, inv, pd, st.gT, st.weight, g);
+  kkt_gradient(p, rows, x, t, inv, pd, st.gT, g);
   return solve_kkt(p, g, t, st);
 }
 
@@ -339,8 +320,9 @@ double multiplier_bound(const Problem& p, const JerkRowGroups& rows, const Eigen
 // linearised again at each iterate (their slacks only grow: the tangent lies below J/√θ). Its answer is certified
 // like the barrier's, by weak duality with its own λ and ν (lagrangian_bound); where it does not certify within
 // its iterations, or a step fails, the barrier path runs from the same start. True: x certified to `tolerance`.
-// One function, longer than a screen: an iteration's stages (predictor, centring, corrector, certificate, step)
-// share a dozen per-row and per-bound vectors that a split would pass around.
+// An iteration's stages (predictor, centring, corrector, certificate, step) share a dozen per-row and per-bound
+// vectors that a split would pass around, hence
+// long function: one iteration of the method, its stages in order.
 bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, double T, double tolerance,
                  JerkOutput& out, std::chrono::steady_clock::time_point deadline) {
   const Eigen::Index nb = p.nb, nx = 2 * nb;
@@ -374,16 +356,19 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
     if (has_hi(c)) zhi[c] = mu0 / ghi[c];
   }
   // The multipliers' step for the primal step dx from the complementarity rows λ ds + s dλ = γ - λ s (ds = -a·dx;
-  // γ of pd's gradient terms: 0 for the predictor), and the largest primal and dual steps keeping s, λ > 0.
+  // pd.grad_row = γ / s, 0 for the predictor), and the largest primal and dual steps keeping s, λ > 0: one pass
+  // over the rows after their products.
   auto directions = [&](const Eigen::VectorXd& dx, std::vector<double>& dsv, std::vector<double>& dl,
                         Eigen::VectorXd& dzlo, Eigen::VectorXd& dzhi, double& ap, double& ad) {
     rows.products(dx, dsv.data());
+    const double* gw = pd.rows_in_gradient ? pd.grad_row.data() : nullptr;
+    double rp = 0, rd = 0;  // the largest -ds / s and -dλ / λ
     for (size_t k = 0; k < R; ++k) {
-      dsv[k] = -dsv[k];
-      dl[k] = (pd.grad_row[k] - lam[k] * s[k] - lam[k] * dsv[k]) * inv_s[k];
+      const double d = -dsv[k], l = (gw ? gw[k] : 0.0) - lam[k] - lam[k] * d * inv_s[k];
+      dsv[k] = d, dl[k] = l;
+      rp = std::max(rp, -d * inv_s[k]);
+      rd = std::max(rd, -l * inv_lam[k]);
     }
-    const double rp = max_over(R, [&](size_t k) { return -dsv[k] * inv_s[k]; });
-    const double rd = max_over(R, [&](size_t k) { return -dl[k] * inv_lam[k]; });
     ap = rp > 0 ? 1.0 / rp : kInf;
     ad = rd > 0 ? 1.0 / rd : kInf;
     for (Eigen::Index c = 0; c < nx; ++c) {
@@ -399,59 +384,78 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
       }
     }
   };
-  auto gap_mu = [&](double ap, double ad, const std::vector<double>& dsv, const std::vector<double>& dl,
-                    const Eigen::VectorXd& dx, const Eigen::VectorXd& dzlo, const Eigen::VectorXd& dzhi) {
-    double sum = sum_over(R, [&](size_t k) { return (s[k] + ap * dsv[k]) * (lam[k] + ad * dl[k]); });
+  // The bounds' part of Σ (s + ap ds)(λ + ad dλ).
+  auto bound_gap = [&](double ap, double ad, const Eigen::VectorXd& dx, const Eigen::VectorXd& dzlo,
+                       const Eigen::VectorXd& dzhi) {
+    double sum = 0;
     for (Eigen::Index c = 0; c < nx; ++c) {
       if (has_lo(c)) sum += (glo[c] + ap * dx[c]) * (zlo[c] + ad * dzlo[c]);
       if (has_hi(c)) sum += (ghi[c] - ap * dx[c]) * (zhi[c] + ad * dzhi[c]);
     }
-    return sum / m;
+    return sum;
   };
-  const int max_iterations = 60;
-  int stalled = 0;
+  const int max_iterations = 100;
+  int short_steps = 0;  // consecutive iterations whose primal or dual step was below 0.05
   Eigen::VectorXd dx_aff, g, dzlo(nx), dzhi(nx), next;
   for (int it = 0; it < max_iterations; ++it) {
     if (std::chrono::steady_clock::now() >= deadline) return false;
-    // The predictor: γ = 0.
-    for (size_t k = 0; k < R; ++k) inv_s[k] = 1.0 / s[k], inv_lam[k] = 1.0 / lam[k];
-    for (size_t k = 0; k < R; ++k) pd.hess_row[k] = lam[k] * inv_s[k], pd.grad_row[k] = 0.0;
+    // The predictor: γ = 0. The rows' reciprocals, Hessian weights λ / s and Σ s λ in one pass.
+    double row_gap = 0;
+    for (size_t k = 0; k < R; ++k) {  // one division: 1 / (s λ) gives both reciprocals
+      const double sl = s[k] * lam[k], inv = 1.0 / sl;
+      inv_s[k] = lam[k] * inv, inv_lam[k] = s[k] * inv;
+      pd.hess_row[k] = lam[k] * inv_s[k];
+      row_gap += sl;
+    }
+    pd.rows_in_gradient = false;
     for (Eigen::Index c = 0; c < nx; ++c) {
       pd.hess_lo[c] = has_lo(c) ? zlo[c] / glo[c] : 0.0;
       pd.hess_hi[c] = has_hi(c) ? zhi[c] / ghi[c] : 0.0;
       pd.grad_lo[c] = pd.grad_hi[c] = 0.0;
     }
-    if (!newton_step(p, rows, x, 1.0, K, st, &pd, &inv_s)) return false;
+    if (!newton_step(p, rows, x, 1.0, K, st, &pd)) return false;
     ++out.newton_steps;
     dx_aff = st.d;
     double ap = 0, ad = 0;
     directions(dx_aff, ds_aff, dlam_aff, zlo_aff, zhi_aff, ap, ad);
-    const double mu = gap_mu(0, 0, ds_aff, dlam_aff, dx_aff, zlo_aff, zhi_aff);
-    const double mu_aff = gap_mu(std::min(1.0, ap), std::min(1.0, ad), ds_aff, dlam_aff, dx_aff, zlo_aff, zhi_aff);
+    const double mu = (row_gap + bound_gap(0, 0, dx_aff, zlo_aff, zhi_aff)) / m;
+    const double apa = std::min(1.0, ap), ada = std::min(1.0, ad);
+    const double mu_aff =
+        (sum_over(R, [&](size_t k) { return (s[k] + apa * ds_aff[k]) * (lam[k] + ada * dlam_aff[k]); }) +
+         bound_gap(apa, ada, dx_aff, zlo_aff, zhi_aff)) / m;
     // The centring target σμ, not below mu_floor: a duality gap far below the tolerance's only makes the
     // active rows' λ/s huge and the KKT solves inexact (seen: the bound closing to 1e-5, then lost).
     const double sigma = std::pow(std::min(1.0, mu_aff / mu), 3);
     const double target = std::max(sigma * mu, mu_floor);
     // The corrector: γ = the target less the predictor's second-order term, on the same factorisation.
-    for (size_t k = 0; k < R; ++k) pd.grad_row[k] = target - ds_aff[k] * dlam_aff[k];
+    for (size_t k = 0; k < R; ++k) pd.grad_row[k] = (target - ds_aff[k] * dlam_aff[k]) * inv_s[k];
+    pd.rows_in_gradient = true;
     for (Eigen::Index c = 0; c < nx; ++c) {
       if (has_lo(c)) pd.grad_lo[c] = target - dx_aff[c] * zlo_aff[c];
       if (has_hi(c)) pd.grad_hi[c] = target + dx_aff[c] * zhi_aff[c];
     }
-    kkt_gradient(p, rows, x, 1.0, st.inv_slack, &pd, st.gT, st.weight, g);
+    kkt_gradient(p, rows, x, 1.0, st.inv_slack, &pd, st.gT, g);
     if (!solve_kkt(p, g, 1.0, st)) return false;
     const Eigen::VectorXd dx = st.d;
     directions(dx, ds, dlam, dzlo, dzhi, ap, ad);
     // The certificate at x, as the barrier's: the multipliers after the full step (λ + dλ, clipped at 0) and the
-    // step's ν satisfy ∇T(x) + ∇²T dx + Aᵀλ + Eᵀν = 0, so the bound is tight as dx vanishes.
-    for (size_t k = 0; k < R; ++k) lam_full[k] = std::max(0.0, lam[k] + dlam[k]);
-    const double lower = lagrangian_bound(p, rows, x, T, st.gT, st.nu, lam_full);
-    out.gap = std::max(0.0, T - lower) / T;
-    if (T - lower <= tolerance * T) return true;
+    // step's ν satisfy ∇T(x) + ∇²T dx + Aᵀλ + Eᵀν = 0, so the bound is tight as dx vanishes. The bound's gap
+    // T - lower is at least Σ λ_r s_r (lagrangian_bound's minimum over the box is at most its value at x, and
+    // E x = 0): the whole bound is taken only where that sum leaves it a chance.
+    double full_gap = 0;
+    for (size_t k = 0; k < R; ++k) {
+      lam_full[k] = std::max(0.0, lam[k] + dlam[k]);
+      full_gap += lam_full[k] * s[k];
+    }
+    if (full_gap <= 2 * tolerance * T) {
+      const double lower = lagrangian_bound(p, rows, x, T, st.gT, st.nu, lam_full);
+      out.gap = std::max(0.0, T - lower) / T;
+      if (T - lower <= tolerance * T) return true;
+    } else {
+      out.gap = full_gap / T;  // a lower bound of the certificate's gap here
+    }
     ap = std::min(1.0, 0.995 * ap), ad = std::min(1.0, 0.995 * ad);
     // Back from a step whose θ reaches 0 between grid points (T infinite; the rows hold only at the grid points).
-    // A primal step that stays tiny is a stall (the implicit bound θ > 0 inside an interval, which the
-    // complementarity does not see): the barrier path then takes over.
     double T_next = kInf;
     for (int back = 0;; ++back) {
       next = x + ap * dx;
@@ -460,21 +464,36 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
       if (std::isfinite(T_next) || back == 30) break;
       ap *= 0.5;
     }
-    stalled = ap < 0.05 ? stalled + 1 : 0;
-    if (!std::isfinite(T_next) || stalled == 3) return false;
+    if (!std::isfinite(T_next)) return false;
     x = next;
     T = T_next;
     for (size_t k = 0; k < R; ++k) lam[k] += ad * dlam[k];
     zlo += ad * dzlo, zhi += ad * dzhi;
     std::swap(s, s_next);  // the rows' slacks at the new x, linearised there
     bound_slacks();
+    // Three short steps in a row: the iterate has left the central path (a few rows' slacks change by orders of
+    // magnitude per step, near a rest end or on a grid whose intervals differ a thousandfold). The multipliers
+    // are set back to the centre of this x, λ s = μ for every row and bound: any λ > 0 is a valid dual start, and
+    // the certificate uses only the step's own. Giving up there instead (to the barrier path, 400 steps) cost
+    // 5-6 s on random non-uniform grids of 400 points where this takes 30-50 iterations (bench/README.md).
+    short_steps = ap < 0.05 || ad < 0.05 ? short_steps + 1 : 0;
+    if (short_steps == 3) {
+      const double mc = (sum_over(R, [&](size_t k) { return s[k] * lam[k]; }) + bound_gap(0, 0, dx, zlo, zhi)) / m;
+      for (size_t k = 0; k < R; ++k) lam[k] = mc / s[k];
+      for (Eigen::Index c = 0; c < nx; ++c) {
+        if (has_lo(c)) zlo[c] = mc / glo[c];
+        if (has_hi(c)) zhi[c] = mc / ghi[c];
+      }
+      short_steps = 0;
+    }
   }
   return false;
 }
 
 }  // namespace
 
-bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& hi, Eigen::VectorXd& x) {
+bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const JerkRowSet& rows, const Eigen::VectorXd& hi,
+                       Eigen::VectorXd& x) {
   const Eigen::Index n = sh.n, nb = n + 1;
   if (!sh.rest0 || !sh.restN || n < 4) return false;
   // b at the grid points: the mean of the no-jerk optimum's s̈ on the two sides.
@@ -508,13 +527,13 @@ bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::Ve
   // side J/√θ by 1/√κ. A row with a negative right-hand side that x meets by a negative left side (a contact
   // polygon need not contain (θ, s̈) = 0) bounds κ from below.
   double kappa = kInf, kappa_lo = 0.0;
-  for (const JerkRow& r : jerk_point_rows(in, sh)) {
+  for (const JerkRow& r : rows.point) {
     const double l = r.dot(x);
     if (l > 0) kappa = std::min(kappa, r.rhs / l);
     else if (l < 0 && r.rhs < 0) kappa_lo = std::max(kappa_lo, r.rhs / l);
     else if (l == 0 && !(r.rhs >= 0)) return false;  // l = 0: e.g. a row of a rest end's fixed zeros
   }
-  for (const JerkLimitRow& r : jerk_limit_rows(in, sh)) {
+  for (const JerkLimitRow& r : rows.jerk) {
     const double g = r.lin.dot(x);
     if (g > 0) kappa = std::min(kappa, std::pow(r.J / (g * std::sqrt(x[r.point])), 2.0 / 3.0));
   }
@@ -528,18 +547,18 @@ bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::Ve
   return true;
 }
 
-bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
-                 const Eigen::VectorXd& box, double first_gap, Eigen::VectorXd& x, JerkOutput& out,
-                 std::chrono::steady_clock::time_point deadline) {
+bool jerk_newton(const JerkInput& in, const JerkShape& sh, const JerkRowSet& set, const Eigen::VectorXd& lo,
+                 const Eigen::VectorXd& hi, const Eigen::VectorXd& box, double first_gap, Eigen::VectorXd& x,
+                 JerkOutput& out, std::chrono::steady_clock::time_point deadline) {
   const Eigen::Index nb = sh.n + 1, nx = 2 * nb;
   Problem p{sh, lo, hi, std::vector<char>(static_cast<size_t>(nx), 0), {}, jerk_consistency_rows(sh),
-            jerk_limit_rows(in, sh), nb};
+            set.jerk, nb};
   // Rows of one free unknown are bounds; the box (certificate: every unknown bounded) stays far from the optimum.
   for (Eigen::Index c = 0; c < nx; ++c) {
     p.free[static_cast<size_t>(c)] = lo[c] < hi[c];
     if (p.free[static_cast<size_t>(c)]) p.lo[c] = std::max(p.lo[c], -box[c]), p.hi[c] = std::min(p.hi[c], box[c]);
   }
-  for (const JerkRow& row : jerk_point_rows(in, sh)) {
+  for (const JerkRow& row : set.point) {
     JerkRow r;  // the fixed unknowns' terms moved to the right-hand side
     r.rhs = row.rhs;
     for (int i = 0; i < row.n; ++i) {
@@ -558,6 +577,7 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
   // x must be strictly feasible; every fixed value 0 (rest to rest: the starts are slowed by scaling).
   for (Eigen::Index c = 0; c < nx; ++c)
     if (!p.free[static_cast<size_t>(c)] && lo[c] != 0) return false;
+  p.point = jerk_undominated_rows(p.point, nb, p.lo, p.hi);
   JerkRowGroups rows(p.point, p.jerk, p.free);
   std::vector<double> slack;
   Eigen::VectorXd xs = x;

@@ -105,8 +105,8 @@ JerkRowGroups::JerkRowGroups(const std::vector<JerkRow>& point, const std::vecto
 }
 
 void JerkRowGroups::relinearise(const Eigen::VectorXd& xbar) {
-  // J/√θ >= J (3θ̄ - θ) / (2 θ̄^{3/2}): the θ coefficient gains the tangent's slope J / (2 θ̄^{3/2}), and the
-  // right-hand side is 1.5 J / √θ̄ (JerkLimitRow::relinearise).
+  // J/√θ >= J (3θ̄ - θ) / (2 θ̄^{3/2}): the θ coefficient gains the tangent's slope J / (2 θ̄^{3/2}), and
+  // the right-hand side is 1.5 J / √θ̄ (JerkLimitRow::relinearise).
   for (const Group& g : groups_) {
     if (g.point < 0) continue;
     const double tb = std::max(xbar[g.point], 1e-300), root = std::sqrt(tb);
@@ -118,12 +118,17 @@ void JerkRowGroups::relinearise(const Eigen::VectorXd& xbar) {
   }
 }
 
-void JerkRowGroups::slacks(const Eigen::VectorXd& x, double* s) const {
+bool JerkRowGroups::slacks(const Eigen::VectorXd& x, double* s) const {
+  bool positive = true;
   for (const Group& g : groups_) {
     double x0, x1, x2;
     load(g, x, x0, x1, x2);
-    for (std::size_t r = g.begin; r < g.end; ++r) s[r] = rhs_[r] - (v0_[r] * x0 + v1_[r] * x1 + v2_[r] * x2);
+    for (std::size_t r = g.begin; r < g.end; ++r) {
+      s[r] = rhs_[r] - (v0_[r] * x0 + v1_[r] * x1 + v2_[r] * x2);
+      positive &= s[r] > 0;
+    }
   }
+  return positive;
 }
 
 void JerkRowGroups::products(const Eigen::VectorXd& d, double* out) const {

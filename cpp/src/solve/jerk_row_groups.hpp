@@ -31,15 +31,16 @@ class JerkRowGroups {
   /// `point`: limit rows on free unknowns only (fixed ones moved to the right-hand side); `jerk`: the jerk rows,
   /// whose terms on unknowns that are not `free` are dropped (the caller's fixed values are 0). The jerk rows are
   /// linearised at θ = 1 until relinearise() is called.
-  JerkRowGroups(const std::vector<JerkRow>& point, const std::vector<JerkLimitRow>& jerk, const std::vector<char>& free);
+  JerkRowGroups(const std::vector<JerkRow>& point, const std::vector<JerkLimitRow>& jerk,
+                const std::vector<char>& free);
 
   std::size_t size() const { return rhs_.size(); }
   const std::vector<Group>& groups() const { return groups_; }
 
   /// The jerk rows linearised at x̄ (θ̄ floored at 1e-300, as JerkLimitRow::linearised).
   void relinearise(const Eigen::VectorXd& xbar);
-  /// s_r = rhs_r - a_r·x.
-  void slacks(const Eigen::VectorXd& x, double* s) const;
+  /// s_r = rhs_r - a_r·x; whether every s_r > 0 (false if one is NaN).
+  bool slacks(const Eigen::VectorXd& x, double* s) const;
   /// out_r = a_r·d.
   void products(const Eigen::VectorXd& d, double* out) const;
   /// g += Σ_r w_r a_r.

@@ -132,6 +132,9 @@ std::vector<JerkRow> jerk_consistency_rows(const JerkShape& sh) {
 
 std::vector<JerkRow> jerk_point_rows(const JerkInput& in, const JerkShape& sh) {
   std::vector<JerkRow> out;
+  size_t count = 0;
+  for (const ConstraintRows& cr : *in.rows) count += static_cast<size_t>(cr.rows() * (sh.n + 1));
+  out.reserve(count);
   for (const ConstraintRows& cr : *in.rows)
     for (Eigen::Index k = 0; k <= sh.n; ++k)
       for (Eigen::Index j = 0; j < cr.rows(); ++j) {
@@ -150,6 +153,7 @@ std::vector<JerkLimitRow> jerk_limit_rows(const JerkInput& in, const JerkShape& 
   std::vector<JerkLimitRow> out;
   const PathSamples& smp = *in.samples;
   const Eigen::Index n = sh.n, dof = smp.dof();
+  out.reserve(static_cast<size_t>(4 * dof * (n + 1)));
   for (Eigen::Index k = 0; k <= n; ++k) {
     if ((k == 0 && sh.rest0) || (k == n && sh.restN)) continue;
     for (int side = 0; side < 2; ++side) {
@@ -177,6 +181,58 @@ std::vector<JerkLimitRow> jerk_limit_rows(const JerkInput& in, const JerkShape& 
     }
   }
   return out;
+}
+
+std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eigen::Index nb, const Eigen::VectorXd& lo,
+                                           const Eigen::VectorXd& hi) {
+  // b_k <= P + Q θ_k (β > 0) or b_k >= P + Q θ_k (β < 0) for a row α θ_k + β b_k <= c: P = c / β, Q = -α / β.
+  struct Bound {
+    double P, Q;
+    std::size_t row;
+  };
+  std::vector<std::vector<Bound>> upper(static_cast<size_t>(nb)), lower(static_cast<size_t>(nb));
+  std::vector<char> keep(rows.size(), 1);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const JerkRow& r = rows[i];
+    if (r.n != 2) continue;
+    const int t = std::min(r.col[0], r.col[1]), b = std::max(r.col[0], r.col[1]);
+    if (t >= nb || b != t + nb) continue;  // not (θ_k, b_k)
+    const double alpha = r.col[0] == t ? r.val[0] : r.val[1], beta = r.col[0] == b ? r.val[0] : r.val[1];
+    if (!(beta != 0) || !std::isfinite(alpha / beta) || !std::isfinite(r.rhs / beta)) continue;
+    (beta > 0 ? upper : lower)[static_cast<size_t>(t)].push_back({r.rhs / beta, -alpha / beta, i});
+  }
+  for (Eigen::Index k = 0; k < nb; ++k) {
+    const double L = lo[k], H = hi[k];
+    if (!(std::isfinite(L) && std::isfinite(H) && L <= H)) continue;
+    const double span = std::max(std::abs(L), std::abs(H));
+    for (int side = 0; side < 2; ++side) {
+      // Lower bounds are upper ones of -b: the same test with P, Q negated.
+      const std::vector<Bound>& set = (side == 0 ? upper : lower)[static_cast<size_t>(k)];
+      const double sg = side == 0 ? 1.0 : -1.0;
+      for (const Bound& bi : set) {
+        double from = L, to = H;  // where bi is within the margin of every other row's bound
+        for (const Bound& bj : set) {
+          if (&bj == &bi) continue;
+          const double dq = sg * (bi.Q - bj.Q);
+          const double room = sg * (bj.P - bi.P) + 1e-9 * (std::abs(bi.P) + std::abs(bj.P) +
+                                                           (std::abs(bi.Q) + std::abs(bj.Q)) * span);
+          if (dq > 0) to = std::min(to, room / dq);
+          else if (dq < 0) from = std::max(from, room / dq);
+          else if (room < 0) from = kInf;
+        }
+        if (!(from <= to)) keep[bi.row] = 0;
+      }
+    }
+  }
+  std::vector<JerkRow> out;
+  out.reserve(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (keep[i]) out.push_back(rows[i]);
+  return out;
+}
+
+JerkRowSet jerk_rows(const JerkInput& in, const JerkShape& sh) {
+  return {jerk_point_rows(in, sh), jerk_limit_rows(in, sh)};
 }
 
 // Column bounds: the fixed ends, θ >= 0, and at a rest end the bound that the jerk of its interval (constant

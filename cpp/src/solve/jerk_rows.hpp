@@ -89,6 +89,23 @@ std::vector<JerkRow> jerk_point_rows(const JerkInput& in, const JerkShape& sh);
 /// The jerk limits at each moving grid point, on each side, both signs.
 std::vector<JerkLimitRow> jerk_limit_rows(const JerkInput& in, const JerkShape& sh);
 
+/// The rows of `rows` on two unknowns (θ_k, b_k) of one grid point, less those that another row of the same
+/// point and side dominates over the whole θ range [lo[θ_k], hi[θ_k]] by more than a relative 1e-9: a row
+/// bounding b_k from above is kept where, somewhere in that range, it is within that margin of the least of
+/// them (from below: of the largest). The feasible set is unchanged (the margin errs towards keeping); rows on
+/// other unknowns are kept as they are. A grid point has a limit row per joint and sign, of which a few bound
+/// the polygon: each row kept costs ~10 passes per interior-point iteration.
+std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eigen::Index nb, const Eigen::VectorXd& lo,
+                                           const Eigen::VectorXd& hi);
+
+/// A problem's rows before linearisation (jerk_point_rows, jerk_limit_rows), built once per solve: the start,
+/// the structured solve and the final check all read them.
+struct JerkRowSet {
+  std::vector<JerkRow> point;
+  std::vector<JerkLimitRow> jerk;
+};
+JerkRowSet jerk_rows(const JerkInput& in, const JerkShape& sh);
+
 /// Column bounds: the fixed end values, θ >= 0, the rest ends' jerk as a bound on θ at the moving end.
 void jerk_column_bounds(const JerkInput& in, const JerkShape& sh, Eigen::VectorXd& lo, Eigen::VectorXd& hi);
 
@@ -99,7 +116,8 @@ void jerk_make_consistent(const JerkShape& sh, Eigen::VectorXd& x, double theta_
 /// (in.theta_hint), shifted by a constant so that θ by the recursion closes at the rest end, then scaled to 0.9
 /// of the largest κ for which κ (θ, b) holds every row. False if that profile has θ <= 0 inside or a row
 /// cannot be met by slowing.
-bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& hi, Eigen::VectorXd& x);
+bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const JerkRowSet& rows, const Eigen::VectorXd& hi,
+                       Eigen::VectorXd& x);
 
 /// The structured solver (solve/jerk_newton.cpp): from the strictly feasible, consistent x, a log-barrier path
 /// with banded Newton steps, the jerk rows re-linearised at each iterate, to a certified gap of in.tolerance on
@@ -107,8 +125,8 @@ bool jerk_scaled_start(const JerkInput& in, const JerkShape& sh, const Eigen::Ve
 /// parameter (the duality gap of the first centre, relative to T). x is then that answer, strictly feasible,
 /// consistent to rounding. False, x unchanged, where it does not apply (an end not at rest: every fixed value
 /// must be 0; x not strictly feasible), or it did not converge by `deadline` or in its step budget.
-bool jerk_newton(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
-                 const Eigen::VectorXd& box, double first_gap, Eigen::VectorXd& x, JerkOutput& out,
-                 std::chrono::steady_clock::time_point deadline);
+bool jerk_newton(const JerkInput& in, const JerkShape& sh, const JerkRowSet& rows, const Eigen::VectorXd& lo,
+                 const Eigen::VectorXd& hi, const Eigen::VectorXd& box, double first_gap, Eigen::VectorXd& x,
+                 JerkOutput& out, std::chrono::steady_clock::time_point deadline);
 
 }  // namespace pathpace::detail

@@ -25,9 +25,9 @@ double total_time(const JerkShape& sh, const Eigen::VectorXd& x, Eigen::VectorXd
 // One GLPK LP of the rows linearised at θ̄ (the start, and the fallback rounds).
 class JerkLp {
  public:
-  JerkLp(const JerkInput& in, const JerkShape& sh, double s_theta, double s_b)
-      : sh_(sh), st_(s_theta), sb_(s_b), nb_(sh.n + 1), fixed_(jerk_consistency_rows(sh)),
-        point_(jerk_point_rows(in, sh)), jerk_(jerk_limit_rows(in, sh)) {}
+  JerkLp(const JerkShape& sh, const JerkRowSet& rows, double s_theta, double s_b)
+      : sh_(sh), st_(s_theta), sb_(s_b), nb_(sh.n + 1), fixed_(jerk_consistency_rows(sh)), point_(rows.point),
+        jerk_(rows.jerk) {}
 
   // Builds the LP linearised at theta_bar; bounds lo/hi per column (physical units).
   bool build(const Eigen::VectorXd& theta_bar, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
@@ -83,8 +83,9 @@ class JerkLp {
   const JerkShape& sh_;
   double st_, sb_;
   Eigen::Index nb_ = 0;
-  std::vector<JerkRow> fixed_, point_;
-  std::vector<JerkLimitRow> jerk_;
+  std::vector<JerkRow> fixed_;
+  const std::vector<JerkRow>& point_;
+  const std::vector<JerkLimitRow>& jerk_;
   GlpkLp lp_;
   std::vector<int> idx_;
   std::vector<double> val_;
@@ -230,15 +231,15 @@ void glpk_rounds(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd
 
 // The worst violation of the grid rows at x, relative to each row's size: the limits (rows and bounds) and the
 // exact jerk rows |p' b' + 3 p'' b + p''' θ| <= J/√θ.
-double grid_violation(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+double grid_violation(const JerkRowSet& rows, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                       const Eigen::VectorXd& x) {
   double worst = 0;
-  for (const JerkRow& r : jerk_point_rows(in, sh)) {
+  for (const JerkRow& r : rows.point) {
     double size = std::abs(r.rhs);
     for (int i = 0; i < r.n; ++i) size = std::max(size, std::abs(r.val[i] * x[r.col[i]]));
     if (size > 0) worst = std::max(worst, (r.dot(x) - r.rhs) / size);
   }
-  for (const JerkLimitRow& r : jerk_limit_rows(in, sh)) {
+  for (const JerkLimitRow& r : rows.jerk) {
     const double cap = r.J / std::sqrt(std::max(x[r.point], 0.0));
     worst = std::max(worst, (r.lin.dot(x) - cap) / cap);
   }
@@ -250,10 +251,10 @@ double grid_violation(const JerkInput& in, const JerkShape& sh, const Eigen::Vec
 }
 
 // The answer at x: its grid violation, θ, b and exact T.
-JerkOutput& finish(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+JerkOutput& finish(const JerkShape& sh, const JerkRowSet& rows, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                    const Eigen::VectorXd& x, JerkOutput& out) {
   const Eigen::Index nb = sh.n + 1;
-  out.grid_violation = grid_violation(in, sh, lo, hi, x);
+  out.grid_violation = grid_violation(rows, lo, hi, x);
   out.theta = x.head(nb);
   out.b = x.tail(nb);
   out.duration = jerk_total_time(sh, x);
@@ -263,18 +264,19 @@ JerkOutput& finish(const JerkInput& in, const JerkShape& sh, const Eigen::Vector
 // The structured solve's answer: made exactly consistent; the iterate is strictly feasible and the repair moves
 // it by rounding, so a row violated by more than 1e-10 of its size steps back by slowing (θ, b) -> κ (θ, b)
 // (rest to rest: every fixed value is 0).
-JerkOutput& finish_structured(const JerkInput& in, const JerkShape& sh, const Eigen::VectorXd& lo,
+JerkOutput& finish_structured(const JerkInput& in, const JerkShape& sh, const JerkRowSet& rows,
+                              const Eigen::VectorXd& lo,
                               const Eigen::VectorXd& hi, Eigen::VectorXd& x, JerkOutput& out) {
   out.structured = true;
   out.status = Status::Optimal;
   out.message.clear();
   jerk_make_consistent(sh, x, in.sdot_end * in.sdot_end, in.zero_sddot_end);
   for (int back = 0; back < 8; ++back) {
-    const double v = grid_violation(in, sh, lo, hi, x);
+    const double v = grid_violation(rows, lo, hi, x);
     if (v <= 1e-10) break;
     x *= 1 - 2 * v;
   }
-  return finish(in, sh, lo, hi, x, out);
+  return finish(sh, rows, lo, hi, x, out);
 }
 
 }  // namespace
@@ -318,10 +320,11 @@ JerkOutput solve_jerk(const JerkInput& in) {
                                  std::chrono::duration<double>(in.time_limit));
   // Rest to rest: the structured solve from the scaled start (no LP).
   Eigen::VectorXd x;
-  if (jerk_scaled_start(in, sh, hi, x) && jerk_newton(in, sh, lo, hi, box, 1.0, x, out, deadline))
-    return finish_structured(in, sh, lo, hi, x, out);
+  const JerkRowSet rows = jerk_rows(in, sh);
+  if (jerk_scaled_start(in, sh, rows, hi, x) && jerk_newton(in, sh, rows, lo, hi, box, 1.0, x, out, deadline))
+    return finish_structured(in, sh, rows, lo, hi, x, out);
 
-  JerkLp lp(in, sh, s_theta, s_b);
+  JerkLp lp(sh, rows, s_theta, s_b);
   if (!start_point(in, sh, lo, hi, s_theta, s_b, lp, x, out)) return out;
   jerk_make_consistent(sh, x, thN, in.zero_sddot_end);
   double T = total_time(sh, x, nullptr);
@@ -332,9 +335,10 @@ JerkOutput solve_jerk(const JerkInput& in) {
   // The start LP's x, slowed by 1 % to be strictly inside (rest to rest), then the structured solve; else the
   // GLPK rounds.
   Eigen::VectorXd xs = 0.99 * x;
-  if (jerk_newton(in, sh, lo, hi, box, 0.1, xs, out, deadline)) return finish_structured(in, sh, lo, hi, xs, out);
+  if (jerk_newton(in, sh, rows, lo, hi, box, 0.1, xs, out, deadline))
+    return finish_structured(in, sh, rows, lo, hi, xs, out);
   glpk_rounds(in, sh, lo, hi, s_theta, s_b, lp, x, T, out, t0);
-  return finish(in, sh, lo, hi, x, out);
+  return finish(sh, rows, lo, hi, x, out);
 }
 
 }  // namespace pathpace::detail
