@@ -45,17 +45,6 @@ struct Problem {
   }
 };
 
-// Σ f(k) with four independent partial sums: one running sum waits on each addition (the per-row passes of an
-// interior-point iteration are over ~40 rows per grid point).
-template <class F>
-double sum_over(size_t n, F f) {
-  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-  size_t k = 0;
-  for (; k + 4 <= n; k += 4) s0 += f(k), s1 += f(k + 1), s2 += f(k + 2), s3 += f(k + 3);
-  for (; k < n; ++k) s0 += f(k);
-  return (s0 + s1) + (s2 + s3);
-}
-
 // Whether x is strictly inside every row (slacks into s) and bound.
 bool strictly_inside(const Problem& p, const JerkRowGroups& rows, const Eigen::VectorXd& x, std::vector<double>& s) {
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c)
@@ -335,6 +324,12 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
   // Slacks (rows, then each finite bound of a free unknown) and their multipliers; g_lo, g_hi 0 where no bound.
   std::vector<double> s(R), lam(R), ds(R), dlam(R), ds_aff(R), dlam_aff(R), lam_full(R), s_next(R);
   std::vector<double> inv_s(R), inv_lam(R);  // 1 / s and 1 / λ at the iterate: the ratio tests multiply
+  // The per-row vectors as arrays: each pass is packet operations, its sums and maxima tree reductions (a running
+  // scalar sum or maximum waits on every step).
+  auto A = [](std::vector<double>& v) {
+    return Eigen::Map<Eigen::ArrayXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+  };
+  auto S = A(s), L = A(lam);
   Eigen::VectorXd glo = Eigen::VectorXd::Zero(nx), ghi = glo, zlo = glo, zhi = glo, zlo_aff = glo, zhi_aff = glo;
   auto has_lo = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] && p.lo[c] > -kInf; };
   auto has_hi = [&](Eigen::Index c) { return p.free[static_cast<size_t>(c)] && p.hi[c] < kInf; };
@@ -350,7 +345,7 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
   for (Eigen::Index c = 0; c < nx; ++c) m += has_lo(c) + has_hi(c);
   const double mu0 = T / m;  // the barrier's first centre: a duality gap of T
   const double mu_floor = 0.1 * tolerance * T / m;  // a tenth of the gap the tolerance allows
-  for (size_t k = 0; k < R; ++k) lam[k] = mu0 / s[k];
+  L = mu0 / S;
   for (Eigen::Index c = 0; c < nx; ++c) {
     if (has_lo(c)) zlo[c] = mu0 / glo[c];
     if (has_hi(c)) zhi[c] = mu0 / ghi[c];
@@ -361,14 +356,13 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
   auto directions = [&](const Eigen::VectorXd& dx, std::vector<double>& dsv, std::vector<double>& dl,
                         Eigen::VectorXd& dzlo, Eigen::VectorXd& dzhi, double& ap, double& ad) {
     rows.products(dx, dsv.data());
-    const double* gw = pd.rows_in_gradient ? pd.grad_row.data() : nullptr;
-    double rp = 0, rd = 0;  // the largest -ds / s and -dλ / λ
-    for (size_t k = 0; k < R; ++k) {
-      const double d = -dsv[k], l = (gw ? gw[k] : 0.0) - lam[k] - lam[k] * d * inv_s[k];
-      dsv[k] = d, dl[k] = l;
-      rp = std::max(rp, -d * inv_s[k]);
-      rd = std::max(rd, -l * inv_lam[k]);
-    }
+    auto d = A(dsv), l = A(dl);
+    d = -d;
+    if (pd.rows_in_gradient) l = A(pd.grad_row) - L - L * d * A(inv_s);
+    else l = -L - L * d * A(inv_s);
+    // The largest -ds / s and -dλ / λ.
+    const double rp = R ? std::max(0.0, (-d * A(inv_s)).maxCoeff()) : 0.0;
+    const double rd = R ? std::max(0.0, (-l * A(inv_lam)).maxCoeff()) : 0.0;
     ap = rp > 0 ? 1.0 / rp : kInf;
     ad = rd > 0 ? 1.0 / rd : kInf;
     for (Eigen::Index c = 0; c < nx; ++c) {
@@ -400,13 +394,11 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
   for (int it = 0; it < max_iterations; ++it) {
     if (std::chrono::steady_clock::now() >= deadline) return false;
     // The predictor: γ = 0. The rows' reciprocals, Hessian weights λ / s and Σ s λ in one pass.
-    double row_gap = 0;
-    for (size_t k = 0; k < R; ++k) {  // one division: 1 / (s λ) gives both reciprocals
-      const double sl = s[k] * lam[k], inv = 1.0 / sl;
-      inv_s[k] = lam[k] * inv, inv_lam[k] = s[k] * inv;
-      pd.hess_row[k] = lam[k] * inv_s[k];
-      row_gap += sl;
-    }
+    A(inv_lam) = 1.0 / (S * L);  // one division: 1 / (s λ) gives both reciprocals
+    A(inv_s) = L * A(inv_lam);
+    A(inv_lam) *= S;
+    A(pd.hess_row) = L * A(inv_s);
+    const double row_gap = (S * L).sum();
     pd.rows_in_gradient = false;
     for (Eigen::Index c = 0; c < nx; ++c) {
       pd.hess_lo[c] = has_lo(c) ? zlo[c] / glo[c] : 0.0;
@@ -421,14 +413,14 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
     const double mu = (row_gap + bound_gap(0, 0, dx_aff, zlo_aff, zhi_aff)) / m;
     const double apa = std::min(1.0, ap), ada = std::min(1.0, ad);
     const double mu_aff =
-        (sum_over(R, [&](size_t k) { return (s[k] + apa * ds_aff[k]) * (lam[k] + ada * dlam_aff[k]); }) +
-         bound_gap(apa, ada, dx_aff, zlo_aff, zhi_aff)) / m;
+        (((S + apa * A(ds_aff)) * (L + ada * A(dlam_aff))).sum() + bound_gap(apa, ada, dx_aff, zlo_aff, zhi_aff)) /
+        m;
     // The centring target σμ, not below mu_floor: a duality gap far below the tolerance's only makes the
     // active rows' λ/s huge and the KKT solves inexact (seen: the bound closing to 1e-5, then lost).
     const double sigma = std::pow(std::min(1.0, mu_aff / mu), 3);
     const double target = std::max(sigma * mu, mu_floor);
     // The corrector: γ = the target less the predictor's second-order term, on the same factorisation.
-    for (size_t k = 0; k < R; ++k) pd.grad_row[k] = (target - ds_aff[k] * dlam_aff[k]) * inv_s[k];
+    A(pd.grad_row) = (target - A(ds_aff) * A(dlam_aff)) * A(inv_s);
     pd.rows_in_gradient = true;
     for (Eigen::Index c = 0; c < nx; ++c) {
       if (has_lo(c)) pd.grad_lo[c] = target - dx_aff[c] * zlo_aff[c];
@@ -442,11 +434,8 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
     // step's ν satisfy ∇T(x) + ∇²T dx + Aᵀλ + Eᵀν = 0, so the bound is tight as dx vanishes. The bound's gap
     // T - lower is at least Σ λ_r s_r (lagrangian_bound's minimum over the box is at most its value at x, and
     // E x = 0): the whole bound is taken only where that sum leaves it a chance.
-    double full_gap = 0;
-    for (size_t k = 0; k < R; ++k) {
-      lam_full[k] = std::max(0.0, lam[k] + dlam[k]);
-      full_gap += lam_full[k] * s[k];
-    }
+    A(lam_full) = (L + A(dlam)).max(0.0);
+    const double full_gap = (A(lam_full) * S).sum();
     if (full_gap <= 2 * tolerance * T) {
       const double lower = lagrangian_bound(p, rows, x, T, st.gT, st.nu, lam_full);
       out.gap = std::max(0.0, T - lower) / T;
@@ -467,9 +456,9 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
     if (!std::isfinite(T_next)) return false;
     x = next;
     T = T_next;
-    for (size_t k = 0; k < R; ++k) lam[k] += ad * dlam[k];
+    L += ad * A(dlam);
     zlo += ad * dzlo, zhi += ad * dzhi;
-    std::swap(s, s_next);  // the rows' slacks at the new x, linearised there
+    S = A(s_next);  // the rows' slacks at the new x, linearised there
     bound_slacks();
     // Three short steps in a row: the iterate has left the central path (a few rows' slacks change by orders of
     // magnitude per step, near a rest end or on a grid whose intervals differ a thousandfold). The multipliers
@@ -478,8 +467,8 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
     // 5-6 s on random non-uniform grids of 400 points where this takes 30-50 iterations (bench/README.md).
     short_steps = ap < 0.05 || ad < 0.05 ? short_steps + 1 : 0;
     if (short_steps == 3) {
-      const double mc = (sum_over(R, [&](size_t k) { return s[k] * lam[k]; }) + bound_gap(0, 0, dx, zlo, zhi)) / m;
-      for (size_t k = 0; k < R; ++k) lam[k] = mc / s[k];
+      const double mc = ((S * L).sum() + bound_gap(0, 0, dx, zlo, zhi)) / m;
+      L = mc / S;
       for (Eigen::Index c = 0; c < nx; ++c) {
         if (has_lo(c)) zlo[c] = mc / glo[c];
         if (has_hi(c)) zhi[c] = mc / ghi[c];
