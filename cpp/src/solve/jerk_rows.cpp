@@ -89,17 +89,21 @@ double jerk_quadrature_time(const JerkShape& sh, const Eigen::VectorXd& x, Eigen
         const double dv[3] = {1.0, 2 * sg - q, q};
         const double th = t0 + b0 * dv[1] + b1 * dv[2];
         if (!(th > 0)) return kInf;
-        const double w = gl8_weights()[i] * (u1 - u0) * ds, r = 1.0 / std::sqrt(th), f = w * r;
+        // One division and one root per node: 1/θ, and θ^(-1/2) as its root.
+        const double w = gl8_weights()[i] * (u1 - u0) * ds, inv = 1.0 / th, f = w * std::sqrt(inv);
         tk += f;
-        const double f1 = -0.5 * f / th;
+        const double f1 = -0.5 * f * inv;
         for (int a = 0; a < 3; ++a) g[a] += f1 * dv[a];
         if (h) {
-          const double f2 = 0.75 * f / (th * th);
+          const double f2 = 0.75 * f * inv * inv;
           for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) h[3 * a + c] += f2 * dv[a] * dv[c];
+            for (int c = 0; c <= a; ++c) h[3 * a + c] += f2 * dv[a] * dv[c];
         }
       }
     }
+    if (h)  // the upper triangle from the lower
+      for (int a = 0; a < 3; ++a)
+        for (int c = a + 1; c < 3; ++c) h[3 * a + c] = h[3 * c + a];
     T += tk;
     if (grad) {
       (*grad)[k] += g[0];
