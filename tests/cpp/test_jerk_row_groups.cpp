@@ -188,3 +188,48 @@ TEST(JerkUndominatedRows, KeepTheFeasibleSetAndEveryBindingRow) {
       }
   }
 }
+
+// jerk_implied_box: every (θ_k, b_k) that meets the rows with θ_k in its range has b_k inside the tightened box
+// (an outer bound: each row's own extreme over the θ range, not the polygon's), and the box is tightened (from
+// ±1e3 to the rows' scale).
+TEST(JerkImpliedBox, HoldsEveryPointTheRowsAdmitAndIsTight) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.2, 3.0);
+  const Eigen::Index nb = 5;
+  for (int rep = 0; rep < 20; ++rep) {
+    std::vector<JerkRow> rows;
+    Eigen::VectorXd lo = Eigen::VectorXd::Constant(2 * nb, -1e3), hi = Eigen::VectorXd::Constant(2 * nb, 1e3);
+    for (Eigen::Index k = 0; k < nb; ++k) {
+      lo[k] = 0.0, hi[k] = P(rng);
+      for (int j = 0; j < 7; ++j)
+        for (int sign = 1; sign >= -1; sign -= 2) {
+          JerkRow r;
+          r.add(static_cast<int>(k), sign * U(rng));
+          r.add(static_cast<int>(nb + k), sign * (0.1 + std::abs(U(rng))));
+          r.rhs = P(rng);
+          rows.push_back(r);
+        }
+    }
+    Eigen::VectorXd blo = lo, bhi = hi;
+    jerk_implied_box(rows, nb, blo, bhi);
+    for (Eigen::Index k = 0; k < nb; ++k) {
+      EXPECT_EQ(blo[k], lo[k]);  // θ's sides as they were
+      EXPECT_EQ(bhi[k], hi[k]);
+      ASSERT_LT(bhi[nb + k] - blo[nb + k], 100.0);  // tightened from ±1e3
+      int inside = 0;
+      for (int t = 0; t < 20000; ++t) {
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * nb);
+        x[k] = hi[k] * (0.5 + 0.5 * U(rng));
+        x[nb + k] = blo[nb + k] - 1 + (bhi[nb + k] - blo[nb + k] + 2) * (0.5 + 0.5 * U(rng));
+        bool ok = true;
+        for (const JerkRow& r : rows)
+          if ((r.col[0] == k) && r.dot(x) > r.rhs) ok = false;
+        if (!ok) continue;
+        ++inside;
+        EXPECT_GE(x[nb + k], blo[nb + k]) << rep << " " << k;
+        EXPECT_LE(x[nb + k], bhi[nb + k]) << rep << " " << k;
+      }
+      ASSERT_GT(inside, 50) << rep << " " << k;
+    }
+  }
+}

@@ -34,6 +34,7 @@ struct Problem {
   std::vector<JerkRow> point, consistency;
   const std::vector<JerkLimitRow>& jerk;
   Eigen::Index nb = 0;
+  Eigen::VectorXd cert_lo, cert_hi;  // lo, hi with b's sides as the rows imply (jerk_implied_box): the certificate's
   // KKT position of column c (θ_k -> 3k, b_k -> 3k + 1) and of interval k's multiplier.
   Eigen::Index pos(Eigen::Index c) const { return c < nb ? 3 * c : 3 * (c - nb) + 1; }
   Eigen::Index nu_pos(Eigen::Index k) const { return 3 * k + 2; }
@@ -278,7 +279,8 @@ double lagrangian_bound(const Problem& p, const JerkRowGroups& rows, const Eigen
     for (int i = 0; i < e.n; ++i) coef[e.col[i]] += nu[k] * e.val[i];
   }
   for (Eigen::Index c = 0; c < 2 * p.nb; ++c) {
-    const double lo = p.free[static_cast<size_t>(c)] ? p.lo[c] : x[c], hi = p.free[static_cast<size_t>(c)] ? p.hi[c] : x[c];
+    const bool f = p.free[static_cast<size_t>(c)] != 0;
+    const double lo = f ? p.cert_lo[c] : x[c], hi = f ? p.cert_hi[c] : x[c];
     if (coef[c] > 0) lower += coef[c] * lo;
     else if (coef[c] < 0) lower += coef[c] * hi;
     if (!std::isfinite(lower)) return -kInf;
@@ -541,7 +543,7 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const JerkRowSet& set
                  JerkOutput& out, std::chrono::steady_clock::time_point deadline) {
   const Eigen::Index nb = sh.n + 1, nx = 2 * nb;
   Problem p{sh, lo, hi, std::vector<char>(static_cast<size_t>(nx), 0), {}, jerk_consistency_rows(sh),
-            set.jerk, nb};
+            set.jerk, nb, {}, {}};
   // Rows of one free unknown are bounds; the box (certificate: every unknown bounded) stays far from the optimum.
   for (Eigen::Index c = 0; c < nx; ++c) {
     p.free[static_cast<size_t>(c)] = lo[c] < hi[c];
@@ -566,6 +568,8 @@ bool jerk_newton(const JerkInput& in, const JerkShape& sh, const JerkRowSet& set
   // x must be strictly feasible; every fixed value 0 (rest to rest: the starts are slowed by scaling).
   for (Eigen::Index c = 0; c < nx; ++c)
     if (!p.free[static_cast<size_t>(c)] && lo[c] != 0) return false;
+  p.cert_lo = p.lo, p.cert_hi = p.hi;
+  jerk_implied_box(p.point, nb, p.cert_lo, p.cert_hi);
   p.point = jerk_undominated_rows(p.point, nb, p.lo, p.hi);
   JerkRowGroups rows(p.point, p.jerk, p.free);
   std::vector<double> slack;

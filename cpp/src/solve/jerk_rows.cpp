@@ -235,6 +235,28 @@ std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eig
   return out;
 }
 
+void jerk_implied_box(const std::vector<JerkRow>& rows, Eigen::Index nb, Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
+  const Eigen::VectorXd theta_lo = lo.head(nb), theta_hi = hi.head(nb);
+  for (const JerkRow& r : rows) {
+    if (r.n != 2) continue;
+    const int t = std::min(r.col[0], r.col[1]), b = std::max(r.col[0], r.col[1]);
+    if (t >= nb || b != t + nb) continue;  // not (θ_k, b_k)
+    const double alpha = r.col[0] == t ? r.val[0] : r.val[1], beta = r.col[0] == b ? r.val[0] : r.val[1];
+    const double L = theta_lo[t], H = theta_hi[t];
+    if (!(beta != 0) || !std::isfinite(L) || !std::isfinite(H)) continue;
+    // b_k = (c - α θ_k) / β at the range's ends.
+    const double at_L = (r.rhs - alpha * L) / beta, at_H = (r.rhs - alpha * H) / beta;
+    if (!std::isfinite(at_L) || !std::isfinite(at_H)) continue;
+    if (beta > 0) {
+      const double v = std::max(at_L, at_H);
+      hi[b] = std::min(hi[b], v + 1e-12 * (std::abs(at_L) + std::abs(at_H)));
+    } else {
+      const double v = std::min(at_L, at_H);
+      lo[b] = std::max(lo[b], v - 1e-12 * (std::abs(at_L) + std::abs(at_H)));
+    }
+  }
+}
+
 JerkRowSet jerk_rows(const JerkInput& in, const JerkShape& sh) {
   return {jerk_point_rows(in, sh), jerk_limit_rows(in, sh)};
 }

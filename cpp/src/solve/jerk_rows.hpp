@@ -98,6 +98,13 @@ std::vector<JerkLimitRow> jerk_limit_rows(const JerkInput& in, const JerkShape& 
 std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eigen::Index nb, const Eigen::VectorXd& lo,
                                            const Eigen::VectorXd& hi);
 
+/// The box [lo, hi] with each b_k's sides tightened to what the rows on (θ_k, b_k) imply over θ_k in
+/// [lo[θ_k], hi[θ_k]]: a row bounding b_k from above by P + Q θ_k bounds it by the larger of its values at the
+/// range's ends (from below: the smaller), widened by 1e-12 relative for rounding. Every point that meets the
+/// rows and the box lies in it: a certificate's minimum over this box is still a lower bound, and much tighter
+/// than over the box's 1e3 s_b sides (jerk_newton's lagrangian_bound).
+void jerk_implied_box(const std::vector<JerkRow>& rows, Eigen::Index nb, Eigen::VectorXd& lo, Eigen::VectorXd& hi);
+
 /// A problem's rows before linearisation (jerk_point_rows, jerk_limit_rows), built once per solve: the start,
 /// the structured solve and the final check all read them.
 struct JerkRowSet {
