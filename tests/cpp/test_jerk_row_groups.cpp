@@ -121,28 +121,42 @@ TEST(JerkRowGroups, AreTheRowsOneByOneInAnyOrder) {
   }
 }
 
+namespace {
+
+// Seeded limit rows ±(α θ_k + β b_k) <= c, seven joints and both signs per grid point k in [first, last], as the
+// acceleration limits give them; θ_k's upper side hi[k] drawn. β is drawn in [-1, 1], or away from 0 with
+// beta_min > 0.
+std::vector<JerkRow> seeded_limit_rows(std::mt19937& rng, Eigen::Index nb, Eigen::Index first, Eigen::Index last,
+                                       double beta_min, Eigen::VectorXd& hi) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.2, 3.0);
+  std::vector<JerkRow> rows;
+  for (Eigen::Index k = first; k <= last; ++k) {
+    hi[k] = P(rng);
+    for (int j = 0; j < 7; ++j)
+      for (int sign = 1; sign >= -1; sign -= 2) {
+        JerkRow r;
+        const double alpha = U(rng), beta = beta_min > 0 ? beta_min + std::abs(U(rng)) : U(rng);
+        r.add(static_cast<int>(k), sign * alpha);
+        r.add(static_cast<int>(nb + k), sign * beta);
+        r.rhs = P(rng);
+        rows.push_back(r);
+      }
+  }
+  return rows;
+}
+
+}  // namespace
+
 // jerk_undominated_rows (solve/jerk_rows.hpp): seeded limit rows α θ_k + β b_k <= c at a few grid points, plus a
 // row on other unknowns; a random (θ, b) in the θ range that meets the rows kept meets every row, and a row that
 // is the binding one somewhere in the range is kept.
 TEST(JerkUndominatedRows, KeepTheFeasibleSetAndEveryBindingRow) {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.2, 3.0);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
   const Eigen::Index nb = 6;
   for (int rep = 0; rep < 20; ++rep) {
-    std::vector<JerkRow> rows;
     Eigen::VectorXd lo = Eigen::VectorXd::Zero(2 * nb), hi = Eigen::VectorXd::Constant(2 * nb, 1e300);
-    for (Eigen::Index k = 1; k < nb - 1; ++k) {
-      hi[k] = P(rng);  // θ_k in [0, hi]
-      for (int j = 0; j < 7; ++j)
-        for (int sign = 1; sign >= -1; sign -= 2) {  // |p'' θ + p' b| <= a, as the acceleration limits
-          JerkRow r;
-          const double d2 = U(rng), d1 = U(rng);
-          r.add(static_cast<int>(k), sign * d2);
-          r.add(static_cast<int>(nb + k), sign * d1);
-          r.rhs = P(rng);
-          rows.push_back(r);
-        }
-    }
+    std::vector<JerkRow> rows = seeded_limit_rows(rng, nb, 1, nb - 2, 0.0, hi);
     JerkRow other;  // a row on two grid points' unknowns: kept as it is
     other.add(1, 1.0), other.add(static_cast<int>(nb + 2), 1.0), other.rhs = 5;
     rows.push_back(other);
@@ -192,24 +206,14 @@ TEST(JerkUndominatedRows, KeepTheFeasibleSetAndEveryBindingRow) {
 // jerk_implied_box: every (θ_k, b_k) that meets the rows with θ_k in its range has b_k inside the tightened box
 // (an outer bound: each row's own extreme over the θ range, not the polygon's), and the box is tightened (from
 // ±1e3 to the rows' scale).
-TEST(JerkImpliedBox, HoldsEveryPointTheRowsAdmitAndIsTight) {
+TEST(JerkImpliedBox, HoldsEveryPointTheRowsAdmitAndIsTightened) {
   std::mt19937 rng(9);
-  std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.2, 3.0);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
   const Eigen::Index nb = 5;
   for (int rep = 0; rep < 20; ++rep) {
-    std::vector<JerkRow> rows;
     Eigen::VectorXd lo = Eigen::VectorXd::Constant(2 * nb, -1e3), hi = Eigen::VectorXd::Constant(2 * nb, 1e3);
-    for (Eigen::Index k = 0; k < nb; ++k) {
-      lo[k] = 0.0, hi[k] = P(rng);
-      for (int j = 0; j < 7; ++j)
-        for (int sign = 1; sign >= -1; sign -= 2) {
-          JerkRow r;
-          r.add(static_cast<int>(k), sign * U(rng));
-          r.add(static_cast<int>(nb + k), sign * (0.1 + std::abs(U(rng))));
-          r.rhs = P(rng);
-          rows.push_back(r);
-        }
-    }
+    lo.head(nb).setZero();
+    const std::vector<JerkRow> rows = seeded_limit_rows(rng, nb, 0, nb - 1, 0.1, hi);
     Eigen::VectorXd blo = lo, bhi = hi;
     jerk_implied_box(rows, nb, blo, bhi);
     for (Eigen::Index k = 0; k < nb; ++k) {
