@@ -116,7 +116,9 @@ struct Step {
   explicit Step(Eigen::Index m) : Ks(m) {}
   Eigen::VectorXd gT, d, nu;  // ∇T at x̄, the Newton step, the consistency multipliers (of φ / t)
   double dec2 = 0;            // Newton decrement², -∇φ·d
-  std::vector<double> hT;     // scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, their multipliers
+  // Scratch reused over the steps: ∇²T's blocks, the rows' 1 / slack, their multipliers, per-row weights and
+  // products.
+  std::vector<double> hT;
   std::vector<double> inv_slack, lam, weight, scratch;
   Eigen::VectorXd scale;      // the KKT matrix's symmetric scaling (solve_kkt)
   Eigen::VectorXd kkt_b, kkt_y, kkt_r;  // solve_kkt's scratch
@@ -353,8 +355,7 @@ bool primal_dual(const Problem& p, JerkRowGroups& rows, Eigen::VectorXd& x, doub
     if (has_hi(c)) zhi[c] = mu0 / ghi[c];
   }
   // The multipliers' step for the primal step dx from the complementarity rows λ ds + s dλ = γ - λ s (ds = -a·dx;
-  // pd.grad_row = γ / s, 0 for the predictor), and the largest primal and dual steps keeping s, λ > 0: one pass
-  // over the rows after their products.
+  // pd.grad_row = γ / s, 0 for the predictor), and the largest primal and dual steps keeping s, λ > 0.
   auto directions = [&](const Eigen::VectorXd& dx, std::vector<double>& dsv, std::vector<double>& dl,
                         Eigen::VectorXd& dzlo, Eigen::VectorXd& dzhi, double& ap, double& ad) {
     rows.products(dx, dsv.data());
