@@ -86,8 +86,8 @@ HAND_POINT = (0.0, 0.0, 0.0)
 # ball's centre, the simulator at its bottom: a moment of BALL x the friction force, at most 0.001 m x 0.25 x
 # the normal force. Small because a ball that turns rolls: its friction holds the bottom point, so its centre
 # moves by BALL x the turn, and a hand turns by up to 0.9 rad over one hold (measured 2026-12-07: the 5 mm
-# ball's centre moved as pure rolling predicts, to 0.3 mm, over the first 0.8 s of a hold; its hands slid up to
-# 3.5 mm in all, 1.2 mm with 1 mm; bench/README.md).
+# ball's centre moved as pure rolling predicts, to 0.5 mm, over the first 1.1-1.3 s of a hold; its hands slid up
+# to 3.5 mm in all, 1.2 mm with 1 mm; bench/README.md).
 BALL = 0.001
 HAND_Y = 0.35  # |y| of the hands on the rungs
 # A hand hooks its rung (GRIP): besides the rung top (normal +z) its ball is held from behind by a ridge on the
