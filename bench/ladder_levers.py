@@ -13,7 +13,8 @@ motors at TORQUE_SCALE, BALL, CONTACT_TIMECONST, FEEDFORWARD_FRICTION_MARGIN). T
 each shift phase, so the feed-forward unloads it while it still touches; the no-impact rule is then replaced
 by ṡ = 0 rows at the real makes (add_contact_phases would put a rest where the limb re-enters the plan).
 --rest-at-breaks: ṡ = 0 at each lift-off too. --jerk j: add_jerk_limits(-j, j) on every coordinate (it cannot
-take a rest inside the path: use --no-impact). --swing-min-normal-force f: the foot-swing phases' own minimum.
+take a rest inside the path: use --no-impact). --swing-min-normal-force f, --swing-friction-margin m: the
+foot-swing phases' own minimum normal force per point and friction margin.
 """
 
 from __future__ import annotations
@@ -29,14 +30,18 @@ import pathpace as pp
 ladder = common.import_example("humanoid_ladder")
 
 
-def plan_phases(handover: float, swing_min_normal_force: float | None) -> list[tuple]:
+def plan_phases(handover: float, swing_min_normal_force: float | None, swing_friction_margin: float | None = None) -> list[tuple]:
     """The example's phases, with each shift's ends given to the neighbouring swing's support (--handover)."""
     sched, every = ladder.schedule(), ladder.all_contacts()
     without = lambda limb: [c for c in every if c.link != limb]  # noqa: E731
     out = []
     for i, (s0, s1, limb) in enumerate(sched):
         if limb is not None:
-            own = {"min_normal_force": swing_min_normal_force} if limb in ladder.FEET and swing_min_normal_force else None
+            own = {}
+            if limb in ladder.FEET and swing_min_normal_force is not None:
+                own["min_normal_force"] = swing_min_normal_force
+            if limb in ladder.FEET and swing_friction_margin is not None:
+                own["friction_margin"] = swing_friction_margin
             out.append((s0, s1, without(limb), own) if own else (s0, s1, without(limb)))
             continue
         prev = sched[i - 1][2] if i > 0 else None
@@ -71,6 +76,7 @@ def main() -> None:
     ap.add_argument("--no-impact", action="store_true", help="no rest at the makes (add_contact_phases' rule off)")
     ap.add_argument("--jerk", type=float, default=None)
     ap.add_argument("--swing-min-normal-force", type=float, default=None)
+    ap.add_argument("--swing-friction-margin", type=float, default=None, help="the foot-swing phases' own friction margin")
     ap.add_argument("--torque-noise", type=float, default=0.0)
     ap.add_argument("--seed", type=int, default=0)
     a = ap.parse_args()
@@ -78,8 +84,8 @@ def main() -> None:
     ladder.BALL = a.ball  # read at call time by the path, the rungs' contact data and the simulator
     robot = ladder.talos_sway.load_talos()
     path = ladder.climb_path(robot)
-    phases = plan_phases(a.handover, a.swing_min_normal_force)
-    plain = a.handover == 0 and a.swing_min_normal_force is None
+    phases = plan_phases(a.handover, a.swing_min_normal_force, a.swing_friction_margin)
+    plain = a.handover == 0
     grid = ladder.phase_grid(a.grid) if plain else grid_for(phases, a.grid)
     prob = pp.TimeScalingProblem(path, grid=grid)
     options = dict(ladder.MARGINS, min_normal_force=a.min_normal_force, torque_scale=ladder.TORQUE_SCALE)
