@@ -715,25 +715,27 @@ class Simulator:
             return np.atleast_2d(traj.torques(t, self.robot)), mode
         if mode != "contact":
             _fail(f"feedforward = '{mode}' must be 'auto', 'contact', 'inverse_dynamics' or 'none'")
-        # The force sets by phase: the trajectory's own (one per contact phase), else those of `phases` for a
-        # timing without contacts, else one set for the whole motion.
         own = traj.contacts is not None and contact_model is None
-        if own:
-            models = list(traj.contact_phases) or [traj.contacts]
-            which = np.atleast_1d(np.asarray(traj.contact_phase(t))) if len(models) > 1 else np.zeros(t.size, dtype=int)
-        elif contact_model is None and phases is not None:
-            models = [_core.ContactConstraint(self.robot, list(ph[2]), cone_edges=8) for ph in phases]
-            which = self._phase_of(traj, t, phases)
-        else:
-            models, which = [self._contact_model(contact_model)], np.zeros(t.size, dtype=int)
-        if own:  # one call, as before phases could be given here
+        if own:  # the trajectory's own forces: one call (C++ batches the samples by phase)
             cf = traj.contact_forces(t)
             tau = np.atleast_2d(np.array(cf.torques, dtype=float))
             feasible = np.atleast_1d(np.asarray(cf.feasible, dtype=bool))
-        q, qd, qdd = traj.evaluate(t)
-        if not own:
+            if friction_margin == 0.0:
+                models = []
+            else:
+                models = list(traj.contact_phases) or [traj.contacts]
+                which = (np.atleast_1d(np.asarray(traj.contact_phase(t))) if len(models) > 1
+                         else np.zeros(t.size, dtype=int))
+        else:  # the sets of `phases` for a timing without contacts, else one set for the whole motion
+            if contact_model is None and phases is not None:
+                models = [_core.ContactConstraint(self.robot, list(ph[2]), cone_edges=8) for ph in phases]
+                which = self._phase_of(traj, t, phases)
+            else:
+                models, which = [self._contact_model(contact_model)], np.zeros(t.size, dtype=int)
             tau, feasible = np.zeros((t.size, self.robot.nq)), np.zeros(t.size, dtype=bool)
-        for p in np.unique(which):
+        if models:
+            q, qd, qdd = traj.evaluate(t)
+        for p in np.unique(which) if models else ():
             idx = np.flatnonzero(which == p)
             if not own:
                 f = models[p].force_distribution(q[idx], qd[idx], qdd[idx])
