@@ -126,18 +126,20 @@ def experiments(args):
     if args.ladder:
         ladder = common.import_example("humanoid_ladder")
         climb = ladder.climb_path(talos)
-        # N = ladder.SIM_GRID on its phase grid (every switch a grid point), motors planned at TORQUE_SCALE.
+        # N = ladder.SIM_GRID on its phase grid (every switch a grid point), motors planned at TORQUE_SCALE; its
+        # scene (2 ms contacts) and feed-forward (in the plan's friction margin).
         rows.append((f"Talos ladder, 2 rungs, 16 contact changes (N = {ladder.SIM_GRID}, motors {ladder.TORQUE_SCALE} x)",
                      climb, dict(phases=ladder.phases()), ladder.simulator(talos, climb),
                      {"torque_scale": ladder.TORQUE_SCALE, "grid": ladder.phase_grid(ladder.SIM_GRID),
-                      "drift_tolerance": ladder.DRIFT}))
+                      "drift_tolerance": ladder.DRIFT,
+                      "run_options": {"feedforward_friction_margin": ladder.FEEDFORWARD_FRICTION_MARGIN}}))
     print("| experiment | T at 0 N (s) | 0 N: worst criterion | smallest min normal force with room (N) | "
           "T (s) | cost | worst criterion there | trials | wall (s) |")
     print("|---|---:|---|---:|---:|---:|---|---:|---:|")
     for name, path, where, sim, extra in rows:
         options = dict(lower=0.0, upper=60.0, tolerance=1.0, friction_margin=0.5, grid=args.grid, room=0.5)
         extra = dict(extra or {})
-        for key in ("grid", "drift_tolerance", "upper"):  # the ladder's own
+        for key in ("grid", "drift_tolerance", "upper", "run_options"):  # the ladder's own
             if key in extra:
                 options[key] = extra.pop(key)
         extra = extra or None

@@ -26,10 +26,12 @@ Timed with torque limits (the URDF's effort) and the contacts of each phase, μ 
 friction margin and a minimum normal force per point (MARGINS), on N intervals with every switch a grid
 point (phase_grid). --sweep times it at N = 50..800 and plots run time against N
 (examples/output/humanoid_ladder.png). --sim executes it in MuJoCo (pathpace.sim: the rungs as box geoms,
-the hands' balls as ball_links): the N = 100 timing, and the one at SIM_GRID with the motors planned at
-TORQUE_SCALE and SIM_MIN_NORMAL_FORCE per point.
+the hands' balls as ball_links, contacts with time constant CONTACT_TIMECONST, the feed-forward's forces in
+the plan's friction margin): the N = 100 timing, the one at SIM_GRID with the motors planned at TORQUE_SCALE
+and SIM_MIN_NORMAL_FORCE per point, the velocity and acceleration optimum, and the uniform timing at its T;
+--seeds K runs the executed timing K more times with seeded feed-forward torque noise.
 
-    .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim] [--repeat 5] [--contact-timeconst 0.002]
+    .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim [--seeds 5]] [--repeat 5] [--contact-timeconst 0.002]
 """
 
 from __future__ import annotations
@@ -63,6 +65,13 @@ DRIFT = 3e-4
 # just after a lift-off, and the robot falls), the motors planned at TORQUE_SCALE x their effort (the rest
 # is the feedback's) and SIM_MIN_NORMAL_FORCE per point.
 SIM_GRID, TORQUE_SCALE, SIM_MIN_NORMAL_FORCE = 400, 0.8, 30.0
+# MuJoCo's contacts in this scene: time constant 2 ms, the stiffest its 1 ms step allows. MuJoCo's friction is
+# soft (a held point under a tangential load creeps at a speed proportional to the time constant), and at the
+# simulator's default of 5 ms the climb's held points slide 2-3 x as far (bench/README.md).
+CONTACT_TIMECONST = 0.002
+# The feed-forward's forces keep the friction reserve the plan kept (Simulator.run's feedforward_friction_margin):
+# the physical cones' centre asks a hand for up to 0.42 N tangentially per N of normal force at mu = 0.5.
+FEEDFORWARD_FRICTION_MARGIN = MARGINS["friction_margin"]
 
 FEET = talos_sway.SOLES  # left, right
 HANDS = ("gripper_left_base_link", "gripper_right_base_link")
@@ -74,9 +83,12 @@ HAND_POINT = (0.0, 0.0, 0.0)
 # A hand holds a rung with a ball of this radius (the simulator's contact sphere) centred on its point: the
 # point is BALL above the rung, and the hand may turn on the ball as the body climbs past it (a sole's
 # points are on the sole's surface instead: a sole stays flat). pathpace puts the hand's force at the
-# ball's centre, the simulator at its bottom: a moment of BALL x the friction force, at most 0.005 m x 0.25 x
-# the normal force.
-BALL = 0.005
+# ball's centre, the simulator at its bottom: a moment of BALL x the friction force, at most 0.001 m x 0.25 x
+# the normal force. Small because a ball that turns rolls: its friction holds the bottom point, so its centre
+# moves by BALL x the turn, and a hand turns by up to 0.9 rad over one hold (measured 2026-12-07: the 5 mm
+# ball's centre moved as pure rolling predicts, to 0.5 mm, over the first 1.1-1.3 s of a hold; its hands slid up
+# to 3.5 mm in all, 1.2 mm with 1 mm; bench/README.md).
+BALL = 0.001
 HAND_Y = 0.35  # |y| of the hands on the rungs
 # A hand hooks its rung (GRIP): besides the rung top (normal +z) its ball is held from behind by a ridge on the
 # rung top (the fingers behind the rung: a face with normal +x, a frictional point contact through the ball's
@@ -390,11 +402,13 @@ def timing(robot: pp.RobotModel, path: pp.Path, grid: int, cycles: int = CYCLES,
 
 def simulator(robot: pp.RobotModel, path: pp.Path, cycles: int = CYCLES, grip: bool = GRIP, **options):
     """pathpace.sim's Talos on the ladder: every contact a sphere, placed where its first phase makes it, the
-    rungs as boxes (humanoid_sim.talos_simulator's URDF and locked grippers)."""
+    rungs as boxes (humanoid_sim.talos_simulator's URDF and locked grippers), contacts with time constant
+    CONTACT_TIMECONST unless `options` say otherwise."""
     import humanoid_sim  # noqa: E402  (MuJoCo; imported only here)
     from pathpace.sim import Box, contact_configurations
 
     contacts = all_contacts(grip)
+    options.setdefault("contact_timeconst", CONTACT_TIMECONST)
     return humanoid_sim.talos_simulator(robot, path, contacts, surfaces=[Box(**b) for b in rung_boxes(grip)],
                                         ball_links=HANDS, contact_radius=BALL,
                                         contact_configurations=contact_configurations(path, phases(cycles, grip), contacts),
@@ -444,6 +458,12 @@ def plot_sweep(rows: list[dict], out: Path) -> None:
     plt.close(fig)
 
 
+def _verdict(r) -> str:
+    """A run's verdict with the project's room: every criterion at most half its threshold."""
+    ratio = r.worst_criterion[1]
+    return "fell" if r.fell else ("executed, with room" if ratio <= 0.5 else ("executed" if r.executed else "off plan"))
+
+
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--grid", type=int, default=100, help="N, grid intervals (default 100)")
@@ -454,9 +474,15 @@ def main(argv: list[str] | None = None) -> dict:
                     help=f"N of the timing that is executed (default {SIM_GRID}; see SIM_GRID)")
     ap.add_argument("--min-normal-force", type=float, default=SIM_MIN_NORMAL_FORCE,
                     help=f"N per point of the executed timing (default {SIM_MIN_NORMAL_FORCE})")
-    ap.add_argument("--contact-timeconst", type=float, default=0.005,
-                    help="MuJoCo's contact time constant in s (default 0.005, the simulator's; 0.002 is the stiffest at "
-                         "its 1 ms step: slip 4.2 mm instead of 8.6 at SIM_GRID, bench/README.md)")
+    ap.add_argument("--contact-timeconst", type=float, default=CONTACT_TIMECONST,
+                    help=f"MuJoCo's contact time constant in s (default {CONTACT_TIMECONST}, see CONTACT_TIMECONST; the "
+                         "simulator's own default is 0.005)")
+    ap.add_argument("--feedforward-friction-margin", type=float, default=FEEDFORWARD_FRICTION_MARGIN,
+                    help=f"the feed-forward's cones are mu (1 - this) (default {FEEDFORWARD_FRICTION_MARGIN}, the plan's; 0: "
+                         "the physical cones)")
+    ap.add_argument("--seeds", type=int, default=0,
+                    help="also run the executed timing this many times with seeded feed-forward torque noise (--torque-noise)")
+    ap.add_argument("--torque-noise", type=float, default=1.0, help="N·m, std of the noise of --seeds (default 1)")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -495,21 +521,37 @@ def main(argv: list[str] | None = None) -> dict:
     if args.sim:
         sim = simulator(robot, path, contact_timeconst=args.contact_timeconst)
         options = dict(MARGINS, min_normal_force=args.min_normal_force, torque_scale=TORQUE_SCALE)
-        rows = [("N = 100, margins of the timing above", res)]
-        rows.append((f"N = {args.sim_grid}, {args.min_normal_force:g} N per point, motors {TORQUE_SCALE} x",
-                     timing(robot, path, args.sim_grid, **options)[1]))
+        executed = timing(robot, path, args.sim_grid, **options)[1]
+        rows = [("N = 100, margins of the timing above", res.trajectory() if res.ok else None),
+                (f"N = {args.sim_grid}, {args.min_normal_force:g} N per point, motors {TORQUE_SCALE} x",
+                 executed.trajectory() if executed.ok else None)]
+        # The paper's comparisons: a contact-unaware optimum (URDF velocity limits, 10 rad/s²) and the path at
+        # a constant speed in the executed timing's T (its feed-forward: each phase's contacts, no margins).
+        kinematic = talos_sway.kinematic_timing(robot, path, phase_grid(args.sim_grid))
+        rows.append((f"N = {args.sim_grid}, velocity + acceleration limits only", kinematic.trajectory() if kinematic.ok else None))
+        if executed.ok:
+            rows.append(("uniform, T of the executed timing",
+                         talos_sway.uniform_timing(path, args.sim_grid, executed.duration)))
         print(f"{'timing (executed in MuJoCo)':48s} {'T (s)':>7s}  {'verdict':20s} worst criterion / threshold")
         out["sim"] = []
-        for name, r_ in rows:
-            if not r_.ok:
-                print(f"{name:48s} {'-':>7s}  {r_.status.name}")
+        run = dict(phases=ph, feedforward_friction_margin=args.feedforward_friction_margin)
+        for name, traj in rows:
+            if traj is None:
+                print(f"{name:48s} {'-':>7s}  no timing")
                 continue
-            traj = r_.trajectory()
-            r = sim.run(traj, phases=ph)
+            r = sim.run(traj, **run)
             crit, ratio = r.worst_criterion
-            verdict = "fell" if r.fell else ("executed, with room" if ratio <= 0.5 else ("executed" if r.executed else "off plan"))
-            print(f"{name:48s} {traj.duration:7.3f}  {verdict:20s} {crit} {ratio:.2f}   ({r.summary()})")
-            out["sim"].append({"timing": name, "T": traj.duration, "verdict": verdict, "worst": (crit, ratio), "sim": r})
+            print(f"{name:48s} {traj.duration:7.3f}  {_verdict(r):20s} {crit} {ratio:.2f}   ({r.summary()})", flush=True)
+            out["sim"].append({"timing": name, "T": traj.duration, "verdict": _verdict(r), "worst": (crit, ratio), "sim": r})
+        if args.seeds and executed.ok:
+            worst = []
+            for seed in range(args.seeds):
+                r = sim.run(executed.trajectory(), torque_noise=args.torque_noise, seed=seed, **run)
+                worst.append(r.worst_criterion[1])
+                print(f"  seed {seed}, torque noise {args.torque_noise:g} N·m: {_verdict(r)}, {r.worst_criterion[0]} "
+                      f"{r.worst_criterion[1]:.2f}   ({r.summary()})", flush=True)
+            print(f"  worst criterion / threshold over {args.seeds} seeds: median {np.median(worst):.2f}, worst {np.max(worst):.2f}")
+            out["seeds"] = worst
     return out
 
 

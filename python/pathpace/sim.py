@@ -672,8 +672,17 @@ class Simulator:
             self._default_contact_model = _core.ContactConstraint(self.robot, self.contacts, cone_edges=8)
         return self._default_contact_model
 
+    def _narrowed(self, model: _core.ContactConstraint, friction_margin: float) -> _core.ContactConstraint:
+        """`model`'s contacts with cones of μ (1 - friction_margin) and its physical torque limits (before scale and
+        margin): a force set whose centre keeps that share of every cone in reserve."""
+        contacts = [_core.Contact(c.link, c.point, c.normal, c.friction * (1.0 - friction_margin), c.other_link)
+                    for c in model.contacts]
+        return _core.ContactConstraint(model.robot, contacts, cone_edges=8, tau_min=model.physical_tau_min,
+                                       tau_max=model.physical_tau_max)
+
     def feedforward(self, traj: _core.Trajectory, t: np.ndarray, mode: str = "auto",
-                    contact_model: _core.ContactConstraint | None = None) -> tuple[np.ndarray, str]:
+                    contact_model: _core.ContactConstraint | None = None,
+                    friction_margin: float = 0.0, phases: Sequence | None = None) -> tuple[np.ndarray, str]:
         """(len(t), nq) feed-forward torques and the mode used.
 
         "contact": τ = M q̈ + C q̇ + g - Σ Jᵀ f with f the centred force distribution (continuous in t;
@@ -681,8 +690,23 @@ class Simulator:
         contact constraint when it has one (its margins shape the forces), else `contact_model`, else the
         simulator's contacts with 8 cone edges and no margins. "inverse_dynamics": τ = M q̈ + C q̇ + g
         (a robot without contacts). "none": PD only. "auto": "contact" if there are contacts.
+
+        friction_margin (in [0, 1)): the centre is taken in cones of μ (1 - friction_margin) instead of μ
+        (each phase's own contacts and physical torque limits, 8 cone edges). The physical set's centre may
+        ask a contact for most of its cone (a Talos hand on a ladder rung: 0.42 N tangentially per N of
+        normal force at μ = 0.5), and MuJoCo's soft friction creeps there; pass the plan's friction_margin
+        to feed forward forces that keep the reserve the plan kept. The plan's LP proved such forces exist
+        at its grid points (with its minimum normal forces too); at a sample where the narrowed set has no
+        interior or no solution the physical centre is used.
+
+        phases (as for add_contact_phases): for a trajectory without contacts of its own (a velocity and
+        acceleration timing) and no contact_model, each sample is fed forward with its phase's contacts (8
+        cone edges, no margins; the later phase at a switch) instead of all the simulator's contacts, which
+        would ask a swinging limb for forces.
         """
         t = np.asarray(t, dtype=float)
+        if not (0.0 <= friction_margin < 1.0):
+            _fail(f"friction_margin = {friction_margin} must be in [0, 1)")
         if mode == "auto":
             mode = "contact" if (self.contacts or traj.contacts is not None) else "inverse_dynamics"
         if mode == "none":
@@ -691,23 +715,58 @@ class Simulator:
             return np.atleast_2d(traj.torques(t, self.robot)), mode
         if mode != "contact":
             _fail(f"feedforward = '{mode}' must be 'auto', 'contact', 'inverse_dynamics' or 'none'")
-        if traj.contacts is not None and contact_model is None:
+        own = traj.contacts is not None and contact_model is None
+        if own:  # the trajectory's own forces: one call (C++ batches the samples by phase)
             cf = traj.contact_forces(t)
-        else:
-            model = self._contact_model(contact_model)
+            tau = np.atleast_2d(np.array(cf.torques, dtype=float))
+            feasible = np.atleast_1d(np.asarray(cf.feasible, dtype=bool))
+            if friction_margin == 0.0:
+                models = []
+            else:
+                models = list(traj.contact_phases) or [traj.contacts]
+                which = (np.atleast_1d(np.asarray(traj.contact_phase(t))) if len(models) > 1
+                         else np.zeros(t.size, dtype=int))
+        else:  # the sets of `phases` for a timing without contacts, else one set for the whole motion
+            if contact_model is None and phases is not None:
+                models = [_core.ContactConstraint(self.robot, list(ph[2]), cone_edges=8) for ph in phases]
+                which = self._phase_of(traj, t, phases)
+            else:
+                models, which = [self._contact_model(contact_model)], np.zeros(t.size, dtype=int)
+            tau, feasible = np.zeros((t.size, self.robot.nq)), np.zeros(t.size, dtype=bool)
+        if models:
             q, qd, qdd = traj.evaluate(t)
-            cf = model.force_distribution(q, qd, qdd)
-        tau = np.atleast_2d(np.array(cf.torques, dtype=float))
+        for p in np.unique(which) if models else ():
+            idx = np.flatnonzero(which == p)
+            if not own:
+                f = models[p].force_distribution(q[idx], qd[idx], qdd[idx])
+                tau[idx] = np.atleast_2d(np.array(f.torques, dtype=float))
+                feasible[idx] = np.atleast_1d(np.asarray(f.feasible, dtype=bool))
+            if friction_margin > 0.0:
+                # The same motion's forces in the narrowed cones, kept where they are that set's centre.
+                narrow = self._narrowed(models[p], friction_margin).force_distribution(q[idx], qd[idx], qdd[idx])
+                tn = np.atleast_2d(np.array(narrow.torques, dtype=float))
+                ok = (np.atleast_1d(np.asarray(narrow.centred, dtype=bool))
+                      & np.atleast_1d(np.asarray(narrow.feasible, dtype=bool)) & np.all(np.isfinite(tn), axis=1))
+                tau[idx[ok]] = tn[ok]
         # Where no contact forces of any sign meet the torque limits the LP has no answer: the motion is
         # impossible; track it with gravity-and-motion torques and the last good contact forces instead
         # (NaN would stop the simulation, and the robot is about to show what happens anyway).
-        bad = ~np.atleast_1d(np.asarray(cf.feasible, dtype=bool)) | ~np.all(np.isfinite(tau), axis=1)
+        bad = ~feasible | ~np.all(np.isfinite(tau), axis=1)
         if np.any(bad):
             good = np.flatnonzero(~bad)
             for k in np.flatnonzero(bad):
                 prev = good[good < k]
                 tau[k] = tau[prev[-1]] if prev.size else 0.0
         return tau, mode
+
+    @staticmethod
+    def _phase_of(traj: _core.Trajectory, t: np.ndarray, phases: Sequence) -> np.ndarray:
+        """The index of the phase at each t (by s(t); the later phase at a switch, as Trajectory.contact_phase)."""
+        s = np.asarray(traj.s(t))[0]
+        which = np.zeros(t.size, dtype=int)
+        for i, ph in enumerate(phases):
+            which[(s >= float(ph[0])) & (s <= float(ph[1]))] = i
+        return which
 
     def _static_feedforward(self, q: np.ndarray, mode: str, contact_model: _core.ContactConstraint | None) -> np.ndarray:
         zero = np.zeros_like(q)
@@ -733,6 +792,7 @@ class Simulator:
         torque_noise: float = 0.0,
         seed: int = 0,
         phases: Sequence | None = None,
+        feedforward_friction_margin: float = 0.0,
     ) -> SimResult:
         """Execute `traj`: start at rest at q(0), hold it for `settle` s (the contacts load up), track the
         trajectory, hold its last point for `hold` s. Stops early if the robot falls (base `fall_height` m
@@ -746,7 +806,10 @@ class Simulator:
         phase at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
         planned is not a lift. Its slip is its slide since it made contact (from the first sample its phase
         holds it), and where it landed against the plan is `SimResult.landing`, criterion "landing"
-        (default 10 mm: a placement error of the swing, judged like tracking, not a slide of the contact)."""
+        (default 10 mm: a placement error of the swing, judged like tracking, not a slide of the contact).
+
+        feedforward_friction_margin: the contact feed-forward's forces in cones of μ (1 - this) (`feedforward`'s
+        friction_margin; 0: the physical cones)."""
         mj, model, data = self.mujoco, self.model, self.data
         dt = model.opt.timestep
         crit = {"slip": 0.005, "lift": 0.005, "tilt": 0.05, "tracking": 0.1, "landing": 0.01}
@@ -763,7 +826,7 @@ class Simulator:
         n_move = int(math.ceil(T / dt - 1e-9))
         t_ctrl = np.minimum(np.arange(n_move + 1) * dt, T)
         q_des, qd_des, _ = traj.evaluate(t_ctrl)
-        tau_ff, mode = self.feedforward(traj, t_ctrl, feedforward, contact_model)
+        tau_ff, mode = self.feedforward(traj, t_ctrl, feedforward, contact_model, feedforward_friction_margin, phases)
         qd_des = qd_des.copy()
         qd_des[-1] = 0.0  # holding the end: at rest whatever the timing's last speed
         rng = np.random.default_rng(seed)

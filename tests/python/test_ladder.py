@@ -2,11 +2,11 @@
 
 What holds with room is asserted: the contact data (16 changes, every held point on its rung's top), the
 IK path (held points fixed to within the drift tolerance, joints inside their limits), the timing at N = 100
-(optimal, ṡ = 0 at each make by the no-impact rule), and what MuJoCo does with it. The executed timing does
-not execute with room today (slip 1.2 x its threshold: see bench/README.md); the test asserts only what is
-far from its threshold on either side: the N = 100 timing falls, the N = 400 one with 30 N per point
-reaches the top rung standing (no fall, tilt and tracking under a fifth of their thresholds).
-The IK takes ~20 s, each simulation ~10 s.
+(optimal, ṡ = 0 at each make by the no-impact rule), and what MuJoCo does with it (the example's scene:
+contacts with a 2 ms time constant, the feed-forward in the plan's friction margin): the N = 400 timing with
+30 N per point executes with room (every criterion at most half its threshold; measured 2026-12-07: slip 0.35,
+the rest <= 0.1), while the N = 100 timing and the velocity and acceleration optimum fall.
+The IK takes ~10-20 s, each simulation ~5-15 s.
 """
 
 import runpy
@@ -87,18 +87,26 @@ def test_mujoco_execution_verdicts_with_room(ladder):
     ns, robot, path = ladder["ns"], ladder["robot"], ladder["path"]
     sim = ns["simulator"](robot, path)
     assert sim.contact_surfaces[:8] == ["rung_1"] * 8 and sim.contact_surfaces[8:] == ["rung_6"] * 2
+    assert sim.model.geom("pathpace_contact_0").solref[0] == ns["CONTACT_TIMECONST"] == 0.002
     phases = ns["phases"]()
+    # The timings that fall are fed forward with the physical cones' centre (the simulator's default): they fall
+    # with the narrowed one too (examples/humanoid_ladder.py --sim), whose centre costs 3-6 x as much where the
+    # motion asks for forces near the edge of the set (N = 100: 132 s against 43 s; the executed timing: 16 s).
     res100 = ns["timing"](robot, path, 100, **ns["MARGINS"])[1]
-    fell = sim.run(res100.trajectory(), phases=phases)
-    assert fell.fell
+    assert sim.run(res100.trajectory(), phases=phases).fell
+    run = dict(phases=phases, feedforward_friction_margin=ns["FEEDFORWARD_FRICTION_MARGIN"])
     options = dict(ns["MARGINS"], min_normal_force=ns["SIM_MIN_NORMAL_FORCE"], torque_scale=ns["TORQUE_SCALE"])
     res = ns["timing"](robot, path, ns["SIM_GRID"], **options)[1]
-    out = sim.run(res.trajectory(), phases=phases)
-    ratios = out.criterion_ratios
-    # Room as the project defines it (at most half the threshold). Measured with the centred feed-forward
-    # (the simulator's default): tilt 0.13, tracking 0.19 (0.10 and 0.05 with the LP's vertex), slip 1.73:
-    # the slip is the open failure (bench/README.md), not asserted.
-    assert not out.fell and ratios["tilt"] <= 0.5 and ratios["tracking"] <= 0.5
+    out = sim.run(res.trajectory(), **run)
+    # Executed with room, as the project defines it: every criterion (slip, lift, tilt, tracking, landing) at
+    # most half its threshold. Measured: slip 0.35 (1.75 mm, the stance sole at the other foot's lift-off),
+    # landing 0.08, lift, tilt and tracking <= 0.05; 0.34-0.43 over N = 300-600, 20-50 N per point, impratio 10
+    # and 2.5 ms contacts (3 ms: 0.50), 0.39-0.44 with 1 N·m of torque noise (bench/README.md).
+    assert not out.fell and max(out.criterion_ratios.values()) <= 0.5, out.criterion_ratios
+    # The contact-unaware optimum (URDF velocity limits, 10 rad/s²) is slower here (T ~ 11.0 s) and falls in
+    # the first foot's swing (s ~ 3.5).
+    kinematic = ns["talos_sway"].kinematic_timing(robot, path, ns["phase_grid"](ns["SIM_GRID"]))
+    assert kinematic.ok and sim.run(kinematic.trajectory(), phases=phases).fell
 
 
 def test_grip_holds_each_hand_on_the_rung_top_and_the_ridge_behind_it(ladder):

@@ -442,6 +442,37 @@ def test_run_with_phases_measures_held_points_against_the_plan(sway):
     assert "landing" in same.criterion_ratios and plain.criterion_ratios["landing"] == 0.0
 
 
+def test_feedforward_in_narrowed_cones_and_by_phase_for_a_timing_without_contacts(sway):
+    """friction_margin: the centre of the cones of μ (1 - margin), with the physical torque limits; phases: a
+    timing without contacts of its own is fed forward with each phase's contacts, not all of them."""
+    sim, robot, contacts = sway["sim"], sway["robot"], sway["contacts"]
+    traj = timing(sway, 20.0, 0.5)
+    t = np.linspace(0.0, traj.duration, 7)
+    wide, _ = sim.feedforward(traj, t)
+    narrow, mode = sim.feedforward(traj, t, friction_margin=0.5)
+    half = [pp.Contact(c.link, c.point, c.normal, 0.5 * c.friction) for c in contacts]
+    own = traj.contacts
+    cf = pp.ContactConstraint(robot, half, cone_edges=8, tau_min=own.physical_tau_min,
+                              tau_max=own.physical_tau_max).force_distribution(*traj.evaluate(t))
+    assert mode == "contact" and np.all(cf.centred)
+    np.testing.assert_array_equal(narrow, cf.torques)
+    assert np.max(np.abs(narrow - wide)) > 1e-2  # N·m (0.15 here): another distribution of the same motion
+    with pytest.raises(pp.InvalidInputError, match=r"friction_margin = 1.0 must be in \[0, 1\)"):
+        sim.feedforward(traj, t, friction_margin=1.0)
+    # No contacts of its own: the phase's contacts (the right sole only after s = 0.5) shape the forces.
+    bare = pp.Trajectory(sway["path"], np.linspace(0.0, 1.0, 11), np.full(11, 1.0 / 3.0))
+    left = [c for c in contacts if c.link == "left_sole_link"]
+    right = [c for c in contacts if c.link == "right_sole_link"]
+    t = np.array([0.3, 1.2, 2.4])  # s = 0.1, 0.4, 0.8
+    tau, _ = sim.feedforward(bare, t, phases=[(0.0, 0.5, contacts), (0.5, 1.0, right)])
+    q, qd, qdd = bare.evaluate(t)
+    both = pp.ContactConstraint(robot, contacts, cone_edges=8).force_distribution(q[:2], qd[:2], qdd[:2])
+    np.testing.assert_array_equal(tau[:2], both.torques)
+    one = pp.ContactConstraint(robot, right, cone_edges=8).force_distribution(q[2:], qd[2:], qdd[2:])
+    np.testing.assert_array_equal(tau[2:], np.where(np.atleast_1d(one.feasible)[:, None], one.torques, tau[1:2]))
+    assert left  # (the left sole carries nothing after s = 0.5)
+
+
 def test_slide_since_make_splits_landing_from_slide():
     from pathpace.sim import _slide_since_make
     nan = np.nan
