@@ -537,3 +537,25 @@ def test_jerk_limits_compose_with_contacts_from_the_scaled_start(robot, kind):
         assert r.duration > free.duration * (1 + 1e-3)  # the jerk limits bind
         assert r.stats["lp_solves"] == free.stats["lp_solves"]  # no start LP
     assert res["auto"].duration == pytest.approx(res["slp"].duration, rel=2e-7)
+
+
+def test_a_rest_inside_the_path_is_refused_at_once():
+    """A row forcing ṡ = 0 at an inner grid point (a contact phase's no-impact rule does that at every make):
+    s̈ linear in s between grid points cannot reach rest in finite time, so the jerk solve refuses it, naming
+    the grid index and s, before any interior-point or GLPK work (on the ladder that work took 68-97 s and
+    ended in NUMERICAL_ERROR)."""
+    n, N = 7, 60
+    path = pp.CubicSplinePath(np.random.default_rng(0).uniform(-1, 1, (6, n)))
+    prob = pp.TimeScalingProblem(path, N)
+    v = np.full(n, 2.0)
+    prob.add_velocity_limits(-v, v)
+    prob.add_acceleration_limits(-3 * v, 3 * v)
+    A = np.zeros((N + 1, 1))
+    A[30, 0] = 1.0
+    hi = np.full((N + 1, 1), np.inf)
+    hi[30, 0] = 0.0
+    prob.add_linear_constraint(A, np.zeros((N + 1, 1)), np.zeros((N + 1, 1)), np.full((N + 1, 1), -np.inf), hi)
+    assert prob.solve().status == pp.Status.OPTIMAL  # without jerk limits it stops there
+    prob.add_jerk_limits(-30 * v, 30 * v)
+    with pytest.raises(pp.InvalidInputError, match=r"must stop \(ṡ = 0\) at grid index 30, s = 0\.5, inside the path"):
+        prob.solve()

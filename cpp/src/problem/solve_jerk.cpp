@@ -81,6 +81,17 @@ Result TimeScalingProblem::solve_jerk(const SolverOptions& options, bool adapt_g
     res.message = "without jerk limits: " + res.message;
     return res;
   }
+  // A rest inside the path (rows that force ṡ = 0 there: a contact phase's no-impact rule, or ṡ² <= 0) cannot be
+  // reached with s̈ linear in s between grid points (θ then falls quadratically and the time to reach 0 is
+  // infinite); only the ends have their constant-jerk ramps. Said at once, where the start LP and the rounds
+  // took a minute to end in NUMERICAL_ERROR on the ladder.
+  for (Eigen::Index k = 1; k < n; ++k)
+    if (res.sdot[k] <= 0)
+      detail::fail("jerk limits: the timing must stop (ṡ = 0) at grid index " + std::to_string(k) + ", s = " +
+                   detail::fmt(samples_.s[k]) +
+                   ", inside the path (a contact phase's no-impact rule, or a row that bounds ṡ² by 0); the jerk "
+                   "solve takes rests at the path's ends only: split the path there, or relax that row (for "
+                   "contact phases, impact_tolerance)");
   if (adapt_grid) {
     const Eigen::VectorXd grid = jerk_grid(res);
     if (grid.size() != samples_.s.size() || grid != samples_.s) {
