@@ -5,7 +5,8 @@ At every 1 kHz sample of a timed sway (Talos, 4 corners per sole; Romeo, 8 sole 
 several margins: the forces realise the motion (pinocchio's centroidal momentum rate, our unactuated rows) and
 keep every physical row (friction pyramid of μ, unilateral, torque limits); they move by less than 2 % of the
 weight between samples inside a grid interval; at a grid time no link's load jumps by more than the total
-does, plus 2 % of the weight; each sole's centre of pressure is in its support polygon; and the centre has
+does, plus 2 % of the weight (with jerk limits, which make s̈ continuous: without them no distribution can);
+each sole's centre of pressure is in its support polygon; and the centre has
 at least the vertex's room in the physical rows."""
 
 import sys
@@ -37,8 +38,10 @@ def sway_path(h, amplitude):
 _timed = {}
 
 
-def timed(name, margins, seed=21):
-    key = (name, margins)
+def timed(name, margins, seed=21, jerk=None):
+    """The sway timed with these margins (and |q⃛| <= jerk on every joint), its 1 kHz samples and both
+    distributions there."""
+    key = (name, margins, jerk)
     if key not in _timed:
         h = cc.load(name)
         amplitude = np.random.default_rng(seed).uniform(0.04, 0.06)
@@ -47,6 +50,8 @@ def timed(name, margins, seed=21):
         prob = pp.TimeScalingProblem(path, grid=100)
         prob.add_contacts(h.robot, cons, cone_edges=CONE_EDGES, min_normal_force=margins[0],
                           friction_margin=margins[1], drift_tolerance=1e-4)
+        if jerk is not None:
+            prob.add_jerk_limits(np.full(h.robot.nq, -jerk), np.full(h.robot.nq, jerk))
         res = prob.solve()
         assert res.status == pp.Status.OPTIMAL
         traj = res.trajectory()
@@ -127,12 +132,28 @@ def test_the_centre_is_continuous_inside_grid_intervals(name, margins):
 
 
 @pytest.mark.xfail(strict=True, reason="no distribution can: at a switch of s̈ the roll moment's jump must be carried "
-                   "by the feet's loads (see the next test); continuous s̈ (the jerk issue) removes the jumps")
+                   "by the feet's loads (see least_link_jump's test); with jerk limits s̈ is continuous and the "
+                   "target holds (test_with_jerk_limits_no_link_load_jumps_more_than_the_total)")
 @pytest.mark.parametrize("name,margins", CASES[:1])
 def test_at_a_grid_time_no_link_load_jumps_more_than_the_total(name, margins):
     h, cons, traj, t, cf, cv = timed(name, margins)
     weight = h.robot.mass * 9.81
     _, excess, _ = jumps(traj, t, cf.forces, traj.contact_wrenches(t).force)
+    assert excess <= JUMP * weight, excess / weight
+
+
+@pytest.mark.parametrize("name,margins", CASES)
+def test_with_jerk_limits_no_link_load_jumps_more_than_the_total(name, margins):
+    """The target that the test above cannot meet, met once s̈ is continuous: with |q⃛| <= 20 rad/s³ on every
+    joint the motion's wrench is continuous in t, so is the centre of its force set, and at a grid time no
+    link's load moves by more than the total does plus 2 % of the weight, nor by more than that between two
+    samples inside an interval. Measured: 0.0035-0.0049 of the weight at grid times, 0.0036-0.0043 inside
+    (without jerk limits: 0.45-0.62 at grid times), T 7-19 % above the timing without them."""
+    h, cons, traj, t, cf, _ = timed(name, margins, jerk=20.0)
+    weight = h.robot.mass * 9.81
+    assert np.all(cf.feasible) and np.all(cf.centred)
+    inside, excess, _ = jumps(traj, t, cf.forces, traj.contact_wrenches(t).force)
+    assert inside <= JUMP * weight, inside / weight
     assert excess <= JUMP * weight, excess / weight
 
 
