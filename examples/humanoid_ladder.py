@@ -29,7 +29,9 @@ point (phase_grid). --sweep times it at N = 50..800 and plots run time against N
 the hands' balls as ball_links, contacts with time constant CONTACT_TIMECONST, the feed-forward's forces in
 the plan's friction margin): the N = 100 timing, the one at SIM_GRID with the motors planned at TORQUE_SCALE
 and SIM_MIN_NORMAL_FORCE per point, the velocity and acceleration optimum, and the uniform timing at its T;
---seeds K runs the executed timing K more times with seeded feed-forward torque noise.
+--seeds K runs the executed timing K more times with seeded feed-forward torque noise. The N = --grid timing's
+HTML report (each limb's normal force and centre of pressure in its support polygon) goes to
+examples/output/humanoid_ladder.html (--report).
 
     .venv/bin/python examples/humanoid_ladder.py [--grid 100] [--sweep] [--sim [--seeds 5]] [--repeat 5] [--contact-timeconst 0.002]
 """
@@ -483,6 +485,9 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--seeds", type=int, default=0,
                     help="also run the executed timing this many times with seeded feed-forward torque noise (--torque-noise)")
     ap.add_argument("--torque-noise", type=float, default=1.0, help="N·m, std of the noise of --seeds (default 1)")
+    ap.add_argument("--report", default=str(Path(__file__).resolve().parent / "output" / "humanoid_ladder.html"),
+                    help="the N = --grid timing's HTML report, with each limb's centre of pressure in its support "
+                         "polygon (default examples/output/humanoid_ladder.html; '' for none)")
     args = ap.parse_args(argv)
 
     robot = talos_sway.load_talos()
@@ -509,6 +514,7 @@ def main(argv: list[str] | None = None) -> dict:
     if not res.ok:
         print(res.message)
         return out
+    talos_sway.write_report(prob, res, args.report)
     rest = [c.label for c in prob.constraints if isinstance(c, pp.ContactConstraint) and c.rest_at_begin]
     print(f"no-impact rule: sdot = 0 at {len(rest)} makes")
     if args.sweep:

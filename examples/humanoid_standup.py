@@ -12,9 +12,11 @@ simulator), so that torque limits bind along the motion, as on the paper's robot
 - joint velocity and acceleration limits only (what a contact-unaware planner does);
 - a constant rate in the first timing's T.
 
-Printed (fig. 6 style): T, the simulator's verdict and the worst criterion against its threshold.
+Printed (fig. 6 style): T, the simulator's verdict and the worst criterion against its threshold. The planned
+timing's HTML report (each sole's normal force and centre of pressure in its support polygon) goes to
+examples/output/humanoid_standup.html.
 
-    python examples/humanoid_standup.py [--grid 100] [--depth 0.25] [--torque-scale 0.3]
+    python examples/humanoid_standup.py [--grid 100] [--depth 0.25] [--torque-scale 0.3] [--report PATH]
 """
 
 from __future__ import annotations
@@ -89,10 +91,11 @@ def standup_path(robot: pp.RobotModel, depth: float = 0.25, pitch: float = 0.4, 
 
 
 def contact_timing(robot: pp.RobotModel, path: pp.Path, contacts: list[pp.Contact], grid: int,
-                   torque_scale: float, **margins) -> pp.Result:
+                   torque_scale: float, **margins) -> tuple[pp.TimeScalingProblem, pp.Result]:
     prob = pp.TimeScalingProblem(path, grid=grid)
     prob.add_contacts(robot, contacts, torque_scale=torque_scale, drift_tolerance=1e-4, **margins)
-    return prob.solve()
+    return prob, prob.solve()
+
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -101,6 +104,9 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--depth", type=float, default=0.25, help="squat depth: pelvis drop in m (default 0.25)")
     ap.add_argument("--torque-scale", type=float, default=TORQUE_SCALE,
                     help=f"the motors' torque as a fraction of the URDF effort, planned and simulated (default {TORQUE_SCALE})")
+    ap.add_argument("--report", default=str(Path(__file__).resolve().parent / "output" / "humanoid_standup.html"),
+                    help="the planned timing's HTML report, with each sole's centre of pressure in its support polygon "
+                         "(default examples/output/humanoid_standup.html; '' for none)")
     args = ap.parse_args(argv)
 
     import humanoid_sim  # noqa: E402  (MuJoCo; the Talos simulator of examples/humanoid_sim.py)
@@ -112,11 +118,12 @@ def main(argv: list[str] | None = None) -> dict:
           f"motors at {args.torque_scale} x the URDF effort")
     contacts = talos_sway.sole_contacts(4)
     t0 = time.perf_counter()
-    res = contact_timing(robot, path, contacts, args.grid, args.torque_scale, **MARGINS)
+    prob, res = contact_timing(robot, path, contacts, args.grid, args.torque_scale, **MARGINS)
     t_plan = time.perf_counter() - t0
     if not res.ok:
         print(res.message)
         return {"result": res, "path": path}
+    talos_sway.write_report(prob, res, args.report)
     kin = talos_sway.kinematic_timing(robot, path, args.grid)
     timings = [("torque + contacts, margins", res.trajectory()),
                ("velocity + acceleration only", kin.trajectory()),

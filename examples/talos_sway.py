@@ -205,5 +205,18 @@ def main(argv: list[str] | None = None) -> dict:
     return {"result": res, "rows": rows, "projection_time": t_sets, "solve_time": t_solve}
 
 
+def write_report(prob: pp.TimeScalingProblem, res: pp.Result, out: str) -> None:
+    """pathpace's HTML report of the timing (phase plane, torques, each link's normal force and its centre of
+    pressure in its support polygon) at `out` ('' for none); says so where plotly is missing."""
+    if not out:
+        return
+    try:
+        from pathpace.report import write_report as _write
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        print(f"wrote {_write(prob, res, out)}")
+    except ImportError as e:
+        print(f"(no report: {e.name} is not installed)")
+
+
 if __name__ == "__main__":
     main()

@@ -455,6 +455,21 @@ def contacts(result: Result, ax=None, per_point: bool = False):
     return ax
 
 
+def support_polygons(result: Result, links) -> dict[str, np.ndarray | None]:
+    """Each link's support polygon in the world's (x, y) at t = 0: the closed hull of its contact points (over
+    every phase), None for a link with fewer than three points."""
+    traj = result.trajectory()
+    phases = traj.contact_phases or [traj.contacts]
+    robot = phases[0].robot
+    q0 = traj.q(np.array([0.0]))[0]
+    out = {}
+    for link in links:
+        pts = {tuple((robot.frame_placement(q0, c.link) @ np.append(c.point, 1.0))[:2])
+               for ph in phases for c in ph.contacts if c.link == link}
+        out[link] = _hull(np.array(sorted(pts))) if len(pts) >= 3 else None
+    return out
+
+
 def centers_of_pressure(result: Result, ax=None):
     """Each contact link's centre of pressure over the motion (x, y in the world, m) inside its support
     polygon (the hull of its contact points at t = 0): a balance check at a glance."""
@@ -462,18 +477,11 @@ def centers_of_pressure(result: Result, ax=None):
     w = wrenches_data(result) if result.ok else None
     if w is None:
         return _nothing(ax, "centres of pressure", "no contacts in this problem" if result.ok else "no timing")
-    traj = result.trajectory()
-    phases = traj.contact_phases or [traj.contacts]
-    robot = phases[0].robot
-    q0 = traj.q(np.array([0.0]))[0]
+    hulls = support_polygons(result, w["links"])
     for n, link in enumerate(w["links"]):
-        pts = {tuple((robot.frame_placement(q0, c.link) @ np.append(c.point, 1.0))[:2])
-               for ph in phases for c in ph.contacts if c.link == link}
         color = plt_color(n, len(w["links"]))
-        if len(pts) >= 3:
-            xy = np.array(sorted(pts))
-            hull = _hull(xy)
-            ax.fill(hull[:, 0], hull[:, 1], color=color, alpha=0.15, lw=1, label=f"support of {link}")
+        if hulls[link] is not None:
+            ax.fill(hulls[link][:, 0], hulls[link][:, 1], color=color, alpha=0.15, lw=1, label=f"support of {link}")
         cop = w["cop"][:, n, :2]
         ax.plot(cop[:, 0], cop[:, 1], color=color, lw=1.5, label=f"centre of pressure of {link}")
     ax.set_aspect("equal", adjustable="datalim")

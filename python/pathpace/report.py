@@ -139,16 +139,28 @@ def figures(spec, result) -> list[tuple[str, Any]]:
 
     cd = _plot.contacts_data(result)
     if cd is not None:
+        # Per link, as plot.contacts draws by default: the normal force on each link (not a line per point).
+        w = _plot.wrenches_data(result)
         f = go.Figure()
-        t32 = _f32(cd["t"])
-        for i, link in enumerate(cd["links"]):
-            f.add_trace(go.Scatter(x=t32, y=_f32(np.linalg.norm(cd["forces"][:, i, :], axis=1)), mode="lines",
-                                   name=f"|f| {link} #{i}"))
-        f.add_trace(go.Scatter(x=t32, y=_f32(cd["margin"]), mode="lines", name="margin (weakest cone weight)",
+        for n, link in enumerate(w["links"]):
+            f.add_trace(go.Scatter(x=_f32(w["t"]), y=_f32(w["normal_force"][:, n]), mode="lines",
+                                   name=f"normal force on {link}"))
+        f.add_trace(go.Scatter(x=_f32(cd["t"]), y=_f32(cd["margin"]), mode="lines", name="margin (weakest cone weight)",
                                line={"color": "black", "width": 3}))
         f.add_hline(y=0.0, line={"dash": "dash", "color": "red", "width": 1})
         f.update_layout(xaxis_title="t (s)", yaxis_title="force (N)")
         figs.append(("Contact forces and their margin", f))
+        # Each link's centre of pressure in its support polygon (plot.centers_of_pressure).
+        hulls = _plot.support_polygons(result, w["links"])
+        f = go.Figure()
+        for n, link in enumerate(w["links"]):
+            if hulls[link] is not None:
+                f.add_trace(go.Scatter(x=hulls[link][:, 0], y=hulls[link][:, 1], mode="lines", fill="toself",
+                                       opacity=0.3, name=f"support of {link}"))
+            f.add_trace(go.Scatter(x=_f32(w["cop"][:, n, 0]), y=_f32(w["cop"][:, n, 1]), mode="lines",
+                                   name=f"centre of pressure of {link}"))
+        f.update_layout(xaxis_title="x (m)", yaxis_title="y (m)", yaxis={"scaleanchor": "x", "scaleratio": 1})
+        figs.append(("Centres of pressure in their support polygons", f))
     return figs
 
 

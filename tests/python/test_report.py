@@ -428,3 +428,20 @@ def test_contacts_default_to_per_link_normal_forces_and_centres_of_pressure_sit_
         assert len(hull) == 5  # the sole's 4 corners, closed: interior points are not on the hull
     assert plot.centers_of_pressure(pp.TimeScalingProblem(cc.make_path(h, "sway"), grid=4).solve()).texts
     plt.close("all")
+    # The HTML report draws the same: a line per link, not per point, and each CoP in its sole's polygon.
+    from pathpace import report
+
+    figs = dict(report.figures(prob, res))
+    traces = {tr.name: tr for tr in figs["Contact forces and their margin"].data}
+    assert sorted(traces) == ["margin (weakest cone weight)", "normal force on left_sole_link",
+                              "normal force on right_sole_link"]
+    wd = plot.wrenches_data(res)  # what the matplotlib plot draws (its t, contact_wrenches' normal force)
+    np.testing.assert_allclose(traces["normal force on left_sole_link"].y,  # the page stores float32
+                               wd["normal_force"][:, wd["links"].index("left_sole_link")], rtol=1e-6)
+    cop = {tr.name: tr for tr in figs["Centres of pressure in their support polygons"].data}
+    for link in ("left_sole_link", "right_sole_link"):
+        hx, hy = np.asarray(cop[f"support of {link}"].x), np.asarray(cop[f"support of {link}"].y)
+        x, y = np.asarray(cop[f"centre of pressure of {link}"].x), np.asarray(cop[f"centre of pressure of {link}"].y)
+        assert len(hx) == 5
+        assert x.min() >= hx.min() - 1e-6 and x.max() <= hx.max() + 1e-6
+        assert y.min() >= hy.min() - 1e-6 and y.max() <= hy.max() + 1e-6

@@ -615,12 +615,16 @@ def test_romeo_sway_executes_with_margins_and_not_without():
     assert safe.duration > bare.duration
 
 
-def test_standup_from_a_squat_torque_timing_executes_the_others_do_not(capsys):
+def test_standup_from_a_squat_torque_timing_executes_the_others_do_not(capsys, tmp_path):
     """examples/humanoid_standup.py (the paper's fig. 6): with motors at 0.3 x the URDF effort, the timing
     under torque and contact limits stands up with every criterion at most half its threshold; the
     velocity/acceleration-only timing and the uniform one at the same T pass some criterion at least twice
-    (or fall)."""
-    out = runpy.run_path(str(EXAMPLES / "humanoid_standup.py"))["main"]([])
+    (or fall). It writes the plan's report with each sole's centre of pressure in its support polygon."""
+    page = tmp_path / "standup.html"
+    out = runpy.run_path(str(EXAMPLES / "humanoid_standup.py"))["main"](["--report", str(page)])
+    text = page.read_text(encoding="utf-8")
+    assert "Centres of pressure in their support polygons" in text
+    assert "centre of pressure of left_sole_link" in text and "normal force on right_sole_link" in text
     rows = {r["timing"]: r for r in out["rows"]}
     ours = rows["torque + contacts, margins"]
     assert not ours["fell"] and ours["worst"][1] <= 0.5, ours["sim"].summary()
