@@ -127,3 +127,28 @@ def test_a_robot_object_contact_pushes_both_ways_and_the_object_balances():
     np.testing.assert_allclose(w.force[:, box] + 3.0 * np.array([0, 0, -9.81]), 3.0 * acc, rtol=0, atol=1e-6 * 3.0 * 9.81)
     # Each hand's two points share a normal: a centre of pressure; the box's sides face two ways: none.
     assert np.all(np.isfinite(w.center_of_pressure[:, hands])) and np.all(np.isnan(w.center_of_pressure[:, box]))
+
+
+def test_the_standups_centres_of_pressure_stay_in_their_soles_at_every_millisecond():
+    """Issue 21's target on examples/humanoid_standup.py's plan (torque and contact limits, margins): at every
+    1 kHz sample each sole carries weight and its centre of pressure lies in the box of its points, on their
+    plane (a weighted mean of unilateral point forces: inside their hull whatever the distribution, which
+    this checks end to end)."""
+    ns = runpy.run_path(str(EXAMPLES / "humanoid_standup.py"))
+    robot = ns["talos_sway"].load_talos()
+    contacts = ns["talos_sway"].sole_contacts(4)
+    _, res = ns["contact_timing"](robot, ns["standup_path"](robot), contacts, 100, ns["TORQUE_SCALE"], **ns["MARGINS"])
+    assert res.status == pp.Status.OPTIMAL
+    traj = res.trajectory()
+    t = np.arange(0.0, traj.duration, 1e-3)
+    w = traj.contact_wrenches(t)
+    q = traj.q(t)
+    for l, link in enumerate(w.links):
+        assert np.all(w.normal_force[:, l] > 0)
+        mine = [c for c in contacts if c.link == link]
+        for i in range(t.size):
+            X = robot.frame_placement(q[i], link)
+            pts = np.array([(X @ np.append(c.point, 1.0))[:3] for c in mine])
+            cop = w.center_of_pressure[i, l]
+            assert np.all(cop[:2] >= pts[:, :2].min(axis=0) - 1e-9) and np.all(cop[:2] <= pts[:, :2].max(axis=0) + 1e-9)
+            assert abs((cop - X[:3, 3]) @ X[:3, 2]) < 1e-9
