@@ -268,8 +268,10 @@ JerkOutput& finish_structured(const JerkInput& in, const JerkShape& sh, const Je
                               const Eigen::VectorXd& lo,
                               const Eigen::VectorXd& hi, Eigen::VectorXd& x, JerkOutput& out) {
   out.structured = true;
-  out.status = Status::Optimal;
-  out.message.clear();
+  out.status = out.gap <= in.tolerance ? Status::Optimal : Status::IterationLimit;
+  out.message = out.status == Status::Optimal ? "" : "jerk limits: the interior point stalled with a certified gap of " +
+                                                         fmt(out.gap) + " to the linearised problem (tolerance " +
+                                                         fmt(in.tolerance) + ")";
   jerk_make_consistent(sh, x, in.sdot_end * in.sdot_end, in.zero_sddot_end);
   for (int back = 0; back < 8; ++back) {
     const double v = grid_violation(rows, lo, hi, x);
