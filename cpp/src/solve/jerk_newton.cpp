@@ -34,7 +34,7 @@ struct Problem {
   std::vector<JerkRow> point, consistency;
   const std::vector<JerkLimitRow>& jerk;
   Eigen::Index nb = 0;
-  Eigen::VectorXd cert_lo, cert_hi;  // lo, hi with b's sides as the rows imply (jerk_implied_box): the certificate's
+  Eigen::VectorXd cert_lo, cert_hi;  // the certificate's box: lo, hi with b's sides as the rows imply
   // KKT position of column c (θ_k -> 3k, b_k -> 3k + 1) and of interval k's multiplier.
   Eigen::Index pos(Eigen::Index c) const { return c < nb ? 3 * c : 3 * (c - nb) + 1; }
   Eigen::Index nu_pos(Eigen::Index k) const { return 3 * k + 2; }
@@ -122,6 +122,7 @@ struct Step {
   std::vector<double> inv_slack, lam, weight, scratch;
   Eigen::VectorXd scale;      // the KKT matrix's symmetric scaling (solve_kkt)
   Eigen::VectorXd kkt_b, kkt_y, kkt_r;  // solve_kkt's scratch
+  Eigen::VectorXd reg, g;                // newton_step's: the regularisation (the same at every step), ∇φ
   BandLdlt Ks;
 };
 
@@ -226,7 +227,6 @@ bool newton_step(const Problem& p, const JerkRowGroups& rows, const Eigen::Vecto
   }
   // Consistency rows (E d = 0: x̄ is consistent), symmetric scaling: primal by 1/√H_ii, rows to unit norm.
   Eigen::VectorXd& scale = st.scale;
-  Eigen::VectorXd reg(m);
   scale.resize(m);
   for (Eigen::Index c = 0; c < nx; ++c) scale[p.pos(c)] = 1.0 / std::sqrt(std::max(K.at(p.pos(c), p.pos(c)), 1e-300));
   for (Eigen::Index k = 0; k < p.sh.n; ++k) {
@@ -242,12 +242,14 @@ bool newton_step(const Problem& p, const JerkRowGroups& rows, const Eigen::Vecto
   // Scale in place: Â = S A S.
   BandLdlt& Ks = st.Ks;
   Ks.scaled(K, scale);
-  for (Eigen::Index c = 0; c < nx; ++c) reg[p.pos(c)] = 1e-11;
-  for (Eigen::Index k = 0; k < p.sh.n; ++k) reg[p.nu_pos(k)] = -1e-11;
-  if (!Ks.factor(reg)) return false;
-  Eigen::VectorXd g;
-  kkt_gradient(p, rows, x, t, inv, pd, st.gT, g);
-  return solve_kkt(p, g, t, st);
+  if (st.reg.size() != m) {  // quasi-definite: +δ on the primal diagonal, -δ on the multipliers'
+    st.reg.resize(m);
+    for (Eigen::Index c = 0; c < nx; ++c) st.reg[p.pos(c)] = 1e-11;
+    for (Eigen::Index k = 0; k < p.sh.n; ++k) st.reg[p.nu_pos(k)] = -1e-11;
+  }
+  if (!Ks.factor(st.reg)) return false;
+  kkt_gradient(p, rows, x, t, inv, pd, st.gT, st.g);
+  return solve_kkt(p, st.g, t, st);
 }
 
 // The largest step along d keeping every slack and bound positive.

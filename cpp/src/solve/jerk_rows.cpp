@@ -187,6 +187,20 @@ std::vector<JerkLimitRow> jerk_limit_rows(const JerkInput& in, const JerkShape& 
   return out;
 }
 
+namespace {
+
+// A row α θ_k + β b_k <= c of one grid point k (two columns, θ_k and b_k): false for any other row.
+bool point_row(const JerkRow& r, Eigen::Index nb, int& k, double& alpha, double& beta) {
+  if (r.n != 2) return false;
+  const int t = std::min(r.col[0], r.col[1]), b = std::max(r.col[0], r.col[1]);
+  if (t >= nb || b != t + nb) return false;
+  k = t;
+  alpha = r.col[0] == t ? r.val[0] : r.val[1], beta = r.col[0] == b ? r.val[0] : r.val[1];
+  return true;
+}
+
+}  // namespace
+
 std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eigen::Index nb, const Eigen::VectorXd& lo,
                                            const Eigen::VectorXd& hi) {
   // b_k <= P + Q θ_k (β > 0) or b_k >= P + Q θ_k (β < 0) for a row α θ_k + β b_k <= c: P = c / β, Q = -α / β.
@@ -198,10 +212,9 @@ std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eig
   std::vector<char> keep(rows.size(), 1);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const JerkRow& r = rows[i];
-    if (r.n != 2) continue;
-    const int t = std::min(r.col[0], r.col[1]), b = std::max(r.col[0], r.col[1]);
-    if (t >= nb || b != t + nb) continue;  // not (θ_k, b_k)
-    const double alpha = r.col[0] == t ? r.val[0] : r.val[1], beta = r.col[0] == b ? r.val[0] : r.val[1];
+    int t = 0;
+    double alpha = 0, beta = 0;
+    if (!point_row(r, nb, t, alpha, beta)) continue;
     if (!(beta != 0) || !std::isfinite(alpha / beta) || !std::isfinite(r.rhs / beta)) continue;
     (beta > 0 ? upper : lower)[static_cast<size_t>(t)].push_back({r.rhs / beta, -alpha / beta, i});
   }
@@ -238,10 +251,10 @@ std::vector<JerkRow> jerk_undominated_rows(const std::vector<JerkRow>& rows, Eig
 void jerk_implied_box(const std::vector<JerkRow>& rows, Eigen::Index nb, Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
   const Eigen::VectorXd theta_lo = lo.head(nb), theta_hi = hi.head(nb);
   for (const JerkRow& r : rows) {
-    if (r.n != 2) continue;
-    const int t = std::min(r.col[0], r.col[1]), b = std::max(r.col[0], r.col[1]);
-    if (t >= nb || b != t + nb) continue;  // not (θ_k, b_k)
-    const double alpha = r.col[0] == t ? r.val[0] : r.val[1], beta = r.col[0] == b ? r.val[0] : r.val[1];
+    int t = 0;
+    double alpha = 0, beta = 0;
+    if (!point_row(r, nb, t, alpha, beta)) continue;
+    const Eigen::Index b = nb + t;
     const double L = theta_lo[t], H = theta_hi[t];
     if (!(beta != 0) || !std::isfinite(L) || !std::isfinite(H)) continue;
     // b_k = (c - α θ_k) / β at the range's ends.
