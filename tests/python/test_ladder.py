@@ -5,8 +5,9 @@ IK path (held points fixed to within the drift tolerance, joints inside their li
 (optimal, ṡ = 0 at each make by the no-impact rule), and what MuJoCo does with it (the example's scene:
 contacts with a 2 ms time constant, the feed-forward in the plan's friction margin): the N = 400 timing with
 30 N per point executes with room (every criterion at most half its threshold; measured 2026-12-07: slip 0.35,
-the rest <= 0.1), while the N = 100 timing and the velocity and acceleration optimum fall.
-The IK takes ~10-20 s, each simulation ~5-15 s.
+the rest <= 0.1), while the N = 100 timing and the velocity and acceleration optimum fall, and the uniform
+timing at the executed one's T does not execute (a criterion at least twice its threshold). Its run time
+against N = 50..800 is plotted and about linear (fig. 5). The IK takes ~10-20 s, each simulation ~5-15 s.
 """
 
 import runpy
@@ -107,6 +108,12 @@ def test_mujoco_execution_verdicts_with_room(ladder):
     # the first foot's swing (s ~ 3.5).
     kinematic = ns["talos_sway"].kinematic_timing(robot, path, ns["phase_grid"](ns["SIM_GRID"]))
     assert kinematic.ok and sim.run(kinematic.trajectory(), phases=phases).fell
+    # The path at a constant rate in the executed timing's T (fed forward with each phase's contacts, the
+    # physical cones): not executed, with room (measured 2026-12-08: slip 64 x its threshold, and it fell at
+    # t = 9.6 s of 10.35).
+    uniform = ns["talos_sway"].uniform_timing(path, ns["SIM_GRID"], res.duration)
+    out = sim.run(uniform, phases=phases)
+    assert out.worst_criterion[1] >= 2.0, out.summary()
 
 
 def test_grip_holds_each_hand_on_the_rung_top_and_the_ridge_behind_it(ladder):
@@ -121,3 +128,20 @@ def test_grip_holds_each_hand_on_the_rung_top_and_the_ridge_behind_it(ladder):
     assert sim.contact_surfaces[8:] == ["rung_6", "rung_6_ridge_behind_left", "rung_6", "rung_6_ridge_behind_right"]
     spheres = [sim.model.geom(i).name for i in range(sim.model.ngeom) if sim.model.geom(i).name.startswith("pathpace_contact_")]
     assert len(spheres) == 8 + 2  # one per sole point, one per hand
+
+
+def test_run_time_against_n_is_plotted_and_about_linear(ladder, tmp_path):
+    # The paper's fig. 5: add_contact_phases + solve at N = 50..800, plotted. About linear: the CPU time per
+    # grid interval at N = 800 is at most twice that at N = 100 (a quadratic cost would be 8 x; measured
+    # 2026-12-08: 0.78 x, 62-64 ms at N = 50 to 0.62-0.64 s at N = 800). CPU time of the process, not wall
+    # time: the work is single-threaded and another process's load does not count.
+    ns, robot, path = ladder["ns"], ladder["robot"], ladder["path"]
+    rows = ns["run_time_sweep"](robot, path, repeat=1)
+    assert [r["N"] for r in rows] == [50, 100, 200, 400, 800] and all(r["status"] == "OPTIMAL" for r in rows)
+    cpu = {r["N"]: r["cpu"] for r in rows}
+    assert cpu[800] / 800 <= 2 * cpu[100] / 100, cpu
+    # A finer grid is a closer approximation of the same optimum: T falls with N.
+    assert all(a["T"] > b["T"] for a, b in zip(rows, rows[1:]))
+    png = tmp_path / "ladder.png"
+    ns["plot_sweep"](rows, png)
+    assert png.stat().st_size > 10_000

@@ -310,12 +310,13 @@ def test_talos_sway_zero_margin_optimum_and_uniform_timing_fall_the_margin_optim
     sim = sway["sim"]
     bare = sim.run(timing(sway))
     assert bare.fell and bare.fall_time < bare.duration + 1.0
-    # Margins where the verdict has room (slip, lift and tilt at no more than half the criteria here): at
-    # 20 N and 0.5 the slip sat at the 5 mm criterion, and another CPU or MuJoCo build flipped it.
+    # Margins where the verdict has room (every criterion at no more than half its threshold; measured
+    # 2026-12-08: slip 0.25, lift 0.11, tilt 0.08, tracking 0.04): at 20 N and 0.5 the slip sat at the 5 mm
+    # criterion, and another CPU or MuJoCo build flipped it.
     safe_traj = timing(sway, 50.0, 0.7)
     safe = sim.run(safe_traj)
-    assert safe.feedforward == "contact" and not safe.fell and safe.executed, safe.summary()
-    assert safe.max_slip < 5e-3 and safe.max_lift < 5e-3 and safe.max_tilt < math.radians(1.0)
+    assert safe.feedforward == "contact" and not safe.fell
+    assert max(safe.criterion_ratios.values()) <= 0.5, (safe.summary(), safe.criterion_ratios)
     assert safe.duration > bare.duration
     # As fast as the zero-margin optimum at a constant rate: the abrupt start and stop throw it over.
     uniform = sim.run(sway["ns"]["uniform"](sway["path"], 100, bare.duration))
@@ -456,6 +457,12 @@ def test_feedforward_in_narrowed_cones_and_by_phase_for_a_timing_without_contact
                               tau_max=own.physical_tau_max).force_distribution(*traj.evaluate(t))
     assert mode == "contact" and np.all(cf.centred)
     np.testing.assert_array_equal(narrow, cf.torques)
+    # Without a friction margin: the trajectory's own centred distribution (issue 21, deliver 1), not the LP's
+    # vertex.
+    own_forces = traj.contact_forces(t)
+    assert np.all(own_forces.centred)
+    np.testing.assert_array_equal(wide, own_forces.torques)
+    assert np.max(np.abs(wide - traj.contact_forces(t, distribution="vertex").torques)) > 1e-2
     assert np.max(np.abs(narrow - wide)) > 1e-2  # N·m (0.15 here): another distribution of the same motion
     with pytest.raises(pp.InvalidInputError, match=r"friction_margin = 1.0 must be in \[0, 1\)"):
         sim.feedforward(traj, t, friction_margin=1.0)
@@ -520,6 +527,11 @@ def test_example_quick_run_prints_the_fig1_rows(capsys):
     assert verdicts == {("pathpace, contacts", 0.0): "fell", ("pathpace, contacts", 50.0): "yes",
                         ("velocity + acceleration limits only", None): "no",
                         ("uniform, 1.0 x T(zero margin)", None): "fell"}
+    # The verdicts have room: "yes" with every criterion at most half its threshold (measured: 0.25), "no"
+    # with one at least twice it (measured: slip 6.3).
+    sims = {(r["timing"], r["min_normal_force"]): r["sim"] for r in out["rows"]}
+    assert max(sims[("pathpace, contacts", 50.0)].criterion_ratios.values()) <= 0.5
+    assert sims[("velocity + acceleration limits only", None)].worst_criterion[1] >= 2.0
     assert "| pathpace, contacts" in capsys.readouterr().out
 
 
@@ -612,6 +624,41 @@ def test_romeo_sway_executes_with_margins_and_not_without():
     assert bare.fell or bare.worst_criterion[1] >= 2.0, bare.summary()
     safe = run(20.0, 0.5)
     assert not safe.fell and safe.worst_criterion[1] <= 0.5, (safe.summary(), safe.criterion_ratios)
+    assert safe.duration > bare.duration
+
+
+def test_g1_sway_executes_with_margins_and_not_without():
+    """Every humanoid of example-robot-data that pathpace times (tests/python/contact_corpus.py: Talos, Romeo,
+    Unitree G1) runs in its simulator (issue 21): G1's sway on its 4 sole corners, 8 cone edges, N = 100.
+    Verdicts with room: at 20 N per point and a 50 % friction margin every criterion is at most half its
+    threshold (measured 2026-12-08: slip 0.16; 0.13-0.18 over floors of 4-6 ms and N = 100, 200), and
+    without margins one criterion is at least twice it (slip 5.8; 5.5-11 over the same). 10 N is not asserted:
+    slip 0.19-0.29 there, but 1.05 at N = 200 on a 4 ms floor."""
+    import xml.etree.ElementTree as ET
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import contact_corpus as cc
+
+    h = cc.load("g1")
+    urdf = example_robot_urdf(h.urdf)
+    mimic = [j.get("name") for j in ET.parse(urdf).getroot().iter("joint") if j.find("mimic") is not None]
+    path = cc.make_path(h, "sway")
+    cons = cc.contacts(h, "sway")
+    sim = Simulator(h.robot, urdf, cons, path.q(0.0), locked_joints={n: 0.0 for n in mimic + h.locked})
+    assert sim.inertia_adjustments == {} and len(sim.contacts) == 8
+
+    def run(min_normal_force, friction_margin):
+        prob = pp.TimeScalingProblem(path, grid=100)
+        prob.add_contacts(h.robot, cons, cone_edges=8, min_normal_force=min_normal_force,
+                          friction_margin=friction_margin, drift_tolerance=1e-4)
+        res = prob.solve()
+        assert res.status == pp.Status.OPTIMAL
+        return sim.run(res.trajectory())
+
+    bare = run(0.0, 0.0)
+    assert bare.fell or bare.worst_criterion[1] >= 2.0, bare.summary()
+    safe = run(20.0, 0.5)
+    assert not safe.fell and max(safe.criterion_ratios.values()) <= 0.5, (safe.summary(), safe.criterion_ratios)
     assert safe.duration > bare.duration
 
 
