@@ -40,6 +40,14 @@ double row_slice_bottom(const ConstraintRows& rows, Eigen::Index r, double x, do
 // was seen to move out of it, which halved the gap per round instead (bench/README.md, issue 27).
 constexpr int kSpread = 7;
 
+// Tight cuts (Auditor::tight_cuts): after a round's cuts, every Chebyshev point of an audited interval
+// where the timing is within kTight of its slice's top (relative to x's size, as a violation is) gets
+// that top's edge as a row too. The cuts move the timing, and it comes to push on its limit beside them:
+// an interval tight but unbroken at its samples broke between them in the next round, its neighbour in
+// the one after (romeo-squat off1.5 of issue 27's corpus: intervals 48 and 50 cut in round 1, 49 and 51
+// broken in rounds 2 and 3). kTight is path_curvature's "near the limit".
+constexpr double kTight = 1e-2;
+
 // One audit_and_cut call: the data its stages share. Per constraint (audit_constraint): the intervals
 // whose speeds changed, their samples (contact slices in one batch), the path-wide concavity bound, the
 // brackets it does not clear, their peaks (maximize_batch), and the cuts there.
@@ -89,6 +97,7 @@ class Auditor {
   void brackets(const std::vector<Eigen::Index>& todo, std::vector<PeakBracket>& cand, std::vector<Eigen::Index>& at,
                 std::vector<double>& curvature) const;
   void cut(size_t ci, const std::vector<PeakBracket>& cand, const std::vector<Eigen::Index>& at);
+  void tight_cuts(size_t ci, const std::vector<Eigen::Index>& todo);  // see kTight
   void contact_cuts(size_t ci, const std::vector<size_t>& cuts, const std::vector<Eigen::Index>& at,
                     const std::map<std::string, int>& named);
   void add_cut(size_t ci, Eigen::Index k, double l, double a, double b, double c, const std::string& label,

@@ -279,7 +279,30 @@ void Auditor::audit_constraint(size_t ci) {
         return c.best() <= tolerance_ && bump_bound(c.a, c.fa, c.b, c.fb, K) <= tolerance_ &&
                bump_bound(c.b, c.fb, c.c, c.fc, K) <= tolerance_;
       });
+  const int before = audit_.cuts;
   cut(ci, cand, at);
+  // Only in a round that cut: the loop ends at a round without cuts, and the timing then meets every limit.
+  if (contact && audit_.cuts > before) tight_cuts(ci, todo);
+}
+
+// See the header. A Chebyshev point's slice top is an edge of the polygon there, kept with its LP's
+// sensitivity (AuditMemory::Slices): a supporting line, so the row is exact wherever the slice was solved,
+// and it costs no LP.
+void Auditor::tight_cuts(size_t ci, const std::vector<Eigen::Index>& todo) {
+  const std::map<std::string, int> unnamed;  // labelled as the constraint's first row, as a cut with no name
+  const std::vector<AuditMemory::Slices>& memo = memory_.slices[ci];
+  for (Eigen::Index k : todo) {
+    const double u = u_of(k);
+    std::vector<double>& cut_at = memory_.cut_at[ci][static_cast<size_t>(k)];
+    for (int m = 0; m < points_; ++m) {
+      const AuditMemory::Slices& M = memo[static_cast<size_t>(k) * static_cast<size_t>(points_) + static_cast<size_t>(m)];
+      const double l = lam_[static_cast<size_t>(m)];
+      if (M.hi_capped || !(M.hi_from <= M.hi_to) || std::find(cut_at.begin(), cut_at.end(), l) != cut_at.end()) continue;
+      const double x = x_of(k, l), hi = M.hi + M.hi_slope * (u - M.u);
+      if ((x - hi) / std::max(std::abs(x), std::abs(hi)) < -kTight) continue;
+      add_cut(ci, k, l, 1.0, -M.hi_slope, M.hi - M.hi_slope * M.u, std::string(), unnamed);
+    }
+  }
 }
 
 PathSamples Auditor::samples_at(const std::vector<Eigen::Index>& ks, const std::vector<double>& ls) const {
