@@ -23,7 +23,7 @@ inline double bound_tol(double b) { return kTolBnd + 1e-3 * kTolBnd * std::abs(b
 // and rank-one updates before the inverse is computed again from B.
 }  // namespace
 
-void DenseSimplex::load(const PolytopeLp& lp) {
+void DenseSimplex::load(const PolytopeLp& lp, bool transpose) {
   lp_ = &lp;
   m_ = static_cast<int>(lp.A.rows());
   n_ = static_cast<int>(lp.A.cols());
@@ -34,12 +34,15 @@ void DenseSimplex::load(const PolytopeLp& lp) {
   d_.assign(static_cast<size_t>(m_ + n_), 0.0);
   // Each row's largest |a_ij|, column by column (contiguous), and A^T written in its own storage order
   // (A read with a stride, A^T written contiguously: a loop over A's columns that scattered its stores
-  // was most of this function, which a slice LP runs at every sample). transposed_times and certify()
-  // read A's rows as A^T's contiguous columns.
+  // was most of this function). transposed_times and certify() read A's rows as A^T's contiguous columns.
   row_max_.setZero(m_);
   for (int j = 0; j < n_; ++j) row_max_ = row_max_.cwiseMax(lp.A.col(j).cwiseAbs());
-  at_.noalias() = lp.A.transpose();
-  s_ = State();
+  transposed_ = transpose;
+  if (transpose) at_.noalias() = lp.A.transpose();
+  // No basis; the storage stays (a slice LP loads at every sample, and set_basis sizes it again).
+  s_.head.clear();
+  s_.stat.clear();
+  s_.updates = 0;
 }
 
 // alpha_ = B^-1 a_k. An auxiliary's a_k is -e_k: minus column k of B^-1. A structural's is A's column,
@@ -84,19 +87,27 @@ bool DenseSimplex::factorize() {
   s_.inv.setZero(m_, m_);
   for (int t = 0; t < na; ++t) s_.inv(apos[static_cast<size_t>(t)], arow[static_cast<size_t>(t)]) = -1.0;
   if (s > 0) {
-    f_c_.resize(s, s);
+    // The scratch is m x m, used in blocks: s changes from one basis to the next, and matrices resized to
+    // each s would be allocated again at every factorisation.
+    if (f_c_.rows() < m_) {
+      for (Eigen::MatrixXd* M : {&f_c_, &f_m_, &f_ak_, &f_w_}) M->resize(m_, m_);
+      f_col_.resize(m_);
+    }
+    auto C = f_c_.topLeftCorner(s, s);
+    auto M = f_m_.topLeftCorner(s, s);
     for (int b = 0; b < s; ++b)
-      for (int a = 0; a < s; ++a) f_c_(a, b) = A(rows[static_cast<size_t>(a)], scol[static_cast<size_t>(b)]);
-    if (!invert_small(f_c_, f_m_)) return false;  // A[R,S]^-1
+      for (int a = 0; a < s; ++a) C(a, b) = A(rows[static_cast<size_t>(a)], scol[static_cast<size_t>(b)]);
+    if (!invert_small(C, M)) return false;  // A[R,S]^-1
     for (int b = 0; b < s; ++b)
-      for (int a = 0; a < s; ++a) s_.inv(spos[static_cast<size_t>(b)], rows[static_cast<size_t>(a)]) = f_m_(b, a);
+      for (int a = 0; a < s; ++a) s_.inv(spos[static_cast<size_t>(b)], rows[static_cast<size_t>(a)]) = M(b, a);
     // Each basic auxiliary's row: A[k,S] A[R,S]^-1, all of them in one product.
-    f_ak_.resize(na, s);
+    auto Ak = f_ak_.topLeftCorner(na, s);
+    auto W = f_w_.topLeftCorner(na, s);
     for (int b = 0; b < s; ++b)
-      for (int t = 0; t < na; ++t) f_ak_(t, b) = A(arow[static_cast<size_t>(t)], scol[static_cast<size_t>(b)]);
-    f_w_.noalias() = f_ak_ * f_m_;
+      for (int t = 0; t < na; ++t) Ak(t, b) = A(arow[static_cast<size_t>(t)], scol[static_cast<size_t>(b)]);
+    W.noalias() = Ak * M;
     for (int a = 0; a < s; ++a)
-      for (int t = 0; t < na; ++t) s_.inv(apos[static_cast<size_t>(t)], rows[static_cast<size_t>(a)]) = f_w_(t, a);
+      for (int t = 0; t < na; ++t) s_.inv(apos[static_cast<size_t>(t)], rows[static_cast<size_t>(a)]) = W(t, a);
   }
   s_.updates = 0;
   return true;
@@ -107,12 +118,12 @@ bool DenseSimplex::factorize() {
 // then exact, ||C||_1 ||C^-1||_1, from the explicit inverse. false if C is (nearly) singular, 1 / that
 // condition not above limits.min_rcond. A pivot's small size is caught by the condition; the optimum's
 // certificate (certify) is what the answer rests on either way.
-bool DenseSimplex::invert_small(const Eigen::MatrixXd& C, Eigen::MatrixXd& X) {
+bool DenseSimplex::invert_small(Eigen::Ref<const Eigen::MatrixXd> C, Eigen::Ref<Eigen::MatrixXd> X) {
   const Eigen::Index s = C.rows();
   X = C;
   const double norm_c = C.cwiseAbs().colwise().sum().maxCoeff();
   f_piv_.resize(static_cast<size_t>(s));
-  f_col_.resize(s);
+  auto col = f_col_.head(s);
   for (Eigen::Index k = 0; k < s; ++k) {
     Eigen::Index p = k;
     X.col(k).tail(s - k).cwiseAbs().maxCoeff(&p);
@@ -121,14 +132,14 @@ bool DenseSimplex::invert_small(const Eigen::MatrixXd& C, Eigen::MatrixXd& X) {
     f_piv_[static_cast<size_t>(k)] = static_cast<int>(p);
     if (p != k) X.row(p).swap(X.row(k));
     const double inv_pivot = 1.0 / X(k, k);
-    f_col_ = X.col(k);
-    f_col_[k] = 0.0;
+    col = X.col(k);
+    col[k] = 0.0;
     X.col(k).setZero();
     X(k, k) = 1.0;
     X.row(k) *= inv_pivot;
     for (Eigen::Index j = 0; j < s; ++j) {
       const double xkj = X(k, j);
-      if (xkj != 0.0) X.col(j).noalias() -= xkj * f_col_;
+      if (xkj != 0.0) X.col(j).noalias() -= xkj * col;
     }
   }
   for (Eigen::Index k = s - 1; k >= 0; --k) {
@@ -187,7 +198,12 @@ bool DenseSimplex::set_basis(const signed char* stat, bool primal_feasible) {
 
 // out = A^T v over v's nonzeros only: y and the rows of B^-1 are exactly zero on the rows whose slack is
 // basic (factorize() leaves them so and a pivot keeps them so: 0 - α 0), most rows of a projection LP.
+// Without A^T (see load()), one product with A's columns, over all of v.
 void DenseSimplex::transposed_times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+  if (!transposed_) {
+    out.noalias() = lp_->A.transpose() * v;
+    return;
+  }
   out.setZero(n_);
   for (int i = 0; i < m_; ++i)
     if (v[i] != 0.0) out.noalias() += v[i] * at_.col(i);
@@ -425,7 +441,8 @@ bool DenseSimplex::certify() {
       v = rows_[k];
       if (s_.stat[static_cast<size_t>(k)] == GLP_BS) s_.value[k] = v;
       e = gamma * row_max_[k] * z1;
-      if (!(v - e >= lo && v + e <= hi)) e = gamma * at_.col(k).cwiseAbs().dot(abs_z);
+      if (!(v - e >= lo && v + e <= hi))
+        e = gamma * (transposed_ ? at_.col(k).cwiseAbs().dot(abs_z) : A.row(k).cwiseAbs().dot(abs_z.transpose()));
     }
     if (v - e >= lo && v + e <= hi) continue;
     // Undecided in double: the row again in extended precision, whose error bound is 2048 times smaller.

@@ -30,8 +30,10 @@ class DenseSimplex {
     int updates = 0;                  // rank-one updates since inv was computed from B
   };
 
-  /// The problem (kept by reference until the next load: the caller keeps it alive).
-  void load(const PolytopeLp& lp);
+  /// The problem (kept by reference until the next load: the caller keeps it alive). `transpose`: keep
+  /// A^T for the pricing's products, worth its writing where one load takes many pivots (a projection's
+  /// LPs at one grid point), not for the one or two LPs of a slice (SliceLp loads without it).
+  void load(const PolytopeLp& lp, bool transpose = true);
   /// The basis `stat` (GLPK's statuses, rows then columns): false if it is not a basis, singular, or,
   /// with `primal_feasible`, not primal feasible. A basis whose point lies outside the polytope (the
   /// previous sample's optimum in a slice LP) is brought back by maximize(), by dual simplex pivots.
@@ -96,11 +98,12 @@ class DenseSimplex {
   // factorize()'s and compute_values()'s scratch (no allocation per call once sized).
   std::vector<int> f_spos_, f_scol_, f_rows_, f_apos_, f_arow_;
   Eigen::MatrixXd f_c_, f_m_, f_ak_, f_w_;
-  bool invert_small(const Eigen::MatrixXd& C, Eigen::MatrixXd& X);  // factorize()'s A[R,S]^-1
+  bool invert_small(Eigen::Ref<const Eigen::MatrixXd> C, Eigen::Ref<Eigen::MatrixXd> X);  // factorize()'s A[R,S]^-1
   std::vector<int> f_piv_;
   Eigen::VectorXd f_col_;
   Eigen::VectorXd cv_z_, cv_r_, cv_xb_;
-  Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous
+  Eigen::MatrixXd at_;      // A^T: its column i is A's row i, contiguous (if transposed_)
+  bool transposed_ = true;
   Eigen::VectorXd row_max_;  // max_j |a_ij| per row
 };
 

@@ -6,7 +6,7 @@ namespace pathpace::detail {
 
 void SliceLp::load(const PolytopeLp& lp) {
   lp_ = &lp;
-  dense_.load(lp);
+  dense_.load(lp, false);
   norms_ = false;
   top_here_ = false;
 }
