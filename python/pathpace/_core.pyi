@@ -994,6 +994,15 @@ class ContactWrenches:
         Σ (n·f_i) p_i / Σ n·f_i, world frame, m; NaN where the link does not push or has several normals.
     normal_force : ndarray (samples, links)
         Sum of the normal forces into each link, N.
+    margin : ndarray (samples,) or float
+        N: the force-distribution LP's margin at the state of each sample, as ContactForces.margin of
+        ``contact_forces(t)`` (the same evaluation whose forces are summed here); -inf where not feasible.
+    feasible : ndarray of bool (samples,) or bool
+        As ContactForces.feasible: False where no forces of any sign meet the torque limits (the totals are
+        NaN there).
+    phase : ndarray of int (samples,) or int
+        As ContactForces.phase: the contact phase whose contacts served each sample (the later one at a
+        switch); -1 without phases.
     """
     @property
     def links(self) -> list[str]:
@@ -1010,6 +1019,21 @@ class ContactWrenches:
     @property
     def normal_force(self) -> Array:
         """ndarray (samples, links): Sum of the normal forces into each link, N."""
+    @property
+    def margin(self) -> Array | float:
+        """ndarray (samples,) or float: N: the force-distribution LP's margin at the state of each sample, as ContactForces.margin of
+        ``contact_forces(t)`` (the same evaluation whose forces are summed here); -inf where not feasible.
+        """
+    @property
+    def feasible(self) -> NDArray[np.bool_] | bool:
+        """ndarray of bool (samples,) or bool: As ContactForces.feasible: False where no forces of any sign meet the torque limits (the totals are
+        NaN there).
+        """
+    @property
+    def phase(self) -> NDArray[np.int32] | int:
+        """ndarray of int (samples,) or int: As ContactForces.phase: the contact phase whose contacts served each sample (the later one at a
+        switch); -1 without phases.
+        """
 
 class RobotModel:
     """A rigid-body tree from a URDF (immutable, shareable across threads).
