@@ -803,8 +803,8 @@ class Simulator:
 
         phases: the contact phases the timing was planned with (as for add_contact_phases: (s_begin,
         s_end, contacts[, options]) each). Then a contact point counts (slip, lift) only while a phase at
-        the timing's s(t) holds it (a point of a link and position in that phase's contacts; the later
-        phase at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
+        the timing's s(t) holds it (a point of a link and position in that phase's contacts; the phase is
+        pathpace.contact_phase_of_s's: the later one at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
         planned is not a lift. Its slip is its slide since it made contact (from the first sample its phase
         holds it), and where it landed against the plan is `SimResult.landing`, criterion "landing"
         (default 10 mm: a placement error of the swing, judged like tracking, not a slide of the contact).
