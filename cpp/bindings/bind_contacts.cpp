@@ -3,11 +3,14 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <limits>
+
 #include "common.hpp"
 #include "contact_options.hpp"
 #include "convert.hpp"
 #include "docstrings.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/contact_phase.hpp"
 #include "pathpace/path.hpp"
 #include "pathpace/path_samples.hpp"
 #include "pathpace/robot_model.hpp"
@@ -171,16 +174,23 @@ void bind_contact_queries(ContactClass& cls) {
 
 void bind_contact_constraint(py::module_& m) {
   ContactClass cls(m, "ContactConstraint", doc::ContactConstraint);
-  auto make = [](py::handle robot, py::handle contacts, py::handle tau_min, py::handle tau_max, const ContactOptions& o) {
+  // active_begin / active_end: one phase's stretch of s (not among the shared options: add_contacts has none, and
+  // add_contact_phases sets them per phase).
+  auto make = [](py::handle robot, py::handle contacts, py::handle tau_min, py::handle tau_max, py::handle begin,
+                 py::handle end, ContactOptions o) {
+    o.active_begin = to_double(begin, "active_begin");
+    o.active_end = to_double(end, "active_end");
     return std::make_shared<ContactConstraint>(to_object<RobotModel>(robot, "robot", "RobotModel"),
                                                to_contacts(contacts, "contacts"), o, optional_vector(tau_min, "tau_min"),
                                                optional_vector(tau_max, "tau_max"));
   };
+  const double inf = std::numeric_limits<double>::infinity();
   def_with_contact_options(
       cls,
       std::make_tuple(py::init(with_contact_options<std::shared_ptr<ContactConstraint>, py::handle, py::handle, py::handle,
-                                                    py::handle>(make))),
-      "robot"_a, "contacts"_a, py::kw_only(), "tau_min"_a = py::none(), "tau_max"_a = py::none());
+                                                    py::handle, py::handle, py::handle>(make))),
+      "robot"_a, "contacts"_a, py::kw_only(), "tau_min"_a = py::none(), "tau_max"_a = py::none(), "active_begin"_a = -inf,
+      "active_end"_a = inf);
   cls.def_property_readonly("tau_min", &ContactConstraint::tau_min, doc::ContactConstraint_tau_min)
       .def_property_readonly("tau_max", &ContactConstraint::tau_max, doc::ContactConstraint_tau_max)
       .def_property_readonly("physical_tau_min", &ContactConstraint::physical_tau_min, doc::ContactConstraint_physical_tau_min)
@@ -208,6 +218,14 @@ void bind_contacts(py::module_& m) {
   bind_contact(m);
   bind_contact_forces(m);
   bind_contact_constraint(m);
+  m.def("contact_phase_of_s", [](py::handle phases, py::handle s) -> py::object {
+    std::vector<std::shared_ptr<const ContactConstraint>> v;
+    const std::vector<py::object> items = to_items(phases, "phases", "a list of pathpace.ContactConstraint");
+    for (size_t i = 0; i < items.size(); ++i)
+      v.push_back(to_object<ContactConstraint>(items[i], "phases[" + std::to_string(i) + "]", "ContactConstraint"));
+    const Eigen::VectorXi out = contact_phase_of_s(v, to_vector(s, "s"));
+    return is_scalar(s) ? py::object(py::int_(out[0])) : py::cast(out);
+  }, "phases"_a, "s"_a, doc::contact_phase_of_s);
 }
 
 }  // namespace pathpace::python

@@ -66,7 +66,16 @@ void bind_contact_wrenches(py::module_& m) {
       .def_property_readonly("normal_force", [](const WrenchSamples& w) -> py::object {
         if (w.scalar) return py::cast(Eigen::VectorXd(w.w.normal_force.row(0).transpose()));
         return py::cast(w.w.normal_force);
-      }, doc::ContactWrenches_normal_force);
+      }, doc::ContactWrenches_normal_force)
+      .def_property_readonly("margin", [](const WrenchSamples& w) -> py::object {
+        return w.scalar ? py::object(py::float_(w.w.margin[0])) : py::cast(w.w.margin);
+      }, doc::ContactWrenches_margin)
+      .def_property_readonly("feasible", [](const WrenchSamples& w) -> py::object {
+        return w.scalar ? py::object(py::bool_(w.w.feasible[0])) : py::cast(w.w.feasible);
+      }, doc::ContactWrenches_feasible)
+      .def_property_readonly("phase", [](const WrenchSamples& w) -> py::object {
+        return w.scalar ? py::object(py::int_(w.w.phase[0])) : py::cast(w.w.phase);
+      }, doc::ContactWrenches_phase);
 }
 
 void bind_trajectory_timing(TrajectoryClass& cls) {

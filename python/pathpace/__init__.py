@@ -30,6 +30,7 @@ from ._core import (
     Trajectory,
     VelocityLimits,
     auto_grid,
+    contact_phase_of_s,
 )
 
 from .batch import solve_many
@@ -43,6 +44,7 @@ except PackageNotFoundError:  # running from a source tree
 __all__ = [
     "as_path",
     "auto_grid",
+    "contact_phase_of_s",
     "AccelerationLimits",
     "Constraint",
     "ConstraintRows",

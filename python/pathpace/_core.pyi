@@ -773,6 +773,10 @@ class ContactConstraint(Constraint):
     torque_scale, torque_margin : float
         As TorqueLimits' scale and margin (N·m).
     tau_min, tau_max : array_like (nq,), optional
+    active_begin, active_end : float
+        The stretch of s where these contacts hold (active_begin <= active_end; default -inf, inf: the
+        whole path), as a phase of TimeScalingProblem.add_contact_phases has: what contact_phase_of_s
+        looks up.
     min_link_normal_force, max_lps, cone_offset, projection_tolerance, project_on_demand :
         See TimeScalingProblem.add_contacts: points in link frames, normals in the world frame; margins per
         point (min_normal_force, cone_offset) and per link (min_link_normal_force).
@@ -805,6 +809,8 @@ class ContactConstraint(Constraint):
         *,
         tau_min: ArrayLike | None = None,
         tau_max: ArrayLike | None = None,
+        active_begin: float = -np.inf,
+        active_end: float = np.inf,
         cone_edges: int = 8,
         friction_margin: float = 0.0,
         min_normal_force: float = 0.0,
@@ -988,6 +994,15 @@ class ContactWrenches:
         Σ (n·f_i) p_i / Σ n·f_i, world frame, m; NaN where the link does not push or has several normals.
     normal_force : ndarray (samples, links)
         Sum of the normal forces into each link, N.
+    margin : ndarray (samples,) or float
+        N: the force-distribution LP's margin at the state of each sample, as ContactForces.margin of
+        ``contact_forces(t)`` (the same evaluation whose forces are summed here); -inf where not feasible.
+    feasible : ndarray of bool (samples,) or bool
+        As ContactForces.feasible: False where no forces of any sign meet the torque limits (the totals are
+        NaN there).
+    phase : ndarray of int (samples,) or int
+        As ContactForces.phase: the contact phase whose contacts served each sample (the later one at a
+        switch); -1 without phases.
     """
     @property
     def links(self) -> list[str]:
@@ -1004,6 +1019,21 @@ class ContactWrenches:
     @property
     def normal_force(self) -> Array:
         """ndarray (samples, links): Sum of the normal forces into each link, N."""
+    @property
+    def margin(self) -> Array | float:
+        """ndarray (samples,) or float: N: the force-distribution LP's margin at the state of each sample, as ContactForces.margin of
+        ``contact_forces(t)`` (the same evaluation whose forces are summed here); -inf where not feasible.
+        """
+    @property
+    def feasible(self) -> NDArray[np.bool_] | bool:
+        """ndarray of bool (samples,) or bool: As ContactForces.feasible: False where no forces of any sign meet the torque limits (the totals are
+        NaN there).
+        """
+    @property
+    def phase(self) -> NDArray[np.int32] | int:
+        """ndarray of int (samples,) or int: As ContactForces.phase: the contact phase whose contacts served each sample (the later one at a
+        switch); -1 without phases.
+        """
 
 class RobotModel:
     """A rigid-body tree from a URDF (immutable, shareable across threads).
@@ -1417,8 +1447,8 @@ class Trajectory:
     def contact_phase(self, t: float | ArrayLike) -> Any:
         """Index into contact_phases of the phase at each t (the later one at a switch); -1 without phases.
 
-        The phase whose [active_begin, active_end] holds s(t); at a switch the later one, the contacts that hold
-        after it.
+        contact_phase_of_s(contact_phases, s(t)): the phase whose [active_begin, active_end] holds s(t); at a
+        switch the later one, the contacts that hold after it.
         """
     @property
     def contact_phases(self) -> list[ContactConstraint]:
@@ -2245,4 +2275,27 @@ def auto_grid(path: Path, tolerance: float = 1e-3, min_intervals: int = 16, max_
     error of T shrink with it (both O(Δs²) for smooth pieces). The excursions also depend on the speed
     profile, so the tolerance bounds the geometry, not the limits' excursions (bench/README.md has them
     measured). For limits that hold between grid points by construction, see solve's guarantee option.
+    """
+
+def contact_phase_of_s(phases: list[ContactConstraint], s: float | ArrayLike) -> NDArray[np.int32] | int:
+    """The index of the phase that holds at each s.
+
+    The last phase whose [active_begin, active_end], widened by 1e-12 max(1, |s|) as its rows are, holds
+    s: at a switch both adjacent phases hold, and the later one has the contacts that hold after it. An s
+    that no phase holds (a rounding beyond the path's ends, or a gap between phases) gets the phase
+    nearest to it, the later one on a tie. This is Trajectory.contact_phase's rule, and what
+    ``pathpace.sim`` uses to tell which of a plan's contacts hold at a time.
+
+    Parameters
+    ----------
+    phases : list of ContactConstraint
+        In order of s (active_begin non-decreasing), at least one: Trajectory.contact_phases, or
+        ContactConstraint(..., active_begin=, active_end=) per phase.
+    s : float or array_like (m,)
+        Path parameters, finite.
+
+    Returns
+    -------
+    int or ndarray of int (m,)
+        Indices into phases.
     """

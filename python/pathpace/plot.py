@@ -419,21 +419,23 @@ def _nothing(ax, title: str, text: str):
 
 def wrenches_data(result: Result, samples: int = 300) -> dict[str, Any] | None:
     """Per-link totals over t (Trajectory.contact_wrenches): links, normal force (m, links) in N, centre of
-    pressure (m, links, 3) in m, and each link's contact points in the world at t = 0 (for its support
-    polygon)."""
+    pressure (m, links, 3) in m, and the force-distribution margin (m,) in N, feasibility and phase of the
+    forces summed (one evaluation: no second solve for the margin)."""
     traj = result.trajectory()
     if traj.contacts is None:
         return None
     t = np.linspace(0.0, traj.duration, samples)
     w = traj.contact_wrenches(t)
     return {"t": t, "links": list(w.links), "normal_force": np.asarray(w.normal_force),
-            "cop": np.asarray(w.center_of_pressure)}
+            "cop": np.asarray(w.center_of_pressure), "margin": np.asarray(w.margin),
+            "feasible": np.asarray(w.feasible), "phase": np.asarray(w.phase)}
 
 
 def contacts(result: Result, ax=None, per_point: bool = False):
     """The normal force on each contact link (N; Trajectory.contact_wrenches) and the force-distribution
     margin (N) over t. per_point=True draws |f| of every contact point instead (one line each)."""
-    d = contacts_data(result) if result.ok else None
+    # One evaluation of the forces either way: the margin comes with the forces drawn.
+    d = (contacts_data if per_point else wrenches_data)(result) if result.ok else None
     ax = _axes(ax)
     if d is None:
         return _nothing(ax, "contact forces", "no contacts in this problem" if result.ok else "no timing")
@@ -442,10 +444,9 @@ def contacts(result: Result, ax=None, per_point: bool = False):
         for n, (i, link, f) in enumerate(mags):
             ax.plot(d["t"], f, lw=1, color=plt_color(n, len(mags)), label=f"|f| {link} #{i}")
     else:
-        w = wrenches_data(result)
-        mags = list(w["links"])
+        mags = list(d["links"])
         for n, link in enumerate(mags):
-            ax.plot(w["t"], w["normal_force"][:, n], lw=1.5, color=plt_color(n, len(mags)), label=f"normal force on {link}")
+            ax.plot(d["t"], d["normal_force"][:, n], lw=1.5, color=plt_color(n, len(mags)), label=f"normal force on {link}")
     ax.plot(d["t"], d["margin"], "k", lw=2, label="margin (weakest cone weight)")
     ax.axhline(0.0, color="r", ls="--", lw=1)
     ax.set_xlabel("t (s)")

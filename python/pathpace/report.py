@@ -137,15 +137,15 @@ def figures(spec, result) -> list[tuple[str, Any]]:
                      _against_limits(ad["t"], _plot.limit_ratios(ad["qdd"], ad["amin"], ad["amax"], ad["joint_names"]),
                                      "joint acceleration / limit")))
 
-    cd = _plot.contacts_data(result)
-    if cd is not None:
-        # Per link, as plot.contacts draws by default: the normal force on each link (not a line per point).
-        w = _plot.wrenches_data(result)
+    w = _plot.wrenches_data(result)
+    if w is not None:
+        # Per link, as plot.contacts draws by default: the normal force on each link (not a line per point),
+        # and the margin of the same forces (one evaluation).
         f = go.Figure()
         for n, link in enumerate(w["links"]):
             f.add_trace(go.Scatter(x=_f32(w["t"]), y=_f32(w["normal_force"][:, n]), mode="lines",
                                    name=f"normal force on {link}"))
-        f.add_trace(go.Scatter(x=_f32(cd["t"]), y=_f32(cd["margin"]), mode="lines", name="margin (weakest cone weight)",
+        f.add_trace(go.Scatter(x=_f32(w["t"]), y=_f32(w["margin"]), mode="lines", name="margin (weakest cone weight)",
                                line={"color": "black", "width": 3}))
         f.add_hline(y=0.0, line={"dash": "dash", "color": "red", "width": 1})
         f.update_layout(xaxis_title="t (s)", yaxis_title="force (N)")

@@ -613,11 +613,9 @@ class Simulator:
             if unknown:
                 link, point = sorted(unknown)[0]
                 _fail(f"phases[{i}]: contact on '{link}' at {point} is not one of the simulator's contacts")
-            held.append((float(ph[0]), float(ph[1]), np.array([k in names for k in key])))
-        s = np.asarray(traj.s(t))[0]
-        mask = np.zeros((len(t), len(key)), dtype=bool)
-        for s0, s1, m in held:  # later phases win at a switch
-            mask[(s >= s0) & (s <= s1)] = m
+            held.append([k in names for k in key])
+        # Each time's phase by C++'s rule (the later one at a switch, the nearest beyond every phase).
+        mask = np.array(held, dtype=bool)[self._phase_of(traj, t, self._phase_models(phases))]
         links = sorted({c.link for c in self.contacts})
         planned = np.empty((len(t), len(self.contacts), 3))
         for i, qi in enumerate(traj.q(t)):
@@ -728,8 +726,8 @@ class Simulator:
                          else np.zeros(t.size, dtype=int))
         else:  # the sets of `phases` for a timing without contacts, else one set for the whole motion
             if contact_model is None and phases is not None:
-                models = [_core.ContactConstraint(self.robot, list(ph[2]), cone_edges=8) for ph in phases]
-                which = self._phase_of(traj, t, phases)
+                models = self._phase_models(phases)
+                which = self._phase_of(traj, t, models)
             else:
                 models, which = [self._contact_model(contact_model)], np.zeros(t.size, dtype=int)
             tau, feasible = np.zeros((t.size, self.robot.nq)), np.zeros(t.size, dtype=bool)
@@ -759,14 +757,17 @@ class Simulator:
                 tau[k] = tau[prev[-1]] if prev.size else 0.0
         return tau, mode
 
+    def _phase_models(self, phases: Sequence) -> list[_core.ContactConstraint]:
+        """One ContactConstraint per phase (as for add_contact_phases): its contacts with 8 cone edges and no
+        margins, over its stretch of s."""
+        return [_core.ContactConstraint(self.robot, list(ph[2]), cone_edges=8, active_begin=float(ph[0]),
+                                        active_end=float(ph[1])) for ph in phases]
+
     @staticmethod
-    def _phase_of(traj: _core.Trajectory, t: np.ndarray, phases: Sequence) -> np.ndarray:
-        """The index of the phase at each t (by s(t); the later phase at a switch, as Trajectory.contact_phase)."""
-        s = np.asarray(traj.s(t))[0]
-        which = np.zeros(t.size, dtype=int)
-        for i, ph in enumerate(phases):
-            which[(s >= float(ph[0])) & (s <= float(ph[1]))] = i
-        return which
+    def _phase_of(traj: _core.Trajectory, t: np.ndarray, models: Sequence[_core.ContactConstraint]) -> np.ndarray:
+        """The index of the phase at each t: contact_phase_of_s at s(t), Trajectory.contact_phase's rule."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        return np.asarray(_core.contact_phase_of_s(list(models), traj.s(t)[0]), dtype=int)
 
     def _static_feedforward(self, q: np.ndarray, mode: str, contact_model: _core.ContactConstraint | None) -> np.ndarray:
         zero = np.zeros_like(q)
@@ -802,8 +803,8 @@ class Simulator:
 
         phases: the contact phases the timing was planned with (as for add_contact_phases: (s_begin,
         s_end, contacts[, options]) each). Then a contact point counts (slip, lift) only while a phase at
-        the timing's s(t) holds it (a point of a link and position in that phase's contacts; the later
-        phase at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
+        the timing's s(t) holds it (a point of a link and position in that phase's contacts; the phase is
+        pathpace.contact_phase_of_s's: the later one at a switch), and it is measured from where the plan puts it: a swing foot that lifts as
         planned is not a lift. Its slip is its slide since it made contact (from the first sample its phase
         holds it), and where it landed against the plan is `SimResult.landing`, criterion "landing"
         (default 10 mm: a placement error of the swing, judged like tracking, not a slide of the contact).

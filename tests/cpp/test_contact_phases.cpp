@@ -340,3 +340,33 @@ TEST(ContactPhases, AContactMadeMovingAlongItsNormalStopsThePath) {
   EXPECT_EQ(label, "");
   EXPECT_GT(lift.sdot[10], 0.1);
 }
+
+TEST(ContactPhases, PhaseOfSTakesTheLaterAtASwitchAndTheNearestOutsideAndNamesBadInput) {
+  auto robot = load("hand_box.urdf");
+  auto phase = [&](double a, double b) {
+    ContactOptions o;
+    o.cone_edges = 4;
+    o.active_begin = a;
+    o.active_end = b;
+    return std::make_shared<const ContactConstraint>(robot, std::vector<Contact>{hand_on_box(1.0)}, o);
+  };
+  const std::vector<std::shared_ptr<const ContactConstraint>> two{phase(0.0, 1.0), phase(1.0, 2.0)};
+  Eigen::VectorXd s(8);
+  // Before all, inside, just before the switch (beyond 1e-12), at it (and within 1e-12 either side), after all.
+  s << -0.5, 0.5, 1.0 - 1e-9, 1.0 - 4e-13, 1.0, 1.0 + 4e-13, 2.0, 3.0;
+  Eigen::VectorXi want(8);
+  want << 0, 0, 0, 1, 1, 1, 1, 1;
+  EXPECT_EQ(contact_phase_of_s(two, s), want);
+  // A gap: the nearest phase, the later one on a tie.
+  const std::vector<std::shared_ptr<const ContactConstraint>> gap{phase(0.0, 1.0), phase(2.0, 3.0)};
+  Eigen::VectorXd g(3);
+  g << 1.4, 1.5, 1.6;
+  EXPECT_EQ(contact_phase_of_s(gap, g), Eigen::Vector3i(0, 1, 1));
+  EXPECT_EQ(error_of([&] { contact_phase_of_s({}, s); }), "phases is empty, expected at least one ContactConstraint");
+  EXPECT_EQ(error_of([&] { contact_phase_of_s({two[0], nullptr}, s); }), "phases[1] is null, expected a ContactConstraint");
+  EXPECT_EQ(error_of([&] { contact_phase_of_s({two[1], two[0]}, s); }),
+            "phases[1].active_begin = 0 must be >= phases[0].active_begin = 1 (phases in order of s)");
+  s[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(error_of([&] { contact_phase_of_s(two, s); }), "s[2] = nan must be finite");
+  EXPECT_EQ(error_of([&] { phase(2.0, 1.0); }), "active_begin = 2 must be <= active_end = 1");
+}

@@ -156,6 +156,59 @@ def test_drift_is_checked_per_phase():
         pp.TimeScalingProblem(path, grid=20).add_contact_phases(robot, ph)  # held only where it stays: no warning
 
 
+def phase_constraints(*stretches):
+    """One ContactConstraint per (active_begin, active_end): the box pushed, then braked, alternately."""
+    return [pp.ContactConstraint(hand_box(), on_box(1 if i % 2 == 0 else -1), cone_edges=4, active_begin=a, active_end=b)
+            for i, (a, b) in enumerate(stretches)]
+
+
+def test_contact_phase_of_s_takes_the_later_phase_at_a_switch_and_the_nearest_outside(push_brake):
+    phases = phase_constraints((0.0, 1.0), (1.0, 2.0))
+    tol = 1e-12  # the ends' tolerance at |s| <= 1 (relative beyond)
+    s = np.array([-0.5, 0.0, 0.5, 1.0 - 1e-9, 1.0 - 0.4 * tol, 1.0, 1.0 + 0.4 * tol, 1.5, 2.0, 2.0 + 2.0 * tol, 3.0])
+    np.testing.assert_array_equal(pp.contact_phase_of_s(phases, s), [0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1])
+    assert pp.contact_phase_of_s(phases, 1.0) == 1 and type(pp.contact_phase_of_s(phases, 1.0)) is int
+    # A gap between phases: the nearest, the later one on a tie (1.5 is 0.5 from both).
+    gap = phase_constraints((0.0, 1.0), (2.0, 3.0))
+    np.testing.assert_array_equal(pp.contact_phase_of_s(gap, [1.0 + 0.5 * tol, 1.4, 1.5, 1.6, 2.0 - 0.5 * tol]),
+                                  [0, 0, 1, 1, 1])
+    # One unbounded phase (a ContactConstraint's default stretch) holds everywhere.
+    whole = [pp.ContactConstraint(hand_box(), on_box(1), cone_edges=4)]
+    assert (whole[0].active_begin, whole[0].active_end) == (-np.inf, np.inf)
+    np.testing.assert_array_equal(pp.contact_phase_of_s(whole, [-1e300, 0.0, 1e300]), [0, 0, 0])
+    # Trajectory.contact_phase is this rule at s(t), on the trajectory's own phases (switch times included).
+    prob, res = push_brake
+    traj = res.trajectory()
+    t = np.sort(np.concatenate([res.times, np.linspace(0.0, traj.duration, 101)]))
+    np.testing.assert_array_equal(pp.contact_phase_of_s(traj.contact_phases, traj.s(t)[0]), traj.contact_phase(t))
+
+
+def test_contact_phase_of_s_and_the_phase_stretch_validate_their_arguments():
+    a, b = phase_constraints((0.0, 1.0), (1.0, 2.0))
+    with pytest.raises(pp.InvalidInputError, match=r"^phases is empty, expected at least one ContactConstraint$"):
+        pp.contact_phase_of_s([], [0.0])
+    with pytest.raises(pp.InvalidInputError,
+                       match=r"^phases\[1\]\.active_begin = 0 must be >= phases\[0\]\.active_begin = 1 \(phases in order of s\)$"):
+        pp.contact_phase_of_s([b, a], [0.0])
+    with pytest.raises(TypeError, match=r"^phases\[1\] must be a pathpace\.ContactConstraint, got None$"):
+        pp.contact_phase_of_s([a, None], [0.0])
+    with pytest.raises(pp.InvalidInputError, match=r"^s\[1\] = nan must be finite$"):
+        pp.contact_phase_of_s([a, b], [0.5, np.nan])
+    # The stretch a ContactConstraint holds on: kept, pickled, and checked.
+    assert (b.active_begin, b.active_end) == (1.0, 2.0)
+    again = pickle.loads(pickle.dumps(b))
+    assert (again.active_begin, again.active_end) == (1.0, 2.0)
+    cases = [(dict(active_begin=2.0, active_end=1.0), r"^active_begin = 2 must be <= active_end = 1$"),
+             (dict(active_begin=np.nan), r"^active_begin = nan must be a number < inf$"),
+             (dict(active_begin=np.inf), r"^active_begin = inf must be a number < inf$"),
+             (dict(active_end=-np.inf), r"^active_end = -inf must be a number > -inf$")]
+    for kw, msg in cases:
+        with pytest.raises(pp.InvalidInputError, match=msg):
+            pp.ContactConstraint(hand_box(), on_box(1), **kw)
+    with pytest.raises(TypeError, match=r"^active_end must be a number, got str$"):
+        pp.ContactConstraint(hand_box(), on_box(1), active_end="2")
+
+
 def test_invalid_phases_are_named():
     prob = pp.TimeScalingProblem(together(), grid=20)
     robot = hand_box()

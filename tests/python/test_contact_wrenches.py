@@ -85,9 +85,37 @@ def test_centres_of_pressure_lie_in_each_sole_and_weight_its_points(sway):
     np.testing.assert_allclose(one.force, traj.contact_wrenches([0.5 * traj.duration]).force[0], rtol=0, atol=0)
 
 
-def test_a_phase_that_does_not_hold_a_link_gives_it_no_force():
+@pytest.fixture(scope="module")
+def steps():
+    """examples/humanoid_steps.py: Talos steps, phases both, right, both, left, both."""
     out = runpy.run_path(str(EXAMPLES / "humanoid_steps.py"))["main"](["--grid", "50"])
-    traj = out["result"].trajectory()
+    return out["result"].trajectory()
+
+
+def test_the_wrenches_carry_the_margin_feasibility_and_phase_of_the_forces_they_sum(sway, steps):
+    """ContactWrenches.margin / feasible / phase are those of contact_forces(t) at the same t, bit for bit: the
+    verdict on the very forces summed, so a plot of the totals and their margin needs one evaluation."""
+    for traj in (sway[2], steps):
+        # Every grid time (the phase switches among them) and samples between.
+        t = np.sort(np.concatenate([traj.times, np.linspace(0.0, traj.duration, 201)]))
+        w, cf = traj.contact_wrenches(t), traj.contact_forces(t)
+        assert w.margin.shape == w.feasible.shape == w.phase.shape == (t.size,)
+        assert w.feasible.dtype == bool and np.issubdtype(w.phase.dtype, np.integer)
+        np.testing.assert_array_equal(w.margin, cf.margin)
+        np.testing.assert_array_equal(w.feasible, cf.feasible)
+        np.testing.assert_array_equal(w.phase, cf.phase)
+        np.testing.assert_array_equal(w.phase, traj.contact_phase(t))
+        one, at = traj.contact_wrenches(t[7]), traj.contact_forces(t[7])
+        assert (type(one.margin), type(one.feasible), type(one.phase)) == (float, bool, int)
+        assert (one.margin, one.feasible, one.phase) == (at.margin, at.feasible, at.phase)
+    # Not trivially equal: the sway has no phases, the steps visit all five, and the margins vary.
+    assert np.all(sway[2].contact_wrenches([0.0, 1.0]).phase == -1)
+    w = steps.contact_wrenches(np.linspace(0.0, steps.duration, 201))
+    assert sorted(set(w.phase.tolist())) == [0, 1, 2, 3, 4] and np.ptp(w.margin) > 1.0 and np.all(w.feasible)
+
+
+def test_a_phase_that_does_not_hold_a_link_gives_it_no_force(steps):
+    traj = steps
     t = np.linspace(0.0, traj.duration, 301)
     w = traj.contact_wrenches(t)
     phase = traj.contact_phase(t)

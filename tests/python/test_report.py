@@ -398,7 +398,7 @@ def test_clipped_curve_and_narrowed_view_are_noted_on_both_backends():
     plt.close("all")
 
 
-def test_contacts_default_to_per_link_normal_forces_and_centres_of_pressure_sit_in_their_soles():
+def test_contacts_default_to_per_link_normal_forces_and_centres_of_pressure_sit_in_their_soles(monkeypatch):
     """The Talos sway on 9 points per sole: one line per sole (not 18), equal to contact_wrenches'
     normal force; the centre-of-pressure plot draws each sole's support hull and its CoP trace inside."""
     plt = _agg()
@@ -412,6 +412,12 @@ def test_contacts_default_to_per_link_normal_forces_and_centres_of_pressure_sit_
     prob = pp.TimeScalingProblem(cc.make_path(h, "sway"), grid=60)
     prob.add_contacts(h.robot, cons, cone_edges=8, min_normal_force=5.0, drift_tolerance=1e-4)
     res = prob.solve()
+
+    def second_evaluation(*_args, **_kwargs):
+        raise AssertionError("contact_forces called: the margin comes with contact_wrenches' forces")
+
+    # The per-link plots evaluate the forces once: the margin is ContactWrenches.margin.
+    monkeypatch.setattr(pp.Trajectory, "contact_forces", second_evaluation)
     ax = plot.contacts(res)
     lines = {k: v for k, v in _curves(ax).items() if k.startswith("normal force on")}
     assert sorted(lines) == ["normal force on left_sole_link", "normal force on right_sole_link"]
@@ -432,7 +438,14 @@ def test_contacts_default_to_per_link_normal_forces_and_centres_of_pressure_sit_
     from pathpace import report
 
     figs = dict(report.figures(prob, res))
+    monkeypatch.undo()
+    # ... and it is the margin of those forces: contact_forces' at the same times.
+    t, margin = _curves(plot.contacts(res))["margin (weakest cone weight)"]
+    np.testing.assert_array_equal(margin, res.trajectory().contact_forces(t).margin)
     traces = {tr.name: tr for tr in figs["Contact forces and their margin"].data}
+    page_t = plot.wrenches_data(res)["t"]  # the page's times, before float32
+    np.testing.assert_array_equal(traces["margin (weakest cone weight)"].y,  # the page stores float32
+                                  res.trajectory().contact_forces(page_t).margin.astype(np.float32))
     assert sorted(traces) == ["margin (weakest cone weight)", "normal force on left_sole_link",
                               "normal force on right_sole_link"]
     wd = plot.wrenches_data(res)  # what the matplotlib plot draws (its t, contact_wrenches' normal force)

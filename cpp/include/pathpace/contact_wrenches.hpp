@@ -31,6 +31,18 @@ struct ContactWrenches {
   // docstrings.txt @@ ContactWrenches.normal_force
   /// (samples, links): Sum of the normal forces into each link, N.
   Eigen::MatrixXd normal_force;
+  // docstrings.txt @@ ContactWrenches.margin
+  /// (samples,): N: the force-distribution LP's margin at the state of each sample, as ContactForces.margin of
+  /// `contact_forces(t)` (the same evaluation whose forces are summed here); -inf where not feasible.
+  Eigen::VectorXd margin;
+  // docstrings.txt @@ ContactWrenches.feasible
+  /// As ContactForces.feasible: False where no forces of any sign meet the torque limits (the totals are
+  /// NaN there).
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> feasible;
+  // docstrings.txt @@ ContactWrenches.phase
+  /// As ContactForces.phase: the contact phase whose contacts served each sample (the later one at a
+  /// switch); -1 without phases.
+  Eigen::VectorXi phase;
 };
 
 }  // namespace pathpace

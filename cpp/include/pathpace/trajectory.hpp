@@ -111,8 +111,8 @@ class Trajectory {
   // docstrings.txt @@ Trajectory.contact_phase
   /// @brief Index into contact_phases of the phase at each t (the later one at a switch); -1 without phases.
   ///
-  /// The phase whose [active_begin, active_end] holds s(t); at a switch the later one, the contacts that hold
-  /// after it.
+  /// contact_phase_of_s(contact_phases, s(t)): the phase whose [active_begin, active_end] holds s(t); at a
+  /// switch the later one, the contacts that hold after it.
   Eigen::VectorXi contact_phase(const Eigen::Ref<const Eigen::VectorXd>& t) const;
 
   // docstrings.txt @@ Trajectory.contact_forces
@@ -187,10 +187,9 @@ class Trajectory {
 
  private:
   Eigen::Index interval(double t) const;
-  // evaluate() that also hands back s(t), and contact_phase() from s: contact_forces needs both of one t.
+  // evaluate() that also hands back s(t), for contact_phase_of_s: contact_forces needs both of one t.
   void evaluate_with_s(const Eigen::Ref<const Eigen::VectorXd>& t, Eigen::VectorXd& s, Eigen::MatrixXd& q,
                        Eigen::MatrixXd& qd, Eigen::MatrixXd& qdd) const;
-  Eigen::VectorXi phase_of_s(const Eigen::VectorXd& s) const;
   std::shared_ptr<const Path> path_;
   std::shared_ptr<const RobotModel> robot_;
   std::shared_ptr<const ContactConstraint> contacts_;

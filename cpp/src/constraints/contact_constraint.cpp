@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lp/projection.hpp"
 #include "base/validate.hpp"
@@ -33,6 +34,14 @@ ContactConstraint::ContactConstraint(std::shared_ptr<const RobotModel> robot, st
   if (options_.max_lps < 3) detail::fail("max_lps = " + std::to_string(options_.max_lps) + " must be >= 3");
   if (!(options_.projection_tolerance >= 0.0 && options_.projection_tolerance < 1.0))
     detail::fail("projection_tolerance = " + detail::fmt(options_.projection_tolerance) + " must be in [0, 1)");
+  // A stretch of s that holds at least one s (±inf: unbounded on that side).
+  if (std::isnan(options_.active_begin) || options_.active_begin == std::numeric_limits<double>::infinity())
+    detail::fail("active_begin = " + detail::fmt(options_.active_begin) + " must be a number < inf");
+  if (std::isnan(options_.active_end) || options_.active_end == -std::numeric_limits<double>::infinity())
+    detail::fail("active_end = " + detail::fmt(options_.active_end) + " must be a number > -inf");
+  if (!(options_.active_begin <= options_.active_end))
+    detail::fail("active_begin = " + detail::fmt(options_.active_begin) + " must be <= active_end = " +
+                 detail::fmt(options_.active_end));
   const int n = robot_->nq();
   if (tau_max.size() == 0) tau_max = robot_->effort_limits();
   if (tau_min.size() == 0) tau_min = -robot_->effort_limits();

@@ -66,6 +66,14 @@ ContactWrenches Trajectory::contact_wrenches(const Eigen::Ref<const Eigen::Vecto
   out.moment.setZero(m, 3 * L);
   out.center_of_pressure.setConstant(m, 3 * L, kNaN);
   out.normal_force.setZero(m, L);
+  // The LP's verdict on the very forces summed here, so that a plot of the totals needs no second solve.
+  out.margin.resize(m);
+  out.feasible.resize(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    out.margin[i] = forces[static_cast<size_t>(i)].margin;
+    out.feasible[i] = forces[static_cast<size_t>(i)].feasible;
+  }
+  out.phase = std::move(phase);
   std::map<std::string, Eigen::Index> column;
   for (Eigen::Index l = 0; l < L; ++l) column[out.links[static_cast<size_t>(l)]] = l;
   for (Eigen::Index i = 0; i < m; ++i) {
@@ -76,7 +84,7 @@ ContactWrenches Trajectory::contact_wrenches(const Eigen::Ref<const Eigen::Vecto
       out.normal_force.row(i).setConstant(kNaN);
       continue;
     }
-    const ContactConstraint& con = *cons[static_cast<size_t>(phase[i] < 0 ? 0 : phase[i])];
+    const ContactConstraint& con = *cons[static_cast<size_t>(out.phase[i] < 0 ? 0 : out.phase[i])];
     const RobotModel& robot = *con.robot();
     const Eigen::VectorXd qi = q.row(i).transpose();
     std::map<std::string, Eigen::Matrix4d> placement;  // each link's once per sample

@@ -9,6 +9,7 @@
 #include "solve/jerk_scp.hpp"
 #include "base/validate.hpp"
 #include "pathpace/constraints/contact_constraint.hpp"
+#include "pathpace/contact_phase.hpp"
 #include "pathpace/errors.hpp"
 #include "pathpace/robot_model.hpp"
 #include "pathpace/robot_workspace.hpp"
@@ -202,22 +203,7 @@ Eigen::VectorXi Trajectory::contact_phase(const Eigen::Ref<const Eigen::VectorXd
   if (contact_phases_.empty()) return Eigen::VectorXi::Constant(t.size(), -1);
   Eigen::VectorXd s, sd, sdd;
   evaluate_s(t, s, sd, sdd);
-  return phase_of_s(s);
-}
-
-Eigen::VectorXi Trajectory::phase_of_s(const Eigen::VectorXd& s) const {
-  Eigen::VectorXi out = Eigen::VectorXi::Constant(s.size(), -1);  // callers have phases (front() below)
-  for (Eigen::Index i = 0; i < s.size(); ++i) {
-    // The last phase that holds s: the later one at a switch (both hold there).
-    for (size_t p = contact_phases_.size(); p-- > 0;)
-      if (contact_phases_[p]->active_at(s[i])) {
-        out[i] = static_cast<int>(p);
-        break;
-      }
-    // Between phases there is no gap (they are contiguous); a time beyond them gets the nearest one.
-    if (out[i] < 0) out[i] = s[i] < contact_phases_.front()->options().active_begin ? 0 : static_cast<int>(contact_phases_.size()) - 1;
-  }
-  return out;
+  return contact_phase_of_s(contact_phases_, s);
 }
 
 std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eigen::VectorXd>& t,
@@ -232,7 +218,7 @@ std::vector<ContactForces> Trajectory::contact_forces(const Eigen::Ref<const Eig
     return contacts_->force_distribution(q, qd, qdd, distribution);
   }
   // One force-distribution batch per phase, each with that phase's contacts.
-  Eigen::VectorXi phase = phase_of_s(s);
+  Eigen::VectorXi phase = contact_phase_of_s(contact_phases_, s);
   std::vector<ContactForces> out(static_cast<size_t>(t.size()));
   for (size_t p = 0; p < contact_phases_.size(); ++p) {
     std::vector<Eigen::Index> idx;
