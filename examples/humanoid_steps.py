@@ -53,8 +53,7 @@ import talos_sway  # noqa: E402  (Talos, its posture, its sole contacts and the 
 LEFT, RIGHT = talos_sway.SOLES
 CONTACT_OPTIONS = dict(cone_edges=8, friction_margin=0.5, min_normal_force=10.0)
 # The timing executed in MuJoCo (--sim): a minimum normal force per point that executes with room (every
-# criterion at most half its threshold; measured 2026-12-09: slip 0.29, 0.23-0.39 over N = 100, 200 and
-# floors of 4-6 ms; see the module docstring).
+# criterion at most half its threshold; bench/README.md, "Issue 21: the room of the simulator's verdicts").
 SIM_MIN_NORMAL_FORCE = 55.0
 # A fall with room: still a fall on the timing this much slower, judged with the fall thresholds doubled.
 STRETCH = 1.1
