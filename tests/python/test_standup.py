@@ -22,7 +22,7 @@ def test_ik_path_keeps_both_soles_fixed_and_rises_from_a_deep_squat():
     contacts = ns["talos_sway"].sole_contacts(4)
     s = np.linspace(path.s_begin, path.s_end, 2001)  # 100 samples per knot interval: between the knots too
     drift, _ = pp.ContactConstraint(robot, contacts, cone_edges=8).max_drift(path, s)
-    assert drift < 1e-4  # the timing's drift_tolerance (contact_timing); measured 3.9 um
+    assert drift < 1e-4  # the timing's drift_tolerance (contact_timing)
     q = np.array([path.q(si) for si in s])
     lo, hi = robot.position_limits
     assert np.all(q >= lo) and np.all(q <= hi)
