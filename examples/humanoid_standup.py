@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import inspect
 import time
 from pathlib import Path
 
@@ -50,13 +49,7 @@ MARGINS = dict(cone_edges=8, min_normal_force=20.0, friction_margin=0.5)
 DEPTH = 0.22
 # How far ahead of the soles' middle the centre of mass is in the squat (m; the soles reach 0.1 m ahead).
 COM_FORWARD = 0.06
-# A fall with room: still a fall on the timing this much slower, judged with the fall thresholds doubled.
-STRETCH = 1.1
-
-def fall_thresholds(factor: float = 2.0) -> dict:
-    """Simulator.run's fall thresholds (fall_height, fall_tilt) times `factor`."""
-    run = inspect.signature(Simulator.run).parameters
-    return {k: factor * run[k].default for k in ("fall_height", "fall_tilt")}
+STRETCH, stretched, fall_thresholds = talos_sway.STRETCH, talos_sway.stretched, talos_sway.fall_thresholds
 MARKS = [np.array(p) for p in ((0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.05, 0.0))]  # three points pin a sole
 
 
@@ -119,13 +112,7 @@ def contact_timing(robot: pp.RobotModel, path: pp.Path, contacts: list[pp.Contac
     return prob, prob.solve()
 
 
-def stretched(path: pp.Path, res: pp.Result, factor: float) -> pp.Trajectory:
-    """The timing `res` run `factor` times slower (ṡ / factor at every grid point)."""
-    return pp.Trajectory(path, np.asarray(res.s), np.asarray(res.sdot) / factor)
-
-
-def run_three(robot: pp.RobotModel, path: pp.Path, contacts: list[pp.Contact], grid: int, torque_scale: float,
-              sim: Simulator, res: pp.Result) -> list[dict]:
+def run_three(robot: pp.RobotModel, path: pp.Path, grid: int, sim: Simulator, res: pp.Result) -> list[dict]:
     """The three timings in `sim` (res: the torque and contact timing), then the two that should fall
     again with room: STRETCH x slower, with the fall thresholds doubled. A row per run: timing, T,
     SimResult, fell, (worst criterion, ratio), and the verdict."""
@@ -182,7 +169,7 @@ def main(argv: list[str] | None = None) -> dict:
                                        effort_limits=args.torque_scale * np.asarray(robot.effort_limits))
     print(f"planned in {t_plan:.2f} s (projection + solve, N = {args.grid})")
     print(f"{'timing':40s} {'T (s)':>7s}  {'fell at (s)':>11s}  {'verdict':26s} worst criterion / threshold")
-    rows = run_three(robot, path, contacts, args.grid, args.torque_scale, sim, res)
+    rows = run_three(robot, path, args.grid, sim, res)
     for r in rows:
         crit, ratio = r["worst"]
         fell_at = f"{r['sim'].fall_time:.2f}" if r["fell"] else "-"

@@ -55,9 +55,7 @@ CONTACT_OPTIONS = dict(cone_edges=8, friction_margin=0.5, min_normal_force=10.0)
 # The timing executed in MuJoCo (--sim): a minimum normal force per point that executes with room (every
 # criterion at most half its threshold; bench/README.md, "Issue 21: the room of the simulator's verdicts").
 SIM_MIN_NORMAL_FORCE = 55.0
-# A fall with room: still a fall on the timing this much slower, judged with the fall thresholds doubled.
-STRETCH = 1.1
-FALL_THRESHOLDS_DOUBLED = dict(fall_height=0.3, fall_tilt=1.0)  # Simulator.run's defaults (0.15 m, 0.5 rad) x 2
+STRETCH = talos_sway.STRETCH  # a fall with room (talos_sway.stretched, talos_sway.fall_thresholds)
 
 
 def smooth(u: np.ndarray | float) -> np.ndarray | float:
@@ -143,11 +141,6 @@ def audit(traj: pp.Trajectory, robot: pp.RobotModel, samples: int, **options) ->
             "worst_per_phase": [float(margin[phase == i].min()) for i in range(5)]}
 
 
-def stretched(path: pp.Path, res: pp.Result, factor: float) -> pp.Trajectory:
-    """The timing `res` run `factor` times slower (ṡ / factor at every grid point)."""
-    return pp.Trajectory(path, np.asarray(res.s), np.asarray(res.sdot) / factor)
-
-
 def simulate(robot: pp.RobotModel, path: pp.Path, timings: list[tuple[str, pp.Trajectory, dict]]) -> list[dict]:
     """Each timing executed in MuJoCo by pathpace.sim (examples/humanoid_sim.py's Talos simulator: one sphere
     per sole contact point, joint PD about the plan plus feed-forward torques from the force-distribution
@@ -214,8 +207,8 @@ def main(argv: list[str] | None = None) -> dict:
         timings = [("contact phases, margins", res_sim.trajectory(), {}),
                    ("contact phases, no margins", res_bare.trajectory(), {}),
                    ("velocity + acceleration only", kin.trajectory(), {}),
-                   (f"velocity + acceleration only, {STRETCH:g} x T", stretched(path, kin, STRETCH),
-                    FALL_THRESHOLDS_DOUBLED),
+                   (f"velocity + acceleration only, {STRETCH:g} x T", talos_sway.stretched(path, kin, STRETCH),
+                    talos_sway.fall_thresholds(2.0)),
                    ("uniform, same T", talos_sway.uniform_timing(path, args.grid, res_sim.duration), {})]
         print("MuJoCo (pathpace.sim), each run measured against the contact phases:")
         sim_rows = simulate(robot, path, timings)

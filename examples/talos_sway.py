@@ -49,6 +49,26 @@ def uniform_timing(path, grid: int, T: float) -> pp.Trajectory:
     return pp.Trajectory(path, s, np.full(grid + 1, (path.s_end - path.s_begin) / T))
 
 
+# A fall with room (issue 21): still a fall on the timing this much slower, judged with the fall thresholds
+# doubled (fall_thresholds(2.0)).
+STRETCH = 1.1
+
+
+def stretched(path, res: pp.Result, factor: float) -> pp.Trajectory:
+    """The timing `res` run `factor` times slower (ṡ / factor at every grid point)."""
+    return pp.Trajectory(path, np.asarray(res.s), np.asarray(res.sdot) / factor)
+
+
+def fall_thresholds(factor: float = 2.0) -> dict:
+    """Simulator.run's fall thresholds (fall_height, fall_tilt) times `factor`, read from its defaults."""
+    import inspect
+
+    from pathpace.sim import Simulator  # MuJoCo is imported only when a Simulator is built
+
+    run = inspect.signature(Simulator.run).parameters
+    return {k: factor * run[k].default for k in ("fall_height", "fall_tilt")}
+
+
 def load_talos() -> pp.RobotModel:
     """Talos with its floating base; the grippers' mimic joints locked at 0 (the grippers do not move here)."""
     urdf = str(example_robot_urdf("talos_data/robots/talos_full_v2.urdf"))

@@ -3,7 +3,6 @@
 Skipped without MuJoCo (the optional extra `sim`). The Talos runs simulate about 10 s in all.
 """
 
-import inspect
 import math
 import runpy
 import subprocess
@@ -307,11 +306,6 @@ def timing(sway, min_normal_force=0.0, friction_margin=0.0):
                                         friction_margin).trajectory()
 
 
-def stretched(path, res, factor):
-    """The timing `res` run `factor` times slower (ṡ / factor at every grid point)."""
-    return pp.Trajectory(path, np.asarray(res.s), np.asarray(res.sdot) / factor)
-
-
 def test_talos_sway_zero_margin_optimum_and_uniform_timing_fall_the_margin_optimum_executes(sway):
     """Verdicts with room. The zero-margin optimum and the uniform timing at its T fall, and 10 % slower
     they still do not execute with room: a fall or a criterion at least twice its threshold (bench/README.md,
@@ -323,7 +317,7 @@ def test_talos_sway_zero_margin_optimum_and_uniform_timing_fall_the_margin_optim
     bare_res = sway["ns"]["contact_timing"](sway["robot"], sway["path"], sway["contacts"], 100, 0.0, 0.0)
     bare = sim.run(bare_res.trajectory())
     assert bare.fell and bare.fall_time < bare.duration + 1.0
-    slow = sim.run(stretched(sway["path"], bare_res, 1.1))
+    slow = sim.run(sway["ns"]["talos_sway"].stretched(sway["path"], bare_res, 1.1))
     assert slow.duration == pytest.approx(1.1 * bare.duration, rel=1e-9)
     assert slow.fell or slow.worst_criterion[1] >= 2.0, slow.summary()
     # Margins where the verdict has room (every criterion at no more than half its threshold): at 20 N and
@@ -576,8 +570,8 @@ def test_talos_two_steps_with_contact_phase_margins_executes_the_contact_unaware
     assert kin["T"] < bare["T"] and kin["fell"], kin["sim"].summary()
     assert slow["T"] == pytest.approx(1.1 * kin["T"], rel=1e-9)
     assert slow["fell"] and slow["verdict"] == "fell (2 x thresholds)", slow["sim"].summary()
-    defaults = inspect.signature(Simulator.run).parameters
-    assert ns["FALL_THRESHOLDS_DOUBLED"] == {k: 2 * defaults[k].default for k in ("fall_height", "fall_tilt")}
+    # The doubled thresholds are the simulator's defaults (0.15 m, 0.5 rad) twice.
+    assert ns["talos_sway"].fall_thresholds(2.0) == {"fall_height": 0.3, "fall_tilt": 1.0}
 
 
 def test_the_default_contact_model_is_built_once_and_kept(sway, monkeypatch):
@@ -686,7 +680,7 @@ def test_standup_from_a_squat_torque_timing_executes_the_others_fall_with_room(c
     _, res200 = ns["contact_timing"](robot, path, contacts, 200, ns["TORQUE_SCALE"], **ns["MARGINS"])
     assert res200.status == pp.Status.OPTIMAL
     for grid, res, rows in ((100, out["result"], out["rows"]),
-                            (200, res200, ns["run_three"](robot, path, contacts, 200, ns["TORQUE_SCALE"], sim, res200))):
+                            (200, res200, ns["run_three"](robot, path, 200, sim, res200))):
         rows = {r["timing"]: r for r in rows}
         ours = rows.pop("torque + contacts, margins")
         assert not ours["fell"] and ours["worst"][1] <= 0.5, (grid, ours["sim"].summary())
